@@ -1,0 +1,445 @@
+"""Arch geometry: circular (nominal), irregular (paper eq. 1) and explicit arches.
+
+Conventions (used everywhere in archquake)
+------------------------------------------
+- Frame: x to the right, y up, centre O of the arch at the origin. Units: m, rad, kg.
+- Voussoirs are numbered left to right, ``0 .. n-1``; joints ``0 .. n``; joint 0 is the left
+  springing, joint ``n`` the right springing. Voussoir ``i`` lies between joints ``i`` and ``i+1``.
+- The progressive angle ``beta`` is measured from the left springing side: a point at radius ``r``
+  on the radial line of progressive angle ``beta`` is ``(-r cos beta, r sin beta)`` (polar angle
+  ``pi - beta``). The left springing joint is at ``beta_0``; for an arch symmetric about the
+  vertical axis ``beta_0 = (pi - alpha) / 2`` where ``alpha`` is the angle of embrace.
+- Joints are radial (they pass through O). Each voussoir ``i`` is an annular sector of mean radius
+  ``R_i``, thickness ``t_i`` and angle ``alpha_i``: inner radius ``R_i - t_i/2`` (intrados), outer
+  radius ``R_i + t_i/2`` (extrados).
+- Mass properties are per unit depth (out of plane), with density ``density`` [kg/m^3].
+
+References
+----------
+[1] "Dynamic response of masonry arch with geometrical irregularities subjected to a pulse-type
+    ground motion" -- called "the paper" throughout archquake.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+DEFAULT_DENSITY = 2000.0
+"""Default masonry density [kg/m^3]. It cancels from every result of the paper."""
+
+GRAVITY = 9.81
+"""Acceleration of gravity g [m/s^2] (the paper does not state it; 9.81 is used throughout)."""
+
+MIN_VOUSSOIRS = 4
+"""A four-hinge mechanism needs at least three blocks plus one hinge-free joint choice; with fewer
+than four voussoirs the hinges cannot form at four distinct joints with three moving blocks."""
+
+
+def _as_float_array(name: str, values) -> np.ndarray:
+    try:
+        arr = np.asarray(values, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{name} must be a sequence of numbers, got {values!r}") from exc
+    if arr.ndim != 1:
+        raise ValueError(f"{name} must be a one-dimensional sequence, got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} must contain only finite numbers, got {arr.tolist()}")
+    return arr
+
+
+def _check_positive(name: str, value: float, unit: str) -> float:
+    try:
+        value = float(value)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{name} must be a number [{unit}], got {value!r}") from exc
+    if not math.isfinite(value) or value <= 0.0:
+        raise ValueError(f"{name} must be a finite number > 0 [{unit}], got {value!r}")
+    return value
+
+
+@dataclass(frozen=True)
+class Arch:
+    """An arch made of ``n`` voussoirs with radial joints.
+
+    Parameters
+    ----------
+    angles : array of float, shape (n,)
+        Angle of embrace ``alpha_i`` of every voussoir [rad], left to right.
+    thicknesses : array of float, shape (n,)
+        Thickness ``t_i`` of every voussoir [m].
+    radii : array of float, shape (n,)
+        Mean radius ``R_i`` of every voussoir [m].
+    start_angle : float
+        Progressive angle ``beta_0`` of the left springing joint [rad].
+    density : float
+        Density of the masonry [kg/m^3]; mass properties are per unit depth.
+
+    Build arches with :func:`circular_arch`, :func:`irregular_arch`, :meth:`Arch.from_voussoirs`
+    or :meth:`Arch.from_json`, which check their input.
+    """
+
+    angles: np.ndarray
+    thicknesses: np.ndarray
+    radii: np.ndarray
+    start_angle: float
+    density: float = DEFAULT_DENSITY
+    _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False, hash=False)
+
+    def __post_init__(self):
+        angles = _as_float_array("angles", self.angles)
+        thicknesses = _as_float_array("thicknesses", self.thicknesses)
+        radii = _as_float_array("radii", self.radii)
+        n = angles.size
+        if thicknesses.size != n or radii.size != n:
+            raise ValueError(
+                "angles, thicknesses and radii must have the same length (one value per "
+                f"voussoir), got {n}, {thicknesses.size} and {radii.size}"
+            )
+        if n < MIN_VOUSSOIRS:
+            raise ValueError(
+                f"voussoirs must be >= {MIN_VOUSSOIRS} for a four-hinge mechanism, got {n}"
+            )
+        if np.any(angles <= 0):
+            raise ValueError(f"angles must all be > 0 [rad], got {angles.tolist()}")
+        if np.any(thicknesses <= 0):
+            raise ValueError(f"thicknesses must all be > 0 [m], got {thicknesses.tolist()}")
+        if np.any(radii <= 0):
+            raise ValueError(f"radii must all be > 0 [m], got {radii.tolist()}")
+        if np.any(thicknesses >= 2.0 * radii):
+            bad = int(np.argmax(thicknesses >= 2.0 * radii))
+            raise ValueError(
+                "thickness must be < 2 x radius for every voussoir (the intrados radius must be "
+                f"> 0); voussoir {bad} has thickness {thicknesses[bad]} m and radius {radii[bad]} m"
+            )
+        total = float(angles.sum())
+        if total >= 2.0 * math.pi:
+            raise ValueError(
+                f"the angle of embrace (sum of angles) must be in (0, 360) degrees, got "
+                f"{math.degrees(total):.6g} degrees"
+            )
+        density = _check_positive("density", self.density, "kg/m^3")
+        for name, arr in (("angles", angles), ("thicknesses", thicknesses), ("radii", radii)):
+            arr.setflags(write=False)
+            object.__setattr__(self, name, arr)
+        object.__setattr__(self, "start_angle", float(self.start_angle))
+        object.__setattr__(self, "density", density)
+        inner, outer = self.joint_extents()
+        bad = np.flatnonzero(inner >= outer)
+        if bad.size:
+            j = int(bad[0])
+            raise ValueError(
+                f"adjacent voussoirs must touch at every joint: at joint {j} the radial extents of "
+                f"voussoirs {j - 1} and {j} do not overlap (contact [{inner[j]:.6g}, "
+                f"{outer[j]:.6g}] m is empty)"
+            )
+
+    # ------------------------------------------------------------------ constructors
+    @classmethod
+    def from_voussoirs(
+        cls, angles, thicknesses, radii, *, start_angle: float | None = None,
+        density: float = DEFAULT_DENSITY,
+    ) -> Arch:
+        """Arch from per-voussoir arrays [rad, m, m], placed symmetric by default.
+
+        ``start_angle`` defaults to ``(pi - sum(angles)) / 2`` so that the springings are at the
+        same height, as for a surveyed arch given only by its voussoirs.
+        """
+        angles_arr = _as_float_array("angles", angles)
+        if start_angle is None:
+            start_angle = (math.pi - float(angles_arr.sum())) / 2.0
+        return cls(angles_arr, thicknesses, radii, start_angle, density)
+
+    @classmethod
+    def from_dict(cls, data: dict, *, density: float = DEFAULT_DENSITY) -> Arch:
+        """Arch from a mapping with keys ``angles`` [rad], ``thicknesses`` [m], ``radii`` [m]."""
+        if not isinstance(data, dict):
+            raise ValueError(
+                "geometry must be a JSON object with keys 'angles', 'thicknesses', 'radii', got "
+                f"{type(data).__name__}"
+            )
+        missing = [key for key in ("angles", "thicknesses", "radii") if key not in data]
+        if missing:
+            raise ValueError(
+                f"geometry is missing the key(s) {missing}; expected 'angles' [rad], "
+                "'thicknesses' [m] and 'radii' [m]"
+            )
+        unknown = sorted(set(data) - {"angles", "thicknesses", "radii", "density"})
+        if unknown:
+            raise ValueError(
+                f"geometry has unknown key(s) {unknown}; allowed: 'angles', 'thicknesses', "
+                "'radii', 'density'"
+            )
+        for key in ("angles", "thicknesses", "radii"):
+            if not isinstance(data[key], list):
+                raise ValueError(f"geometry key '{key}' must be a list of numbers")
+        return cls.from_voussoirs(
+            data["angles"], data["thicknesses"], data["radii"],
+            density=data.get("density", density),
+        )
+
+    @classmethod
+    def from_json(cls, path: str | Path, *, density: float = DEFAULT_DENSITY) -> Arch:
+        """Arch from a JSON file ``{"angles": [...], "thicknesses": [...], "radii": [...]}``."""
+        path = Path(path)
+        try:
+            text = path.read_text()
+        except OSError as exc:
+            raise ValueError(f"cannot read geometry file {str(path)!r}: {exc.strerror}") from exc
+        try:
+            data = json.loads(text)
+        except json.JSONDecodeError as exc:
+            raise ValueError(
+                f"geometry file {str(path)!r} is not valid JSON: {exc.msg} (line {exc.lineno})"
+            ) from exc
+        return cls.from_dict(data, density=density)
+
+    def to_dict(self) -> dict:
+        """The explicit description of this arch, as read by :meth:`from_dict`."""
+        return {
+            "angles": self.angles.tolist(),
+            "thicknesses": self.thicknesses.tolist(),
+            "radii": self.radii.tolist(),
+        }
+
+    # ------------------------------------------------------------------ basic geometry
+    @property
+    def n_voussoirs(self) -> int:
+        """Number of voussoirs n."""
+        return int(self.angles.size)
+
+    @property
+    def embrace(self) -> float:
+        """Angle of embrace alpha of the whole arch [rad]."""
+        return float(self.angles.sum())
+
+    @property
+    def joint_angles(self) -> np.ndarray:
+        """Progressive angle beta_j of every joint j = 0..n [rad]."""
+        return self.start_angle + np.concatenate(([0.0], np.cumsum(self.angles)))
+
+    @property
+    def inner_radii(self) -> np.ndarray:
+        """Intrados radius R_i - t_i/2 of every voussoir [m]."""
+        return self.radii - 0.5 * self.thicknesses
+
+    @property
+    def outer_radii(self) -> np.ndarray:
+        """Extrados radius R_i + t_i/2 of every voussoir [m]."""
+        return self.radii + 0.5 * self.thicknesses
+
+    def joint_extents(self) -> tuple[np.ndarray, np.ndarray]:
+        """Radial extent of the contact at every joint j = 0..n [m].
+
+        An inner joint is the overlap of the radial extents of the two voussoirs it separates
+        ``[max(r_in), min(r_out)]``; a springing joint is its voussoir's own extent.
+        """
+        ri, ro = self.inner_radii, self.outer_radii
+        inner = np.concatenate(([ri[0]], np.maximum(ri[:-1], ri[1:]), [ri[-1]]))
+        outer = np.concatenate(([ro[0]], np.minimum(ro[:-1], ro[1:]), [ro[-1]]))
+        return inner, outer
+
+    def is_symmetric(self, atol: float = 1e-12) -> bool:
+        """True when the arch equals its mirror image about the vertical axis."""
+        m = self.mirrored()
+        return bool(
+            np.allclose(self.angles, m.angles, atol=atol, rtol=0)
+            and np.allclose(self.thicknesses, m.thicknesses, atol=atol, rtol=0)
+            and np.allclose(self.radii, m.radii, atol=atol, rtol=0)
+            and abs(self.start_angle - m.start_angle) <= atol
+        )
+
+    def mirrored(self) -> Arch:
+        """The arch mirrored about the vertical axis x = 0.
+
+        Voussoir i of the mirror is voussoir n-1-i of this arch; the mirror's left springing is
+        at ``beta_0' = pi - beta_n``.
+        """
+        return Arch(
+            self.angles[::-1].copy(), self.thicknesses[::-1].copy(), self.radii[::-1].copy(),
+            math.pi - float(self.joint_angles[-1]), self.density,
+        )
+
+    @staticmethod
+    def point(radius, beta) -> np.ndarray:
+        """Cartesian point(s) at ``radius`` [m] on the radial line of progressive angle ``beta``."""
+        radius = np.asarray(radius, dtype=float)
+        beta = np.asarray(beta, dtype=float)
+        return np.stack((-radius * np.cos(beta), radius * np.sin(beta)), axis=-1)
+
+    # ------------------------------------------------------------------ mass properties
+    def _mass_properties(self):
+        if "mass" not in self._cache:
+            ri, ro, a = self.inner_radii, self.outer_radii, self.angles
+            area = 0.5 * a * (ro**2 - ri**2)
+            mass = self.density * area
+            # distance of the centroid of an annular sector from the centre O
+            dist = (2.0 / 3.0) * (ro**3 - ri**3) / (ro**2 - ri**2) * np.sin(a / 2) / (a / 2)
+            mid = self.joint_angles[:-1] + a / 2
+            centroid = self.point(dist, mid)
+            polar_o = self.density * a / 4.0 * (ro**4 - ri**4)  # about O
+            inertia = polar_o - mass * dist**2
+            for arr in (mass, centroid, inertia):
+                arr.setflags(write=False)
+            self._cache["mass"] = (mass, centroid, inertia)
+        return self._cache["mass"]
+
+    @property
+    def masses(self) -> np.ndarray:
+        """Mass m_i of every voussoir per unit depth [kg/m]."""
+        return self._mass_properties()[0]
+
+    @property
+    def centroids(self) -> np.ndarray:
+        """Centroid (x, y) of every voussoir [m], shape (n, 2)."""
+        return self._mass_properties()[1]
+
+    @property
+    def inertias(self) -> np.ndarray:
+        """Polar moment of inertia of every voussoir about its centroid, per unit depth [kg m]."""
+        return self._mass_properties()[2]
+
+    @property
+    def total_mass(self) -> float:
+        """Mass of the whole arch per unit depth [kg/m]."""
+        return float(self.masses.sum())
+
+    def outline(self, i: int, points: int = 24) -> np.ndarray:
+        """Closed polygon (x, y) of voussoir ``i``'s outline [m], for drawing."""
+        b0, b1 = self.joint_angles[i], self.joint_angles[i + 1]
+        b = np.linspace(b0, b1, points)
+        outer = self.point(self.outer_radii[i], b)
+        inner = self.point(self.inner_radii[i], b[::-1])
+        return np.vstack((outer, inner, outer[:1]))
+
+
+def circular_arch(
+    radius: float, embrace: float, thickness: float, voussoirs: int,
+    *, density: float = DEFAULT_DENSITY,
+) -> Arch:
+    """Nominal circular arch with equal voussoirs and radial joints, symmetric about x = 0.
+
+    Parameters
+    ----------
+    radius : float
+        Mean radius R [m].
+    embrace : float
+        Angle of embrace alpha [rad], in (0, 2 pi).
+    thickness : float
+        Thickness t [m], in (0, 2 R).
+    voussoirs : int
+        Number of voussoirs n (>= 4).
+    density : float
+        Density [kg/m^3].
+    """
+    radius = _check_positive("radius", radius, "m")
+    thickness = _check_positive("thickness", thickness, "m")
+    embrace = _check_positive("embrace", embrace, "rad")
+    if embrace >= 2.0 * math.pi:
+        raise ValueError(
+            f"embrace must be in (0, 360) degrees, got {math.degrees(embrace):.6g} degrees"
+        )
+    if thickness >= 2.0 * radius:
+        raise ValueError(
+            f"thickness must be < 2 x radius = {2 * radius} m, got {thickness} m"
+        )
+    if isinstance(voussoirs, bool) or not float(voussoirs).is_integer():
+        raise ValueError(f"voussoirs must be an integer >= {MIN_VOUSSOIRS}, got {voussoirs!r}")
+    n = int(voussoirs)
+    if n < MIN_VOUSSOIRS:
+        raise ValueError(f"voussoirs must be >= {MIN_VOUSSOIRS} for a four-hinge mechanism, got {n}")
+    return Arch(
+        np.full(n, embrace / n), np.full(n, thickness), np.full(n, radius),
+        (math.pi - embrace) / 2.0, density,
+    )
+
+
+def irregular_arch(
+    nominal: Arch, tolerance: float, rng: np.random.Generator | int | None = None,
+) -> Arch:
+    """Random irregular arch drawn around a nominal one [paper, Sect. 2, eq. (1)].
+
+    For every voussoir i, independently::
+
+        alpha_i = alpha/n (1 + eps p_alpha_i)
+        t_i     = t       (1 + eps p_t_i)
+        R_i     = R       (1 + chi p_R_i),     chi = eps t / R
+
+    with p ~ U[-1, 1]. The nominal values are the nominal arch's per-voussoir values (so an
+    explicit arch can be perturbed too; for a circular arch they are alpha/n, t, R). The total
+    embrace stays deterministic: the drawn angles are rescaled by a common factor so that they sum
+    to the nominal embrace (the paper states the total is fixed without saying how). The arch keeps
+    the nominal arch's left springing angle beta_0, so both springings stay where they were.
+
+    The draws are made in one call ``rng.uniform(-1, 1, size=(3, n))``: row 0 angles, row 1
+    thicknesses, row 2 radii. ``tolerance = 0`` returns the nominal arch.
+
+    Parameters
+    ----------
+    nominal : Arch
+        The nominal arch.
+    tolerance : float
+        epsilon, in [0, 1).
+    rng : numpy Generator, int seed or None
+        Source of randomness.
+    """
+    try:
+        eps = float(tolerance)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"tolerance must be a number in [0, 1), got {tolerance!r}") from exc
+    if not (0.0 <= eps < 1.0):
+        raise ValueError(f"tolerance must be in [0, 1), got {tolerance!r}")
+    rng = np.random.default_rng(rng)
+    n = nominal.n_voussoirs
+    p = rng.uniform(-1.0, 1.0, size=(3, n))
+    if eps == 0.0:
+        return nominal
+    angles = nominal.angles * (1.0 + eps * p[0])
+    angles *= nominal.embrace / angles.sum()
+    thicknesses = nominal.thicknesses * (1.0 + eps * p[1])
+    chi = eps * nominal.thicknesses / nominal.radii
+    radii = nominal.radii * (1.0 + chi * p[2])
+    return Arch(angles, thicknesses, radii, nominal.start_angle, nominal.density)
+
+
+FACES = ("intrados", "extrados")
+
+
+@dataclass(frozen=True)
+class Hinge:
+    """A hinge of a mechanism: a joint of an arch and the face of the joint it forms on.
+
+    Parameters
+    ----------
+    joint : int
+        Joint index j (0 = left springing .. n = right springing).
+    face : str
+        ``"intrados"`` (inner edge of the joint's contact) or ``"extrados"`` (outer edge).
+    """
+
+    joint: int
+    face: str
+
+    def __post_init__(self):
+        if self.face not in FACES:
+            raise ValueError(f"face must be one of {FACES}, got {self.face!r}")
+        if isinstance(self.joint, bool) or int(self.joint) != self.joint or self.joint < 0:
+            raise ValueError(f"joint must be an integer >= 0, got {self.joint!r}")
+        object.__setattr__(self, "joint", int(self.joint))
+
+    def radius(self, arch: Arch) -> float:
+        """Radius of the hinge point [m]: the edge of the joint's contact on this face."""
+        inner, outer = arch.joint_extents()
+        return float(inner[self.joint] if self.face == "intrados" else outer[self.joint])
+
+    def beta(self, arch: Arch) -> float:
+        """Progressive angle of the hinge's joint [rad]."""
+        return float(arch.joint_angles[self.joint])
+
+    def point(self, arch: Arch) -> np.ndarray:
+        """Cartesian position (x, y) of the hinge point [m]."""
+        return Arch.point(self.radius(arch), self.beta(arch))

@@ -1,0 +1,15 @@
+"""Named reference arches."""
+
+from __future__ import annotations
+
+import math
+
+from .geometry import DEFAULT_DENSITY, Arch, circular_arch
+
+OPPENHEIM = {"radius": 10.0, "embrace": math.radians(157.5), "thickness": 1.5, "voussoirs": 7}
+"""Oppenheim's arch [paper, Sect. 2]: R = 10 m, alpha = 157.5 deg, t = 1.5 m, n = 7."""
+
+
+def oppenheim(density: float = DEFAULT_DENSITY) -> Arch:
+    """Oppenheim's arch, the paper's nominal arch "NA" (R = 10 m, 157.5 deg, t = 1.5 m, n = 7)."""
+    return circular_arch(**OPPENHEIM, density=density)
