@@ -351,7 +351,9 @@ def circular_arch(
         raise ValueError(f"voussoirs must be an integer >= {MIN_VOUSSOIRS}, got {voussoirs!r}")
     n = int(voussoirs)
     if n < MIN_VOUSSOIRS:
-        raise ValueError(f"voussoirs must be >= {MIN_VOUSSOIRS} for a four-hinge mechanism, got {n}")
+        raise ValueError(
+            f"voussoirs must be >= {MIN_VOUSSOIRS} for a four-hinge mechanism, got {n}"
+        )
     return Arch(
         np.full(n, embrace / n), np.full(n, thickness), np.full(n, radius),
         (math.pi - embrace) / 2.0, density,
