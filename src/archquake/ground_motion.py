@@ -460,14 +460,16 @@ def read_record(
     if times.size < 2:
         raise _record_error(path, f"a record needs at least two samples, got {times.size}")
     if times[0] < 0.0:
-        raise _record_error(path, f"times must start at or after 0 s, the first is {times[0]!r} s")
+        raise _record_error(
+            path, f"times must start at or after 0 s, the first is {float(times[0])!r} s"
+        )
     steps = np.diff(times)
     if np.any(steps <= 0.0):
         i = int(np.argmax(steps <= 0.0))
         kind = "repeated" if steps[i] == 0.0 else "decreasing"
         raise _record_error(
             path, f"times must increase strictly; sample {i + 2} has a {kind} time "
-            f"{times[i + 1]!r} s after {times[i]!r} s"
+            f"{float(times[i + 1])!r} s after {float(times[i])!r} s"
         )
     if times[0] > 0.0:  # the ground is at rest at t = 0 and ramps to the first sample
         times = np.concatenate(([0.0], times))
