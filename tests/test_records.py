@@ -115,6 +115,12 @@ def test_whitespace_separated_csv_without_header(tmp_path):
     assert g.acceleration(0.25) == pytest.approx(GRAVITY * -0.05)
 
 
+def test_csv_with_byte_order_mark_and_windows_line_ends(tmp_path):
+    path = tmp_path / "bom.csv"
+    path.write_bytes("\ufeff0.0,0.1\r\n1.0,0.3\r\n".encode())
+    assert read_record(path).values == pytest.approx(GRAVITY * np.array([0.1, 0.3]))
+
+
 def test_csv_starting_after_zero_gets_a_rest_point_at_zero(tmp_path):
     path = write(tmp_path, "late.csv", "time_s, acc_g\n0.5, 0.2\n1.0, -0.1\n")
     g = read_record(path)
@@ -128,7 +134,8 @@ def test_csv_starting_after_zero_gets_a_rest_point_at_zero(tmp_path):
     "NPTS= 5, DT= 0.01 SEC,",
     "NPTS= 5 DT= 0.01 SEC",
     "NPTS=5,DT=1.0E-02 SEC",
-], ids=["nga", "trailing-comma", "no-commas", "compact"])
+    "    5   .01000    NPTS, DT",
+], ids=["nga", "trailing-comma", "no-commas", "compact", "older-layout"])
 def test_at2_header_variants(tmp_path, sampling):
     path = write(tmp_path, "v.AT2", AT2_HEADER + sampling + "\n  .1000000E+00 -.2000000E+00\n"
                  "  .3000000E+00\n-.4000000E+00  0.0\n")

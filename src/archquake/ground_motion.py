@@ -314,6 +314,8 @@ def parse_csv_record(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
 _NPTS = re.compile(r"\bNPTS\s*=\s*([^\s,]+)", re.IGNORECASE)
 _DT = re.compile(r"\bDT\s*=\s*([^\s,]+)", re.IGNORECASE)
 _UNITS = re.compile(r"UNITS\s+OF\s+(\S+)", re.IGNORECASE)
+_OLD_SAMPLING = re.compile(r"^\s*(\S+)\s+(\S+)\s+NPTS\s*,?\s*DT\b", re.IGNORECASE)
+"""The older PEER layout of line 4: ``  3930   .01000    NPTS, DT``."""
 
 
 def parse_at2_record(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
@@ -321,9 +323,10 @@ def parse_at2_record(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
 
     The four header lines are: a title, the event and station, the quantity and its units
     (``ACCELERATION TIME SERIES IN UNITS OF G``; other units are refused), and the sampling, e.g.
-    ``NPTS=  5590, DT=   .0050 SEC`` (also accepted: ``NPTS= 5590, DT= 0.005 SEC,`` and the same
-    without commas). The accelerations [g] follow, several per line, separated by whitespace (or
-    commas); there must be exactly NPTS of them. The time of value ``i`` is ``i DT``.
+    ``NPTS=  5590, DT=   .0050 SEC`` (also accepted: ``NPTS= 5590, DT= 0.005 SEC,``, the same
+    without commas, and the older layout ``  5590   .00500    NPTS, DT``). The accelerations [g]
+    follow, several per line, separated by whitespace (or commas); there must be exactly NPTS of
+    them. The time of value ``i`` is ``i DT``.
 
     Parameters
     ----------
@@ -350,7 +353,10 @@ def parse_at2_record(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
         )
     header = lines[3]
     npts_match, dt_match = _NPTS.search(header), _DT.search(header)
-    if npts_match is None or dt_match is None:
+    old_layout = _OLD_SAMPLING.search(header)
+    if (npts_match is None or dt_match is None) and old_layout:
+        npts_text, dt_text = old_layout.group(1), old_layout.group(2)
+    elif npts_match is None or dt_match is None:
         missing = " and ".join(
             key for key, match in (("NPTS", npts_match), ("DT", dt_match)) if match is None
         )
@@ -358,13 +364,15 @@ def parse_at2_record(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
             path, f"line 4 of the AT2 header must give NPTS and DT "
             f"(e.g. 'NPTS=  5590, DT=   .0050 SEC'); {missing} not found in {header.strip()!r}"
         )
+    else:
+        npts_text, dt_text = npts_match.group(1), dt_match.group(1)
     try:
-        npts = int(npts_match.group(1))
+        npts = int(npts_text)
     except ValueError:
         raise _record_error(
-            path, f"line 4: NPTS must be a whole number, got {npts_match.group(1)!r}"
+            path, f"line 4: NPTS must be a whole number, got {npts_text!r}"
         ) from None
-    dt = _parse_number(path, dt_match.group(1), 4, "DT")
+    dt = _parse_number(path, dt_text, 4, "DT")
     if npts < 2:
         raise _record_error(path, f"line 4: NPTS must be >= 2, got {npts}")
     if dt <= 0.0:
@@ -385,7 +393,7 @@ def _read_lines(path: Path) -> list[str]:
         raise _record_error(path, "no such file")
     if not path.is_file():
         raise _record_error(path, "not a regular file")
-    text = path.read_text(encoding="utf-8", errors="replace")
+    text = path.read_text(encoding="utf-8-sig", errors="replace")
     if not text.strip():
         raise _record_error(path, "the file is empty")
     return text.splitlines()
@@ -402,14 +410,14 @@ def record_format(path: str | Path) -> str:
     """Format name of a record file (a key of :data:`RECORD_FORMATS`).
 
     By extension (``.at2`` -> ``at2``; ``.csv`` -> ``csv``); otherwise by content: ``at2`` if the
-    fourth line gives ``NPTS=``, else ``csv``.
+    fourth line gives NPTS (``NPTS=`` or ``... NPTS, DT``), else ``csv``.
     """
     path = Path(path)
     suffix = path.suffix.lower().lstrip(".")
     if suffix in RECORD_FORMATS:
         return suffix
     lines = _read_lines(path)
-    if len(lines) >= 4 and _NPTS.search(lines[3]):
+    if len(lines) >= 4 and (_NPTS.search(lines[3]) or _OLD_SAMPLING.search(lines[3])):
         return "at2"
     return "csv"
 
