@@ -17,7 +17,7 @@ def nominal_hinges(paper):
 
 
 def mirrored_hinges(arch, hinges):
-    """Hinges of a mechanism of the mirrored arch, expressed on the original arch (left to right)."""
+    """Hinges of a mechanism of the mirrored arch, on the original arch (left to right)."""
     n = arch.n_voussoirs
     return tuple(Hinge(n - h.joint, h.face) for h in reversed(hinges))
 
@@ -64,7 +64,8 @@ def _loop_angles(a, d, ab, bc, cd, theta, guess):
     t2, t3 = guess
     for _ in range(60):
         r = (a + ab * np.array([np.cos(theta), np.sin(theta)])
-             + bc * np.array([np.cos(t2), np.sin(t2)]) - d - cd * np.array([np.cos(t3), np.sin(t3)]))
+             + bc * np.array([np.cos(t2), np.sin(t2)])
+             - d - cd * np.array([np.cos(t3), np.sin(t3)]))
         jac = np.array([[-bc * np.sin(t2), cd * np.sin(t3)], [bc * np.cos(t2), -cd * np.cos(t3)]])
         step = np.linalg.solve(jac, -r)
         t2, t3 = t2 + step[0], t3 + step[1]
@@ -74,7 +75,7 @@ def _loop_angles(a, d, ab, bc, cd, theta, guess):
 
 
 class Configurations:
-    """Displaced configurations of a mechanism, followed by continuation from the undisplaced one."""
+    """Displaced configurations of a mechanism, by continuation from the undisplaced one."""
 
     def __init__(self, arch, hinges):
         self.arch = arch

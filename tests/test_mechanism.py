@@ -2,16 +2,16 @@ import math
 
 import numpy as np
 import pytest
+
+from archquake import irregular_arch
+from archquake.geometry import GRAVITY, Hinge
+from archquake.mechanism import FourLinkMechanism, mechanism_from_hinges
 from kinematics_reference import (
     Configurations,
     instantaneous_velocities,
     mirrored_hinges,
     nominal_hinges,
 )
-
-from archquake import irregular_arch
-from archquake.geometry import GRAVITY, Hinge
-from archquake.mechanism import FourLinkMechanism, mechanism_from_hinges
 
 SEEDS = [1, 2, 3]
 
