@@ -29,7 +29,8 @@ ratio ``c_v^2 M_to / M_from`` is at most 1.
 
 For Oppenheim's arch (hinges at joints 0, 3, 5, 7) this gives ``c_v = 0.6450`` (kinetic energy
 ratio 0.416); with 70 voussoirs and the hinges of the least kinematic multiplier (joints 1, 26, 52,
-70, k = 0.3535), the continuous limit, ``c_v = 0.736``. The paper uses ``c_v = 0.875`` for
+70, k = 0.3535) ``c_v = 0.736``, and with 140 voussoirs (joints 1, 53, 104, 140, k = 0.3534)
+``c_v = 0.728``: about 0.73 in the continuous limit. The paper uses ``c_v = 0.875`` for
 Oppenheim's arch, quoting [2]. Assumptions tried that do not give 0.875 (values for n = 7):
 point masses without rotary inertia 0.664; impulses at the pre-impact hinges (generalised momentum
 of the pre-impact mechanism conserved) 1.55 (> 1, not physical); post-impact hinges at the same
