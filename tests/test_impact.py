@@ -1,0 +1,171 @@
+import itertools
+import math
+
+import numpy as np
+import pytest
+
+from archquake import circular_arch, irregular_arch
+from archquake.geometry import Hinge
+from archquake.impact import (
+    RESTITUTION_MODELS,
+    computed_restitution,
+    generalised_momentum,
+    kinetic_energy_ratio,
+    restitution,
+    velocity_after_impact,
+)
+from archquake.mechanism import mechanism_from_hinges
+from kinematics_reference import (
+    instantaneous_velocities,
+    mirrored_hinges,
+    nominal_hinges,
+    virtual_work_multiplier,
+)
+
+FACES = ("intrados", "extrados", "intrados", "extrados")
+
+
+def _pair(arch, hinges):
+    return (mechanism_from_hinges(arch, hinges, "l"),
+            mechanism_from_hinges(arch.mirrored(), hinges, "r"))
+
+
+def _impulse_momentum_restitution(arch, hinges_before, hinges_after, after_rate_block):
+    """c_v from the impulse-momentum equations of the three post-impact blocks.
+
+    Unknowns: theta'_f and the impulses (x, y) at the four post-impact hinges; equations: linear
+    and angular momentum of each post-impact block. Pre-impact: block AB of the pre-impact
+    mechanism turns at theta'_i = 1 about A. Post-impact velocities per unit theta'_f: block
+    ``after_rate_block`` (0 = leftmost, 2 = rightmost) turns at -1 (Mech-r's block A'B', seen
+    in the original frame).
+    """
+    v, w = instantaneous_velocities(arch, hinges_before)
+    u, om = instantaneous_velocities(arch, hinges_after)
+    joints = [h.joint for h in hinges_after]
+    first = (joints[0], joints[1], joints[2])[after_rate_block]
+    scale = -1.0 / om[first]
+    u, om = u * scale, om * scale
+    pts = [h.point(arch) for h in hinges_after]
+    m, inertia, g = arch.masses, arch.inertias, arch.centroids
+
+    def cross(a, b):
+        return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+    a_mat = np.zeros((9, 9))
+    rhs = np.zeros(9)
+    for k in range(3):
+        lo, hi = joints[k], joints[k + 1]
+        sl = slice(lo, hi)
+        rows = slice(3 * k, 3 * k + 3)
+        # momentum after (coefficient of theta'_f) minus momentum before = impulses
+        lin_u = np.sum(m[sl, None] * u[sl], axis=0)
+        ang_u = np.sum(m[sl] * cross(g[sl], u[sl]) + inertia[sl] * om[sl])
+        lin_v = np.sum(m[sl, None] * v[sl], axis=0)
+        ang_v = np.sum(m[sl] * cross(g[sl], v[sl]) + inertia[sl] * w[sl])
+        a_mat[rows, 0] = [lin_u[0], lin_u[1], ang_u]
+        rhs[rows] = [lin_v[0], lin_v[1], ang_v]
+        for hinge, sign in ((k, 1.0), (k + 1, -1.0)):  # +J on the right block, -J on the left
+            col = 1 + 2 * hinge
+            p = pts[hinge]
+            a_mat[3 * k, col] -= sign
+            a_mat[3 * k + 1, col + 1] -= sign
+            a_mat[3 * k + 2, col] -= sign * -p[1]
+            a_mat[3 * k + 2, col + 1] -= sign * p[0]
+    solution = np.linalg.solve(a_mat, rhs)
+    return -solution[0]
+
+
+def test_computed_restitution_of_oppenheim_arch(nominal, paper):
+    hinges = nominal_hinges(paper)
+    mech_l, mech_r = _pair(nominal, hinges)
+    c = computed_restitution(mech_l, mech_r)
+    independent = _impulse_momentum_restitution(nominal, hinges,
+                                                mirrored_hinges(nominal, hinges), 2)
+    assert c == pytest.approx(independent, rel=1e-10)
+    assert c == pytest.approx(0.6450, abs=1e-4)
+    # symmetric arch: the same both ways; the paper's 0.875 is not what this model gives
+    assert computed_restitution(mech_r, mech_l) == pytest.approx(c, rel=1e-12)
+    assert abs(c - paper["dynamics"]["NA"]["restitution_paper"]) > 0.2
+    # M_to from the mode shape is the M of the equation of motion
+    assert generalised_momentum(mech_r, mech_r) == pytest.approx(
+        mech_r.coefficients(mech_r.theta_u)[0], rel=1e-12)
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3, 4, 5])
+def test_impact_never_creates_energy_on_irregular_arches(nominal, paper, seed):
+    arch = irregular_arch(nominal, 0.1, rng=seed)
+    hinges = nominal_hinges(paper)
+    mech_l, mech_r = _pair(arch, hinges)
+    for before, after in ((mech_l, mech_r), (mech_r, mech_l)):
+        c = computed_restitution(before, after)
+        assert 0.0 < c < 1.0
+        ratio = kinetic_energy_ratio(before, after)
+        assert 0.0 < ratio <= 1.0
+        assert ratio == pytest.approx(c**2 * before.coefficients(before.theta_u)[0] ** -1
+                                      * after.coefficients(after.theta_u)[0], rel=1e-12)
+    # the independent impulse-momentum solution, Mech-l -> Mech-r
+    independent = _impulse_momentum_restitution(arch, hinges, mirrored_hinges(arch, hinges), 2)
+    assert computed_restitution(mech_l, mech_r) == pytest.approx(independent, rel=1e-9)
+
+
+def test_continuous_limit_of_restitution():
+    """With 70 voussoirs and the hinges of the least kinematic multiplier, c_v is about 0.73."""
+    arch = circular_arch(10.0, math.radians(157.5), 1.5, 70)
+    joints = (1, 26, 52, 70)
+    hinges = tuple(Hinge(j, f) for j, f in zip(joints, FACES, strict=True))
+    k = virtual_work_multiplier(arch, hinges)
+    # a local minimum of the kinematic multiplier among admissible neighbouring hinge sets
+    for step in itertools.product((-1, 0, 1), repeat=4):
+        near = tuple(min(max(j + s, 0), 70) for j, s in zip(joints, step, strict=True))
+        if near == joints or len(set(near)) < 4:
+            continue
+        near_hinges = tuple(Hinge(j, f) for j, f in zip(near, FACES, strict=True))
+        if mechanism_from_hinges(arch, near_hinges).is_admissible:
+            assert virtual_work_multiplier(arch, near_hinges) > k
+    mech_l, mech_r = _pair(arch, hinges)
+    assert k == pytest.approx(0.3535, abs=1e-4)
+    assert computed_restitution(mech_l, mech_r) == pytest.approx(0.736, abs=1e-3)
+
+
+def test_velocity_after_impact_moves_into_the_other_mechanism():
+    assert velocity_after_impact(2.0, 0.6) == pytest.approx(-1.2)
+
+
+def test_restitution_registry(nominal, paper):
+    hinges = nominal_hinges(paper)
+    nominal_pair = _pair(nominal, hinges)
+    arch = irregular_arch(nominal, 0.1, rng=11)
+    pair = _pair(arch, hinges)
+    c_nominal = computed_restitution(*nominal_pair)
+    assert restitution("computed", *pair) == (computed_restitution(*pair),
+                                              computed_restitution(pair[1], pair[0]))
+    assert restitution("nominal", *pair, nominal=nominal_pair) == pytest.approx(
+        (c_nominal, c_nominal), rel=1e-12)
+    assert restitution("paper", *pair) == (paper["dynamics"]["NA"]["restitution_paper"],) * 2
+    assert restitution("elastic", *pair) == (1.0, 1.0)
+    assert restitution(0.875, *pair) == (0.875, 0.875)
+    assert restitution(1, *pair) == (1.0, 1.0)
+    assert set(RESTITUTION_MODELS) >= {"computed", "nominal", "paper", "elastic"}
+
+
+@pytest.mark.parametrize("bad", [0.0, -0.5, 1.5, float("nan"), True, None, [0.8]])
+def test_restitution_rejects_values_outside_unit_interval(nominal, paper, bad):
+    pair = _pair(nominal, nominal_hinges(paper))
+    with pytest.raises(ValueError, match=r"\(0, 1\]"):
+        restitution(bad, *pair)
+
+
+def test_restitution_unknown_name_lists_the_models(nominal, paper):
+    pair = _pair(nominal, nominal_hinges(paper))
+    with pytest.raises(ValueError, match="computed.*elastic.*nominal.*paper"):
+        restitution("housner", *pair)
+    with pytest.raises(ValueError, match="nominal="):
+        restitution("nominal", *pair)
+
+
+def test_mechanisms_of_different_arches_are_rejected(nominal, paper):
+    hinges = nominal_hinges(paper)
+    other = irregular_arch(nominal, 0.1, rng=1)
+    with pytest.raises(ValueError, match="same arch"):
+        computed_restitution(mechanism_from_hinges(nominal, hinges),
+                             mechanism_from_hinges(other.mirrored(), hinges, "r"))
