@@ -132,7 +132,7 @@ def _run_limit(args: argparse.Namespace) -> int:
             print(f"{name if i == 0 else '':<10} {k_text} {labels[i]:>6} {h.joint:>6} "
                   f"{h.face:>9} {h.beta(r.arch):>11.4f} {h.radius(r.arch):>8.4f}")
         if r.separation is not None:
-            print(f"{'':<10} {'':>8} {'':>6} {r.separation:>6} {'opens':>9}   (no force)")
+            print(f"{'':<10} {'':>8} {'':>6} {r.separation:>6} {'opens':>9}   (no normal force)")
     print(f"k = min(k_l, k_r) = {min(k_l, k_r):.4f}: the motion starts when the ground "
           f"acceleration reaches {min(k_l, k_r):.4f} g (Mech-r hinges in the mirrored frame)")
     if args.plot:

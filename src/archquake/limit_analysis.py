@@ -62,7 +62,7 @@ class ThrustLine:
     ----------
     radii : array of float, shape (n+1,)
         Radius of the pressure point on every (radial) joint [m]; nan at a joint that transmits
-        no normal force (a separating joint).
+        no normal force (a separating joint, whose force, if any, lies along the joint).
     points : array of float, shape (n+1, 2)
         Pressure points (x, y) [m].
     forces : array of float, shape (n+1, 2)
@@ -119,7 +119,8 @@ class LimitAnalysis:
         ``"static"`` or ``"kinematic"``.
     separation : int or None
         ``None`` for a four-hinge mechanism. Otherwise the joint that opens over its whole depth
-        (no force through it) in a two-block mechanism with two hinges; this happens only for
+        (no normal force through it; under the no-sliding hypothesis it may still carry a shear
+        force along the joint) in a two-block mechanism with two hinges; this happens only for
         thick arches under large horizontal loads (k of order 1 or more), never for the paper's
         arches, and the four-link model of the paper does not apply to it.
     """
@@ -494,6 +495,10 @@ def _four_hinge_family(geo: _Geometry, combos: np.ndarray) -> _Mechanisms:
 
 def _separation_family(geo: _Geometry, combos: np.ndarray) -> _Mechanisms:
     """Two face hinges and one joint that opens over its whole depth, two moving blocks.
+
+    The separating joint transmits no normal force and no moment about O; it may carry a shear
+    force along the joint (no sliding), which does no work since the relative velocity there is
+    normal to the joint.
 
     Without sliding, the relative motion at a joint is a rotation about a pole on the joint's
     (radial) line; outside the contact the whole joint opens and transmits no force. With the
