@@ -16,8 +16,11 @@ Two independent methods give the same ``k`` (uniqueness theorem of limit analysi
   joint's contact ``[r_in, r_out]``, i.e. ``r_in N <= -M <= r_out N`` (linear). Maximise ``k``.
   The hinges are the joints where the pressure point is on a face.
 - kinematic (upper bound): every four-hinge mechanism with hinges ``A < B < C < D`` at joints
-  ``a < b < c < d`` on alternating faces; virtual work gives its multiplier; the minimum over the
-  kinematically admissible ones is the collapse multiplier.
+  ``a < b < c < d`` (for the paper's arches the admissible ones have alternating faces); virtual
+  work gives its multiplier; the minimum over the kinematically admissible ones is the collapse
+  multiplier. For completeness the enumeration also holds the two-block mechanisms in which one
+  joint opens over its whole depth; they govern only thick arches under loads k of order 1 and
+  more, and with them the two methods agree for every arch (checked on random arches).
 
 The joint moment ``M`` of a force ``F`` whose line of action crosses the radial joint line at
 radius ``r`` is ``M = r (e_r x F) = -r N``, with ``e_r = (-cos beta, sin beta)`` the outward radial

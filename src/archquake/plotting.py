@@ -63,7 +63,7 @@ def plot_limit_analysis(result: LimitAnalysis, ax=None, *, nominal: Arch | None 
         plot_arch(result.arch, ax, color="black", label="arch")
     funicular = result.funicular()
     ax.plot(funicular[:, 0], funicular[:, 1], color="tab:blue", linewidth=1.4,
-            label="line of thrust (funicular)")
+            label="line of action of the resultant")
     pts = result.thrust_line.points
     ax.plot(pts[:, 0], pts[:, 1], "o", color="tab:blue", markersize=3.5,
             label="pressure points on the joints")
@@ -80,6 +80,10 @@ def plot_limit_analysis(result: LimitAnalysis, ax=None, *, nominal: Arch | None 
         offset = 0.045 * span * sign * outward
         ax.annotate(text, (x, y), (x + offset[0], y + offset[1]), ha="center", va="center",
                     fontsize=11, fontweight="bold")
+    ax.annotate("", xy=(0.16, 0.93), xytext=(0.03, 0.93), xycoords="axes fraction",
+                arrowprops={"arrowstyle": "-|>", "color": "tab:green", "linewidth": 1.5})
+    ax.text(0.03, 0.86, "horizontal forces k m$_i$ g", transform=ax.transAxes, fontsize=8,
+            color="tab:green")
     name = _MECHANISM_NAMES[result.direction]
     if result.direction == "r":
         name += " (mirrored arch)"
