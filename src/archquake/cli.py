@@ -39,16 +39,51 @@ def add_geometry_options(parser: argparse.ArgumentParser) -> None:
 
 def arch_from_args(args: argparse.Namespace) -> Arch:
     """The arch described by the geometry options."""
+    return arches_from_args(args)[1]
+
+
+def arches_from_args(args: argparse.Namespace) -> tuple[Arch, Arch]:
+    """``(nominal, arch)``: the arch before and after the optional irregular draw."""
     if args.geometry:
         arch = Arch.from_json(args.geometry)
     else:
         arch = circular_arch(args.radius, math.radians(args.embrace), args.thickness,
                              args.voussoirs)
+    nominal = arch
     if args.tolerance is not None:
         arch = irregular_arch(arch, args.tolerance, rng=0 if args.seed is None else args.seed)
     elif args.seed is not None:
         raise ValueError("--seed needs --tolerance (the seed of an irregular arch)")
-    return arch
+    return nominal, arch
+
+
+def add_restitution_option(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--restitution", default="computed", metavar="computed|nominal|paper|VALUE",
+        help="coefficient of restitution c_v at impacts: 'computed' from the momentum balance "
+             "of this arch (default), 'nominal' = the nominal arch's computed value (the paper's "
+             "practice), 'paper' = 0.875, or a number in (0, 1]",
+    )
+
+
+def restitution_model(text: str):
+    """The --restitution value: a registry name or a number."""
+    try:
+        return float(text)
+    except ValueError:
+        return text
+
+
+def mechanisms_from_args(args: argparse.Namespace):
+    """``(mech_l, mech_r, (c_lr, c_rl))`` of the arch of the geometry options."""
+    from .impact import restitution
+    from .mechanism import mechanisms
+
+    nominal, arch = arches_from_args(args)
+    mech_l, mech_r = mechanisms(arch)
+    model = restitution_model(args.restitution)
+    nominal_pair = mechanisms(nominal) if model == "nominal" else None
+    return mech_l, mech_r, restitution(model, mech_l, mech_r, nominal=nominal_pair)
 
 
 def print_json(obj) -> None:
@@ -191,6 +226,52 @@ def main(argv: list[str] | None = None) -> int:
 
 
 COMMANDS.append(add_limit)
+
+
+def add_mechanism(subparsers) -> None:
+    """``archquake mechanism``: the four-link mechanisms (paper Sects. 4.1-4.4, Tables 2-3)."""
+    parser = subparsers.add_parser(
+        "mechanism",
+        help="four-link mechanisms Mech-l and Mech-r: theta_u, links, critical angle, c_v",
+        description="Oppenheim's four-link mechanism of the arch for both directions, built on "
+                    "the limit-analysis hinges: undisplaced configuration theta_u, theta_BC, "
+                    "theta_CD [rad], link lengths AB, BC, CD [m], critical angle theta_cr and "
+                    "phi_cr = theta_u - theta_cr [rad], activation acceleration -F/P [g], and "
+                    "the coefficients of restitution of the impacts. Mech-r quantities are in "
+                    "the mirrored frame.",
+    )
+    add_geometry_options(parser)
+    add_restitution_option(parser)
+    parser.add_argument("--json", action="store_true", help="machine-readable output")
+    parser.set_defaults(func=_run_mechanism)
+
+
+def _run_mechanism(args: argparse.Namespace) -> int:
+    mech_l, mech_r, (c_lr, c_rl) = mechanisms_from_args(args)
+    out = {}
+    for m in (mech_l, mech_r):
+        out[m.direction] = {
+            "theta_u": m.theta_u, "theta_bc_u": m.theta_bc_u, "theta_cd_u": m.theta_cd_u,
+            "ab": m.ab, "bc": m.bc, "cd": m.cd, "theta_cr": m.theta_cr, "phi_cr": m.phi_cr,
+            "activation": m.activation,
+        }
+    out["restitution"] = {"l_to_r": c_lr, "r_to_l": c_rl}
+    if args.json:
+        print_json(out)
+        return 0
+    rows = [("theta_u", "rad"), ("theta_bc_u", "rad"), ("theta_cd_u", "rad"), ("ab", "m"),
+            ("bc", "m"), ("cd", "m"), ("theta_cr", "rad"), ("phi_cr", "rad"),
+            ("activation", "g")]
+    print(f"{'quantity':<12}{'Mech-l':>12}{'Mech-r':>12}  unit")
+    for key, unit in rows:
+        print(f"{key:<12}{out['l'][key]:>12.4f}{out['r'][key]:>12.4f}  {unit}")
+    ratio_l, ratio_r = (m.theta_cr / m.theta_u for m in (mech_l, mech_r))
+    print(f"{'theta_cr/u':<12}{ratio_l:>12.4f}{ratio_r:>12.4f}  -")
+    print(f"restitution c_v: Mech-l -> Mech-r {c_lr:.4f}, Mech-r -> Mech-l {c_rl:.4f}")
+    return 0
+
+
+COMMANDS.append(add_mechanism)
 
 
 if __name__ == "__main__":  # pragma: no cover

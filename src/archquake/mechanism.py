@@ -517,5 +517,12 @@ def mechanisms(arch: Arch, limit=None) -> tuple[FourLinkMechanism, FourLinkMecha
 
         limit = both_directions(arch)
     la_l, la_r = limit
+    for la in limit:
+        if not getattr(la, "is_four_hinge", True):
+            raise ValueError(
+                f"the collapse mechanism of direction {la.direction!r} is not a four-hinge "
+                "mechanism (a joint separates over its whole depth), so the four-link model "
+                "does not apply to this arch"
+            )
     return (mechanism_from_hinges(la_l.arch, la_l.hinges, "l"),
             mechanism_from_hinges(la_r.arch, la_r.hinges, "r"))
