@@ -259,7 +259,7 @@ def _columns_of(result: Any, chunk_index: int) -> dict[str, np.ndarray]:
     return columns
 
 
-def _run_chunk(task: Task, chunk: Chunk) -> tuple[int, dict[str, np.ndarray], float]:
+def _run_chunk(chunk: Chunk, task: Task) -> tuple[int, dict[str, np.ndarray], float]:
     """Evaluate ``task(chunk)``; return the chunk index, its columns and the time taken [s]."""
     t0 = time.perf_counter()
     columns = _columns_of(task(chunk), chunk.index)
@@ -284,7 +284,7 @@ def _limit_threads(threads: int) -> None:
 def _serial(task: Task, chunks: list[Chunk], workers: int | None,
             scheduler: Any) -> Iterator[tuple[int, dict, float]]:
     for chunk in chunks:
-        yield _run_chunk(task, chunk)
+        yield _run_chunk(chunk, task)
 
 
 def _processes(task: Task, chunks: list[Chunk], workers: int,
@@ -297,7 +297,7 @@ def _processes(task: Task, chunks: list[Chunk], workers: int,
     executor = ProcessPoolExecutor(max_workers=n, mp_context=multiprocessing.get_context("spawn"),
                                    initializer=_limit_threads, initargs=(threads,))
     try:
-        pending = {executor.submit(_run_chunk, task, chunk) for chunk in chunks}
+        pending = {executor.submit(_run_chunk, chunk, task) for chunk in chunks}
         while pending:
             done, pending = wait(pending, return_when=FIRST_COMPLETED)
             for future in done:
@@ -316,11 +316,33 @@ def _dask_client(scheduler: Any):
     if isinstance(scheduler, distributed.Client):
         return scheduler, False
     try:
+        _probe_scheduler(scheduler, SCHEDULER_TIMEOUT)
         client = distributed.Client(scheduler, timeout=SCHEDULER_TIMEOUT, set_as_default=False)
-    except (OSError, TimeoutError) as exc:
+    except Exception as exc:
         raise ValueError(f"could not connect to the Dask scheduler at {scheduler} within "
-                         f"{SCHEDULER_TIMEOUT:g} s: is it running and reachable? ({exc})") from exc
+                         f"{SCHEDULER_TIMEOUT:g} s: is a dask scheduler running there and "
+                         f"reachable? ({type(exc).__name__}: {exc})") from exc
     return client, True
+
+
+def _probe_scheduler(address: str, timeout: float) -> None:
+    """Open and close one Dask connection (with handshake) to ``address``, or raise.
+
+    Done before creating a ``Client``: a ``Client`` that fails to connect blocks for a further
+    10 s when it is garbage collected. The probe runs its own event loop in a helper thread, so it
+    also works where a loop is already running (e.g. a notebook).
+    """
+    import asyncio
+    from concurrent.futures import ThreadPoolExecutor
+
+    from distributed.comm import connect
+
+    async def probe() -> None:
+        comm = await connect(address, timeout=timeout)
+        await comm.close()
+
+    with ThreadPoolExecutor(max_workers=1) as pool:
+        pool.submit(asyncio.run, probe()).result()
 
 
 def _dask(task: Task, chunks: list[Chunk], workers: int | None,
@@ -331,7 +353,7 @@ def _dask(task: Task, chunks: list[Chunk], workers: int | None,
     futures = []
     try:
         futures = client.map(_run_chunk, chunks, task=task, pure=False)
-        for future in distributed.as_completed(futures):
+        for future in distributed.as_completed(futures, loop=client.loop):
             yield future.result()
             future.release()
     finally:
