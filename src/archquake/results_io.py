@@ -38,6 +38,9 @@ SUMMARY_JSON = "summary.json"
 TABLE_FORMATS = ("parquet", "csv")
 """Formats of the tidy table that :func:`save_study` can write."""
 
+# pandas >= 3 parses floats exactly by default (and deprecates the option); before, ask for it.
+_EXACT_FLOATS = {} if int(pd.__version__.split(".")[0]) >= 3 else {"float_precision": "round_trip"}
+
 SUMMARY_FORMAT = "archquake-study-results"
 SUMMARY_FORMAT_VERSION = 1
 
@@ -251,8 +254,8 @@ def load_study(out_dir: str | os.PathLike) -> StoredStudy:
         table = pd.read_parquet(out_dir / RESULTS_PARQUET, engine="pyarrow")
     elif RESULTS_CSV in files:
         dtypes = {c: d for c, d in columns.items() if d != "object"}
-        table = pd.read_csv(out_dir / RESULTS_CSV, dtype=dtypes, float_precision="round_trip",
-                            keep_default_na=False, na_values=[""])
+        table = pd.read_csv(out_dir / RESULTS_CSV, dtype=dtypes, keep_default_na=False,
+                            na_values=[""], **_EXACT_FLOATS)
     else:
         raise ValueError(f"{summary_path} lists no table file")
     if list(table.columns) != list(columns) or len(table) != record.get("rows"):
