@@ -42,7 +42,7 @@ def direct_table(seed, n_items, draws):
 def dask_scheduler():
     distributed = pytest.importorskip("distributed")
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  host="127.0.0.1", dashboard_address=None,
+                                  host="127.0.0.1", dashboard_address=":0",
                                   silence_logs=logging.ERROR) as cluster:
         yield cluster.scheduler_address
 
@@ -120,7 +120,7 @@ def test_rows_do_not_depend_on_chunking_and_match_direct_draws():
         assert_frame_equal(table, expected, check_dtype=False)
 
 
-def test_backends_and_worker_counts_give_identical_results(dask_scheduler):
+def test_backends_and_worker_counts_give_identical_results(dask_scheduler, capsys):
     plan = StudyPlan({"draws": 2}, seed=2024, n_items=9, chunk_size=2)
     expected = direct_table(2024, 9, 2)
     serial = run_study(toy_tasks.random_task, plan, backend="serial", progress=False)
@@ -131,14 +131,26 @@ def test_backends_and_worker_counts_give_identical_results(dask_scheduler):
         "dask address": dict(scheduler=dask_scheduler),
     }
     for name, options in runs.items():
-        table = run_study(toy_tasks.random_task, plan, progress=False, **options)
+        capsys.readouterr()
+        table = run_study(toy_tasks.random_task, plan, progress=True, **options)
         assert_frame_equal(table, serial, obj=name)
         assert table.attrs["study"]["backend"] == options.get("backend", "dask")
+        assert "5/5" in capsys.readouterr().err  # the progress bar followed every chunk
     distributed = pytest.importorskip("distributed")
     with distributed.Client(dask_scheduler, set_as_default=False) as client:
         table = run_study(toy_tasks.random_task, plan, scheduler=client, progress=False)
         assert_frame_equal(table, serial, obj="dask client")
         assert client.status == "running"  # a client passed in is left open
+
+
+def test_process_workers_share_the_cores_instead_of_oversubscribing():
+    table = run_study(toy_tasks.threads_task, StudyPlan({}, 0, 2, 1), backend="processes",
+                      workers=2, progress=False)
+    cap = max(1, os.cpu_count() // 2)  # two workers split the cores
+    expected_numba = int(os.environ.get("NUMBA_NUM_THREADS", cap))  # an explicit choice wins
+    assert table["numba_env"].tolist() == [expected_numba] * 2
+    assert table["omp_env"].tolist() == [int(os.environ.get("OMP_NUM_THREADS", cap))] * 2
+    assert table["numba_threads"].tolist() == [expected_numba] * 2
 
 
 def test_unreachable_scheduler_fails_fast_with_clear_message(monkeypatch):
@@ -267,17 +279,12 @@ def test_resume_after_killing_the_study_process(tmp_path):
 # -------------------------------------------------------------------------------- progress
 
 
-@pytest.mark.parametrize("backend", ["serial", "processes", "dask"])
-def test_progress_bar_counts_finished_chunks(backend, capsys, request):
-    options = {"serial": {"backend": "serial"},
-               "processes": {"backend": "processes", "workers": 1},
-               "dask": {"scheduler": request.getfixturevalue("dask_scheduler")}
-               if backend == "dask" else {}}[backend]
+def test_progress_bar_counts_finished_chunks(capsys):
     plan = StudyPlan({}, 0, 5, 2)
-    run_study(toy_tasks.trivial_task, plan, progress=True, **options)
+    run_study(toy_tasks.trivial_task, plan, backend="serial", progress=True)
     err = capsys.readouterr().err
     assert "3/3" in err and "chunk" in err
-    run_study(toy_tasks.trivial_task, plan, progress=False, **options)
+    run_study(toy_tasks.trivial_task, plan, backend="serial", progress=False)
     assert capsys.readouterr().err == ""
 
 

@@ -60,3 +60,12 @@ def failing_task(chunk):
     if chunk.index == 1:
         raise RuntimeError("chunk 1 failed")
     return {"item": chunk.items}
+
+
+def threads_task(chunk):
+    """The thread caps seen by the process that evaluates the chunk."""
+    import numba
+
+    return {"numba_env": [int(os.environ.get("NUMBA_NUM_THREADS", -1))],
+            "omp_env": [int(os.environ.get("OMP_NUM_THREADS", -1))],
+            "numba_threads": [numba.get_num_threads()]}

@@ -39,7 +39,14 @@ Threads
 The ``"processes"`` backend starts fresh interpreters (``"spawn"`` context: no state, locks or
 threads -- numba's or BLAS's -- are inherited through ``fork``) and caps the threads of every
 worker (``NUMBA_NUM_THREADS``, ``OMP_NUM_THREADS``, ... set to ``cpu_count // workers``, at
-least 1) so that parallel workers do not oversubscribe the cores.
+least 1) so that parallel workers do not oversubscribe the cores. The variables take effect for
+libraries a worker imports after start-up (numba's cap is also applied at run time); a value
+already set in the environment is kept. Dask workers are started by the cluster: for CPU-bound
+tasks that hold the GIL, start them with one thread each (``dask worker ADDRESS --nworkers N
+--nthreads 1``).
+
+The task function and this package must be importable where the task runs (the worker
+processes, or every Dask worker): the task is pickled by reference (module and name).
 """
 
 from __future__ import annotations
