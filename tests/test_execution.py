@@ -103,6 +103,7 @@ def test_plan_rejects_invalid_input(kwargs, message):
     ({"scheduler": "tcp://127.0.0.1:99999"}, "1..65535"),
     ({"backend": "dask", "scheduler": "tcp://127.0.0.1:8786", "workers": 2}, "workers"),
     ({"backend": "processes", "scheduler": "tcp://127.0.0.1:8786"}, "scheduler"),
+    ({"backend": "serial", "resume": True}, "out_dir"),
 ])
 def test_run_study_rejects_invalid_execution_options(kwargs, message):
     with pytest.raises(ValueError, match=message):
@@ -169,10 +170,18 @@ def test_unreachable_scheduler_fails_fast_with_clear_message(monkeypatch):
 # --------------------------------------------------------------------------- task results
 
 
-def test_invalid_task_result_is_reported():
-    with pytest.raises(ValueError, match="equal lengths"):
-        run_study(toy_tasks.ragged_task, StudyPlan({}, 0, 3, 1), backend="serial",
-                  progress=False)
+@pytest.mark.parametrize("results, message", [
+    ([{"a": [1], "b": [1, 2]}], "equal lengths"),
+    ([{"a": [[1, 2]]}], "one-dimensional"),
+    ([{"__chunk__": [1]}], "not starting with '__'"),
+    ([{}], "non-empty dict"),
+    ([[1, 2]], "non-empty dict"),
+    ([{"a": [1]}, {"b": [1]}], "same columns"),
+])
+def test_invalid_task_result_is_reported(results, message):
+    plan = StudyPlan({"results": results}, 0, len(results), 1)
+    with pytest.raises(ValueError, match=message):
+        run_study(toy_tasks.echo_task, plan, backend="serial", progress=False)
 
 
 def test_task_exception_propagates_and_keeps_finished_chunks(tmp_path):

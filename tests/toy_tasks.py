@@ -50,9 +50,9 @@ def busy_task(chunk):
     return {"item": chunk.items, "value": np.array(out)}
 
 
-def ragged_task(chunk):
-    """Invalid: columns of different lengths."""
-    return {"a": np.zeros(len(chunk)), "b": np.zeros(len(chunk) + 1)}
+def echo_task(chunk):
+    """Returns ``settings["results"][chunk.index]`` as it is (to test result validation)."""
+    return chunk.settings["results"][chunk.index]
 
 
 def failing_task(chunk):

@@ -51,6 +51,7 @@ processes, or every Dask worker): the task is pickled by reference (module and n
 
 from __future__ import annotations
 
+import copy
 import datetime
 import json
 import math
@@ -222,9 +223,11 @@ class StudyPlan:
             raise ValueError(f"chunk index must be an integer in [0, {self.n_chunks}), "
                              f"got {index!r}")
         start = int(index) * self.chunk_size
+        # each chunk gets its own copy of the settings: a task that modifies them cannot affect
+        # other chunks, whichever backend runs it
         return Chunk(index=int(index), start=start,
                      stop=min(start + self.chunk_size, self.n_items),
-                     seed=self.seed, settings=self.settings)
+                     seed=self.seed, settings=copy.deepcopy(self.settings))
 
     def chunks(self) -> Iterator[Chunk]:
         """All chunks in order."""
@@ -517,7 +520,8 @@ def run_study(
         Module-level function ``task(chunk) -> dict[str, array]`` (picklable by reference for the
         ``"processes"`` and ``"dask"`` backends). It receives a :class:`Chunk` and returns the
         columns of its rows: one-dimensional arrays of equal length, with numbers, booleans or
-        fixed-width strings; every chunk must return the same column names. It must draw item
+        fixed-width strings; every chunk must return the same column names (not starting with
+        ``"__"``, which is reserved for the checkpoint files). It must draw item
         ``i``'s random numbers only from ``chunk.generators()`` / ``chunk.seed_sequences()``.
     plan : StudyPlan
         Settings, seed, number of items and chunk size.
@@ -573,6 +577,8 @@ def run_study(
     if not callable(task):
         raise ValueError(f"task must be a callable task(chunk) -> dict, got {task!r}")
     backend, workers = _check_execution(backend, workers, scheduler)
+    if resume and out_dir is None:
+        raise ValueError("resume=True needs out_dir, the directory of the study to continue")
 
     started = time.perf_counter()
     record = {"format": STUDY_FORMAT, "format_version": STUDY_FORMAT_VERSION,
