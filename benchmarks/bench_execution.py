@@ -38,10 +38,14 @@ def overhead(label, n_chunks=400, **options):
     print(f"{label:42s} start-up {one:6.3f} s   per chunk {1e3 * per_chunk:7.3f} ms")
 
 
-def speedup(label, one, two, work=100_000_000, n_items=8):
-    """Wall time with one worker over wall time with two (start-up included)."""
+def speedup(label, one, two, work=100_000_000, n_items=8, repeats=3):
+    """Wall time with one worker over wall time with two (start-up included).
+
+    Each time is the best of ``repeats`` runs, to filter out other load on the machine.
+    """
     plan = StudyPlan({"work": work}, 0, n_items, 1)
-    t1, t2 = timed(toy_tasks.busy_task, plan, **one), timed(toy_tasks.busy_task, plan, **two)
+    t1 = min(timed(toy_tasks.busy_task, plan, **one) for _ in range(repeats))
+    t2 = min(timed(toy_tasks.busy_task, plan, **two) for _ in range(repeats))
     load = open("/proc/loadavg").read().split()[0] if Path("/proc/loadavg").exists() else "?"
     print(f"{label:42s} 1 worker {t1:6.2f} s   2 workers {t2:6.2f} s   speed-up {t1 / t2:4.2f}"
           f"   (load average {load})")

@@ -136,6 +136,7 @@ def test_backends_and_worker_counts_give_identical_results(dask_scheduler, capsy
         table = run_study(toy_tasks.random_task, plan, progress=True, **options)
         assert_frame_equal(table, serial, obj=name)
         assert table.attrs["study"]["backend"] == options.get("backend", "dask")
+        assert table.attrs["study"]["workers"] == options.get("workers", 2)
         assert "5/5" in capsys.readouterr().err  # the progress bar followed every chunk
     distributed = pytest.importorskip("distributed")
     with distributed.Client(dask_scheduler, set_as_default=False) as client:
@@ -154,7 +155,7 @@ def test_process_workers_share_the_cores_instead_of_oversubscribing():
     assert table["numba_threads"].tolist() == [expected_numba] * 2
 
 
-def test_unreachable_scheduler_fails_fast_with_clear_message(monkeypatch):
+def test_unreachable_scheduler_fails_fast_with_clear_message(monkeypatch, tmp_path):
     monkeypatch.setattr(execution, "SCHEDULER_TIMEOUT", 1.0)
     with socket.socket() as s:  # a port on which nothing listens
         s.bind(("127.0.0.1", 0))
@@ -162,9 +163,10 @@ def test_unreachable_scheduler_fails_fast_with_clear_message(monkeypatch):
     t0 = time.monotonic()
     with pytest.raises(ValueError, match=f"could not connect to the Dask scheduler at "
                                          f"tcp://127.0.0.1:{port}"):
-        run_study(toy_tasks.trivial_task, StudyPlan({}, 0, 2, 1),
+        run_study(toy_tasks.trivial_task, StudyPlan({}, 0, 2, 1), tmp_path / "study",
                   scheduler=f"tcp://127.0.0.1:{port}", progress=False)
     assert time.monotonic() - t0 < 5.0
+    assert not (tmp_path / "study").exists()  # nothing started, so a retry needs no --resume
 
 
 # --------------------------------------------------------------------------- task results

@@ -292,13 +292,13 @@ def _limit_threads(threads: int) -> None:
 
 
 def _serial(task: Task, chunks: list[Chunk], workers: int | None,
-            scheduler: Any) -> Iterator[tuple[int, dict, float]]:
+            client: Any) -> Iterator[tuple[int, dict, float]]:
     for chunk in chunks:
         yield _run_chunk(chunk, task)
 
 
 def _processes(task: Task, chunks: list[Chunk], workers: int,
-               scheduler: Any) -> Iterator[tuple[int, dict, float]]:
+               client: Any) -> Iterator[tuple[int, dict, float]]:
     import multiprocessing
     from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 
@@ -356,10 +356,9 @@ def _probe_scheduler(address: str, timeout: float) -> None:
 
 
 def _dask(task: Task, chunks: list[Chunk], workers: int | None,
-          scheduler: Any) -> Iterator[tuple[int, dict, float]]:
+          client: Any) -> Iterator[tuple[int, dict, float]]:
     import distributed
 
-    client, owned = _dask_client(scheduler)
     futures = []
     try:
         futures = client.map(_run_chunk, chunks, task=task, pure=False)
@@ -368,8 +367,6 @@ def _dask(task: Task, chunks: list[Chunk], workers: int | None,
             future.release()
     finally:
         client.cancel([f for f in futures if not f.done()])
-        if owned:
-            client.close()
 
 
 _RUNNERS = {"serial": _serial, "processes": _processes, "dask": _dask}
@@ -581,6 +578,20 @@ def run_study(
         raise ValueError("resume=True needs out_dir, the directory of the study to continue")
 
     started = time.perf_counter()
+    client, owned = _dask_client(scheduler) if backend == "dask" else (None, False)
+    try:
+        return _run(task, plan, out_dir, backend, workers, client, resume, progress, started)
+    finally:
+        if owned:
+            client.close()
+
+
+def _run(task: Task, plan: StudyPlan, out_dir: str | os.PathLike | None, backend: str,
+         workers: int | None, client: Any, resume: bool, progress: bool,
+         started: float) -> pd.DataFrame:
+    """:func:`run_study` once the options are checked and a Dask client (if any) connected."""
+    if client is not None:
+        workers = len(client.nthreads())  # record the size of the cluster
     record = {"format": STUDY_FORMAT, "format_version": STUDY_FORMAT_VERSION,
               "archquake_version": __version__, "task": task_name(task), **plan.describe(),
               "created": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")}
@@ -599,7 +610,7 @@ def run_study(
     with tqdm(total=plan.n_chunks, initial=resumed, unit="chunk", desc="study",
               file=sys.stderr, disable=not progress, dynamic_ncols=True) as bar:
         if todo:
-            finished = _RUNNERS[backend](task, todo, workers, scheduler)
+            finished = _RUNNERS[backend](task, todo, workers, client)
             try:
                 for index, columns, elapsed in finished:
                     if out_dir is not None:
