@@ -568,6 +568,22 @@ def run_study(
     The results do not depend on the backend, the number of workers, the chunk completion order
     or interruptions and resumption: every item has its own seed sequence
     (:func:`item_seed_sequence`) and the rows are assembled in chunk order.
+
+    Examples
+    --------
+    A task, defined in an importable module so that worker processes can load it:
+
+    >>> def draw_task(chunk):
+    ...     values = [rng.uniform(0.0, chunk.settings["high"]) for rng in chunk.generators()]
+    ...     return {"item": chunk.items, "value": np.array(values)}
+    >>> plan = StudyPlan({"high": 2.0}, seed=1, n_items=10, chunk_size=4)
+    >>> table = run_study(draw_task, plan, backend="serial", progress=False)
+    >>> len(table), table.attrs["study"]["n_chunks"]
+    (10, 3)
+
+    The same study on 4 local processes, saved in (and resumable from) ``out``:
+    ``run_study(draw_task, plan, "out", workers=4)``; on a Dask cluster:
+    ``run_study(draw_task, plan, "out", scheduler="tcp://10.0.0.5:8786")``.
     """
     if not isinstance(plan, StudyPlan):
         raise ValueError(f"plan must be a StudyPlan, got {type(plan).__name__}")
