@@ -59,6 +59,112 @@ def print_json(obj) -> None:
 COMMANDS: list = []
 
 
+def add_limit(subparsers) -> None:
+    """``archquake limit``: load multipliers, hinges and thrust lines (paper Sect. 3, Table 1)."""
+    from .limit_analysis import METHODS
+
+    parser = subparsers.add_parser(
+        "limit",
+        help="limit analysis: horizontal load multipliers k_l, k_r and the collapse hinges",
+        description="Limit analysis of the arch under its weight and horizontal forces k m_i g "
+                    "(Heyman: no tension, infinite compressive strength, no sliding). Mech-l: "
+                    "forces left -> right; Mech-r: the mirrored arch, hinges reported in the "
+                    "mirrored frame (as Table 1 of the paper). Motion starts when the ground "
+                    "acceleration reaches k g.",
+    )
+    add_geometry_options(parser)
+    parser.add_argument("--method", choices=tuple(METHODS), default="static",
+                        help="static: linear program (HiGHS); kinematic: enumeration of the "
+                             "mechanisms (default: %(default)s)")
+    parser.add_argument("--min-thickness", action="store_true",
+                        help="print the minimum thickness of the circular arch (radius, embrace, "
+                             "voussoirs) under its own weight instead")
+    parser.add_argument("--plot", metavar="FILE.png",
+                        help="write a figure of both mechanisms (arch, hinges, line of thrust)")
+    parser.add_argument("--json", action="store_true", help="machine-readable output")
+    parser.set_defaults(func=_run_limit)
+
+
+def _run_limit(args: argparse.Namespace) -> int:
+    from .limit_analysis import both_directions, min_thickness
+
+    if args.min_thickness:
+        if args.geometry or args.tolerance is not None or args.plot:
+            raise ValueError("--min-thickness applies to a circular arch (--radius, --embrace, "
+                             "--voussoirs); it cannot be combined with --geometry, --tolerance "
+                             "or --plot")
+        circular_arch(args.radius, math.radians(args.embrace), args.thickness, args.voussoirs)
+        thickness = min_thickness(args.radius, math.radians(args.embrace), args.voussoirs)
+        if args.json:
+            print_json({"min_thickness": thickness, "ratio": thickness / args.radius})
+        else:
+            print(f"minimum thickness under self-weight: t_min = {thickness:.6f} m "
+                  f"(t_min/R = {thickness / args.radius:.6f}; R = {args.radius:g} m, "
+                  f"alpha = {args.embrace:g} deg, n = {args.voussoirs})")
+        return 0
+    arch = arch_from_args(args)
+    results = both_directions(arch, method=args.method)
+    k_l, k_r = (r.load_multiplier for r in results)
+    if args.plot:
+        _plot_limit(args, results)
+    if args.json:
+        mechanisms = {}
+        for r in results:
+            entry = {"hinges": [{"joint": h.joint, "face": h.face, "beta": h.beta(r.arch)}
+                                for h in r.hinges]}
+            if r.separation is not None:
+                entry["separation"] = r.separation
+            mechanisms[r.direction] = entry
+        print_json({"k": min(k_l, k_r), "k_l": k_l, "k_r": k_r, "mechanisms": mechanisms})
+        return 0
+    kind = "irregular arch" if args.tolerance is not None else "arch"
+    print(f"Limit analysis ({args.method}) of the {kind}: n = {arch.n_voussoirs} voussoirs, "
+          f"embrace = {math.degrees(arch.embrace):.4g} deg, mean radius = "
+          f"{float(arch.radii.mean()):.4g} m, mean thickness = "
+          f"{float(arch.thicknesses.mean()):.4g} m")
+    print(f"{'mechanism':<10} {'k [-]':>8} {'hinge':>6} {'joint':>6} {'face':>9} "
+          f"{'beta [rad]':>11} {'r [m]':>8}")
+    for r in results:
+        name = "Mech-l" if r.direction == "l" else "Mech-r"
+        labels = "ABCD" if r.is_four_hinge else "12"
+        for i, h in enumerate(r.hinges):
+            k_text = f"{r.load_multiplier:8.4f}" if i == 0 else " " * 8
+            print(f"{name if i == 0 else '':<10} {k_text} {labels[i]:>6} {h.joint:>6} "
+                  f"{h.face:>9} {h.beta(r.arch):>11.4f} {h.radius(r.arch):>8.4f}")
+        if r.separation is not None:
+            print(f"{'':<10} {'':>8} {'':>6} {r.separation:>6} {'opens':>9}   (no normal force)")
+    print(f"k = min(k_l, k_r) = {min(k_l, k_r):.4f}: the motion starts when the ground "
+          f"acceleration reaches {min(k_l, k_r):.4f} g (Mech-r hinges in the mirrored frame)")
+    if args.plot:
+        print(f"figure written to {args.plot}")
+    return 0
+
+
+def _plot_limit(args: argparse.Namespace, results) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from .plotting import plot_limit_analysis
+
+    nominal = None
+    if args.tolerance is not None:
+        nominal = arch_from_args(argparse.Namespace(**{**vars(args), "tolerance": None,
+                                                       "seed": None}))
+    fig, axes = plt.subplots(1, 2, figsize=(13, 5.0), constrained_layout=True)
+    for ax, r in zip(axes, results, strict=True):
+        frame = None if nominal is None else (nominal if r.direction == "l"
+                                              else nominal.mirrored())
+        plot_limit_analysis(r, ax, nominal=frame)
+    try:
+        fig.savefig(args.plot, dpi=150)
+    except OSError as exc:
+        raise ValueError(f"cannot write the figure {args.plot!r}: {exc.strerror}") from exc
+    finally:
+        plt.close(fig)
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="archquake",
@@ -82,6 +188,9 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as exc:
         print(f"archquake: error: {exc}", file=sys.stderr)
         return 2
+
+
+COMMANDS.append(add_limit)
 
 
 if __name__ == "__main__":  # pragma: no cover

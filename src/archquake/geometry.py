@@ -445,3 +445,30 @@ class Hinge:
     def point(self, arch: Arch) -> np.ndarray:
         """Cartesian position (x, y) of the hinge point [m]."""
         return Arch.point(self.radius(arch), self.beta(arch))
+
+
+def irregular_sample(nominal: Arch, tolerance: float, count: int, seed: int | None) -> list[Arch]:
+    """``count`` irregular arches drawn around ``nominal`` [paper, Sect. 2, eq. (1)].
+
+    Arch ``i`` is drawn by :func:`irregular_arch` with its own generator, seeded by the child
+    ``i`` of ``numpy.random.SeedSequence(seed).spawn(count)``. The child ``i`` does not depend on
+    ``count``, so arch ``i`` is the same whatever the size of the sample, and any part of a study
+    can redraw it alone: ``irregular_sample(nominal, tolerance, i + 1, seed)[i]``.
+
+    Parameters
+    ----------
+    nominal : Arch
+        The nominal arch.
+    tolerance : float
+        epsilon, in [0, 1).
+    count : int
+        Number of arches s (>= 0).
+    seed : int or None
+        Entropy of the root ``SeedSequence``; ``None`` draws fresh entropy (not reproducible).
+    """
+    if isinstance(count, bool) or not float(count).is_integer() or count < 0:
+        raise ValueError(f"count must be an integer >= 0 (number of arches), got {count!r}")
+    if seed is not None and (isinstance(seed, bool) or not float(seed).is_integer() or seed < 0):
+        raise ValueError(f"seed must be an integer >= 0 or None, got {seed!r}")
+    children = np.random.SeedSequence(None if seed is None else int(seed)).spawn(int(count))
+    return [irregular_arch(nominal, tolerance, np.random.default_rng(child)) for child in children]

@@ -1,0 +1,776 @@
+"""Limit analysis of an arch under self-weight and horizontal forces [paper, Sect. 3].
+
+Heyman's hypotheses: the masonry has no tensile strength, an infinite compressive strength, and
+the voussoirs do not slide. Every voussoir ``i`` carries its weight ``m_i g`` (downward) and a
+horizontal force ``k m_i g`` at its centroid pointing left -> right (+x); the horizontal load
+multiplier ``k`` at collapse is the activation threshold of the motion, ``|x''_g| / g >= k``
+[paper, eq. (2)]. This is mechanism Mech-l; Mech-r is the same analysis of the arch mirrored about
+the vertical axis, and its hinges are reported in the mirrored frame (as Table 1 of the paper).
+
+Two independent methods give the same ``k`` (uniqueness theorem of limit analysis):
+
+- static (lower bound): a linear program. Unknowns: the force ``(F_x, F_y)`` that the part of the
+  arch left of joint ``j`` exerts on the part right of it, its moment ``M`` about the centre O, at
+  every joint ``j = 0 .. n``, and ``k``. Three equilibrium equations per voussoir; at every joint
+  the normal force ``N = F . e_t`` is compressive and the pressure point ``r = -M / N`` lies in the
+  joint's contact ``[r_in, r_out]``, i.e. ``r_in N <= -M <= r_out N`` (linear). Maximise ``k``.
+  The hinges are the joints where the pressure point is on a face.
+- kinematic (upper bound): every four-hinge mechanism with hinges ``A < B < C < D`` at joints
+  ``a < b < c < d`` on alternating faces; virtual work gives its multiplier; the minimum over the
+  kinematically admissible ones is the collapse multiplier.
+
+The joint moment ``M`` of a force ``F`` whose line of action crosses the radial joint line at
+radius ``r`` is ``M = r (e_r x F) = -r N``, with ``e_r = (-cos beta, sin beta)`` the outward radial
+unit vector and ``e_t = (sin beta, cos beta)`` the unit vector along the arch (left -> right).
+
+The forces are returned in newtons per unit depth [N/m] (the loads are per unit depth).
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq, linprog
+
+from .geometry import FACES, GRAVITY, Arch, Hinge, circular_arch, irregular_sample
+
+DIRECTIONS = ("l", "r")
+"""Directions of the horizontal forces: ``"l"`` = Mech-l (forces toward +x on the arch as
+given), ``"r"`` = Mech-r (the same forces on the mirrored arch)."""
+
+HINGE_TOLERANCE = 1e-7
+"""A joint is a hinge when its pressure point is within this fraction of the joint's contact
+depth ``r_out - r_in`` from a face."""
+
+MAX_ENUMERATED_VOUSSOIRS = 60
+"""Largest number of voussoirs for the kinematic method, which enumerates all
+``2 C(n+1, 4)`` four-hinge mechanisms (about a million for n = 60)."""
+
+AGREEMENT_TOLERANCE = 1e-9
+"""Largest difference between the static and the kinematic load multipliers of one arch."""
+
+
+# ---------------------------------------------------------------------------------- results
+@dataclass(frozen=True)
+class ThrustLine:
+    """The line of thrust: pressure point and joint force at every joint ``j = 0 .. n``.
+
+    Attributes
+    ----------
+    radii : array of float, shape (n+1,)
+        Radius of the pressure point on every (radial) joint [m]; nan at a joint that transmits
+        no normal force (a separating joint, whose force, if any, lies along the joint).
+    points : array of float, shape (n+1, 2)
+        Pressure points (x, y) [m].
+    forces : array of float, shape (n+1, 2)
+        Force (F_x, F_y) that the part of the arch left of the joint exerts on the part right of
+        it [N/m] (for joint 0: the left support on voussoir 0; for joint n: voussoir n-1 on the
+        right support).
+    """
+
+    radii: np.ndarray
+    points: np.ndarray
+    forces: np.ndarray
+
+    def funicular(self, arch: Arch, load_multiplier: float) -> np.ndarray:
+        """Vertices of the funicular polygon (line of action of the resultant) [m], (2n+1, 2).
+
+        Inside voussoir ``i`` the resultant acts along ``F_i`` from the pressure point ``p_i``
+        until it meets the line of action of the voussoir's load ``m_i g (k, -1)`` through its
+        centroid, and along ``F_{i+1}`` from there to ``p_{i+1}``. The vertices are
+        ``p_0, q_0, p_1, q_1, ..., p_n``.
+        """
+        p, f = self.points[:-1], self.forces[:-1]
+        c = arch.centroids
+        load = np.array([load_multiplier, -1.0])
+        # p + s f = c + u load  ->  s (f x load) = (c - p) x load
+        denom = f[:, 0] * load[1] - f[:, 1] * load[0]
+        d = c - p
+        s = (d[:, 0] * load[1] - d[:, 1] * load[0]) / np.where(denom == 0.0, np.nan, denom)
+        q = p + s[:, None] * f
+        q = np.where(np.isfinite(q), q, 0.5 * (p + self.points[1:]))
+        out = np.empty((2 * arch.n_voussoirs + 1, 2))
+        out[0::2] = self.points
+        out[1::2] = q
+        return out
+
+
+@dataclass(frozen=True)
+class LimitAnalysis:
+    """Result of the limit analysis of one arch in one direction.
+
+    Attributes
+    ----------
+    load_multiplier : float
+        Horizontal load multiplier k at collapse [-] (k_l for ``"l"``, k_r for ``"r"``).
+    hinges : tuple of Hinge
+        The hinges, left to right, in the frame of ``arch``: the four hinges A, B, C, D of the
+        collapse mechanism (the paper's case), or two hinges when ``separation`` is set.
+    thrust_line : ThrustLine
+        The line of thrust at collapse.
+    direction : str
+        ``"l"`` (Mech-l) or ``"r"`` (Mech-r).
+    arch : Arch
+        The arch analysed: the given one for ``"l"``, its mirror image for ``"r"``.
+    method : str
+        ``"static"`` or ``"kinematic"``.
+    separation : int or None
+        ``None`` for a four-hinge mechanism. Otherwise the joint that opens over its whole depth
+        (no normal force through it; under the no-sliding hypothesis it may still carry a shear
+        force along the joint) in a two-block mechanism with two hinges; this happens only for
+        thick arches under large horizontal loads (k of order 1 or more), never for the paper's
+        arches, and the four-link model of the paper does not apply to it.
+    """
+
+    load_multiplier: float
+    hinges: tuple[Hinge, ...]
+    thrust_line: ThrustLine
+    direction: str
+    arch: Arch
+    method: str = "static"
+    separation: int | None = None
+
+    @property
+    def is_four_hinge(self) -> bool:
+        """True for a four-hinge (three-block) collapse mechanism."""
+        return self.separation is None and len(self.hinges) == 4
+
+    @property
+    def hinge_angles(self) -> np.ndarray:
+        """Progressive angles beta of the hinges A, B, C, D [rad] (paper Table 1)."""
+        return np.array([h.beta(self.arch) for h in self.hinges])
+
+    @property
+    def hinge_points(self) -> np.ndarray:
+        """Positions (x, y) of the hinges A, B, C, D [m], shape (4, 2)."""
+        return np.array([h.point(self.arch) for h in self.hinges])
+
+    def funicular(self) -> np.ndarray:
+        """Funicular polygon of the collapse state [m], see :meth:`ThrustLine.funicular`."""
+        return self.thrust_line.funicular(self.arch, self.load_multiplier)
+
+
+@dataclass(frozen=True)
+class LimitSample:
+    """Load multipliers of a sample of irregular arches [paper, Sect. 5.4, Figs. 17-20].
+
+    Attributes
+    ----------
+    load_multiplier_l, load_multiplier_r : array of float, shape (s,)
+        k~_l and k~_r of every arch [-].
+    tolerance : float
+        epsilon of the irregular draw.
+    seed : int or None
+        Root seed of the sample (arch ``i`` uses child ``i`` of ``SeedSequence(seed)``).
+    method : str
+        ``"static"`` or ``"kinematic"``.
+    """
+
+    load_multiplier_l: np.ndarray
+    load_multiplier_r: np.ndarray
+    tolerance: float
+    seed: int | None
+    method: str = "static"
+
+    @property
+    def load_multiplier(self) -> np.ndarray:
+        """k~ = min(k~_l, k~_r) of every arch [-]."""
+        return np.minimum(self.load_multiplier_l, self.load_multiplier_r)
+
+
+# ---------------------------------------------------------------------------------- checks
+def _check_direction(direction: str) -> str:
+    if direction not in DIRECTIONS:
+        raise ValueError(f"direction must be one of {DIRECTIONS}, got {direction!r}")
+    return direction
+
+
+def _check_method(method: str) -> str:
+    if method not in METHODS:
+        raise ValueError(f"method must be one of {tuple(METHODS)}, got {method!r}")
+    return method
+
+
+def _oriented(arch: Arch, direction: str) -> Arch:
+    return arch if _check_direction(direction) == "l" else arch.mirrored()
+
+
+# ---------------------------------------------------------------------------------- data
+@dataclass(frozen=True)
+class _Scaled:
+    """Dimensionless data of an arch: forces / total weight, lengths / mean radius."""
+
+    weights: np.ndarray  # w_i = m_i / m (n,)
+    centroids: np.ndarray  # (n, 2) / L
+    beta: np.ndarray  # joint angles (n+1,)
+    inner: np.ndarray  # contact radii / L (n+1,)
+    outer: np.ndarray
+    length: float  # L [m]
+    weight: float  # m g [N/m]
+
+
+def _scaled(arch: Arch) -> _Scaled:
+    length = float(np.mean(arch.radii))
+    inner, outer = arch.joint_extents()
+    return _Scaled(
+        arch.masses / arch.total_mass, arch.centroids / length, arch.joint_angles,
+        inner / length, outer / length, length, arch.total_mass * GRAVITY,
+    )
+
+
+def _joint_states(s: _Scaled, x0: np.ndarray, k: float):
+    """Joint forces and moments from the force (F_x, F_y) and moment M at joint 0 (scaled).
+
+    Equilibrium of voussoir i: F_{i+1} = F_i + w_i (k, -1), M_{i+1} = M_i - w_i (c_x + k c_y).
+    """
+    w, c = s.weights, s.centroids
+    fx = x0[0] + k * np.concatenate(([0.0], np.cumsum(w)))
+    fy = x0[1] - np.concatenate(([0.0], np.cumsum(w)))
+    m = x0[2] - np.concatenate(([0.0], np.cumsum(w * (c[:, 0] + k * c[:, 1]))))
+    return fx, fy, m
+
+
+def _thrust_line(arch: Arch, s: _Scaled, fx, fy, m) -> ThrustLine:
+    normal = np.sin(s.beta) * fx + np.cos(s.beta) * fy
+    with np.errstate(divide="ignore", invalid="ignore"):
+        radii = np.where(np.abs(normal) > 1e-10, -m / normal, np.nan) * s.length
+    points = Arch.point(radii, s.beta)
+    forces = np.column_stack((fx, fy)) * s.weight
+    for arr in (radii, points, forces):
+        arr.setflags(write=False)
+    return ThrustLine(radii, points, forces)
+
+
+# ---------------------------------------------------------------------------------- static
+def _lp_matrices(s: _Scaled, fixed_k: float | None = None):
+    """Equality and inequality matrices of the static linear program.
+
+    Unknowns ``x = [F_x(0..n), F_y(0..n), M(0..n), k]`` (scaled); with ``fixed_k`` the last one
+    is a margin ``delta`` instead, the uniform distance (in units of weight x joint depth) by which
+    the pressure point stays inside every joint's contact.
+    """
+    w, c, b = s.weights, s.centroids, s.beta
+    n = w.size
+    nj = n + 1
+    nv = 3 * nj + 1
+    rows = np.arange(n)
+    a_eq = np.zeros((3 * n, nv))
+    b_eq = np.zeros(3 * n)
+    # horizontal: F_x,i - F_x,i+1 + k w_i = 0
+    a_eq[rows, rows] = 1.0
+    a_eq[rows, rows + 1] = -1.0
+    # vertical: F_y,i - F_y,i+1 = w_i
+    a_eq[n + rows, nj + rows] = 1.0
+    a_eq[n + rows, nj + rows + 1] = -1.0
+    b_eq[n : 2 * n] = w
+    # moment about O: M_i - M_i+1 - k w_i c_y,i = w_i c_x,i
+    a_eq[2 * n + rows, 2 * nj + rows] = 1.0
+    a_eq[2 * n + rows, 2 * nj + rows + 1] = -1.0
+    b_eq[2 * n :] = w * c[:, 0]
+    if fixed_k is None:
+        a_eq[rows, -1] = w
+        a_eq[2 * n + rows, -1] = -w * c[:, 1]
+    else:
+        b_eq[:n] = -fixed_k * w
+        b_eq[2 * n :] += fixed_k * w * c[:, 1]
+    # r_in N + M <= 0 and -r_out N - M <= 0, N = sin(b) F_x + cos(b) F_y
+    j = np.arange(nj)
+    a_ub = np.zeros((2 * nj, nv))
+    sin_b, cos_b = np.sin(b), np.cos(b)
+    a_ub[j, j] = s.inner * sin_b
+    a_ub[j, nj + j] = s.inner * cos_b
+    a_ub[j, 2 * nj + j] = 1.0
+    a_ub[nj + j, j] = -s.outer * sin_b
+    a_ub[nj + j, nj + j] = -s.outer * cos_b
+    a_ub[nj + j, 2 * nj + j] = -1.0
+    if fixed_k is not None:
+        depth = s.outer - s.inner
+        a_ub[j, -1] = depth
+        a_ub[nj + j, -1] = depth
+    return a_eq, b_eq, a_ub
+
+
+def _solve_lp(s: _Scaled, fixed_k: float | None = None):
+    a_eq, b_eq, a_ub = _lp_matrices(s, fixed_k)
+    cost = np.zeros(a_eq.shape[1])
+    cost[-1] = -1.0
+    return linprog(cost, A_ub=a_ub, b_ub=np.zeros(a_ub.shape[0]), A_eq=a_eq, b_eq=b_eq,
+                   bounds=(None, None), method="highs")
+
+
+_UNBOUNDED = (
+    "the arch does not collapse under any horizontal load multiplier (a thrust line fits inside "
+    "it for every k: the arch is too thick or too shallow for a mechanism)"
+)
+
+
+def _static(arch: Arch, direction: str) -> LimitAnalysis:
+    s = _scaled(arch)
+    res = _solve_lp(s)
+    if res.status == 2:
+        raise ValueError(
+            "the arch admits no thrust line inside its joints for any horizontal load multiplier "
+            "(it cannot stand; the thickness is below the minimum)"
+        )
+    if res.status == 3:
+        raise ValueError(_UNBOUNDED)
+    if res.status != 0:
+        raise RuntimeError(f"the limit-analysis linear program failed: {res.message}")
+    nj = arch.n_voussoirs + 1
+    x = res.x
+    k = float(x[-1])
+    fx, fy, m = x[:nj], x[nj : 2 * nj], x[2 * nj : 3 * nj]
+    line = _thrust_line(arch, s, fx, fy, m)
+    hinges, separation = _hinges_from_thrust_line(arch, line, res.ineqlin.marginals, k)
+    return LimitAnalysis(k, hinges, line, direction, arch, "static", separation)
+
+
+def _hinges_from_thrust_line(arch: Arch, line: ThrustLine, marginals, k: float):
+    """The hinges of the collapse state from the LP solution: ``(hinges, separation)``.
+
+    A joint face is active when the pressure point lies on it (within ``HINGE_TOLERANCE`` of the
+    contact depth) or when its constraint carries a non-zero dual; a joint with no normal force
+    is active on both faces. Exactly four active joints on alternating faces are the hinges.
+    Otherwise (a degenerate optimum) every admissible mechanism whose active joints are all
+    active in the LP solution has the LP multiplier (virtual work of the LP's equilibrium), so
+    the mechanisms are enumerated among the active joints and the one whose multiplier is
+    closest to the LP's is taken.
+    """
+    inner, outer = arch.joint_extents()
+    depth = outer - inner
+    nj = inner.size
+    duals = np.abs(np.asarray(marginals))
+    dual_scale = max(float(duals.max(initial=0.0)), 1e-300)
+    no_force = np.isnan(line.radii)
+    with np.errstate(invalid="ignore"):
+        on_inner = no_force | ((line.radii - inner) <= HINGE_TOLERANCE * depth) | (
+            duals[:nj] > 1e-9 * dual_scale)
+        on_outer = no_force | ((outer - line.radii) <= HINGE_TOLERANCE * depth) | (
+            duals[nj:] > 1e-9 * dual_scale)
+    joints = np.flatnonzero(on_inner | on_outer)
+    if joints.size == 4 and not np.any(on_inner[joints] & on_outer[joints]):
+        faces = tuple(FACES[0] if on_inner[j] else FACES[1] for j in joints)
+        return tuple(Hinge(int(j), f) for j, f in zip(joints, faces, strict=True)), None
+    on_face = np.column_stack((on_inner, on_outer, on_inner & on_outer, np.ones(nj, bool)))
+    if joints.size >= 3:
+        mech = _mechanisms(arch, candidate_joints=joints)
+        match = np.all(on_face[mech.joints, mech.faces], axis=1) & np.isfinite(mech.k)
+        if np.any(match):
+            close = np.flatnonzero(match)
+            return mech.hinges(int(close[np.argmin(np.abs(mech.k[close] - k))]))
+    mech = _mechanisms(arch)
+    return mech.hinges(int(np.nanargmin(np.abs(mech.k - k))))
+
+
+# ---------------------------------------------------------------------------------- kinematic
+FACE_PATTERNS = tuple(itertools.product(FACES, repeat=4))
+"""Face patterns of the hinges A, B, C, D enumerated by the kinematic method: all sixteen. The
+alternating ones (intrados, extrados, intrados, extrados and the reverse) are the only
+admissible ones for arches like the paper's; others (e.g. a middle block with both hinges on
+the intrados) govern only thick arches under large horizontal loads."""
+
+_SEPARATION = 2
+"""Face code of a joint that opens over its whole depth (its rotation pole lies on the joint's
+line outside the contact)."""
+
+_COMBINATIONS: dict[tuple[int, int], np.ndarray] = {}
+
+
+def _joint_combinations(n_joints: int, size: int) -> np.ndarray:
+    key = (n_joints, size)
+    if key not in _COMBINATIONS:
+        combos = np.array(list(itertools.combinations(range(n_joints), size)), dtype=int)
+        combos = combos.reshape(-1, size)
+        combos.setflags(write=False)
+        _COMBINATIONS[key] = combos
+    return _COMBINATIONS[key]
+
+
+def _cross(u, v):
+    return u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]
+
+
+@dataclass(frozen=True)
+class _Mechanisms:
+    """Candidate mechanisms: joints and faces (0 intrados, 1 extrados, 2 separation; -1 unused)
+    and the virtual-work multiplier (nan where not kinematically admissible)."""
+
+    joints: np.ndarray  # (M, 4)
+    faces: np.ndarray  # (M, 4)
+    k: np.ndarray  # (M,)
+
+    def hinges(self, i: int) -> tuple[tuple[Hinge, ...], int | None]:
+        hinges = tuple(
+            Hinge(int(j), FACES[int(f)])
+            for j, f in zip(self.joints[i], self.faces[i], strict=True) if f in (0, 1)
+        )
+        sep = [int(j) for j, f in zip(self.joints[i], self.faces[i], strict=True)
+               if f == _SEPARATION]
+        return hinges, (sep[0] if sep else None)
+
+
+class _Geometry:
+    """Scaled joint and block data shared by the mechanism families."""
+
+    def __init__(self, arch: Arch):
+        self.length = float(np.mean(arch.radii))
+        inner, outer = arch.joint_extents()
+        self.inner, self.outer = inner / self.length, outer / self.length
+        self.beta = arch.joint_angles
+        w = arch.masses / arch.total_mass
+        cen = arch.centroids / self.length
+        self.cm = np.concatenate(([0.0], np.cumsum(w)))
+        self.cmx = np.concatenate(([0.0], np.cumsum(w * cen[:, 0])))
+        self.cmy = np.concatenate(([0.0], np.cumsum(w * cen[:, 1])))
+
+    def block(self, j0, j1):
+        """Mass and first moments of the voussoirs between joints j0 and j1 (scaled)."""
+        return self.cm[j1] - self.cm[j0], self.cmx[j1] - self.cmx[j0], self.cmy[j1] - self.cmy[j0]
+
+    def hinge_points(self, joints, faces):
+        radius = np.where(faces == 0, self.inner[joints], self.outer[joints])
+        return Arch.point(radius, self.beta[joints])
+
+    @staticmethod
+    def momentum(block, pole, rate):
+        """``sum m_i v_i`` of a block rotating with ``rate`` about ``pole``: w z x (S - m Q)."""
+        m, sx, sy = block
+        return -rate * (sy - m * pole[:, 1]), rate * (sx - m * pole[:, 0])
+
+
+def _admissible_k(rel, required, vx, vy):
+    """Multiplier ``k = -W_gravity / W_horizontal = vy / vx`` where the mechanism is admissible.
+
+    ``rel``: relative rotations (right minus left) at the active joints; ``required``: the sign
+    each must have (-1: joint opens on the extrados side, i.e. hinge on the intrados; +1: the
+    reverse; 0: impossible). The mechanism may run either way (overall sign), and then the
+    horizontal loads must do positive work.
+    """
+    with np.errstate(invalid="ignore"):
+        forward = np.all(rel * required > 0, axis=1)
+        backward = np.all(-rel * required > 0, axis=1)
+    sign = np.where(forward, 1.0, np.where(backward, -1.0, 0.0))
+    scale = np.max(np.abs(rel), axis=1)
+    strict = np.all(np.abs(rel) > 1e-12 * scale[:, None], axis=1)
+    ok = np.all(np.isfinite(rel), axis=1) & strict & (sign != 0) & (sign * vx > 1e-14)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(ok, vy / vx, np.nan)
+
+
+def _four_hinge_family(geo: _Geometry, combos: np.ndarray) -> _Mechanisms:
+    """Four face hinges A, B, C, D at joints a < b < c < d (any faces), three moving blocks.
+
+    Block AB (voussoirs a..b-1) rotates about A with rate w1 = 1, block CD (c..d-1) about D with
+    rate w3, block BC (b..c-1) moves with the velocity of B plus a rotation w2. Closure (velocity
+    of D zero): ``w1 (B - A) + w2 (C - B) + w3 (D - C) = 0``; this is the rotation of BC about
+    the instantaneous centre (intersection of AB and DC) and gives ``w2 = 0`` (translation)
+    cleanly when AB // DC.
+    """
+    patterns = np.array([[FACES.index(f) for f in p] for p in FACE_PATTERNS], dtype=int)
+    joints = np.repeat(combos, len(patterns), axis=0)
+    faces = np.tile(patterns, (combos.shape[0], 1))
+    pts = geo.hinge_points(joints, faces)  # (M, 4, 2)
+    a, b, c, d = pts[:, 0], pts[:, 1], pts[:, 2], pts[:, 3]
+    u, v, rhs = c - b, d - c, a - b
+    det = _cross(u, v)  # zero only when B, C, D are collinear (no mechanism)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        det = np.where(np.abs(det) > 1e-14, det, np.nan)
+        w2 = _cross(rhs, v) / det
+        w3 = _cross(u, rhs) / det
+    ja, jb, jc, jd = joints.T
+    ones = np.ones_like(w2)
+    x1, y1 = geo.momentum(geo.block(ja, jb), a, ones)
+    x3, y3 = geo.momentum(geo.block(jc, jd), d, w3)
+    m2, sx2, sy2 = geo.block(jb, jc)
+    x2 = -m2 * (b[:, 1] - a[:, 1]) - w2 * (sy2 - m2 * b[:, 1])
+    y2 = m2 * (b[:, 0] - a[:, 0]) + w2 * (sx2 - m2 * b[:, 0])
+    rel = np.stack((ones, w2 - 1.0, w3 - w2, -w3), axis=1)
+    required = np.where(faces == 0, -1.0, 1.0)
+    k = _admissible_k(rel, required, x1 + x2 + x3, y1 + y2 + y3)
+    return _Mechanisms(joints, faces, k)
+
+
+def _separation_family(geo: _Geometry, combos: np.ndarray) -> _Mechanisms:
+    """Two face hinges and one joint that opens over its whole depth, two moving blocks.
+
+    The separating joint transmits no normal force and no moment about O; it may carry a shear
+    force along the joint (no sliding), which does no work since the relative velocity there is
+    normal to the joint.
+
+    Without sliding, the relative motion at a joint is a rotation about a pole on the joint's
+    (radial) line; outside the contact the whole joint opens and transmits no force. With the
+    poles P_a, P_b, P_c at joints a < b < c (block 1 = voussoirs a..b-1 about P_a, block 2 =
+    b..c-1 about P_c), the three poles are collinear (three-centre theorem), which places the pole
+    of the separating joint on its line. These mechanisms complete the four-hinge ones: together
+    they are every one-degree-of-freedom mechanism of the chain of voussoirs.
+    """
+    n_t = combos.shape[0]
+    role = np.repeat(np.arange(3), 4)  # which of a, b, c separates
+    face_pairs = np.tile(np.array([[0, 0], [0, 1], [1, 0], [1, 1]]), (3, 1))
+    faces3 = np.full((12, 3), _SEPARATION)
+    for r in range(3):
+        rows = role == r
+        faces3[np.ix_(rows, [i for i in range(3) if i != r])] = face_pairs[rows]
+    joints = np.repeat(combos, 12, axis=0)
+    faces = np.tile(faces3, (n_t, 1))
+    sep = np.tile(role, n_t)
+    pts = geo.hinge_points(joints, np.where(faces == _SEPARATION, 0, faces))
+    # pole of the separating joint: intersection of its line (through O, along e_r) with the
+    # line through the other two poles
+    idx = np.arange(joints.shape[0])
+    others = np.array([[1, 2], [0, 2], [0, 1]])[sep]
+    p, q = pts[idx, others[:, 0]], pts[idx, others[:, 1]]
+    beta_s = geo.beta[joints[idx, sep]]
+    e_r = np.column_stack((-np.cos(beta_s), np.sin(beta_s)))
+    dq = q - p
+    with np.errstate(divide="ignore", invalid="ignore"):
+        denom = _cross(e_r, dq)
+        rho = _cross(p, dq) / np.where(np.abs(denom) > 1e-14, denom, np.nan)
+    pts[idx, sep] = rho[:, None] * e_r
+    a, b, c = pts[:, 0], pts[:, 1], pts[:, 2]
+    # block 1 about P_a with rate 1, block 2 about P_c: (P_b - P_a) = w2 (P_b - P_c)
+    ba, bc = b - a, b - c
+    with np.errstate(divide="ignore", invalid="ignore"):
+        norm = np.einsum("ij,ij->i", bc, bc)
+        w2 = np.einsum("ij,ij->i", ba, bc) / np.where(norm > 1e-28, norm, np.nan)
+    ja, jb, jc = joints.T
+    ones = np.ones_like(w2)
+    x1, y1 = geo.momentum(geo.block(ja, jb), a, ones)
+    x2, y2 = geo.momentum(geo.block(jb, jc), c, w2)
+    rel = np.stack((ones, w2 - 1.0, -w2), axis=1)
+    required = np.where(faces == 0, -1.0, 1.0)
+    # separating joint: pole below the intrados acts as an intrados hinge, above the extrados
+    # as an extrados hinge, inside the contact it is not admissible
+    sj = joints[idx, sep]
+    req_sep = np.where(rho <= geo.inner[sj], -1.0, np.where(rho >= geo.outer[sj], 1.0, 0.0))
+    required[idx, sep] = req_sep
+    k = _admissible_k(rel, required, x1 + x2, y1 + y2)
+    pad = np.full((joints.shape[0], 1), -1)
+    return _Mechanisms(np.hstack((joints, pad)), np.hstack((faces, pad)), k)
+
+
+def _mechanisms(arch: Arch, candidate_joints: np.ndarray | None = None) -> _Mechanisms:
+    """Virtual-work multiplier of every one-degree-of-freedom mechanism (nan if not admissible).
+
+    Two families: four face hinges (three blocks), and two face hinges plus a joint that opens
+    over its whole depth (two blocks). Work rates per unit g of the loads ``m_i (k, -1)`` at the
+    centroids: ``k = -W_gravity / W_horizontal`` [kinematic theorem; zero dissipation at hinges].
+    Admissible: the relative rotation at each hinge opens the joint on the opposite face, and the
+    horizontal loads do positive work. ``candidate_joints`` restricts the active joints.
+    """
+    n = arch.n_voussoirs
+    if candidate_joints is None and n > MAX_ENUMERATED_VOUSSOIRS:
+        raise ValueError(
+            f"method 'kinematic' enumerates every mechanism and needs voussoirs <= "
+            f"{MAX_ENUMERATED_VOUSSOIRS}, got {n}; use method 'static'"
+        )
+    pool = np.arange(n + 1) if candidate_joints is None else np.asarray(candidate_joints, int)
+    geo = _Geometry(arch)
+    families = [
+        _four_hinge_family(geo, pool[_joint_combinations(pool.size, 4)]),
+        _separation_family(geo, pool[_joint_combinations(pool.size, 3)]),
+    ]
+    return _Mechanisms(*(np.concatenate([getattr(f, name) for f in families])
+                         for name in ("joints", "faces", "k")))
+
+
+def _mechanism_thrust_line(arch: Arch, hinges: tuple[Hinge, ...], separation: int | None):
+    """Multiplier and thrust line of the equilibrium through the mechanism's hinges.
+
+    Unknowns: force and moment at joint 0 and k. Each hinge gives ``M_j + r_j N_j = 0``; a
+    separating joint gives ``N_j = 0`` and ``M_j = 0``.
+    """
+    s = _scaled(arch)
+    w, c = s.weights, s.centroids
+    cw = np.concatenate(([0.0], np.cumsum(w)))
+    cwx = np.concatenate(([0.0], np.cumsum(w * c[:, 0])))
+    cwy = np.concatenate(([0.0], np.cumsum(w * c[:, 1])))
+    rows = []
+    # F_x = F_x0 + k cw, F_y = F_y0 - cw, M = M0 - cwx - k cwy
+    for h in hinges:
+        j, r = h.joint, h.radius(arch) / s.length
+        sb, cb = math.sin(s.beta[j]), math.cos(s.beta[j])
+        rows.append(([r * sb, r * cb, 1.0, r * sb * cw[j] - cwy[j]], cwx[j] + r * cb * cw[j]))
+    if separation is not None:
+        j = separation
+        sb, cb = math.sin(s.beta[j]), math.cos(s.beta[j])
+        rows.append(([sb, cb, 0.0, sb * cw[j]], cb * cw[j]))
+        rows.append(([0.0, 0.0, 1.0, -cwy[j]], cwx[j]))
+    mat = np.array([r[0] for r in rows])
+    rhs = np.array([r[1] for r in rows])
+    x = np.linalg.solve(mat, rhs)
+    k = float(x[3])
+    fx, fy, m = _joint_states(s, x[:3], k)
+    return k, _thrust_line(arch, s, fx, fy, m)
+
+
+def _kinematic(arch: Arch, direction: str) -> LimitAnalysis:
+    mech = _mechanisms(arch)
+    if not np.any(np.isfinite(mech.k)):
+        raise ValueError(_UNBOUNDED)
+    best = int(np.nanargmin(mech.k))
+    hinges, separation = mech.hinges(best)
+    _, line = _mechanism_thrust_line(arch, hinges, separation)
+    return LimitAnalysis(float(mech.k[best]), hinges, line, direction, arch, "kinematic",
+                         separation)
+
+
+METHODS = {"static": _static, "kinematic": _kinematic}
+"""Registry of the limit-analysis methods: ``"static"`` (linear program, lower bound) and
+``"kinematic"`` (enumeration of four-hinge mechanisms, upper bound)."""
+
+
+# ---------------------------------------------------------------------------------- public API
+def limit_analysis(arch: Arch, direction: str = "l", method: str = "static") -> LimitAnalysis:
+    """Collapse load multiplier, hinges and thrust line of an arch [paper, Sect. 3].
+
+    Parameters
+    ----------
+    arch : Arch
+        The arch (in its own frame).
+    direction : {"l", "r"}
+        ``"l"``: horizontal forces ``k m_i g`` toward +x (Mech-l); ``"r"``: the same analysis of
+        ``arch.mirrored()`` (Mech-r, reported in the mirrored frame, as Table 1 of the paper).
+    method : {"static", "kinematic"}
+        ``"static"``: linear program (HiGHS); ``"kinematic"``: minimum over the admissible
+        four-hinge mechanisms. Both give the same result (uniqueness theorem).
+
+    Returns
+    -------
+    LimitAnalysis
+    """
+    if not isinstance(arch, Arch):
+        raise ValueError(f"arch must be an Arch, got {type(arch).__name__}")
+    method = _check_method(method)
+    return METHODS[method](_oriented(arch, direction), direction)
+
+
+def both_directions(arch: Arch, method: str = "static") -> tuple[LimitAnalysis, LimitAnalysis]:
+    """Limit analyses for Mech-l and Mech-r: ``(result_l, result_r)``."""
+    return limit_analysis(arch, "l", method), limit_analysis(arch, "r", method)
+
+
+def load_multipliers(arch: Arch, method: str = "static") -> tuple[float, float]:
+    """``(k_l, k_r)`` of an arch, without hinges or thrust line (the fast path of studies).
+
+    A direction in which the arch never collapses gives ``inf``; an arch that admits no thrust
+    line at all (too thin to stand) gives ``nan`` with the static method (the kinematic method
+    gives the negative multiplier of its self-weight mechanism).
+    """
+    _check_method(method)
+    out = []
+    for direction in DIRECTIONS:
+        oriented = _oriented(arch, direction)
+        if method == "kinematic":
+            k = _mechanisms(oriented).k
+            out.append(float(np.nanmin(k)) if np.any(np.isfinite(k)) else math.inf)
+        else:
+            res = _solve_lp(_scaled(oriented))
+            status = {0: None, 2: math.nan, 3: math.inf}.get(res.status, "failed")
+            if status == "failed":
+                raise RuntimeError(f"the limit-analysis linear program failed: {res.message}")
+            out.append(float(res.x[-1]) if status is None else status)
+    return out[0], out[1]
+
+
+def limit_sample(
+    nominal: Arch, tolerance: float, samples: int, seed: int | None = 0, method: str = "static",
+) -> LimitSample:
+    """k~_l and k~_r of ``samples`` irregular arches around ``nominal`` [paper, Figs. 17-20].
+
+    The arches are those of :func:`archquake.geometry.irregular_sample` with the same
+    ``tolerance`` and ``seed`` (arch ``i`` from child ``i`` of ``SeedSequence(seed)``).
+
+    Parameters
+    ----------
+    nominal : Arch
+        The nominal arch.
+    tolerance : float
+        epsilon, in [0, 1).
+    samples : int
+        Number of arches s (>= 0).
+    seed : int or None
+        Root seed.
+    method : {"static", "kinematic"}
+        Limit-analysis method.
+    """
+    _check_method(method)
+    if isinstance(samples, bool) or not float(samples).is_integer() or samples < 0:
+        raise ValueError(f"samples must be an integer >= 0 (number of arches), got {samples!r}")
+    arches = irregular_sample(nominal, tolerance, int(samples), seed)
+    k = np.array([load_multipliers(a, method) for a in arches], dtype=float).reshape(-1, 2)
+    k_l, k_r = k[:, 0].copy(), k[:, 1].copy()
+    k_l.setflags(write=False)
+    k_r.setflags(write=False)
+    return LimitSample(k_l, k_r, float(tolerance), seed, method)
+
+
+def empirical_cdf(values) -> tuple[np.ndarray, np.ndarray]:
+    """Empirical cumulative distribution: sorted values and probabilities ``i / s``, i = 1..s."""
+    x = np.sort(np.asarray(values, dtype=float).ravel())
+    if x.size == 0:
+        raise ValueError("values must contain at least one number")
+    if not np.all(np.isfinite(x)):
+        raise ValueError("values must be finite numbers")
+    return x, np.arange(1, x.size + 1) / x.size
+
+
+# ---------------------------------------------------------------------------------- thickness
+def self_weight_margin(arch: Arch) -> float:
+    """Largest uniform margin of the thrust line under self-weight alone (k = 0) [-].
+
+    Linear program: the thrust line must stay ``delta (r_out - r_in)`` inside every joint, per
+    unit total weight of force: ``r_in N + delta h <= -M <= r_out N - delta h``. ``delta >= 0``
+    exactly when a thrust line in equilibrium with the self-weight fits in the arch; it changes
+    sign at the minimum thickness.
+    """
+    res = _solve_lp(_scaled(arch), fixed_k=0.0)
+    if res.status != 0:
+        raise RuntimeError(f"the self-weight linear program failed: {res.message}")
+    return float(res.x[-1])
+
+
+def min_thickness(
+    radius: float, embrace: float, voussoirs: int, *, xtol: float = 1e-12,
+) -> float:
+    """Minimum thickness of a circular arch that stands under its own weight [m].
+
+    Root of :func:`self_weight_margin` in the thickness of ``circular_arch(radius, embrace, t,
+    voussoirs)``, found by bracketing and Brent's method. Classical check: a semicircular arch
+    (embrace pi) with many voussoirs gives ``t / R`` close to 0.1075 (Heyman's 0.106 with
+    Milankovitch's correction).
+
+    Parameters
+    ----------
+    radius : float
+        Mean radius R [m].
+    embrace : float
+        Angle of embrace alpha [rad].
+    voussoirs : int
+        Number of voussoirs n.
+    xtol : float
+        Absolute tolerance on t / R.
+    """
+    circular_arch(radius, embrace, 0.5 * radius, voussoirs)  # checks the input
+
+    def margin(ratio: float) -> float:
+        return self_weight_margin(circular_arch(radius, embrace, ratio * radius, voussoirs))
+
+    hi = 0.5
+    while margin(hi) < 0.0:
+        hi = 0.5 * (hi + 2.0)
+        if hi > 1.999:
+            raise ValueError(
+                "no thickness below 2 x radius lets this arch stand under its own weight "
+                f"(radius={radius} m, embrace={embrace} rad, voussoirs={voussoirs})"
+            )
+    lo = 0.5 * hi
+    while margin(lo) >= 0.0:
+        hi, lo = lo, 0.5 * lo
+        if lo < 1e-12:
+            return hi * radius
+    ratio = brentq(margin, lo, hi, xtol=xtol, rtol=4 * np.finfo(float).eps)
+    return float(ratio * radius)

@@ -1,0 +1,119 @@
+"""Figures. Every function takes ``ax=None`` (a new figure when None) and returns the axes.
+
+This is a leaf module: nothing in archquake's physics imports it. It uses ``matplotlib.pyplot``
+with whatever backend is active; the command line selects the non-interactive ``Agg`` backend
+before importing it.
+"""
+
+from __future__ import annotations
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+from .geometry import Arch
+from .limit_analysis import LimitAnalysis, empirical_cdf
+
+HINGE_LABELS = ("A", "B", "C", "D")
+_MECHANISM_NAMES = {"l": "Mech-l", "r": "Mech-r"}
+
+
+def _axes(ax):
+    if ax is None:
+        _, ax = plt.subplots(figsize=(7.0, 4.5))
+    return ax
+
+
+def plot_arch(arch: Arch, ax=None, *, label: str | None = None, **style):
+    """Outline of every voussoir of ``arch`` [m].
+
+    Parameters
+    ----------
+    arch : Arch
+        The arch.
+    ax : matplotlib Axes, optional
+    label : str, optional
+        Legend label (given to the first voussoir only).
+    **style
+        Line properties (default: black, 1 pt).
+    """
+    ax = _axes(ax)
+    style = {"color": "black", "linewidth": 1.0, **style}
+    for i in range(arch.n_voussoirs):
+        outline = arch.outline(i)
+        ax.plot(outline[:, 0], outline[:, 1], label=label if i == 0 else None, **style)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    return ax
+
+
+def plot_limit_analysis(result: LimitAnalysis, ax=None, *, nominal: Arch | None = None):
+    """Arch, line of thrust and hinges at collapse [paper, Figs. 2 and 4].
+
+    The funicular polygon (line of action of the resultant inside each voussoir) is drawn in
+    blue with the pressure points on the joints as dots; the hinges are labelled A, B, C, D.
+    ``nominal`` (drawn in red beneath) shows an irregular arch against its nominal one, as in
+    Fig. 4 of the paper; for Mech-r give the nominal arch in the same (mirrored) frame.
+    """
+    ax = _axes(ax)
+    if nominal is not None:
+        plot_arch(nominal, ax, color="tab:red", linewidth=0.9, label="nominal arch")
+        plot_arch(result.arch, ax, color="black", label="irregular arch")
+    else:
+        plot_arch(result.arch, ax, color="black", label="arch")
+    funicular = result.funicular()
+    ax.plot(funicular[:, 0], funicular[:, 1], color="tab:blue", linewidth=1.4,
+            label="line of thrust (funicular)")
+    pts = result.thrust_line.points
+    ax.plot(pts[:, 0], pts[:, 1], "o", color="tab:blue", markersize=3.5,
+            label="pressure points on the joints")
+    hinges = result.hinge_points
+    ax.plot(hinges[:, 0], hinges[:, 1], "o", color="tab:orange", markeredgecolor="black",
+            markersize=8, zorder=5, label="hinges")
+    labels = HINGE_LABELS if result.is_four_hinge else tuple(
+        f"H{i + 1}" for i in range(len(result.hinges)))
+    span = float(np.ptp(result.arch.centroids[:, 0])) or 1.0
+    for (x, y), hinge, text in zip(hinges, result.hinges, labels, strict=False):
+        beta = hinge.beta(result.arch)
+        outward = np.array([-np.cos(beta), np.sin(beta)])
+        sign = 1.0 if hinge.face == "extrados" else -1.0
+        offset = 0.045 * span * sign * outward
+        ax.annotate(text, (x, y), (x + offset[0], y + offset[1]), ha="center", va="center",
+                    fontsize=11, fontweight="bold")
+    name = _MECHANISM_NAMES[result.direction]
+    if result.direction == "r":
+        name += " (mirrored arch)"
+    ax.set_title(f"{name}: k = {result.load_multiplier:.4f}")
+    ax.legend(loc="lower center", fontsize=8, frameon=False, ncol=2)
+    low = min(0.0, float(np.min(result.arch.outline(0)[:, 1])))
+    top = float(np.max(result.arch.outer_radii))
+    ax.set_ylim(low - 0.45 * top, 1.12 * top)
+    return ax
+
+
+def plot_load_multiplier_cdf(k_values, ax=None, *, nominal_k: float | None = None,
+                             label: str = "limit analysis, irregular arches"):
+    """Empirical cumulative distribution of the load multiplier k~ [paper, Figs. 17-20, blue].
+
+    Parameters
+    ----------
+    k_values : array of float
+        Load multipliers k~ = min(k~_l, k~_r) of the sampled arches [-].
+    ax : matplotlib Axes, optional
+    nominal_k : float, optional
+        k of the nominal arch, drawn as a vertical line.
+    label : str
+        Legend label of the curve.
+    """
+    ax = _axes(ax)
+    x, p = empirical_cdf(k_values)
+    ax.step(x, p, where="post", color="tab:blue", label=f"{label} (s = {x.size})")
+    if nominal_k is not None:
+        ax.axvline(nominal_k, color="tab:blue", linestyle="-.", linewidth=1.0,
+                   label=f"nominal arch, k = {nominal_k:.4f}")
+    ax.set_xlabel("horizontal load multiplier k~ = a/g [-]")
+    ax.set_ylabel("cumulative probability [-]")
+    ax.set_ylim(0.0, 1.02)
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="upper left", fontsize=8)
+    return ax
