@@ -1,0 +1,67 @@
+"""``archquake simulate`` against the paper's Fig. 15 statements (Sect. 5.3.2, REFERENCE.md)."""
+
+import csv
+import json
+from pathlib import Path
+
+import pytest
+
+from archquake.cli import main
+
+DATA = Path(__file__).parent / "data"
+
+
+def run_json(capsys, *argv):
+    assert main(["simulate", *argv, "--json"]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+@pytest.mark.parametrize("case", range(3))
+def test_fig15_outcomes_with_paper_restitution(capsys, paper, case):
+    duration, amplitude, outcome, half_cycle = paper["dynamics"]["NA"]["pulse_cases"][case]
+    out = run_json(capsys, "--amplitude", str(amplitude), "--duration", str(duration),
+                   "--restitution", "paper")
+    assert out["outcome"] == outcome
+    assert out["half_cycle"] == half_cycle
+    if outcome == "collapse":
+        assert out["impacts"] == half_cycle - 1
+        assert 0 < out["collapse_time"] < 3 * duration + 5
+    else:
+        # decided by the energy barrier once the pulse is over; impacts counted until then
+        assert out["collapse_time"] is None and out["half_cycle"] == 0
+
+
+def test_below_activation_stays_at_rest(capsys):
+    out = run_json(capsys, "--amplitude", "-0.3", "--duration", "0.3")
+    assert out == {"outcome": "rest", "half_cycle": 0, "impacts": 0, "collapse_time": None,
+                   "max_phi": 0.0}
+
+
+def test_output_csv_plot_and_text(tmp_path, capsys):
+    csv_path, png = tmp_path / "h.csv", tmp_path / "h.png"
+    assert main(["simulate", "--restitution", "paper", "--output", str(csv_path),
+                 "--plot", str(png)]) == 0
+    assert "collapses in half cycle 2" in capsys.readouterr().out
+    rows = list(csv.DictReader(csv_path.open()))
+    assert rows[0].keys() == {"t_s", "phi_rad", "theta_dot_rad_s", "mechanism"}
+    assert {r["mechanism"] for r in rows} >= {"l", "r"}
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_record_and_free_vibration(capsys):
+    out = run_json(capsys, "--record", str(DATA / "decaying_sine.csv"), "--scale-to", "0.2")
+    assert out["outcome"] == "rest"  # 0.2 g < k = 0.37 g
+    out = run_json(capsys, "--phi0", "0.02", "--restitution", "elastic", "--t-end", "6")
+    assert out["outcome"] == "recovery" and out["max_phi"] == pytest.approx(0.02, rel=1e-9)
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--motion", "record"], "needs --record"),
+    (["--scale-to", "0.3"], "--scale-to"),
+    (["--cycles", "2"], "--cycles"),
+    (["--duration", "-1"], "duration"),
+    (["--record", "missing.csv"], "missing.csv"),
+])
+def test_simulate_bad_input(capsys, argv, message):
+    assert main(["simulate", *argv]) == 2
+    assert message in capsys.readouterr().err
