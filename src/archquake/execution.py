@@ -1,0 +1,612 @@
+"""Running large studies: chunking, seeding, checkpoint/resume, progress, processes or Dask.
+
+Nothing here knows any physics. A study is
+
+- a :class:`StudyPlan`: JSON-serialisable ``settings``, a ``seed``, a number of items (e.g. one
+  item = one sampled irregular arch) and a chunk size; the items ``0 .. n_items-1`` are split into
+  consecutive chunks of ``chunk_size`` items (the last one may be shorter);
+- a *task*: a module-level (hence picklable) function ``task(chunk: Chunk) -> dict[str, array]``
+  that evaluates one :class:`Chunk` and returns the columns of a tidy table (one row per
+  analysis, any number of rows per item, every column one-dimensional and of equal length).
+
+:func:`run_study` evaluates every chunk with one of the :data:`BACKENDS` and returns the rows of
+all chunks, in chunk (hence item) order, as one :class:`pandas.DataFrame`.
+
+Random numbers
+--------------
+Item ``i`` draws its random numbers from its own :class:`numpy.random.SeedSequence`,
+``SeedSequence(seed, spawn_key=(i,))``, which is the very same sequence as
+``SeedSequence(seed).spawn(n_items)[i]`` (the ``i``-th child of the root sequence): same entropy,
+same spawn key, same generated state. A task must draw item ``i``'s numbers only from
+``chunk.generators()[i - chunk.start]`` (or ``chunk.seed_sequences()``). Item ``i``'s stream
+therefore depends on the seed and on ``i`` only -- not on the chunk size, the backend, the number
+of workers, the order in which chunks finish or whether the study was resumed -- so the results
+are identical in all these cases.
+
+Checkpoints
+-----------
+With an output directory ``DIR``, :func:`run_study` writes ``DIR/study.json`` (settings, seed,
+chunking, task name and ``archquake_version``) before computing anything, and saves each finished
+chunk as ``DIR/chunks/chunk-000123.npz`` as soon as it arrives (atomically: a temporary file in
+the same directory renamed over the target, see :func:`archquake.results_io.atomic_path`). The
+chunk files are written by the calling process, so Dask workers need no shared file system. At
+the end, the tidy table and the JSON summary are saved with
+:func:`archquake.results_io.save_study`. ``resume=True`` reloads the finished chunks of an
+interrupted study and computes only the missing ones.
+
+Threads
+-------
+The ``"processes"`` backend starts fresh interpreters (``"spawn"`` context: no state, locks or
+threads -- numba's or BLAS's -- are inherited through ``fork``) and caps the threads of every
+worker (``NUMBA_NUM_THREADS``, ``OMP_NUM_THREADS``, ... set to ``cpu_count // workers``, at
+least 1) so that parallel workers do not oversubscribe the cores.
+"""
+
+from __future__ import annotations
+
+import datetime
+import json
+import math
+import os
+import re
+import sys
+import time
+from collections.abc import Callable, Iterator, Mapping
+from contextlib import suppress
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+from tqdm.auto import tqdm
+
+from . import __version__
+from .results_io import atomic_path, read_json, save_study, to_json_text, write_json
+
+BACKENDS = ("serial", "processes", "dask")
+"""Names accepted by ``run_study(backend=...)``."""
+
+SCHEDULER_TIMEOUT = 5.0
+"""Time allowed to connect to a Dask scheduler before giving up [s]."""
+
+STUDY_JSON = "study.json"
+CHUNK_DIR = "chunks"
+STUDY_FORMAT = "archquake-study"
+STUDY_FORMAT_VERSION = 1
+
+_THREAD_VARIABLES = ("NUMBA_NUM_THREADS", "OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS",
+                     "MKL_NUM_THREADS")
+_SCHEDULER_ADDRESS = re.compile(r"^(tcp|tls)://(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9_.-]+):(\d{1,5})$")
+_RESERVED_PREFIX = "__"
+
+Task = Callable[["Chunk"], Mapping[str, Any]]
+
+
+# --------------------------------------------------------------------------------------------
+# Plan and chunks
+# --------------------------------------------------------------------------------------------
+
+
+def item_seed_sequence(seed: int, item: int) -> np.random.SeedSequence:
+    """Seed sequence of item ``item`` of a study with root seed ``seed``.
+
+    ``SeedSequence(seed, spawn_key=(item,))``, identical to
+    ``SeedSequence(seed).spawn(n)[item]`` for any ``n > item``.
+
+    Parameters
+    ----------
+    seed : int
+        Root seed of the study, ``>= 0``.
+    item : int
+        Item index, ``>= 0``.
+
+    Returns
+    -------
+    numpy.random.SeedSequence
+    """
+    return np.random.SeedSequence(seed, spawn_key=(item,))
+
+
+def _check_count(name: str, value: Any, minimum: int = 1) -> int:
+    if isinstance(value, bool) or not isinstance(value, int | np.integer):
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    if value < minimum:
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {value}")
+    return int(value)
+
+
+def _normalise_settings(settings: Any) -> dict:
+    if not isinstance(settings, Mapping):
+        raise ValueError(f"settings must be a mapping (dict), got {type(settings).__name__}")
+    bad = [k for k in settings if not isinstance(k, str)]
+    if bad:
+        raise ValueError(f"settings keys must be strings, got {bad!r}")
+    try:
+        # The JSON round trip gives the exact form that study.json stores (tuples -> lists,
+        # numpy scalars -> numbers), so a resumed study compares like with like.
+        return json.loads(to_json_text(dict(settings)))
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"settings must be JSON-serialisable: {exc}") from exc
+
+
+@dataclass(frozen=True)
+class Chunk:
+    """Consecutive items ``start .. stop-1`` of a study, evaluated by one task call.
+
+    Attributes
+    ----------
+    index : int
+        Chunk number, ``0 .. n_chunks-1``.
+    start, stop : int
+        First item and one past the last item.
+    seed : int
+        Root seed of the study.
+    settings : dict
+        Settings of the study (JSON-serialisable).
+    """
+
+    index: int
+    start: int
+    stop: int
+    seed: int
+    settings: dict = field(repr=False)
+
+    def __len__(self) -> int:
+        return self.stop - self.start
+
+    @property
+    def items(self) -> np.ndarray:
+        """Item indices ``start .. stop-1`` (int64)."""
+        return np.arange(self.start, self.stop, dtype=np.int64)
+
+    def seed_sequences(self) -> list[np.random.SeedSequence]:
+        """Seed sequence of each item of the chunk (see :func:`item_seed_sequence`)."""
+        return [item_seed_sequence(self.seed, i) for i in range(self.start, self.stop)]
+
+    def generators(self) -> list[np.random.Generator]:
+        """A fresh :class:`numpy.random.Generator` (PCG64) seeded for each item of the chunk."""
+        return [np.random.default_rng(s) for s in self.seed_sequences()]
+
+
+@dataclass(frozen=True)
+class StudyPlan:
+    """What a study computes and how it is split into chunks.
+
+    Parameters
+    ----------
+    settings : mapping
+        JSON-serialisable settings passed to the task in every chunk (stored normalised through
+        JSON: tuples become lists, numpy scalars numbers).
+    seed : int
+        Root seed, ``>= 0``; item ``i`` uses ``SeedSequence(seed, spawn_key=(i,))``.
+    n_items : int
+        Number of items, ``>= 1``.
+    chunk_size : int
+        Items per chunk, ``>= 1`` (the last chunk may be shorter).
+
+    Raises
+    ------
+    ValueError
+        If a count is not a positive integer, the seed is negative or settings are not
+        JSON-serialisable.
+    """
+
+    settings: dict
+    seed: int
+    n_items: int
+    chunk_size: int
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "settings", _normalise_settings(self.settings))
+        object.__setattr__(self, "seed", _check_count("seed", self.seed, minimum=0))
+        object.__setattr__(self, "n_items", _check_count("n_items", self.n_items))
+        object.__setattr__(self, "chunk_size", _check_count("chunk_size", self.chunk_size))
+
+    @property
+    def n_chunks(self) -> int:
+        """Number of chunks, ``ceil(n_items / chunk_size)``."""
+        return math.ceil(self.n_items / self.chunk_size)
+
+    def chunk(self, index: int) -> Chunk:
+        """Chunk number ``index`` (``0 <= index < n_chunks``)."""
+        if isinstance(index, bool) or not isinstance(index, int | np.integer) \
+                or not 0 <= index < self.n_chunks:
+            raise ValueError(f"chunk index must be an integer in [0, {self.n_chunks}), "
+                             f"got {index!r}")
+        start = int(index) * self.chunk_size
+        return Chunk(index=int(index), start=start,
+                     stop=min(start + self.chunk_size, self.n_items),
+                     seed=self.seed, settings=self.settings)
+
+    def chunks(self) -> Iterator[Chunk]:
+        """All chunks in order."""
+        return (self.chunk(i) for i in range(self.n_chunks))
+
+    def describe(self) -> dict:
+        """The plan as a JSON-serialisable dictionary (what ``study.json`` records)."""
+        return {"settings": self.settings, "seed": self.seed, "n_items": self.n_items,
+                "chunk_size": self.chunk_size, "n_chunks": self.n_chunks}
+
+
+# --------------------------------------------------------------------------------------------
+# Evaluating one chunk (runs in the workers)
+# --------------------------------------------------------------------------------------------
+
+
+def _columns_of(result: Any, chunk_index: int) -> dict[str, np.ndarray]:
+    """Validated columns of a task result: 1-D, equal lengths, no Python objects."""
+    where = f"the task's result for chunk {chunk_index}"
+    if not isinstance(result, Mapping) or not result:
+        raise ValueError(f"{where} must be a non-empty dict of columns (name -> 1-D array), "
+                         f"got {type(result).__name__}")
+    columns = {}
+    for name, values in result.items():
+        if not isinstance(name, str) or name.startswith(_RESERVED_PREFIX):
+            raise ValueError(f"{where}: column names must be strings not starting with "
+                             f"{_RESERVED_PREFIX!r}, got {name!r}")
+        array = np.asarray(values)
+        if array.ndim != 1:
+            raise ValueError(f"{where}: column {name!r} must be one-dimensional, "
+                             f"got shape {array.shape}")
+        if array.dtype.kind in "OV":
+            raise ValueError(f"{where}: column {name!r} has dtype {array.dtype}; use numbers, "
+                             "booleans or fixed-width strings (np.asarray(values, dtype=str))")
+        columns[name] = array
+    lengths = {name: len(a) for name, a in columns.items()}
+    if len(set(lengths.values())) > 1:
+        raise ValueError(f"{where}: columns must have equal lengths, got {lengths}")
+    return columns
+
+
+def _run_chunk(chunk: Chunk, task: Task) -> tuple[int, dict[str, np.ndarray], float]:
+    """Evaluate ``task(chunk)``; return the chunk index, its columns and the time taken [s]."""
+    t0 = time.perf_counter()
+    columns = _columns_of(task(chunk), chunk.index)
+    return chunk.index, columns, time.perf_counter() - t0
+
+
+def _limit_threads(threads: int) -> None:
+    """Process-pool initializer: cap the threads of numba and BLAS in a worker process."""
+    for name in _THREAD_VARIABLES:
+        os.environ.setdefault(name, str(threads))
+    numba = sys.modules.get("numba")
+    if numba is not None:  # already imported (e.g. by the parent's __main__): set at run time
+        with suppress(ValueError):
+            numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
+
+
+# --------------------------------------------------------------------------------------------
+# Backends: each yields (chunk index, columns, seconds) as chunks finish, in any order
+# --------------------------------------------------------------------------------------------
+
+
+def _serial(task: Task, chunks: list[Chunk], workers: int | None,
+            scheduler: Any) -> Iterator[tuple[int, dict, float]]:
+    for chunk in chunks:
+        yield _run_chunk(chunk, task)
+
+
+def _processes(task: Task, chunks: list[Chunk], workers: int,
+               scheduler: Any) -> Iterator[tuple[int, dict, float]]:
+    import multiprocessing
+    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+
+    n = min(workers, len(chunks))
+    threads = max(1, (os.cpu_count() or 1) // n)
+    executor = ProcessPoolExecutor(max_workers=n, mp_context=multiprocessing.get_context("spawn"),
+                                   initializer=_limit_threads, initargs=(threads,))
+    try:
+        pending = {executor.submit(_run_chunk, chunk, task) for chunk in chunks}
+        while pending:
+            done, pending = wait(pending, return_when=FIRST_COMPLETED)
+            for future in done:
+                yield future.result()
+    finally:
+        executor.shutdown(wait=True, cancel_futures=True)
+
+
+def _dask_client(scheduler: Any):
+    """A connected ``distributed.Client`` and whether this module owns (must close) it."""
+    try:
+        import distributed
+    except ImportError as exc:  # pragma: no cover - depends on the installation
+        raise ValueError("backend 'dask' needs dask.distributed: pip install "
+                         "'archquake[cluster]'") from exc
+    if isinstance(scheduler, distributed.Client):
+        return scheduler, False
+    try:
+        _probe_scheduler(scheduler, SCHEDULER_TIMEOUT)
+        client = distributed.Client(scheduler, timeout=SCHEDULER_TIMEOUT, set_as_default=False)
+    except Exception as exc:
+        raise ValueError(f"could not connect to the Dask scheduler at {scheduler} within "
+                         f"{SCHEDULER_TIMEOUT:g} s: is a dask scheduler running there and "
+                         f"reachable? ({type(exc).__name__}: {exc})") from exc
+    return client, True
+
+
+def _probe_scheduler(address: str, timeout: float) -> None:
+    """Open and close one Dask connection (with handshake) to ``address``, or raise.
+
+    Done before creating a ``Client``: a ``Client`` that fails to connect blocks for a further
+    10 s when it is garbage collected. The probe runs its own event loop in a helper thread, so it
+    also works where a loop is already running (e.g. a notebook).
+    """
+    import asyncio
+    from concurrent.futures import ThreadPoolExecutor
+
+    from distributed.comm import connect
+
+    async def probe() -> None:
+        comm = await connect(address, timeout=timeout)
+        await comm.close()
+
+    with ThreadPoolExecutor(max_workers=1) as pool:
+        pool.submit(asyncio.run, probe()).result()
+
+
+def _dask(task: Task, chunks: list[Chunk], workers: int | None,
+          scheduler: Any) -> Iterator[tuple[int, dict, float]]:
+    import distributed
+
+    client, owned = _dask_client(scheduler)
+    futures = []
+    try:
+        futures = client.map(_run_chunk, chunks, task=task, pure=False)
+        for future in distributed.as_completed(futures, loop=client.loop):
+            yield future.result()
+            future.release()
+    finally:
+        client.cancel([f for f in futures if not f.done()])
+        if owned:
+            client.close()
+
+
+_RUNNERS = {"serial": _serial, "processes": _processes, "dask": _dask}
+
+
+def _check_execution(backend: str | None, workers: Any, scheduler: Any) -> tuple[str, int | None]:
+    if backend is None:
+        backend = "processes" if scheduler is None else "dask"
+    if backend not in BACKENDS:
+        raise ValueError(f"unknown backend {backend!r}; choose one of {', '.join(BACKENDS)}")
+    if workers is not None:
+        workers = _check_count("workers", workers)
+    if backend == "processes" and workers is None:
+        workers = os.cpu_count() or 1
+    if backend == "serial" and workers not in (None, 1):
+        raise ValueError(f"backend 'serial' runs one worker; got workers={workers}")
+    if backend == "dask":
+        if workers is not None:
+            raise ValueError("workers must be None with backend 'dask': the Dask cluster decides "
+                             "how many workers run")
+        if scheduler is None:
+            raise ValueError("backend 'dask' needs scheduler='tcp://HOST:PORT' (the address of a "
+                             "running dask scheduler) or a distributed.Client")
+        if isinstance(scheduler, str):
+            match = _SCHEDULER_ADDRESS.match(scheduler)
+            if match is None or not 1 <= int(match.group(3)) <= 65535:
+                raise ValueError(f"scheduler must be an address 'tcp://HOST:PORT' (PORT in "
+                                 f"1..65535), got {scheduler!r}")
+        elif not hasattr(scheduler, "submit"):
+            raise ValueError(f"scheduler must be an address 'tcp://HOST:PORT' or a "
+                             f"distributed.Client, got {type(scheduler).__name__}")
+    elif scheduler is not None:
+        raise ValueError(f"scheduler is only used by backend 'dask', not {backend!r}")
+    return backend, workers
+
+
+# --------------------------------------------------------------------------------------------
+# Checkpoint directory
+# --------------------------------------------------------------------------------------------
+
+
+def task_name(task: Callable) -> str:
+    """``module.qualname`` of a task (recorded in ``study.json`` and checked on resume)."""
+    func = getattr(task, "func", task)  # functools.partial
+    return f"{getattr(func, '__module__', '?')}.{getattr(func, '__qualname__', repr(func))}"
+
+
+def chunk_path(out_dir: str | os.PathLike, index: int) -> Path:
+    """Path of the checkpoint file of chunk ``index``: ``DIR/chunks/chunk-000123.npz``."""
+    return Path(out_dir) / CHUNK_DIR / f"chunk-{index:06d}.npz"
+
+
+def _save_chunk(out_dir: Path, chunk: Chunk, columns: dict[str, np.ndarray],
+                seconds: float) -> None:
+    with atomic_path(chunk_path(out_dir, chunk.index)) as tmp, open(tmp, "wb") as f:
+        np.savez(f, __chunk__=np.array([chunk.index, chunk.start, chunk.stop]),
+                 __seconds__=np.array(seconds), **columns)
+
+
+def _load_chunk(out_dir: Path, chunk: Chunk) -> tuple[dict[str, np.ndarray], float]:
+    path = chunk_path(out_dir, chunk.index)
+    with np.load(path, allow_pickle=False) as data:
+        stored = data["__chunk__"].tolist()
+        if stored != [chunk.index, chunk.start, chunk.stop]:
+            raise ValueError(f"{path} holds chunk (index, start, stop) = {stored}, expected "
+                             f"{[chunk.index, chunk.start, chunk.stop]}")
+        seconds = float(data["__seconds__"])
+        columns = {k: data[k] for k in data.files if not k.startswith(_RESERVED_PREFIX)}
+    return columns, seconds
+
+
+def _difference(stored: Mapping, expected: Mapping) -> str | None:
+    """Description of the first recorded setting that differs, or None."""
+    for key in ("task", "seed", "n_items", "chunk_size", "archquake_version"):
+        if stored.get(key) != expected[key]:
+            return (f"{key} differs: the directory has {stored.get(key)!r}, this study has "
+                    f"{expected[key]!r}")
+    old, new = stored.get("settings", {}), expected["settings"]
+    for key in sorted(set(old) | set(new)):
+        if key not in old:
+            return f"setting {key!r} is new (the directory has no such setting)"
+        if key not in new:
+            return f"setting {key!r} is missing (the directory has {key}={old[key]!r})"
+        if old[key] != new[key]:
+            return (f"setting {key!r} differs: the directory has {old[key]!r}, this study has "
+                    f"{new[key]!r}")
+    return None
+
+
+def _prepare_directory(out_dir: Path, record: dict, resume: bool) -> None:
+    """Create the study directory or check that it continues the same study."""
+    study_json = out_dir / STUDY_JSON
+    if out_dir.exists() and not out_dir.is_dir():
+        raise ValueError(f"out_dir {out_dir} exists and is not a directory")
+    non_empty = out_dir.is_dir() and any(out_dir.iterdir())
+    if non_empty and not resume:
+        raise ValueError(f"out_dir {out_dir} exists and is not empty; pass resume=True "
+                         "(--resume) to continue the study saved there, or choose another "
+                         "directory")
+    if non_empty:
+        if not study_json.is_file():
+            raise ValueError(f"cannot resume: {out_dir} is not empty but holds no {STUDY_JSON}; "
+                             "choose another directory")
+        stored = read_json(study_json)
+        difference = _difference(stored, record)
+        if difference is not None:
+            raise ValueError(f"cannot resume the study in {out_dir}: {difference}; use the same "
+                             "settings or another directory")
+        for leftover in (out_dir / CHUNK_DIR).glob(".*.tmp"):  # from an interrupted write
+            with suppress(FileNotFoundError):
+                leftover.unlink()
+    (out_dir / CHUNK_DIR).mkdir(parents=True, exist_ok=True)
+    if not study_json.is_file():
+        write_json(study_json, record)
+
+
+# --------------------------------------------------------------------------------------------
+# Driver
+# --------------------------------------------------------------------------------------------
+
+
+def _concatenate(results: dict[int, dict[str, np.ndarray]], n_chunks: int) -> pd.DataFrame:
+    names = list(results[0])
+    for index in range(n_chunks):
+        if list(results[index]) != names:
+            raise ValueError(f"chunk {index} returned columns {list(results[index])}, chunk 0 "
+                             f"returned {names}: every chunk must return the same columns")
+    return pd.DataFrame({name: np.concatenate([results[i][name] for i in range(n_chunks)])
+                         for name in names})
+
+
+def run_study(
+    task: Task,
+    plan: StudyPlan,
+    out_dir: str | os.PathLike | None = None,
+    *,
+    backend: str | None = None,
+    workers: int | None = None,
+    scheduler: Any = None,
+    resume: bool = False,
+    progress: bool = True,
+) -> pd.DataFrame:
+    """Evaluate every chunk of a study and return all rows as one tidy table.
+
+    Parameters
+    ----------
+    task : callable
+        Module-level function ``task(chunk) -> dict[str, array]`` (picklable by reference for the
+        ``"processes"`` and ``"dask"`` backends). It receives a :class:`Chunk` and returns the
+        columns of its rows: one-dimensional arrays of equal length, with numbers, booleans or
+        fixed-width strings; every chunk must return the same column names. It must draw item
+        ``i``'s random numbers only from ``chunk.generators()`` / ``chunk.seed_sequences()``.
+    plan : StudyPlan
+        Settings, seed, number of items and chunk size.
+    out_dir : str or os.PathLike, optional
+        Study directory for checkpoints (``study.json``, ``chunks/``) and, at the end, the
+        results (``results.parquet``, ``results.csv``, ``summary.json``; see
+        :func:`archquake.results_io.save_study`). It must not exist or be empty unless
+        ``resume=True``. Default: nothing is written.
+    backend : {"serial", "processes", "dask"}, optional
+        ``"serial"``: in this process. ``"processes"``: a pool of ``workers`` fresh local
+        processes (``concurrent.futures.ProcessPoolExecutor``, ``"spawn"`` context).
+        ``"dask"``: the workers of the Dask cluster at ``scheduler``. Default: ``"dask"`` if
+        ``scheduler`` is given, else ``"processes"``.
+    workers : int, optional
+        Number of local processes (``"processes"``; default ``os.cpu_count()``); must be None or
+        1 with ``"serial"`` and None with ``"dask"``.
+    scheduler : str or distributed.Client, optional
+        Address ``"tcp://HOST:PORT"`` of a running Dask scheduler (connection attempt limited to
+        :data:`SCHEDULER_TIMEOUT` seconds), or a connected ``distributed.Client`` (left open).
+    resume : bool, optional
+        Continue the study saved in ``out_dir``: finished chunks are loaded, not recomputed.
+        The directory must hold the same task, settings, seed, number of items, chunk size and
+        ``archquake_version``. An empty or missing ``out_dir`` simply starts the study.
+    progress : bool, optional
+        Show a progress bar over chunks on stderr (advancing as chunks finish).
+
+    Returns
+    -------
+    pandas.DataFrame
+        The rows of all chunks in chunk (hence item) order, with a fresh ``RangeIndex``.
+        ``table.attrs["study"]`` holds the metadata: settings, seed, chunking, task,
+        ``archquake_version``, backend, workers and ``timings`` (``wall_seconds``: this call;
+        ``task_seconds``: summed time inside the task over all chunks, including resumed ones;
+        ``chunks_computed`` / ``chunks_resumed``).
+
+    Raises
+    ------
+    ValueError
+        Invalid plan, backend, workers or scheduler; an unreachable scheduler; an output
+        directory that is not empty (without ``resume``) or that holds a different study (the
+        message names the setting that differs); a task result that is not a valid table.
+        An exception raised by the task propagates unchanged; chunks finished before it stay
+        saved, so the study can be resumed once the cause is fixed.
+
+    Notes
+    -----
+    The results do not depend on the backend, the number of workers, the chunk completion order
+    or interruptions and resumption: every item has its own seed sequence
+    (:func:`item_seed_sequence`) and the rows are assembled in chunk order.
+    """
+    if not isinstance(plan, StudyPlan):
+        raise ValueError(f"plan must be a StudyPlan, got {type(plan).__name__}")
+    if not callable(task):
+        raise ValueError(f"task must be a callable task(chunk) -> dict, got {task!r}")
+    backend, workers = _check_execution(backend, workers, scheduler)
+
+    started = time.perf_counter()
+    record = {"format": STUDY_FORMAT, "format_version": STUDY_FORMAT_VERSION,
+              "archquake_version": __version__, "task": task_name(task), **plan.describe(),
+              "created": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")}
+    results: dict[int, dict[str, np.ndarray]] = {}
+    seconds: dict[int, float] = {}
+    if out_dir is not None:
+        out_dir = Path(out_dir)
+        _prepare_directory(out_dir, record, resume)
+        record = read_json(out_dir / STUDY_JSON)  # keeps the original creation time on resume
+        for chunk in plan.chunks():
+            if chunk_path(out_dir, chunk.index).is_file():
+                results[chunk.index], seconds[chunk.index] = _load_chunk(out_dir, chunk)
+    resumed = len(results)
+    todo = [chunk for chunk in plan.chunks() if chunk.index not in results]
+
+    with tqdm(total=plan.n_chunks, initial=resumed, unit="chunk", desc="study",
+              file=sys.stderr, disable=not progress, dynamic_ncols=True) as bar:
+        if todo:
+            finished = _RUNNERS[backend](task, todo, workers, scheduler)
+            try:
+                for index, columns, elapsed in finished:
+                    if out_dir is not None:
+                        _save_chunk(out_dir, plan.chunk(index), columns, elapsed)
+                    results[index], seconds[index] = columns, elapsed
+                    bar.update(1)
+            finally:
+                finished.close()  # cancels what is still queued if we stop early
+
+    table = _concatenate(results, plan.n_chunks)
+    metadata = {key: value for key, value in record.items()
+                if key not in ("format", "format_version")}
+    metadata.update(backend=backend, workers=workers, timings={
+        "wall_seconds": time.perf_counter() - started,
+        "task_seconds": float(sum(seconds.values())),
+        "chunks_computed": len(todo),
+        "chunks_resumed": resumed,
+    })
+    table.attrs["study"] = metadata
+    if out_dir is not None:
+        save_study(out_dir, table, metadata=metadata)
+    return table
+

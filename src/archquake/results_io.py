@@ -1,0 +1,272 @@
+"""Saving and loading study results: a tidy table (Parquet and CSV) beside a JSON summary.
+
+A study directory written by :func:`save_study` holds
+
+``results.parquet``
+    the tidy table, one row per analysis (exact dtypes; the file to load);
+``results.csv``
+    the same table as text, for spreadsheets and other tools;
+``summary.json``
+    the metadata of the study (settings, seed, chunking, ``archquake_version``, timings), the
+    columns and number of rows of the table, and a free ``summary`` dictionary (e.g. fitted
+    fragility parameters). It is written last, so its presence means the table files are complete.
+
+Every file is written atomically: the content goes to a temporary file in the same directory,
+which is flushed to disk and then renamed over the target (:func:`os.replace`), so a reader or an
+interrupted writer never sees a half-written file -- only the old file or the new one.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from collections.abc import Iterator, Mapping
+from contextlib import contextmanager, suppress
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from . import __version__
+
+RESULTS_PARQUET = "results.parquet"
+RESULTS_CSV = "results.csv"
+SUMMARY_JSON = "summary.json"
+TABLE_FORMATS = ("parquet", "csv")
+"""Formats of the tidy table that :func:`save_study` can write."""
+
+# pandas >= 3 parses floats exactly by default (and deprecates the option); before, ask for it.
+_EXACT_FLOATS = {} if int(pd.__version__.split(".")[0]) >= 3 else {"float_precision": "round_trip"}
+
+SUMMARY_FORMAT = "archquake-study-results"
+SUMMARY_FORMAT_VERSION = 1
+
+
+@contextmanager
+def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
+    """Path of a temporary file that replaces ``path`` only if the ``with`` block succeeds.
+
+    The temporary file lives in the same directory as ``path`` (so the final :func:`os.replace`
+    is an atomic rename on the same file system), is hidden (its name starts with a dot) and ends
+    in ``.tmp``. On success it is flushed to disk and renamed to ``path``; on any exception
+    (including ``KeyboardInterrupt``) it is removed and ``path`` is left untouched.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        Final location of the file. Its directory must exist.
+
+    Yields
+    ------
+    pathlib.Path
+        The temporary file to write (it exists and is empty).
+    """
+    path = Path(path)
+    fd, tmp_name = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    os.close(fd)
+    tmp = Path(tmp_name)
+    try:
+        yield tmp
+        with open(tmp, "rb+") as f:
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        with suppress(FileNotFoundError):
+            tmp.unlink()
+        raise
+
+
+def _json_default(obj: Any) -> Any:
+    """Convert numpy scalars and arrays (and paths) for :func:`json.dumps`."""
+    if isinstance(obj, np.generic):
+        return obj.item()
+    if isinstance(obj, np.ndarray):
+        return obj.tolist()
+    if isinstance(obj, os.PathLike):
+        return os.fspath(obj)
+    raise TypeError(f"object of type {type(obj).__name__} is not JSON serialisable")
+
+
+def to_json_text(obj: Any) -> str:
+    """JSON text of ``obj``; numpy scalars and arrays become numbers and lists.
+
+    Non-finite floats are written as ``NaN`` / ``Infinity`` (as Python's :mod:`json` does), so
+    they round-trip through :func:`read_json`.
+    """
+    return json.dumps(obj, indent=2, default=_json_default) + "\n"
+
+
+def write_json(path: str | os.PathLike, obj: Any) -> Path:
+    """Write ``obj`` as JSON to ``path`` atomically (see :func:`atomic_path`); return the path."""
+    text = to_json_text(obj)  # serialise first: a TypeError must not leave a temporary file
+    with atomic_path(path) as tmp:
+        tmp.write_text(text, encoding="utf-8")
+    return Path(path)
+
+
+def read_json(path: str | os.PathLike) -> Any:
+    """Read a JSON file written by :func:`write_json`."""
+    return json.loads(Path(path).read_text(encoding="utf-8"))
+
+
+@dataclass(frozen=True)
+class StoredStudy:
+    """A study loaded from disk by :func:`load_study`.
+
+    Attributes
+    ----------
+    table : pandas.DataFrame
+        The tidy table, one row per analysis; ``table.attrs["study"]`` is ``metadata``.
+    metadata : dict
+        Settings, seed, chunking, ``archquake_version`` and timings of the study.
+    summary : dict
+        The free summary dictionary passed to :func:`save_study` (empty if none).
+    directory : pathlib.Path
+        The study directory.
+    """
+
+    table: pd.DataFrame = field(repr=False)
+    metadata: dict
+    summary: dict
+    directory: Path
+
+
+def save_study(
+    out_dir: str | os.PathLike,
+    table: pd.DataFrame,
+    *,
+    metadata: Mapping[str, Any] | None = None,
+    summary: Mapping[str, Any] | None = None,
+    formats: tuple[str, ...] = TABLE_FORMATS,
+) -> Path:
+    """Save a tidy table and its JSON summary in a study directory.
+
+    Parameters
+    ----------
+    out_dir : str or os.PathLike
+        Study directory; created if missing. Existing result files in it are replaced.
+    table : pandas.DataFrame
+        Tidy table, one row per analysis, with string column names. The index is not saved.
+    metadata : mapping, optional
+        Settings, seed, timings, ... of the study (JSON-serialisable). Default:
+        ``table.attrs["study"]`` as set by :func:`archquake.execution.run_study`, or empty.
+        ``archquake_version`` is added if missing.
+    summary : mapping, optional
+        Free JSON-serialisable summary of the results (e.g. fitted fragility parameters).
+    formats : tuple of str, optional
+        Table formats to write, among ``("parquet", "csv")``; :func:`load_study` reads
+        Parquet when present, else CSV.
+
+    Returns
+    -------
+    pathlib.Path
+        Path of ``summary.json``.
+
+    Raises
+    ------
+    ValueError
+        If ``table`` is not a DataFrame, a column name is not a string, ``formats`` is empty or
+        names an unknown format, or ``metadata`` / ``summary`` is not JSON-serialisable.
+    """
+    if not isinstance(table, pd.DataFrame):
+        raise ValueError(f"table must be a pandas.DataFrame, got {type(table).__name__}")
+    bad = [c for c in table.columns if not isinstance(c, str)]
+    if bad:
+        raise ValueError(f"table column names must be strings, got {bad!r}")
+    formats = tuple(formats)
+    unknown = [f for f in formats if f not in TABLE_FORMATS]
+    if not formats or unknown:
+        raise ValueError(f"formats must be a non-empty subset of {TABLE_FORMATS}, got {formats!r}")
+    if metadata is None:
+        metadata = table.attrs.get("study", {})
+    metadata = dict(metadata)
+    metadata.setdefault("archquake_version", __version__)
+    summary = dict(summary or {})
+    record = {
+        **metadata,
+        "format": SUMMARY_FORMAT,
+        "format_version": SUMMARY_FORMAT_VERSION,
+        "rows": len(table),
+        "columns": {name: str(dtype) for name, dtype in table.dtypes.items()},
+        "files": [{"parquet": RESULTS_PARQUET, "csv": RESULTS_CSV}[f] for f in formats],
+        "summary": summary,
+    }
+    try:
+        text = to_json_text(record)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"metadata and summary must be JSON-serialisable: {exc}") from exc
+
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    plain = table.reset_index(drop=True)
+    plain.attrs = {}  # the metadata lives in summary.json, not inside the table files
+    summary_path = out_dir / SUMMARY_JSON
+    # An existing summary.json would vouch for table files that are about to change: remove it
+    # first, write the tables, then the new summary last.
+    with suppress(FileNotFoundError):
+        summary_path.unlink()
+    if "parquet" in formats:
+        with atomic_path(out_dir / RESULTS_PARQUET) as tmp:
+            plain.to_parquet(tmp, engine="pyarrow", index=False)
+    if "csv" in formats:
+        with atomic_path(out_dir / RESULTS_CSV) as tmp:
+            plain.to_csv(tmp, index=False)
+    with atomic_path(summary_path) as tmp:
+        tmp.write_text(text, encoding="utf-8")
+    return summary_path
+
+
+def load_study(out_dir: str | os.PathLike) -> StoredStudy:
+    """Load a study saved by :func:`save_study` (or :func:`archquake.execution.run_study`).
+
+    Parameters
+    ----------
+    out_dir : str or os.PathLike
+        Study directory.
+
+    Returns
+    -------
+    StoredStudy
+        The table (from ``results.parquet``, else ``results.csv``), metadata and summary.
+
+    Raises
+    ------
+    ValueError
+        If the directory holds no complete results (no ``summary.json``, e.g. an interrupted
+        study: run it again with ``resume=True``) or the files are inconsistent.
+    """
+    out_dir = Path(out_dir)
+    summary_path = out_dir / SUMMARY_JSON
+    if not summary_path.is_file():
+        raise ValueError(
+            f"{out_dir} holds no complete study results (missing {SUMMARY_JSON}); if the study "
+            "was interrupted, run it again with resume=True (--resume)"
+        )
+    record = read_json(summary_path)
+    if record.get("format") != SUMMARY_FORMAT:
+        raise ValueError(f"{summary_path} is not an archquake results summary")
+    files = record.get("files", [])
+    columns = record.get("columns", {})
+    if RESULTS_PARQUET in files:
+        table = pd.read_parquet(out_dir / RESULTS_PARQUET, engine="pyarrow")
+    elif RESULTS_CSV in files:
+        dtypes = {c: d for c, d in columns.items() if d != "object"}
+        table = pd.read_csv(out_dir / RESULTS_CSV, dtype=dtypes, keep_default_na=False,
+                            na_values=[""], **_EXACT_FLOATS)
+    else:
+        raise ValueError(f"{summary_path} lists no table file")
+    if list(table.columns) != list(columns) or len(table) != record.get("rows"):
+        raise ValueError(
+            f"the table in {out_dir} does not match {SUMMARY_JSON} "
+            f"(columns {list(table.columns)} vs {list(columns)}, rows {len(table)} vs "
+            f"{record.get('rows')})"
+        )
+    summary = record.pop("summary", {})
+    for key in ("format", "format_version", "rows", "columns", "files"):
+        record.pop(key, None)
+    table.attrs["study"] = record
+    return StoredStudy(table=table, metadata=record, summary=summary, directory=out_dir)
+

@@ -1,0 +1,292 @@
+import json
+import logging
+import os
+import signal
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+from pandas.testing import assert_frame_equal
+
+import archquake
+import toy_tasks
+from archquake import execution
+from archquake.execution import (
+    StudyPlan,
+    chunk_path,
+    item_seed_sequence,
+    run_study,
+)
+from archquake.results_io import load_study
+
+TESTS = Path(__file__).parent
+SRC = TESTS.parent / "src"
+
+
+def direct_table(seed, n_items, draws):
+    """What toy_tasks.random_task must produce, computed without chunks: item i draws from
+    the i-th child spawned from the root SeedSequence(seed)."""
+    children = np.random.SeedSequence(seed).spawn(n_items)
+    values = np.concatenate([np.random.default_rng(c).standard_normal(draws) for c in children])
+    items = np.repeat(np.arange(n_items), draws)
+    return pd.DataFrame({"item": items, "draw": np.tile(np.arange(draws), n_items),
+                         "value": values, "label": [f"arch-{i}" for i in items]})
+
+
+@pytest.fixture(scope="module")
+def dask_scheduler():
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  host="127.0.0.1", dashboard_address=None,
+                                  silence_logs=logging.ERROR) as cluster:
+        yield cluster.scheduler_address
+
+
+# ------------------------------------------------------------------------------- seeding, plan
+
+
+@pytest.mark.parametrize("seed, item", [(0, 0), (12345, 7), (2**40 + 3, 999)])
+def test_item_seed_sequence_is_the_spawned_child(seed, item):
+    child = np.random.SeedSequence(seed).spawn(item + 5)[item]
+    own = item_seed_sequence(seed, item)
+    assert own.entropy == child.entropy and own.spawn_key == child.spawn_key == (item,)
+    assert np.array_equal(own.generate_state(8), child.generate_state(8))
+    assert np.array_equal(np.random.default_rng(own).random(5),
+                          np.random.default_rng(child).random(5))
+
+
+def test_plan_splits_items_into_consecutive_chunks():
+    plan = StudyPlan({"a": 1}, seed=3, n_items=10, chunk_size=3)
+    assert plan.n_chunks == 4  # ceil(10 / 3)
+    bounds = [(c.index, c.start, c.stop, len(c)) for c in plan.chunks()]
+    assert bounds == [(0, 0, 3, 3), (1, 3, 6, 3), (2, 6, 9, 3), (3, 9, 10, 1)]
+    assert np.array_equal(np.concatenate([c.items for c in plan.chunks()]), np.arange(10))
+    chunk = plan.chunk(2)
+    assert [s.spawn_key for s in chunk.seed_sequences()] == [(6,), (7,), (8,)]
+    assert chunk.settings == {"a": 1} and chunk.seed == 3
+
+
+def test_plan_settings_are_normalised_through_json():
+    plan = StudyPlan({"range": (0.1, 0.2), "n": np.int64(4)}, 0, 1, 1)
+    assert plan.settings == {"range": [0.1, 0.2], "n": 4}
+    assert json.loads(json.dumps(plan.describe()))["settings"] == plan.settings
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"n_items": 0}, "n_items"),
+    ({"chunk_size": 0}, "chunk_size"),
+    ({"chunk_size": 2.5}, "chunk_size"),
+    ({"seed": -1}, "seed"),
+    ({"seed": None}, "seed"),
+    ({"settings": {"f": object()}}, "JSON"),
+    ({"settings": [1, 2]}, "mapping"),
+])
+def test_plan_rejects_invalid_input(kwargs, message):
+    args = {"settings": {}, "seed": 0, "n_items": 5, "chunk_size": 2} | kwargs
+    with pytest.raises(ValueError, match=message):
+        StudyPlan(**args)
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"backend": "threads"}, "serial, processes, dask"),
+    ({"backend": "processes", "workers": 0}, "workers"),
+    ({"backend": "processes", "workers": -2}, "workers"),
+    ({"backend": "serial", "workers": 2}, "serial"),
+    ({"backend": "dask"}, "scheduler"),
+    ({"backend": "dask", "scheduler": "127.0.0.1:8786"}, "tcp://HOST:PORT"),
+    ({"backend": "dask", "scheduler": "tcp://127.0.0.1"}, "tcp://HOST:PORT"),
+    ({"scheduler": "tcp://127.0.0.1:99999"}, "1..65535"),
+    ({"backend": "dask", "scheduler": "tcp://127.0.0.1:8786", "workers": 2}, "workers"),
+    ({"backend": "processes", "scheduler": "tcp://127.0.0.1:8786"}, "scheduler"),
+])
+def test_run_study_rejects_invalid_execution_options(kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        run_study(toy_tasks.trivial_task, StudyPlan({}, 0, 4, 2), progress=False, **kwargs)
+
+
+# ------------------------------------------------------------------------- reproducibility
+
+
+def test_rows_do_not_depend_on_chunking_and_match_direct_draws():
+    expected = direct_table(seed=42, n_items=7, draws=3)
+    for chunk_size in (1, 3, 7):
+        table = run_study(toy_tasks.random_task, StudyPlan({"draws": 3}, 42, 7, chunk_size),
+                          backend="serial", progress=False)
+        assert_frame_equal(table, expected, check_dtype=False)
+
+
+def test_backends_and_worker_counts_give_identical_results(dask_scheduler):
+    plan = StudyPlan({"draws": 2}, seed=2024, n_items=9, chunk_size=2)
+    expected = direct_table(2024, 9, 2)
+    serial = run_study(toy_tasks.random_task, plan, backend="serial", progress=False)
+    assert_frame_equal(serial, expected, check_dtype=False)
+    runs = {
+        "processes(1)": dict(backend="processes", workers=1),
+        "processes(2)": dict(backend="processes", workers=2),
+        "dask address": dict(scheduler=dask_scheduler),
+    }
+    for name, options in runs.items():
+        table = run_study(toy_tasks.random_task, plan, progress=False, **options)
+        assert_frame_equal(table, serial, obj=name)
+        assert table.attrs["study"]["backend"] == options.get("backend", "dask")
+    distributed = pytest.importorskip("distributed")
+    with distributed.Client(dask_scheduler, set_as_default=False) as client:
+        table = run_study(toy_tasks.random_task, plan, scheduler=client, progress=False)
+        assert_frame_equal(table, serial, obj="dask client")
+        assert client.status == "running"  # a client passed in is left open
+
+
+def test_unreachable_scheduler_fails_fast_with_clear_message(monkeypatch):
+    monkeypatch.setattr(execution, "SCHEDULER_TIMEOUT", 1.0)
+    with socket.socket() as s:  # a port on which nothing listens
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    t0 = time.monotonic()
+    with pytest.raises(ValueError, match=f"could not connect to the Dask scheduler at "
+                                         f"tcp://127.0.0.1:{port}"):
+        run_study(toy_tasks.trivial_task, StudyPlan({}, 0, 2, 1),
+                  scheduler=f"tcp://127.0.0.1:{port}", progress=False)
+    assert time.monotonic() - t0 < 5.0
+
+
+# --------------------------------------------------------------------------- task results
+
+
+def test_invalid_task_result_is_reported():
+    with pytest.raises(ValueError, match="equal lengths"):
+        run_study(toy_tasks.ragged_task, StudyPlan({}, 0, 3, 1), backend="serial",
+                  progress=False)
+
+
+def test_task_exception_propagates_and_keeps_finished_chunks(tmp_path):
+    plan = StudyPlan({}, 0, 6, 2)
+    with pytest.raises(RuntimeError, match="chunk 1 failed"):
+        run_study(toy_tasks.failing_task, plan, tmp_path, backend="serial", progress=False)
+    assert chunk_path(tmp_path, 0).is_file()
+    assert not chunk_path(tmp_path, 1).exists() and not chunk_path(tmp_path, 2).exists()
+
+
+# --------------------------------------------------------------------- checkpoints, resume
+
+
+def test_study_directory_holds_plan_chunks_and_results(tmp_path):
+    plan = StudyPlan({"draws": 2, "note": "x"}, seed=5, n_items=5, chunk_size=2)
+    table = run_study(toy_tasks.random_task, plan, tmp_path, backend="serial", progress=False)
+    study = json.loads((tmp_path / "study.json").read_text())
+    assert study["settings"] == {"draws": 2, "note": "x"}
+    assert (study["seed"], study["n_items"], study["chunk_size"], study["n_chunks"]) == (5, 5, 2, 3)
+    assert study["archquake_version"] == archquake.__version__
+    assert study["task"] == "toy_tasks.random_task"
+    files = sorted(p.name for p in (tmp_path / "chunks").iterdir())
+    assert files == ["chunk-000000.npz", "chunk-000001.npz", "chunk-000002.npz"]
+    with np.load(chunk_path(tmp_path, 1)) as data:  # chunk 1 = items 2, 3
+        assert np.array_equal(data["item"], [2, 2, 3, 3])
+    stored = load_study(tmp_path)
+    assert_frame_equal(stored.table, table)
+    assert_frame_equal(table, direct_table(5, 5, 2), check_dtype=False)
+    assert stored.metadata["timings"]["chunks_computed"] == 3
+    assert stored.metadata["seed"] == 5
+
+
+def test_existing_directory_needs_resume_and_the_same_study(tmp_path):
+    plan = StudyPlan({"draws": 2, "tolerance": 0.1}, seed=1, n_items=4, chunk_size=2)
+    run_study(toy_tasks.random_task, plan, tmp_path, backend="serial", progress=False)
+    with pytest.raises(ValueError, match="not empty.*resume=True"):
+        run_study(toy_tasks.random_task, plan, tmp_path, backend="serial", progress=False)
+    changed = StudyPlan({"draws": 2, "tolerance": 0.2}, seed=1, n_items=4, chunk_size=2)
+    with pytest.raises(ValueError, match="setting 'tolerance' differs.*0.1.*0.2"):
+        run_study(toy_tasks.random_task, changed, tmp_path, backend="serial", resume=True)
+    with pytest.raises(ValueError, match="seed differs"):
+        run_study(toy_tasks.random_task, StudyPlan(plan.settings, 2, 4, 2), tmp_path,
+                  backend="serial", resume=True)
+    with pytest.raises(ValueError, match="chunk_size differs"):
+        run_study(toy_tasks.random_task, StudyPlan(plan.settings, 1, 4, 1), tmp_path,
+                  backend="serial", resume=True)
+    with pytest.raises(ValueError, match="task differs"):
+        run_study(toy_tasks.busy_task, plan, tmp_path, backend="serial", resume=True)
+    other = tmp_path / "other"
+    other.mkdir()
+    (other / "notes.txt").write_text("x")
+    with pytest.raises(ValueError, match="holds no study.json"):
+        run_study(toy_tasks.random_task, plan, other, backend="serial", resume=True)
+    # resuming a finished study computes nothing and gives the same table
+    again = run_study(toy_tasks.random_task, plan, tmp_path, backend="serial", resume=True,
+                      progress=False)
+    assert again.attrs["study"]["timings"]["chunks_computed"] == 0
+    assert_frame_equal(again, direct_table(1, 4, 2), check_dtype=False)
+
+
+def test_resume_after_killing_the_study_process(tmp_path):
+    out, log = tmp_path / "study", tmp_path / "computed.log"
+    settings = {"draws": 3, "sleep": 0.25, "log": str(log)}
+    script = (
+        f"import sys; sys.path[:0] = {[str(SRC), str(TESTS)]!r}\n"
+        "import toy_tasks\n"
+        "from archquake.execution import StudyPlan, run_study\n"
+        f"plan = StudyPlan({settings!r}, seed=11, n_items=12, chunk_size=2)\n"
+        f"run_study(toy_tasks.random_task, plan, {str(out)!r}, backend='serial', "
+        "progress=False)\n"
+    )
+    proc = subprocess.Popen([sys.executable, "-c", script], start_new_session=True)
+    try:
+        deadline = time.monotonic() + 30
+        while len(list((out / "chunks").glob("chunk-*.npz"))) < 2:
+            assert proc.poll() is None, "the study process ended before it was killed"
+            assert time.monotonic() < deadline, "the study process wrote no chunks"
+            time.sleep(0.02)
+        os.killpg(proc.pid, signal.SIGKILL)
+    finally:
+        proc.wait()
+    assert proc.returncode == -signal.SIGKILL
+    before = {p.name: p.stat().st_mtime_ns for p in (out / "chunks").glob("chunk-*.npz")}
+    assert 2 <= len(before) < 6  # killed part way through
+
+    plan = StudyPlan(settings, seed=11, n_items=12, chunk_size=2)
+    table = run_study(toy_tasks.random_task, plan, out, backend="processes", workers=2,
+                      resume=True, progress=False)
+
+    for name, mtime in before.items():  # finished chunks were not rewritten ...
+        assert (out / "chunks" / name).stat().st_mtime_ns == mtime
+    computed = [int(line) for line in log.read_text().split()]
+    for index in (int(name[6:12]) for name in before):  # ... nor recomputed
+        assert computed.count(index) == 1
+    assert set(computed) == set(range(6))
+    assert table.attrs["study"]["timings"]["chunks_resumed"] == len(before)
+    uninterrupted = run_study(toy_tasks.random_task, StudyPlan({"draws": 3}, 11, 12, 2),
+                              backend="serial", progress=False)
+    assert_frame_equal(table, uninterrupted)
+    assert_frame_equal(load_study(out).table, uninterrupted)
+    assert not list(out.rglob("*.tmp"))
+
+
+# -------------------------------------------------------------------------------- progress
+
+
+@pytest.mark.parametrize("backend", ["serial", "processes", "dask"])
+def test_progress_bar_counts_finished_chunks(backend, capsys, request):
+    options = {"serial": {"backend": "serial"},
+               "processes": {"backend": "processes", "workers": 1},
+               "dask": {"scheduler": request.getfixturevalue("dask_scheduler")}
+               if backend == "dask" else {}}[backend]
+    plan = StudyPlan({}, 0, 5, 2)
+    run_study(toy_tasks.trivial_task, plan, progress=True, **options)
+    err = capsys.readouterr().err
+    assert "3/3" in err and "chunk" in err
+    run_study(toy_tasks.trivial_task, plan, progress=False, **options)
+    assert capsys.readouterr().err == ""
+
+
+def test_progress_bar_starts_at_resumed_chunks(tmp_path, capsys):
+    plan = StudyPlan({}, 0, 6, 2)
+    run_study(toy_tasks.trivial_task, plan, tmp_path, backend="serial", progress=False)
+    chunk_path(tmp_path, 2).unlink()
+    (tmp_path / "summary.json").unlink()
+    run_study(toy_tasks.trivial_task, plan, tmp_path, backend="serial", resume=True)
+    err = capsys.readouterr().err
+    assert "2/3" in err and "3/3" in err and "0/3" not in err
+

@@ -1,0 +1,130 @@
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+from pandas.testing import assert_frame_equal
+
+import archquake
+from archquake.results_io import (
+    StoredStudy,
+    atomic_path,
+    load_study,
+    read_json,
+    save_study,
+    write_json,
+)
+
+
+@pytest.fixture
+def table():
+    """A tidy table with the column kinds a study produces, and awkward floats."""
+    return pd.DataFrame({
+        "item": np.array([0, 0, 1, 2], dtype=np.int64),
+        "amplitude": [0.1, 1 / 3, 1e-300, np.pi],
+        "duration": [np.nan, np.inf, -0.0, 2.5e10],
+        "collapsed": [True, False, False, True],
+        "outcome": ["collapse", "rest", "recovered", "collapse"],
+    })
+
+
+def test_parquet_round_trip_is_exact(tmp_path, table):
+    metadata = {"seed": 7, "settings": {"tolerance": 0.05, "shape": "oppenheim"},
+                "timings": {"wall_seconds": 1.5}}
+    summary = {"median": np.float64(0.25), "counts": np.array([3, 1]), "n": np.int64(4)}
+    save_study(tmp_path, table, metadata=metadata, summary=summary)
+    stored = load_study(tmp_path)
+    assert isinstance(stored, StoredStudy)
+    assert_frame_equal(stored.table, table)
+    assert stored.summary == {"median": 0.25, "counts": [3, 1], "n": 4}
+    assert stored.metadata == {**metadata, "archquake_version": archquake.__version__}
+    assert stored.table.attrs["study"] == stored.metadata
+
+
+def test_csv_round_trip_is_exact_and_readable_by_plain_pandas(tmp_path, table):
+    save_study(tmp_path, table, formats=("csv",))
+    assert not (tmp_path / "results.parquet").exists()
+    assert_frame_equal(load_study(tmp_path).table, table, check_dtype=False)
+    # the CSV alone, read without our metadata, holds the same numbers
+    plain = pd.read_csv(tmp_path / "results.csv")
+    assert list(plain.columns) == list(table.columns)
+    for name in ("item", "amplitude", "duration"):
+        assert np.array_equal(plain[name].to_numpy(), table[name].to_numpy(), equal_nan=True)
+    assert plain["outcome"].tolist() == table["outcome"].tolist()
+
+
+def test_both_formats_hold_the_same_table(tmp_path, table):
+    save_study(tmp_path, table)
+    from_parquet = pd.read_parquet(tmp_path / "results.parquet")
+    from_csv = pd.read_csv(tmp_path / "results.csv")
+    assert_frame_equal(from_parquet, from_csv, check_dtype=False)
+
+
+def test_metadata_defaults_to_the_table_attrs(tmp_path, table):
+    table.attrs["study"] = {"seed": 3, "settings": {"a": [1, 2]}}
+    save_study(tmp_path, table)
+    record = json.loads((tmp_path / "summary.json").read_text())
+    assert record["seed"] == 3 and record["settings"] == {"a": [1, 2]}
+    assert record["rows"] == 4 and record["columns"]["item"] == "int64"
+    assert load_study(tmp_path).metadata["seed"] == 3
+
+
+def test_atomic_path_leaves_the_old_file_on_failure(tmp_path):
+    target = tmp_path / "data.txt"
+    target.write_text("old")
+    with pytest.raises(RuntimeError), atomic_path(target) as tmp:
+        tmp.write_text("half")
+        raise RuntimeError("interrupted")
+    assert target.read_text() == "old"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["data.txt"]
+    with atomic_path(target) as tmp:
+        tmp.write_text("new")
+    assert target.read_text() == "new"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["data.txt"]
+
+
+def test_failed_save_never_leaves_a_summary_vouching_for_stale_tables(tmp_path, table,
+                                                                        monkeypatch):
+    save_study(tmp_path, table)
+
+    def broken(*args, **kwargs):
+        raise OSError("disk full")
+
+    monkeypatch.setattr(pd.DataFrame, "to_parquet", broken)
+    with pytest.raises(OSError, match="disk full"):
+        save_study(tmp_path, table.iloc[:2])
+    assert_frame_equal(pd.read_parquet(tmp_path / "results.parquet"), table)  # untouched
+    assert not list(tmp_path.glob(".*"))  # no temporary files left
+    with pytest.raises(ValueError, match="resume"):
+        load_study(tmp_path)
+
+
+def test_json_helpers_round_trip_numpy_values(tmp_path):
+    obj = {"a": np.float32(0.5), "b": np.arange(3), "c": [np.nan, np.inf], "d": tmp_path}
+    write_json(tmp_path / "x.json", obj)
+    back = read_json(tmp_path / "x.json")
+    assert back["a"] == 0.5 and back["b"] == [0, 1, 2] and back["d"] == str(tmp_path)
+    assert np.isnan(back["c"][0]) and back["c"][1] == np.inf
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"formats": ("xlsx",)}, "formats"),
+    ({"formats": ()}, "formats"),
+    ({"summary": {"f": object()}}, "JSON"),
+])
+def test_save_study_rejects_invalid_input_without_writing(tmp_path, table, kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        save_study(tmp_path / "out", table, **kwargs)
+    assert not (tmp_path / "out").exists()
+
+
+def test_save_study_rejects_non_tables(tmp_path):
+    with pytest.raises(ValueError, match="DataFrame"):
+        save_study(tmp_path, {"a": [1]})
+    with pytest.raises(ValueError, match="strings"):
+        save_study(tmp_path, pd.DataFrame({0: [1]}))
+
+
+def test_load_study_explains_missing_results(tmp_path):
+    with pytest.raises(ValueError, match="missing summary.json.*resume=True"):
+        load_study(tmp_path)
