@@ -121,3 +121,92 @@ def plot_load_multiplier_cdf(k_values, ax=None, *, nominal_k: float | None = Non
     ax.grid(True, alpha=0.3)
     ax.legend(loc="upper left", fontsize=8)
     return ax
+
+
+# ------------------------------------------------------------------ failure domain, fragility
+DOMAIN_COLOURS = {
+    "rest": "#eeeeee",
+    "recovery": "#d5ecd4",
+    "collapse_impacts": "#fbd9a6",
+    "collapse_first": "#f3a6a6",
+}
+DOMAIN_LABELS = {
+    "rest": "no motion (a < k)",
+    "recovery": "(1) recovery",
+    "collapse_impacts": "(2) collapse after impacts",
+    "collapse_first": "(3) collapse in the first half cycle",
+}
+
+
+def _region(status: str, half_cycle: int) -> str:
+    if status == "collapse":
+        return "collapse_first" if half_cycle == 1 else "collapse_impacts"
+    return status
+
+
+def _cell_edges(values: np.ndarray) -> np.ndarray:
+    """Edges of cells centred on sorted ``values`` (half-way between neighbours)."""
+    if values.size == 1:
+        return np.array([values[0] * 0.95, values[0] * 1.05])
+    mid = 0.5 * (values[1:] + values[:-1])
+    return np.concatenate([[values[0] - (mid[0] - values[0])], mid,
+                           [values[-1] + (values[-1] - mid[-1])]])
+
+
+def plot_failure_domain(domain, ax=None):
+    """Failure domain over (pulse duration, amplitude) [paper, Fig. 16].
+
+    The regions are shaded (no motion, recovery, collapse after impacts, collapse in the first
+    half cycle); the boundary of collapse in the first half cycle (Oppenheim's curve) is drawn
+    with asterisks, the failure curve (lowest collapsing amplitude) with dots, and the
+    limit-analysis multiplier k as a horizontal dashed line.
+
+    Parameters
+    ----------
+    domain : archquake.failure_domain.FailureDomain
+        The domain (:func:`archquake.failure_domain.failure_domain`).
+    ax : matplotlib Axes, optional
+    """
+    from matplotlib.collections import PolyCollection
+    from matplotlib.patches import Patch
+
+    ax = _axes(ax)
+    order = np.argsort(domain.durations)
+    durations = domain.durations[order]
+    slices = [domain.slices[i] for i in order]
+    edges = _cell_edges(durations)
+    polygons = {key: [] for key in DOMAIN_COLOURS}
+    for x0, x1, s in zip(edges[:-1], edges[1:], slices, strict=True):
+        for iv in s.intervals:
+            polygons[_region(iv.status, iv.half_cycle)].append(
+                [(x0, iv.start), (x1, iv.start), (x1, iv.end), (x0, iv.end)])
+    handles = []
+    for key, polys in polygons.items():
+        if polys:
+            ax.add_collection(PolyCollection(polys, facecolors=DOMAIN_COLOURS[key],
+                                             edgecolors="none", zorder=0))
+            handles.append(Patch(facecolor=DOMAIN_COLOURS[key], label=DOMAIN_LABELS[key]))
+    first = domain.first_half_cycle_accelerations[order]
+    failure = domain.failure_accelerations[order]
+    (curve_first,) = ax.plot(durations, first, "-*", color="black", markersize=7,
+                             linewidth=1.2, label="collapse in the first half cycle "
+                                                  "(Oppenheim's curve)")
+    (curve_failure,) = ax.plot(durations, failure, "-o", color="black", markersize=3.5,
+                               linewidth=1.2, label="failure curve (lowest collapsing amplitude)")
+    k = domain.limit_multiplier
+    line_k = ax.axhline(k, color="black", linestyle="--", linewidth=1.2,
+                        label=f"limit analysis, k = {k:.3f}")
+    low = min(s.intervals[0].start for s in slices)
+    high = max(s.intervals[-1].end for s in slices)
+    ax.set_xlim(edges[0], edges[-1])
+    ax.set_ylim(low, high)
+    ax.set_xlabel("pulse duration t$_p$ [s]")
+    ax.set_ylabel("pulse amplitude |$\\ddot{x}_g$| [g]")
+    name = _MECHANISM_NAMES[domain.direction]
+    sign = "-" if domain.direction == "l" else "+"
+    c_lr, c_rl = domain.restitution
+    c_text = f"{c_lr:.3f}" if abs(c_lr - c_rl) < 5e-4 else f"{c_lr:.3f} / {c_rl:.3f}"
+    ax.set_title(f"Failure domain: first pulse {sign}a g ({name}), c$_v$ = {c_text}")
+    ax.legend(handles=[curve_first, curve_failure, line_k] + handles, loc="upper right",
+              fontsize=8, framealpha=0.9)
+    return ax
