@@ -245,7 +245,32 @@ def check_direction(direction: str) -> str:
     return direction
 
 
-def arch_dynamics(arch: Arch, restitution="paper", nominal: Arch | None = None):
+def inclusive_range(start: float, stop: float, step: float) -> np.ndarray:
+    """``start, start + step, ...`` up to ``stop`` included (when within ``step/2``).
+
+    The values are rounded to 12 decimals so that e.g. ``inclusive_range(0.2, 1.0, 0.01)`` gives
+    exactly the decimal grid 0.20, 0.21, ..., 1.00 (as floats).
+
+    Parameters
+    ----------
+    start, stop : float
+        First value and last value (included if ``start + k step`` is within ``step/2`` of it).
+    step : float
+        Spacing, > 0.
+    """
+    for name, value in (("start", start), ("stop", stop), ("step", step)):
+        if not math.isfinite(value):
+            raise ValueError(f"range {name} must be a finite number, got {value!r}")
+    if not step > 0:
+        raise ValueError(f"range step must be > 0, got {step!r}")
+    if stop < start:
+        raise ValueError(f"range stop must be >= start, got {start!r}:{stop!r}")
+    count = int(math.floor((stop - start) / step + 0.5)) + 1
+    return np.round(start + step * np.arange(count), 12)
+
+
+def arch_dynamics(arch: Arch, restitution="paper", nominal: Arch | None = None, *,
+                  nominal_mechanisms=None):
     """What the compiled engine needs for one arch, built once.
 
     Parameters
@@ -257,6 +282,9 @@ def arch_dynamics(arch: Arch, restitution="paper", nominal: Arch | None = None):
         c_v.
     nominal : Arch, optional
         Nominal arch for the model ``"nominal"`` (default: ``arch`` itself).
+    nominal_mechanisms : (FourLinkMechanism, FourLinkMechanism), optional
+        Mech-l and Mech-r of the nominal arch, if already built (takes precedence over
+        ``nominal``).
 
     Returns
     -------
@@ -276,7 +304,10 @@ def arch_dynamics(arch: Arch, restitution="paper", nominal: Arch | None = None):
     mech_l, mech_r = mechanisms(arch, limit=limit)
     nominal_pair = None
     if isinstance(restitution, str) and restitution == "nominal":
-        nominal_pair = (mech_l, mech_r) if nominal is None else mechanisms(nominal)
+        if nominal_mechanisms is not None:
+            nominal_pair = tuple(nominal_mechanisms)
+        else:
+            nominal_pair = (mech_l, mech_r) if nominal is None else mechanisms(nominal)
     coefficients = restitution_pair(restitution, mech_l, mech_r, nominal=nominal_pair)
     tables = (tabulate(mech_l), tabulate(mech_r))
     k = (float(limit[0].load_multiplier), float(limit[1].load_multiplier))
