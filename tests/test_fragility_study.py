@@ -248,3 +248,14 @@ def test_fragility_task_rows_are_tidy():
     assert all(len(v) == n for v in columns.values())
     assert columns["arch"].tolist() == [0] * 14 + [1] * 14
     assert set(columns["direction"]) == {"l", "r"}
+
+
+def test_run_study_pool_is_only_for_the_processes_backend():
+    from archquake.execution import run_study
+
+    plan = StudyPlan(FragilitySettings(**TINY).to_dict(), 11, 3, 2)
+    with pytest.raises(ValueError, match="pool is only used by backend 'processes'"):
+        run_study(fragility_task, plan, backend="serial", pool=object(), progress=False)
+    with pytest.raises(ValueError, match="workers must be None when a pool is given"):
+        run_study(fragility_task, plan, backend="processes", workers=2,
+                  pool=type("P", (), {"submit": None})(), progress=False)
