@@ -41,10 +41,12 @@ Decision after the excitation
     moving away from ``theta_u`` with ``E > V(theta_cr)`` (or beyond ``theta_cr`` and not coming
     back) collapses. Otherwise it returns to ``theta_u`` with kinetic energy ``E - V(theta_u)``;
     the impact leaves ``c^2 M_new/M_old`` times that kinetic energy, compared with the barrier
-    ``V(theta_cr) - V(theta_u)`` of the new mechanism. Surviving both is recovery when
-    ``c_lr c_rl <= 1``: two successive impacts multiply the kinetic energy at ``theta_u`` by
+    ``V(theta_cr) - V(theta_u)`` of the new mechanism, and after the second impact the arrival
+    back into the first mechanism against its own barrier (the arch may have been on its way
+    back with energy above it). Surviving both arrivals is recovery when ``c_lr c_rl <= 1``: two
+    successive impacts multiply the kinetic energy at ``theta_u`` by
     ``(c_lr^2 M_r/M_l)(c_rl^2 M_l/M_r) = (c_lr c_rl)^2 <= 1``, so every later arrival into either
-    mechanism has no more energy than the first one, which did not pass the barrier.
+    mechanism has no more energy than the first checked one, which did not pass the barrier.
 Collapse time
     the time of the last crossing of ``theta_cr`` away from ``theta_u`` before collapse: the
     point of no return (beyond it gravity drives the arch further away).
@@ -620,7 +622,8 @@ def _decide(m, th, thd, scal, pieces, breaks, coefs, c_lr, c_rl):
     """Outcome after the end of the excitation (see the module docstring).
 
     Returns ``(status, extra_half_cycles, peak_phi, time_known)``: ``extra_half_cycles`` is 0 if
-    a collapse happens in the current half cycle, 1 if after the next impact; ``peak_phi`` the
+    a collapse happens in the current half cycle, 1 (2) if after the next (second) impact;
+    ``peak_phi`` the
     largest phi still to come if the arch recovers; ``time_known`` whether the point of no
     return has already been passed.
     """
@@ -654,6 +657,15 @@ def _decide(m, th, thd, scal, pieces, breaks, coefs, c_lr, c_rl):
     th_peak = _root_function(4, v_u_new + kinetic_new, scal[other, 1], scal[other, 0],
                              other, pieces, breaks, coefs)
     peak = max(peak, scal[other, 0] - th_peak)
+    # back into this mechanism after the second impact: its own barrier has not been checked
+    # yet (the arch may be on its way back with more energy than the barrier); from then on
+    # every full cycle multiplies the kinetic energy of an arrival by (c_lr c_rl)^2 <= 1
+    c_back = c_rl if m == MECH_L else c_lr
+    kinetic_back = c_back * c_back * m_u / m_new * kinetic_new
+    if kinetic_back > v_cr - v_u:
+        return STATUS_COLLAPSE, 2, peak, False
+    th_peak = _root_function(4, v_u + kinetic_back, th_cr, th_u, m, pieces, breaks, coefs)
+    peak = max(peak, th_u - th_peak)
     return STATUS_RECOVERY, 0, peak, True
 
 
@@ -724,7 +736,7 @@ def _run(scal, pieces, breaks, coefs, c_lr, c_rl, kind, params, times, values, b
                 if st == STATUS_COLLAPSE:
                     half_cycle = impacts + 1 + extra
                     decided_impacts = half_cycle - 1
-                    m_collapse = m if extra == 0 else 1 - m
+                    m_collapse = m if extra % 2 == 0 else 1 - m
                     max_phi = scal[m_collapse, 0] - scal[m_collapse, 2]
                     if known:
                         collapse_time = last_out
