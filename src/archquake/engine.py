@@ -78,12 +78,12 @@ DEFAULT_ATOL = 1e-12
 """Absolute tolerance of the local error of a step [rad, rad/s]."""
 DEFAULT_REST_VELOCITY = 1e-6
 """Speed below which an arch that has just impacted, and is not pushed open, is at rest [rad/s]."""
-DEFAULT_MAX_STEP = 0.05
+DEFAULT_MAX_STEP = 0.25
 """Largest step [s] (keeps two roots of an event function from hiding inside one step)."""
 DEFAULT_MAX_STEPS = 2_000_000
 """Safety limit on the number of steps of one analysis."""
 
-TABLE_DEGREE = 24
+TABLE_DEGREE = 16
 """Degree of every Chebyshev piece of a :class:`MechanismTable`."""
 TABLE_TOLERANCE = 1e-12
 """Target interpolation error of a table, relative to the largest magnitude of each function."""
@@ -270,7 +270,7 @@ def _piece(theta, n, breaks):
     return lo
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _table_coefficients(theta, n, breaks, coefs):
     """(M, L, F, P) of one table at ``theta`` (Clenshaw recurrence, four functions at once)."""
     i = _piece(theta, n, breaks)
@@ -365,17 +365,22 @@ def _ground(t, tcap, tcap_left, kind, params, times, values):
     return evaluate(t, kind, params, times, values)
 
 
-@numba.njit(cache=True)
-def _rhs(t, th, thd, m, pieces, breaks, coefs, tcap, tcap_left, kind, params, times, values):
-    """theta'' from eq. (6) (Mech-l) or eq. (7) (Mech-r)."""
+@numba.njit(cache=True, inline="always")
+def _rhs(t, th, thd, m, pieces, breaks, coefs, xg_step, tcap, tcap_left, kind, params, times,
+         values):
+    """theta'' from eq. (6) (Mech-l) or eq. (7) (Mech-r); ``xg_step`` is the ground acceleration
+    if it is constant over the step (a piecewise-constant motion), else nan."""
     mm, ll, ff, pp = _table_coefficients(th, pieces[m], breaks[m], coefs[m])
-    xg = _ground(t, tcap, tcap_left, kind, params, times, values)
+    if xg_step == xg_step:
+        xg = xg_step
+    else:
+        xg = _ground(t, tcap, tcap_left, kind, params, times, values)
     sign = 1.0 if m == MECH_L else -1.0
     return (sign * pp * xg - ff * GRAVITY - ll * thd * thd) / mm
 
 
 @numba.njit(cache=True)
-def _step(t, y0, y1, f0, f1, h, m, pieces, breaks, coefs, tcap, tcap_left,
+def _step(t, y0, y1, f0, f1, h, m, pieces, breaks, coefs, xg_step, tcap, tcap_left,
           kind, params, times, values, rtol, atol, K):
     """One Dormand-Prince 8(5,3) step; stages kept in ``K`` for the dense output.
 
@@ -393,8 +398,8 @@ def _step(t, y0, y1, f0, f1, h, m, pieces, breaks, coefs, tcap, tcap_left,
         z0 = y0 + h * d0
         z1 = y1 + h * d1
         K[s, 0] = z1
-        K[s, 1] = _rhs(t + _C[s] * h, z0, z1, m, pieces, breaks, coefs, tcap, tcap_left,
-                       kind, params, times, values)
+        K[s, 1] = _rhs(t + _C[s] * h, z0, z1, m, pieces, breaks, coefs, xg_step, tcap,
+                       tcap_left, kind, params, times, values)
     d0 = 0.0
     d1 = 0.0
     for j in range(12):
@@ -403,7 +408,7 @@ def _step(t, y0, y1, f0, f1, h, m, pieces, breaks, coefs, tcap, tcap_left,
     n0 = y0 + h * d0
     n1 = y1 + h * d1
     K[12, 0] = n1
-    K[12, 1] = _rhs(t + h, n0, n1, m, pieces, breaks, coefs, tcap, tcap_left,
+    K[12, 1] = _rhs(t + h, n0, n1, m, pieces, breaks, coefs, xg_step, tcap, tcap_left,
                     kind, params, times, values)
     sc0 = atol + rtol * max(abs(y0), abs(n0))
     sc1 = atol + rtol * max(abs(y1), abs(n1))
@@ -427,7 +432,7 @@ def _step(t, y0, y1, f0, f1, h, m, pieces, breaks, coefs, tcap, tcap_left,
 
 
 @numba.njit(cache=True)
-def _dense(t, y0, y1, n0, n1, h, m, pieces, breaks, coefs, tcap, tcap_left,
+def _dense(t, y0, y1, n0, n1, h, m, pieces, breaks, coefs, xg_step, tcap, tcap_left,
            kind, params, times, values, K, Fd):
     """Coefficients ``Fd`` (7, 2) of the 7th-order dense output of the last step."""
     for s in range(13, 16):
@@ -441,8 +446,8 @@ def _dense(t, y0, y1, n0, n1, h, m, pieces, breaks, coefs, tcap, tcap_left,
         z0 = y0 + h * d0
         z1 = y1 + h * d1
         K[s, 0] = z1
-        K[s, 1] = _rhs(t + _C[s] * h, z0, z1, m, pieces, breaks, coefs, tcap, tcap_left,
-                       kind, params, times, values)
+        K[s, 1] = _rhs(t + _C[s] * h, z0, z1, m, pieces, breaks, coefs, xg_step, tcap,
+                       tcap_left, kind, params, times, values)
     for c in range(2):
         dy = (n0 - y0) if c == 0 else (n1 - y1)
         Fd[0, c] = dy
@@ -510,16 +515,27 @@ def _root_function(j, level, lo, hi, m, pieces, breaks, coefs):
         return lo
     if gb == 0.0 or (ga > 0.0) == (gb > 0.0):
         return hi
+    x = 0.5 * (lo + hi)
     for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        if mid <= lo or mid >= hi:
-            break
-        g = _table_function(mid, j, n, breaks[m], coefs[m]) - level
+        g = _table_function(x, j, n, breaks[m], coefs[m]) - level
+        if g == 0.0:
+            return x
         if (g > 0.0) == (ga > 0.0):
-            lo, ga = mid, g
+            lo, ga = x, g
         else:
-            hi = mid
-    return 0.5 * (lo + hi)
+            hi = x
+        # Newton step with dV/dtheta = F g when solving for V, else bisection
+        x_new = 0.5 * (lo + hi)
+        if j == 4:
+            slope = _table_function(x, 2, n, breaks[m], coefs[m]) * GRAVITY
+            if slope != 0.0:
+                x_newton = x - g / slope
+                if lo < x_newton < hi:
+                    x_new = x_newton
+        if x_new == x or hi - lo <= 4e-16 * max(1.0, abs(lo)):
+            break
+        x = x_new
+    return x
 
 
 @numba.njit(cache=True)
@@ -685,6 +701,8 @@ def _run(scal, pieces, breaks, coefs, c_lr, c_rl, kind, params, times, values, b
     while ib < nb and bps[ib] <= t:
         ib += 1
     next_sample = t
+    fsal = False  # theta'' of the current state known from the last stage of the last step
+    f1 = 0.0
     if m >= 0:
         max_phi = scal[m, 0] - th
     if record:
@@ -737,6 +755,7 @@ def _run(scal, pieces, breaks, coefs, c_lr, c_rl, kind, params, times, values, b
             while ib < nb and bps[ib] <= t:
                 ib += 1
             if m_act >= 0:
+                fsal = False
                 m = m_act
                 th = scal[m, 0]
                 thd = 0.0
@@ -752,9 +771,11 @@ def _run(scal, pieces, breaks, coefs, c_lr, c_rl, kind, params, times, values, b
         th_u, th_cr, th_lo = scal[m, 0], scal[m, 1], scal[m, 2]
         bnext = bps[ib] if ib < nb else np.inf
         t_stop = min(bnext, t_end)
+        xg_step = evaluate(t, kind, params, times, values) if kind == STEP else np.nan
         f0 = thd
-        f1 = _rhs(t, th, thd, m, pieces, breaks, coefs, np.inf, np.inf,
-                  kind, params, times, values)
+        if not fsal:
+            f1 = _rhs(t, th, thd, m, pieces, breaks, coefs, xg_step, np.inf, np.inf,
+                      kind, params, times, values)
         rejected = False
         while True:
             hh = min(h, max_step)
@@ -767,8 +788,8 @@ def _run(scal, pieces, breaks, coefs, c_lr, c_rl, kind, params, times, values, b
             else:
                 tcap = np.inf
                 tcap_left = np.inf
-            n0, n1, nf, err = _step(t, th, thd, f0, f1, hh, m, pieces, breaks, coefs, tcap,
-                                    tcap_left, kind, params, times, values, rtol, atol, K)
+            n0, n1, nf, err = _step(t, th, thd, f0, f1, hh, m, pieces, breaks, coefs, xg_step,
+                                    tcap, tcap_left, kind, params, times, values, rtol, atol, K)
             steps += 1
             if err < 1.0:
                 fac = 10.0 if err == 0.0 else min(10.0, 0.9 * err ** (-1.0 / 8.0))
@@ -789,7 +810,7 @@ def _run(scal, pieces, breaks, coefs, c_lr, c_rl, kind, params, times, values, b
         event = 0  # 1 impact, 2 kinematic limit
         x_event = 1.0
         if need_dense:
-            _dense(t, th, thd, n0, n1, hh, m, pieces, breaks, coefs, tcap, tcap_left,
+            _dense(t, th, thd, n0, n1, hh, m, pieces, breaks, coefs, xg_step, tcap, tcap_left,
                    kind, params, times, values, K, Fd)
             # split the step at a turning point so that theta is monotonic on each part
             xs0 = 0.0
@@ -841,6 +862,9 @@ def _run(scal, pieces, breaks, coefs, c_lr, c_rl, kind, params, times, values, b
             t = t1
             th = n0
             thd = n1
+            # the last stage is theta'' at the new point, unless the ground changes there
+            fsal = not (landing and t_stop == bnext)
+            f1 = nf
             if status == UNDECIDED and th_u - th > max_phi:
                 max_phi = th_u - th
             while ib < nb and bps[ib] <= t:
@@ -872,6 +896,7 @@ def _run(scal, pieces, breaks, coefs, c_lr, c_rl, kind, params, times, values, b
 
         # impact at theta_u: switch mechanism
         t = t_ev
+        fsal = False
         if record:
             rec = _push(rec, nrec, t, th_u, thd_ev, m, seg)
             nrec += 1
