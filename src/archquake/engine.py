@@ -72,9 +72,9 @@ STATUS_NAMES = {STATUS_REST: "rest", STATUS_RECOVERY: "recovery", STATUS_COLLAPS
 OUT_STATUS, OUT_HALF_CYCLE, OUT_IMPACTS, OUT_COLLAPSE_TIME, OUT_MAX_PHI = 0, 1, 2, 3, 4
 OUT_DECISION_TIME, OUT_STEPS, OUT_TRUNCATED, OUT_SIZE = 5, 6, 7, 8
 
-DEFAULT_RTOL = 1e-10
+DEFAULT_RTOL = 1e-11
 """Relative tolerance of the local error of a step [-]."""
-DEFAULT_ATOL = 1e-12
+DEFAULT_ATOL = 1e-13
 """Absolute tolerance of the local error of a step [rad, rad/s]."""
 DEFAULT_REST_VELOCITY = 1e-6
 """Speed below which an arch that has just impacted, and is not pushed open, is at rest [rad/s]."""
@@ -874,8 +874,22 @@ def _run(scal, pieces, breaks, coefs, c_lr, c_rl, kind, params, times, values, b
                 nrec += 1
             continue
 
-        t_ev = t + x_event * hh
+        # polish the event on the integrator's own solution: steps from t to the event time,
+        # corrected by Newton (theta' is the slope), until theta hits the level to round-off
+        level = th_u if event == 1 else th_lo
+        h_ev = x_event * hh
         thd_ev = _dense_value(x_event, 1, thd, Fd)
+        for _ in range(4):
+            p0, p1, _, _ = _step(t, th, thd, f0, f1, h_ev, m, pieces, breaks, coefs, xg_step,
+                                 tcap, tcap_left, kind, params, times, values, rtol, atol, K)
+            thd_ev = p1
+            if p1 == 0.0 or abs(p0 - level) <= 4e-16 * max(1.0, abs(level)):
+                break
+            h_new = h_ev - (p0 - level) / p1
+            if not (0.0 < h_new <= hh):
+                break
+            h_ev = h_new
+        t_ev = t + h_ev
         if event == 2:
             # kinematic limit: collapse (or the end of a collapse already decided)
             t = t_ev

@@ -292,7 +292,7 @@ def _part_pulses(settings: ReproductionSettings, state: _Arches, paper: dict,
             motion = oppenheim_pulse(amplitude * GRAVITY, duration)
             row = {"duration": duration, "amplitude": amplitude}
             for name in ARCH_NAMES:
-                history = simulate(state.mechanisms[name], motion, pair, t_end=3.0)
+                history = simulate(state.mechanisms[name], motion, pair, t_end=3.5)
                 histories[case][(name, duration)] = history
                 ref = next(r for r in expected[name] if r[0] == duration)
                 out = _outcome_dict(history.outcome)
@@ -365,6 +365,23 @@ def _part_limit_sample(settings: ReproductionSettings) -> dict:
             "fraction_below_nominal": float(np.mean(k < 0.37))}
 
 
+def _transition(probability: np.ndarray, margin: int = 3) -> tuple[int, int]:
+    """Index range of the rise of a fragility curve (with ``margin`` points either side).
+
+    The paper fits its fifth-degree polynomial to the points of the rise; a polynomial through
+    long runs of 0 and 1 either side oscillates.
+    """
+    p = np.asarray(probability)
+    rising = np.flatnonzero((p > 0.0) & (p < 1.0))
+    if rising.size == 0:
+        return 0, p.size
+    lo = max(int(rising[0]) - margin, 0)
+    hi = min(int(rising[-1]) + 1 + margin, p.size)
+    while hi - lo < 7 and (lo > 0 or hi < p.size):
+        lo, hi = max(lo - 1, 0), min(hi + 1, p.size)
+    return lo, hi
+
+
 def _part_fragility(settings: ReproductionSettings, state: _Arches, cases: dict) -> dict:
     """Fragility curves and surface of the irregular arches [paper, eq. (9), Figs. 17-21]."""
     from . import engine, fragility
@@ -392,10 +409,12 @@ def _part_fragility(settings: ReproductionSettings, state: _Arches, cases: dict)
                  "probability": p_f,
                  "nominal_failure_acceleration": _nominal_failure_acceleration(
                      nominal_tables, pair, float(duration), settings)}
+        lo, hi = _transition(p_f)
         try:
-            poly = fragility.fit_polynomial(amplitudes, p_f, 5)
+            poly = fragility.fit_polynomial(amplitudes[lo:hi], p_f[lo:hi], 5)
             entry["polynomial"] = poly
             entry["polynomial_coefficients"] = poly.convert().coef
+            entry["polynomial_range"] = [float(amplitudes[lo]), float(amplitudes[hi - 1])]
         except ValueError:
             entry["polynomial"] = None
         try:
@@ -498,13 +517,10 @@ def _fig_energy(out: Path, state: _Arches, table3: dict) -> dict:
 def _fig_free(out: Path, histories: dict, summary: dict, case: str, pair) -> dict:
     import matplotlib.pyplot as plt
 
-    from .plotting import plot_time_history
-
     fig, axes = plt.subplots(3, 1, figsize=(9.0, 8.0), sharex=True, constrained_layout=True)
     for ax, name in zip(axes, ARCH_NAMES, strict=True):
-        plot_time_history(histories[case][name], ax, label=name, color=ARCH_COLOURS[name],
-                          phi_limit=0.03)
-        ax.set_title(f"{name}: free vibration from phi0 = 0.02 rad, c_v = {pair[0]:.3f}",
+        _plot_history(histories[case][name], ax, name, 0.03)
+        ax.set_title(rf"{name}: free vibration from $\phi_0$ = 0.02 rad, $c_v$ = {pair[0]:.3f}",
                      fontsize=10)
         if ax is not axes[-1]:
             ax.set_xlabel("")
@@ -524,26 +540,40 @@ def _fig_free(out: Path, histories: dict, summary: dict, case: str, pair) -> dic
                         f"{claim}. Ours: {_agree(ok)} for all three arches.")}
 
 
+def _plot_history(history, ax, name: str, phi_limit: float):
+    from .plotting import plot_rotation_history
+
+    out = history.outcome
+    text = (f"collapse in half cycle {out.half_cycle}" if out.status == "collapse"
+            else out.status)
+    plot_rotation_history(history, ax, label=f"{name}: {text}", color=ARCH_COLOURS[name],
+                          linewidth=1.2)
+    ax.set_ylim(-phi_limit, phi_limit)
+    ax.set_ylabel(r"$\phi$ (Mech-l), $-\phi'$ (Mech-r) [rad]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="upper right", fontsize=8)
+
+
 def _fig_pulse(out: Path, histories: dict, summary: dict, case: str, pair) -> dict:
     import matplotlib.pyplot as plt
 
     from .ground_motion import oppenheim_pulse
-    from .plotting import plot_ground_motion, plot_time_history
+    from .plotting import plot_ground_motion
 
     rows = summary[case]["cases"]
     fig, axes = plt.subplots(len(rows) + 1, 1, figsize=(9.0, 10.5), sharex=True,
                              constrained_layout=True)
     for row, colour in zip(rows, ("0.1", "tab:purple", "tab:brown"), strict=True):
         plot_ground_motion(oppenheim_pulse(row["amplitude"] * GRAVITY, row["duration"]),
-                           axes[0], t_end=3.0, color=colour,
+                           axes[0], t_end=3.5, color=colour,
                            label=f"t_p = {row['duration']:.2f} s")
-    axes[0].set_title("(a) ground acceleration, Oppenheim's pulse with xg''/g = -1", fontsize=10)
+    axes[0].set_title(r"(a) ground acceleration: Oppenheim's pulse, $\ddot{x}_g/g = -1$ for $t_p$, "
+                      r"then $+1/2$ for $2 t_p$", fontsize=10)
     axes[0].set_xlabel("")
     for ax, row, letter in zip(axes[1:], rows, "bcd", strict=True):
         for name in ARCH_NAMES:
-            plot_time_history(histories[case][(name, row["duration"])], ax, label=name,
-                              color=ARCH_COLOURS[name], phi_limit=0.35)
-        ax.set_title(f"({letter}) t_p = {row['duration']:.2f} s, {_label(case, pair)}",
+            _plot_history(histories[case][(name, row["duration"])], ax, name, 0.35)
+        ax.set_title(rf"({letter}) $t_p$ = {row['duration']:.2f} s, {_label(case, pair)}",
                      fontsize=10)
         if ax is not axes[-1]:
             ax.set_xlabel("")
@@ -556,8 +586,9 @@ def _fig_pulse(out: Path, histories: dict, summary: dict, case: str, pair) -> di
     return {"file": _save(fig, out, f"fig15_pulse_response_{case}.png"),
             "paper_figure": "Fig. 15", "agrees": ok,
             "caption": ("Response to Oppenheim's pulse xg''/g = -1 (a) of NA (blue), RA-1 (red) "
-                        f"and RA-2 (green), {_label(case, pair)}; a cross marks the point of no "
-                        "return of a collapse, after which phi grows to the kinematic limit. "
+                        f"and RA-2 (green), {_label(case, pair)}; open circles mark impacts, a "
+                        "dotted line the point of no return of a collapse, after which phi grows "
+                        "to the kinematic limit. "
                         "Nominal arch - " + "; ".join(parts) + f". Overall: {_agree(ok)}.")}
 
 
@@ -588,28 +619,48 @@ def _fig_failure_domain(out: Path, domain: dict, fragility_part: dict | None) ->
 
 
 def _plot_domain_slices(slices, activation: float, ax):
-    """Regions of a failure domain from its slices (used when plotting has no own function)."""
+    """Regions of a failure domain from its slices (used when plotting has no own function).
+
+    Every slice is drawn as a column of coloured bands, one per outcome interval, so that
+    outcomes that are not monotone in the amplitude show as they are.
+    """
+    from matplotlib.patches import Patch
+
+    colours = {"rest": "white", "recovery": "tab:green", "collapse_late": "tab:orange",
+               "collapse_first": "tab:red"}
     durations = np.array([s.duration for s in slices])
+    edges = np.concatenate([[durations[0] - 0.5 * (durations[1] - durations[0])
+                             if durations.size > 1 else durations[0] - 0.05],
+                            0.5 * (durations[1:] + durations[:-1]),
+                            [durations[-1] + 0.5 * (durations[-1] - durations[-2])
+                             if durations.size > 1 else durations[0] + 0.05]])
+    for j, part in enumerate(slices):
+        for iv in part.intervals:
+            key = iv.status if iv.status != "collapse" else (
+                "collapse_first" if iv.half_cycle == 1 else "collapse_late")
+            ax.fill_between([edges[j], edges[j + 1]], iv.start, iv.end, color=colours[key],
+                            alpha=0.35, linewidth=0)
     fail = np.array([s.failure_acceleration for s in slices])
     first = np.array([s.first_half_cycle_acceleration for s in slices])
     top = max(iv.end for s in slices for iv in s.intervals)
-    ax.fill_between(durations, activation, fail, color="tab:green", alpha=0.25,
-                    label="(1) recovery")
-    ax.fill_between(durations, fail, np.where(np.isfinite(first), first, top), color="tab:orange",
-                    alpha=0.3, label="(2) collapse after impacts")
-    ax.fill_between(durations, np.where(np.isfinite(first), first, top), top, color="tab:red",
-                    alpha=0.25, label="(3) collapse in the first half cycle")
-    ax.plot(durations, fail, "o-", color="black", markersize=3, label="failure curve")
-    ax.plot(durations, first, "*-", color="black", markersize=6,
-            label="first-half-cycle boundary")
+    ax.plot(durations, fail, "o-", color="black", markersize=3.5,
+            label="failure curve (lowest collapse)")
+    ax.plot(durations, first, "*-", color="black", markersize=7,
+            label="lowest collapse in the first half cycle")
     ax.axhline(activation, color="black", linestyle="--", linewidth=1.0,
-               label=f"k = {activation:.2f}")
+               label=f"k = {activation:.2f}: no motion below")
+    handles, _ = ax.get_legend_handles_labels()
+    handles += [Patch(color=colours["recovery"], alpha=0.35, label="(1) recovery"),
+                Patch(color=colours["collapse_late"], alpha=0.35,
+                      label="(2) collapse after impacts"),
+                Patch(color=colours["collapse_first"], alpha=0.35,
+                      label="(3) collapse in the first half cycle")]
     ax.set_xlabel("pulse duration $t_p$ [s]")
     ax.set_ylabel(r"pulse amplitude $|\ddot{x}_g| / g$ [-]")
-    ax.set_xlim(0.0, durations.max() * 1.02)
+    ax.set_xlim(0.0, edges[-1])
     ax.set_ylim(0.0, top)
     ax.grid(True, alpha=0.3)
-    ax.legend(loc="upper right", fontsize=8)
+    ax.legend(handles=handles, loc="upper right", fontsize=8)
     return ax
 
 
@@ -627,11 +678,12 @@ def _fig_fragility(out: Path, frag: dict, sample: dict, domain: dict) -> list[di
         a, p = curve["amplitudes"], curve["probability"]
         ax.plot(a, p, "o", color="black", markersize=3,
                 label=f"P_F = h_f/h, dynamic analysis (h = {frag['arches']})")
-        fine = np.linspace(a.min(), a.max(), 400)
         if curve["polynomial"] is not None:
+            fine = np.linspace(*curve["polynomial_range"], 400)
             ax.plot(fine, fragility_module.evaluate_polynomial_fit(curve["polynomial"], fine),
                     "--", color="black", label="fifth-degree polynomial fit (the paper's)")
         if curve["lognormal"] is not None:
+            fine = np.linspace(a.min(), a.max(), 400)
             fit = curve["lognormal_fit"]
             ax.plot(fine, fit(fine), "-", color="0.5", linewidth=1.0,
                     label=f"lognormal fit: median {fit.median:.3f} g, beta {fit.dispersion:.3f}")

@@ -163,49 +163,6 @@ def plot_potential_energy(mechanism, ax=None, *, label: str | None = None, color
     return ax
 
 
-def plot_time_history(history, ax=None, *, label: str | None = None, color=None,
-                      phi_limit: float | None = 0.3):
-    """Rotation ``phi`` of a time history: +phi in Mech-l, -phi (phi') in Mech-r [Figs. 9-15].
-
-    A collapse is marked with a cross at the point of no return (the last crossing of
-    ``phi_cr``); ``phi`` then grows to the kinematic limit, beyond ``phi_limit``.
-
-    Parameters
-    ----------
-    history : TimeHistory
-        From :func:`archquake.time_history.simulate` or ``free_vibration``.
-    ax : matplotlib Axes, optional
-    label : str, optional
-        Legend label; the outcome is appended.
-    color : optional
-        Line colour.
-    phi_limit : float or None
-        Symmetric limit of the phi axis [rad]; None for automatic limits.
-    """
-    ax = _axes(ax)
-    outcome = history.outcome
-    if outcome.status == "collapse":
-        text = f"collapse, half cycle {outcome.half_cycle}"
-    else:
-        text = outcome.status
-    full = f"{label}: {text}" if label else text
-    t, phi = history.t, history.phi
-    line, = ax.plot(t, phi, color=color, linewidth=1.2, label=full)
-    if outcome.status == "collapse" and np.isfinite(outcome.collapse_time):
-        i = int(np.searchsorted(t, outcome.collapse_time))
-        i = min(i, t.size - 1)
-        ax.plot([outcome.collapse_time], [phi[i]], "x", color=line.get_color(), markersize=9,
-                markeredgewidth=2)
-    ax.axhline(0.0, color="0.4", linewidth=0.6)
-    if phi_limit is not None:
-        ax.set_ylim(-phi_limit, phi_limit)
-    ax.set_xlabel("time t [s]")
-    ax.set_ylabel(r"$\phi$ (Mech-l) / $-\phi'$ (Mech-r) [rad]")
-    ax.grid(True, alpha=0.3)
-    ax.legend(loc="upper right", fontsize=8)
-    return ax
-
-
 def plot_ground_motion(motion, ax=None, *, t_end: float | None = None, label: str | None = None,
                        color=None):
     """Ground acceleration ``xg''/g`` of a :class:`GroundMotion` against time [Fig. 15a].
@@ -236,3 +193,97 @@ def plot_ground_motion(motion, ax=None, *, t_end: float | None = None, label: st
     ax.grid(True, alpha=0.3)
     ax.legend(loc="upper right", fontsize=8)
     return ax
+# --- dynamics
+
+
+def plot_rotation_history(history, ax=None, *, label: str | None = None, mark_impacts=True,
+                          **style):
+    """Rotation phi(t) of a time history [rad], Mech-l positive and Mech-r negative
+    (Figs. 9-15 of the paper), impacts marked.
+
+    Parameters
+    ----------
+    history : archquake.time_history.TimeHistory
+        A recorded time history.
+    ax : matplotlib axes, optional
+    label : str, optional
+        Legend label.
+    mark_impacts : bool
+        Mark every impact on the time axis.
+    **style
+        Passed to ``ax.plot``.
+    """
+    ax = _axes(ax)
+    line = None
+    for seg in history.segments:
+        sign = -1.0 if seg.mechanism == "r" else 1.0
+        kwargs = dict(style)
+        if line is not None:
+            kwargs["color"] = line.get_color()
+        (line,) = ax.plot(seg.t, sign * seg.phi, label=label if line is None else None,
+                          **kwargs)
+    if mark_impacts and history.impact_times.size:
+        ax.plot(history.impact_times, np.zeros_like(history.impact_times), "o", ms=3.5,
+                mfc="none", color=line.get_color() if line is not None else "k")
+    outcome = history.outcome
+    if outcome.status == "collapse" and np.isfinite(outcome.collapse_time):
+        ax.axvline(outcome.collapse_time, ls=":", lw=0.8,
+                   color=line.get_color() if line is not None else "k")
+    ax.axhline(0.0, color="0.6", lw=0.6)
+    ax.set_xlabel("time t [s]")
+    ax.set_ylabel(r"$\phi$ (Mech-l $+$, Mech-r $-$) [rad]")
+    if label is not None:
+        ax.legend()
+    return ax
+
+
+def plot_free_vibration(history, ax=None, **style):
+    """Free vibration phi(t) (Figs. 9-14 of the paper); see :func:`plot_rotation_history`."""
+    ax = plot_rotation_history(history, ax, **style)
+    ax.set_title("free vibration")
+    return ax
+
+
+def plot_pulse_response(histories, ax=None, *, labels=None, phi_limit: float | None = None):
+    """Response phi(t) to a ground motion with the acceleration in a panel above (Fig. 15).
+
+    Parameters
+    ----------
+    histories : TimeHistory or sequence of TimeHistory
+        Time histories under the same ground motion (e.g. several arches).
+    ax : matplotlib axes, optional
+        Axes of the response; the ground-motion panel is added above it.
+    labels : sequence of str, optional
+        Legend labels.
+    phi_limit : float, optional
+        Clip the vertical axis at +-phi_limit [rad] (collapsing histories run to the limit).
+
+    Returns
+    -------
+    (ax_ground, ax_response)
+    """
+    from mpl_toolkits.axes_grid1 import make_axes_locatable
+
+    if not isinstance(histories, list | tuple):
+        histories = [histories]
+    labels = labels or [None] * len(histories)
+    if ax is None:
+        _, ax = plt.subplots(figsize=(7.0, 5.5))
+    divider = make_axes_locatable(ax)
+    ax_ground = divider.append_axes("top", size="35%", pad=0.15, sharex=ax)
+    t_max = max(float(h.t[-1]) for h in histories)
+    motion = histories[0].ground_motion
+    t = np.linspace(0.0, t_max, 4001)
+    t = np.unique(np.concatenate([t, motion.breakpoints[motion.breakpoints <= t_max],
+                                  np.nextafter(motion.breakpoints, -np.inf)]))
+    t = t[(t >= 0) & (t <= t_max)]
+    ax_ground.plot(t, motion.acceleration(t) / 9.81, color="k", lw=1.0)
+    ax_ground.axhline(0.0, color="0.6", lw=0.6)
+    ax_ground.set_ylabel(r"$\ddot{x}_g$ [g]")
+    ax_ground.tick_params(labelbottom=False)
+    ax_ground.set_title(motion.name)
+    for history, label in zip(histories, labels, strict=True):
+        plot_rotation_history(history, ax, label=label)
+    if phi_limit is not None:
+        ax.set_ylim(-phi_limit, phi_limit)
+    return ax_ground, ax

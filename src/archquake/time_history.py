@@ -221,6 +221,9 @@ def simulate(mechanisms, ground_motion: GroundMotion | None = None, restitution=
         t_end = max(out[engine.OUT_DECISION_TIME], motion.duration) + DEFAULT_EXTRA_TIME
     out, rec, imp, crs = engine._run(*args, 0.0, float(t_end), mech0, theta0, thetadot0, *opts,
                                      True, float(record_dt))
+    if int(out[engine.OUT_STATUS]) != engine.UNDECIDED:
+        # the recording path decides by the same rules; its own outcome is reported
+        outcome = _outcome(out)
     return _history(rec, imp, crs, scal, outcome, motion)
 
 

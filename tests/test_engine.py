@@ -1,0 +1,292 @@
+"""Tests of the compiled engine against closed forms of Housner's rocking block, energy balances,
+an independent scipy implementation, and the paper's pulse outcomes (Fig. 15)."""
+
+import importlib.util
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from archquake import engine, oppenheim
+from archquake.geometry import GRAVITY
+from archquake.ground_motion import (
+    LINEAR,
+    GroundMotion,
+    oppenheim_pulse,
+    rectangular_pulse,
+)
+from archquake.mechanism import mechanisms
+from archquake.time_history import free_vibration, simulate
+from rocking_block import RockingBlock, block_pair
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _baseline_module():
+    spec = importlib.util.spec_from_file_location(
+        "engine_vs_solve_ivp", ROOT / "benchmarks" / "engine_vs_solve_ivp.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+@pytest.fixture(scope="module")
+def block_tables():
+    mech_l, mech_r = block_pair()
+    return engine.tabulate(mech_l), engine.tabulate(mech_r)
+
+
+@pytest.fixture(scope="module")
+def nominal_mechanisms():
+    return mechanisms(oppenheim())
+
+
+@pytest.fixture(scope="module")
+def nominal_tables(nominal_mechanisms):
+    return tuple(engine.tabulate(m) for m in nominal_mechanisms)
+
+
+def _energy(mech, theta, theta_dot):
+    m = mech.coefficients(theta)[0]
+    return 0.5 * m * theta_dot**2 + mech.potential_energy(theta)
+
+
+# ------------------------------------------------------------------------------ tables
+
+
+@pytest.mark.parametrize("which", ["block", "oppenheim_l", "oppenheim_r"])
+def test_table_reproduces_exact_coefficients(which, nominal_mechanisms):
+    mech = {"block": RockingBlock(), "oppenheim_l": nominal_mechanisms[0],
+            "oppenheim_r": nominal_mechanisms[1]}[which]
+    table = engine.tabulate(mech)
+    theta = np.random.default_rng(0).uniform(table.theta_lo, table.theta_u, 3000)
+    exact = np.vstack([np.broadcast_to(c, theta.shape) for c in mech.coefficients(theta)]
+                      + [mech.potential_energy(theta)])
+    approx = table.evaluate(theta)
+    grid = np.linspace(table.theta_lo, table.theta_u, 5001)
+    scale = np.max(np.abs(np.vstack([np.broadcast_to(c, grid.shape)
+                                     for c in mech.coefficients(grid)]
+                                    + [mech.potential_energy(grid)])), axis=1)
+    scale[scale == 0] = 1.0
+    error = np.max(np.abs(approx - exact), axis=1) / scale
+    assert np.all(error < 1e-11), error
+    assert table.activation == pytest.approx(mech.activation, rel=1e-12)
+
+
+# ------------------------------------------------------------------------------ free rocking
+
+
+def _quarter_period(block, phi0):
+    """Exact time from rest at phi0 to the first impact (energy integral by quadrature)."""
+    p2 = block.frequency**2
+    alpha = block.alpha
+    u0 = alpha - phi0  # u = theta - pi/2; u'' = p^2 sin u, u'^2 = 2 p^2 (cos u0 - cos u)
+
+    def integrand(u):  # times the weight (u - u0)^(-1/2)
+        # (u - u0) / (cos u0 - cos u) = (x / sin x) / sin((u + u0)/2), x = (u - u0)/2
+        x = 0.5 * (u - u0)
+        ratio = (x / math.sin(x) if x else 1.0) / math.sin(0.5 * (u + u0))
+        return math.sqrt(ratio / (2.0 * p2))
+
+    value, _ = quad(integrand, u0, alpha, weight="alg", wvar=(-0.5, 0.0), epsabs=1e-15,
+                    epsrel=1e-13)
+    return value
+
+
+def test_first_impact_matches_energy_quadrature(block_tables):
+    block = RockingBlock()
+    phi0 = 0.1
+    history = free_vibration(block_tables, (1.0, 1.0), phi0, t_end=3.0)
+    assert history.impact_times[0] == pytest.approx(_quarter_period(block, phi0), rel=1e-9)
+
+
+def test_first_impact_matches_housner_linearised_closed_form():
+    block = RockingBlock(linearised=True)
+    tables = tuple(engine.tabulate(m) for m in block_pair(linearised=True))
+    phi0 = 0.1
+    history = free_vibration(tables, (1.0, 1.0), phi0, t_end=3.0)
+    # Housner (1963): u = u0 cosh(p t) reaches alpha at t = acosh(1 / (1 - phi0/alpha)) / p
+    expected = math.acosh(1.0 / (1.0 - phi0 / block.alpha)) / block.frequency
+    assert history.impact_times[0] == pytest.approx(expected, rel=1e-9)
+
+
+def test_energy_conserved_over_twenty_elastic_impacts(block_tables):
+    block = RockingBlock()
+    phi0 = 0.2
+    t1 = _quarter_period(block, phi0)
+    history = free_vibration(block_tables, (1.0, 1.0), phi0, t_end=t1 * 42)
+    times = history.impact_times
+    assert times.size >= 20
+    # every impact at theta_u: impacts are exactly one half period (2 t1) apart
+    np.testing.assert_allclose(times[:20], t1 * (1 + 2 * np.arange(20)), rtol=1e-9)
+    e0 = float(block.potential_energy(block.theta_u - phi0))
+    energies = np.concatenate([_energy(block, s.theta, s.theta_dot) for s in history.segments])
+    assert np.max(np.abs(energies - e0)) / e0 < 1e-8
+    speed = math.sqrt(2 * (e0 - block.potential_energy(block.theta_u))
+                      / block.coefficients(block.theta_u)[0])
+    np.testing.assert_allclose(history.impact_velocities[:20, 0], speed, rtol=1e-9)
+
+
+def test_kinetic_energy_ratio_per_impact_is_c_squared(block_tables):
+    block = RockingBlock()
+    c_lr, c_rl = 0.9, 0.8
+    history = free_vibration(block_tables, (c_lr, c_rl), 0.2, t_end=12.0)
+    before = history.impact_velocities[:, 0]
+    assert before.size >= 6
+    m_u = block.coefficients(block.theta_u)[0]
+    ke_before = 0.5 * m_u * before**2
+    ke_after = 0.5 * m_u * history.impact_velocities[:, 1] ** 2
+    c = np.where(np.array(history.impact_mechanisms) == "l", c_lr, c_rl)
+    np.testing.assert_allclose(ke_after, c**2 * ke_before, rtol=1e-13)
+    # the free motion between impacts conserves energy: next arrival = previous departure
+    np.testing.assert_allclose(ke_before[1:], ke_after[:-1], rtol=1e-9, atol=1e-9 * ke_before[0])
+
+
+def test_arch_comes_to_rest_after_geometric_impacts(block_tables):
+    history = free_vibration(block_tables, (0.5, 0.5), 0.05, t_end=20.0)
+    assert history.outcome.status == "recovery"
+    assert history.segments[-1].mechanism == "rest"
+    assert abs(history.impact_velocities[-1, 1]) < engine.DEFAULT_REST_VELOCITY
+
+
+# ------------------------------------------------------------------------------ pulses
+
+
+def test_rectangular_pulse_overturning_amplitude_matches_closed_form():
+    """Slender block, linearised: a rectangular pulse of duration t_p overturns the block in the
+    first half cycle iff a/g >= alpha / (1 - exp(-p t_p)) (Housner 1963; the energy condition
+    |u'| >= p u at the end of the pulse, derived in the test's docstring of RockingBlock)."""
+    block = RockingBlock(linearised=True)
+    tables = tuple(engine.tabulate(m) for m in block_pair(linearised=True))
+    for tp in (0.2, 0.5, 1.0):
+        expected = block.alpha / (1.0 - math.exp(-block.frequency * tp))
+        above = simulate(tables, rectangular_pulse(-expected * (1 + 1e-7) * GRAVITY, tp),
+                         (1.0, 1.0), record=False)
+        below = simulate(tables, rectangular_pulse(-expected * (1 - 1e-7) * GRAVITY, tp),
+                         (1.0, 1.0), record=False)
+        assert (above.status, above.half_cycle) == ("collapse", 1)
+        assert below.status == "recovery"
+
+
+def test_work_of_ground_balances_energy_and_impact_losses(block_tables):
+    block = RockingBlock()
+    motion = oppenheim_pulse(-0.5 * GRAVITY, 0.6)
+    c = 0.85
+    history = simulate(block_tables, motion, (c, c), t_end=12.0, record_dt=1e-3)
+    assert history.impact_times.size >= 1
+    m_r = block.mass * block.radius
+    work = 0.0
+    for seg in history.segments:
+        if seg.mechanism == "rest":
+            continue
+        sign = 1.0 if seg.mechanism == "l" else -1.0
+        # dE/dt = s P xg'' theta'  (Mech-l s = +1, Mech-r s = -1): with xg'' constant between
+        # samples and P = m R sin(theta), the work is s xg'' m R (cos theta_a - cos theta_b)
+        xg = motion.acceleration(0.5 * (seg.t[1:] + seg.t[:-1]))
+        work += np.sum(sign * xg * m_r * (np.cos(seg.theta[:-1]) - np.cos(seg.theta[1:])))
+    m_u = block.coefficients(block.theta_u)[0]
+    losses = np.sum(0.5 * m_u * (history.impact_velocities[:, 0] ** 2
+                                 - history.impact_velocities[:, 1] ** 2))
+    last = history.segments[-1]
+    e_end = float(_energy(block, last.theta[-1], last.theta_dot[-1]))
+    e_start = float(block.potential_energy(block.theta_u))
+    assert e_end - e_start == pytest.approx(work - losses, rel=1e-7, abs=1e-9 * e_start)
+
+
+def test_activation_instant_located_on_a_linear_record(block_tables):
+    block = RockingBlock()
+    slope = 5.0  # xg'' = -slope t [m/s^2]
+    motion = GroundMotion(LINEAR, [0.0, 2.0], [0.0, -2.0 * slope])
+    history = simulate(block_tables, motion, (0.9, 0.9), t_end=1.0)
+    first = next(s for s in history.segments if s.mechanism != "rest")
+    assert first.mechanism == "l"
+    assert first.t[0] == pytest.approx(block.activation * GRAVITY / slope, rel=1e-13)
+
+
+def test_paper_fig15_outcomes_of_oppenheims_arch(paper, nominal_tables):
+    c = paper["dynamics"]["NA"]["restitution_paper"]
+    for tp, amplitude, status, half_cycle in paper["dynamics"]["NA"]["pulse_cases"]:
+        outcome = simulate(nominal_tables, oppenheim_pulse(amplitude * GRAVITY, tp), (c, c),
+                           record=False)
+        assert (outcome.status, outcome.half_cycle) == (status, half_cycle), tp
+
+
+def test_record_and_outcome_paths_agree(nominal_tables):
+    for tp, a in ((0.44, -1.0), (0.27, -1.0), (0.2, -1.0), (0.5, 0.45), (0.3, 0.2)):
+        motion = oppenheim_pulse(a * GRAVITY, tp)
+        fast = simulate(nominal_tables, motion, (0.875, 0.875), record=False)
+        history = simulate(nominal_tables, motion, (0.875, 0.875))
+        recorded = history.outcome
+        assert (recorded.status, recorded.half_cycle, recorded.impacts) == (
+            fast.status, fast.half_cycle, fast.impacts)
+        np.testing.assert_equal(recorded.collapse_time, fast.collapse_time)
+        np.testing.assert_equal(recorded.max_phi, fast.max_phi)
+
+
+def test_grid_matches_single_analyses(nominal_tables):
+    durations = np.array([0.2, 0.27, 0.44, 0.4, 0.6])
+    amplitudes = np.array([-1.0, -1.0, -1.0, 0.49, -0.3]) * GRAVITY
+    grid = engine.outcomes_grid(*nominal_tables, 0.875, 0.875, durations, amplitudes)
+    for q in range(durations.size):
+        single = simulate(nominal_tables, oppenheim_pulse(amplitudes[q], durations[q]),
+                          (0.875, 0.875), record=False)
+        assert engine.STATUS_NAMES[int(grid["status"][q])] == single.status
+        assert grid["half_cycle"][q] == single.half_cycle
+        assert grid["impacts"][q] == single.impacts
+        np.testing.assert_equal(grid["collapse_time"][q], single.collapse_time)
+
+
+def test_outcomes_unchanged_with_tighter_tolerances(nominal_tables):
+    rng = np.random.default_rng(3)
+    durations = rng.uniform(0.2, 0.7, 60)
+    amplitudes = -(0.37 + 0.05 / durations) * rng.uniform(0.7, 1.3, 60) * GRAVITY
+    reference = engine.outcomes_grid(*nominal_tables, 0.875, 0.875, durations, amplitudes)
+    for factor in (10.0, 100.0):
+        tight = engine.outcomes_grid(
+            *nominal_tables, 0.875, 0.875, durations, amplitudes,
+            rtol=engine.DEFAULT_RTOL / factor, atol=engine.DEFAULT_ATOL / factor,
+            rest_velocity=engine.DEFAULT_REST_VELOCITY / factor,
+            max_step=engine.DEFAULT_MAX_STEP / factor)
+        for key in ("status", "half_cycle", "impacts"):
+            np.testing.assert_array_equal(tight[key], reference[key])
+        np.testing.assert_allclose(tight["collapse_time"], reference["collapse_time"],
+                                   rtol=1e-7)
+
+
+def test_engine_matches_scipy_baseline(nominal_mechanisms, nominal_tables):
+    baseline = _baseline_module()
+    rng = np.random.default_rng(7)
+    durations = rng.uniform(0.2, 0.7, 10)
+    amplitudes = -(0.37 + 0.05 / durations) * rng.uniform(0.7, 1.3, 10)
+    grid = engine.outcomes_grid(*nominal_tables, 0.875, 0.875, durations, amplitudes * GRAVITY)
+    for q in range(10):
+        motion = oppenheim_pulse(amplitudes[q] * GRAVITY, durations[q])
+        status, half_cycle, impacts, time = baseline.baseline_outcome(
+            *nominal_mechanisms, 0.875, 0.875, motion)
+        assert (grid["status"][q], grid["half_cycle"][q], grid["impacts"][q]) == (
+            status, half_cycle, impacts)
+        if status == engine.STATUS_COLLAPSE:
+            assert grid["collapse_time"][q] == pytest.approx(time, rel=1e-6)
+
+
+# ------------------------------------------------------------------------------ inputs
+
+
+def test_invalid_inputs_raise(block_tables):
+    with pytest.raises(ValueError, match="t_end"):
+        simulate(block_tables, None, (1.0, 1.0), t_end=-1.0, initial=("l", 0.1, 0.0))
+    with pytest.raises(ValueError, match="initial mechanism"):
+        simulate(block_tables, None, (1.0, 1.0), initial=("x", 0.1, 0.0))
+    for c in (0.0, 1.5, -0.2):
+        with pytest.raises(ValueError, match="restitution"):
+            simulate(block_tables, None, (c, 0.9), initial=("l", 0.1, 0.0))
+    with pytest.raises(ValueError, match="phi0"):
+        free_vibration(block_tables, (1.0, 1.0), 5.0)
+    with pytest.raises(ValueError, match="durations"):
+        engine.outcomes_grid(*block_tables, 0.9, 0.9, [-0.1], [-GRAVITY])
+    with pytest.raises(ValueError, match="unknown ground motion"):
+        engine.outcomes_grid(*block_tables, 0.9, 0.9, [0.1], [-GRAVITY], motion="nope")
+    with pytest.raises(ValueError, match=r"\(Mech-l, Mech-r\)"):
+        simulate(block_tables[::-1], None, (1.0, 1.0), initial=("l", 0.1, 0.0))
