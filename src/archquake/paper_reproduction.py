@@ -372,11 +372,13 @@ def _transition(probability: np.ndarray, margin: int = 3) -> tuple[int, int]:
     long runs of 0 and 1 either side oscillates.
     """
     p = np.asarray(probability)
-    rising = np.flatnonzero((p > 0.0) & (p < 1.0))
-    if rising.size == 0:
+    positive = np.flatnonzero(p > 0.0)
+    if positive.size == 0:
         return 0, p.size
-    lo = max(int(rising[0]) - margin, 0)
-    hi = min(int(rising[-1]) + 1 + margin, p.size)
+    full = np.flatnonzero(p[positive[0]:] >= 1.0)
+    last = positive[0] + int(full[0]) if full.size else p.size - 1
+    lo = max(int(positive[0]) - margin, 0)
+    hi = min(last + 1 + margin, p.size)
     while hi - lo < 7 and (lo > 0 or hi < p.size):
         lo, hi = max(lo - 1, 0), min(hi + 1, p.size)
     return lo, hi
@@ -677,7 +679,7 @@ def _fig_fragility(out: Path, frag: dict, sample: dict, domain: dict) -> list[di
         plotting.plot_load_multiplier_cdf(sample["k"], ax, nominal_k=k_nominal)
         a, p = curve["amplitudes"], curve["probability"]
         ax.plot(a, p, "o", color="black", markersize=3,
-                label=f"P_F = h_f/h, dynamic analysis (h = {frag['arches']})")
+                label=f"$P_F = h_f/h$, dynamic analysis (h = {frag['arches']})")
         if curve["polynomial"] is not None:
             fine = np.linspace(*curve["polynomial_range"], 400)
             ax.plot(fine, fragility_module.evaluate_polynomial_fit(curve["polynomial"], fine),
@@ -719,24 +721,34 @@ def _fig_fragility(out: Path, frag: dict, sample: dict, domain: dict) -> list[di
 def _fig_surface(out: Path, frag: dict) -> dict:
     import matplotlib.pyplot as plt
 
-    fig = plt.figure(figsize=(8.5, 6.0), constrained_layout=True)
+    fig = plt.figure(figsize=(8.5, 6.2), constrained_layout=True)
     ax = fig.add_subplot(projection="3d")
-    tp, a = np.meshgrid(frag["durations"], frag["amplitudes"], indexing="ij")
-    p = np.array([c["probability"] for c in frag["curves"]])
-    if tp.shape[0] > 1:
-        ax.plot_surface(tp, a, p, cmap="viridis", alpha=0.85, linewidth=0.2, edgecolor="k")
-    for c in frag["curves"]:
-        ax.plot(np.full_like(c["amplitudes"], c["duration"]), c["amplitudes"], c["probability"],
-                color="black", linewidth=1.0)
     q = np.array([c["nominal_failure_acceleration"] for c in frag["curves"]])
-    for z in (0.0, 1.0):
-        ax.plot(frag["durations"], q, np.full_like(q, z), color="tab:red", linewidth=1.5)
-    for d, qq in zip(frag["durations"], q, strict=True):
-        ax.plot([d, d], [qq, qq], [0.0, 1.0], color="tab:red", linewidth=1.0)
-    ax.set_xlabel("$t_p$ [s]")
+    amplitudes = frag["amplitudes"]
+    window = (amplitudes >= np.nanmin(q) - 0.2) & (amplitudes <= np.nanmax(q) + 0.2)
+    a_win = amplitudes[window]
+    tp, a = np.meshgrid(frag["durations"], a_win, indexing="ij")
+    p = np.array([c["probability"][window] for c in frag["curves"]])
+    if tp.shape[0] > 1:
+        ax.plot_surface(tp, a, p, cmap="viridis", alpha=0.8, linewidth=0.0)
+    for c in frag["curves"]:
+        ax.plot(np.full_like(a_win, c["duration"]), a_win, c["probability"][window],
+                color="black", linewidth=1.2)
+    if q.size > 1 and np.all(np.isfinite(q)):
+        d2 = np.vstack([frag["durations"], frag["durations"]])
+        ax.plot_surface(d2, np.vstack([q, q]), np.vstack([np.zeros_like(q), np.ones_like(q)]),
+                        color="tab:red", alpha=0.25, linewidth=0.0)
+    ax.plot(frag["durations"], q, np.ones_like(q), color="tab:red", linewidth=1.5,
+            label="nominal arch (epsilon = 0): $P_F$ steps from 0 to 1 at its failure "
+                  "acceleration")
+    ax.plot(frag["durations"], q, np.zeros_like(q), color="tab:red", linewidth=1.5)
+    ax.set_xlabel("pulse duration $t_p$ [s]")
     ax.set_ylabel(r"$|\ddot{x}_g| / g$ [-]")
     ax.set_zlabel("$P_F$ [-]")
-    ax.view_init(elev=24, azim=-120)
+    ax.set_title(f"Fragility surface, irregular arches (epsilon = {frag['tolerance']:.2f}, "
+                 f"h = {frag['arches']})", fontsize=10)
+    ax.legend(loc="upper left", fontsize=8)
+    ax.view_init(elev=22, azim=-58)
     ok = all(c["probability_below_nominal"] > 0.0 for c in frag["curves"])
     return {"file": _save(fig, out, "fig21_fragility_surface.png"), "paper_figure": "Fig. 21",
             "agrees": ok,
