@@ -1,8 +1,15 @@
 import math
 
+import numpy as np
 import pytest
 
-from archquake.failure_domain import domain_slice
+from archquake.engine import check_restitution
+from archquake.failure_domain import domain_slice, failure_domain, inclusive_range
+from archquake.geometry import GRAVITY, irregular_sample
+from archquake.ground_motion import oppenheim_pulse
+from archquake.impact import restitution
+from archquake.mechanism import mechanisms
+from archquake.time_history import simulate
 
 
 def make_classifier(edges):
@@ -57,3 +64,95 @@ def test_no_collapse_gives_nan_and_json_null():
 def test_bad_grid(grid):
     with pytest.raises(ValueError, match="amplitudes"):
         domain_slice(lambda a: ("rest", 0), grid)
+
+
+# --------------------------------------------------------------------------------------------
+# The failure domain of an arch with the compiled engine [paper, Sect. 5.3.3, Fig. 16]
+# --------------------------------------------------------------------------------------------
+
+
+def test_nominal_failure_acceleration_matches_paper_point_q(nominal, paper):
+    # Fig. 17: Oppenheim's arch with c_v = 0.875 fails from 0.49 g at t_p = 0.40 s
+    q = paper["dynamics"]["NA"]["failure_acceleration_tp040"]
+    domain = failure_domain(nominal, [0.40], inclusive_range(0.40, 0.60, 0.01),
+                            restitution="paper", tolerance=1e-4)
+    assert domain.restitution == (paper["dynamics"]["NA"]["restitution_paper"],) * 2
+    assert domain.slices[0].failure_acceleration == pytest.approx(q, abs=0.01)
+    # below Q the arch recovers (it moves: Q is above k), from Q on it collapses after an impact
+    first = domain.slices[0].intervals
+    assert (first[0].status, first[1].status, first[1].half_cycle) == ("recovery", "collapse", 2)
+
+
+def test_first_half_cycle_boundary_decreases_with_duration(nominal, paper):
+    # Oppenheim's curve: the shorter the pulse, the larger the acceleration that overturns the
+    # arch in the first half cycle; it stays above the activation multiplier k
+    durations = inclusive_range(0.1, 1.0, 0.1)
+    domain = failure_domain(nominal, durations, np.geomspace(0.3, 20.0, 40),
+                            restitution="paper", tolerance=1e-3)
+    first = domain.first_half_cycle_accelerations
+    assert np.all(np.isfinite(first))
+    assert np.all(np.diff(first) < 0)
+    assert np.all(domain.failure_accelerations <= first)
+    k = paper["table1"]["NA"]["load_multiplier"]
+    assert domain.limit_multiplier == pytest.approx(k, abs=1e-4)
+    assert np.all(first > k)
+
+
+@pytest.mark.parametrize("direction", ["l", "r"])
+def test_domain_classification_agrees_with_direct_simulations(nominal, direction):
+    # an irregular arch whose computed restitution exceeds 1 one way (c_lr c_rl < 1)
+    arch = irregular_sample(nominal, 0.10, 5, 1)[4]
+    pair = mechanisms(arch)
+    c_lr, c_rl = restitution("computed", *pair)
+    assert max(c_lr, c_rl) > 1.0 > c_lr * c_rl
+    durations = [0.3, 0.5]
+    domain = failure_domain(arch, durations, inclusive_range(0.2, 1.4, 0.05),
+                            restitution="computed", direction=direction, tolerance=1e-4)
+    sign = -1.0 if direction == "l" else 1.0
+    checked = 0
+    for s in domain.slices:
+        for iv in s.intervals:
+            if iv.end - iv.start < 4e-4:
+                continue
+            for a in (iv.start + 2e-4, 0.5 * (iv.start + iv.end), iv.end - 2e-4):
+                out = simulate(pair, oppenheim_pulse(sign * a * GRAVITY, s.duration),
+                               (c_lr, c_rl), record=False)
+                assert (out.status, out.half_cycle) == (iv.status, iv.half_cycle), (s.duration, a)
+                checked += 1
+    assert checked >= 12
+
+
+def test_engine_restitution_check_allows_one_coefficient_above_one():
+    assert check_restitution(1.3, 0.7) == (1.3, 0.7)
+    for bad in [(1.3, 0.8), (0.0, 0.5), (float("nan"), 0.5), (0.5, float("inf")), (-0.5, 0.5)]:
+        with pytest.raises(ValueError, match="restitution"):
+            check_restitution(*bad)
+
+
+def test_inclusive_range_includes_stop_and_is_decimal():
+    assert inclusive_range(0.2, 1.0, 0.01).tolist() == [round(0.2 + 0.01 * i, 2)
+                                                        for i in range(81)]
+    assert inclusive_range(0.1, 1.0, 0.025).size == 37
+    assert inclusive_range(0.1, 0.34, 0.1).tolist() == [0.1, 0.2, 0.3]
+    with pytest.raises(ValueError, match="step"):
+        inclusive_range(0.1, 1.0, 0.0)
+
+
+def test_plot_failure_domain_draws_the_curves(nominal):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from archquake.plotting import plot_failure_domain
+
+    domain = failure_domain(nominal, [0.4, 0.6, 0.8], np.geomspace(0.3, 2.0, 25),
+                            restitution="paper")
+    ax = plot_failure_domain(domain)
+    lines = {line.get_label(): line for line in ax.get_lines()}
+    failure = next(v for k, v in lines.items() if k.startswith("failure curve"))
+    assert np.allclose(failure.get_ydata(), domain.failure_accelerations)
+    k_line = next(v for k, v in lines.items() if k.startswith("limit analysis"))
+    assert np.allclose(k_line.get_ydata(), domain.limit_multiplier)
+    assert ax.get_xlabel().startswith("pulse duration")
+    plt.close(ax.figure)

@@ -16,9 +16,16 @@ from .geometry import Arch, circular_arch, irregular_arch
 from .reference_arches import OPPENHEIM
 
 
-def add_geometry_options(parser: argparse.ArgumentParser) -> None:
-    """Options that define the arch, shared by every subcommand that analyses one arch."""
-    g = parser.add_argument_group("arch geometry (defaults: Oppenheim's arch)")
+def add_geometry_options(parser: argparse.ArgumentParser, *, sample: bool = False) -> None:
+    """Options that define the arch, shared by every subcommand that analyses one arch.
+
+    With ``sample=True`` the options describe the nominal arch of a sample of irregular arches:
+    ``--tolerance`` (default 0.10) and ``--seed`` (default 0) are those of the whole sample.
+    """
+    if sample:
+        g = parser.add_argument_group("nominal arch geometry (defaults: Oppenheim's arch)")
+    else:
+        g = parser.add_argument_group("arch geometry (defaults: Oppenheim's arch)")
     g.add_argument("--radius", type=float, default=OPPENHEIM["radius"],
                    help="mean radius R [m] (default: %(default)s)")
     g.add_argument("--embrace", type=float, default=math.degrees(OPPENHEIM["embrace"]),
@@ -30,6 +37,14 @@ def add_geometry_options(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--geometry", metavar="FILE.json",
                    help="explicit arch: JSON with 'angles' [rad], 'thicknesses' [m], 'radii' [m] "
                         "per voussoir (overrides the circular-arch options)")
+    if sample:
+        g.add_argument("--tolerance", type=float, default=0.10, metavar="EPS",
+                       help="tolerance epsilon in [0, 1) of the irregular arches drawn around the "
+                            "nominal arch (paper eq. 1; default: %(default)s)")
+        g.add_argument("--seed", type=int, default=0,
+                       help="root seed of the sample: arch i is drawn from "
+                            "SeedSequence(seed, spawn_key=(i,)) (default: %(default)s)")
+        return
     g.add_argument("--tolerance", type=float, default=None, metavar="EPS",
                    help="draw one irregular arch around the arch above with tolerance epsilon "
                         "in [0, 1) (paper eq. 1)")
@@ -57,12 +72,12 @@ def arches_from_args(args: argparse.Namespace) -> tuple[Arch, Arch]:
     return nominal, arch
 
 
-def add_restitution_option(parser: argparse.ArgumentParser) -> None:
+def add_restitution_option(parser: argparse.ArgumentParser, default: str = "computed") -> None:
     parser.add_argument(
-        "--restitution", default="computed", metavar="computed|nominal|paper|VALUE",
+        "--restitution", default=default, metavar="computed|nominal|paper|VALUE",
         help="coefficient of restitution c_v at impacts: 'computed' from the momentum balance "
-             "of this arch (default), 'nominal' = the nominal arch's computed value (the paper's "
-             "practice), 'paper' = 0.875, or a number in (0, 1]",
+             "of this arch, 'nominal' = the nominal arch's computed value (the paper's "
+             "practice), 'paper' = 0.875, or a number in (0, 1] (default: %(default)s)",
     )
 
 
@@ -320,6 +335,287 @@ def _run_reproduce(args: argparse.Namespace) -> int:
 
 
 COMMANDS.append(add_reproduce)
+
+
+def parse_values(text: str, name: str) -> list[float]:
+    """Values of a list option: comma-separated numbers and ranges ``start:stop:step``.
+
+    A range includes ``stop`` when a step lands within ``step/2`` of it
+    (:func:`archquake.failure_domain.inclusive_range`); ``"0.4,0.5"`` and ``"0.2:1.0:0.01"``
+    and ``"0.1:0.3:0.1,0.5"`` are valid.
+    """
+    from .failure_domain import inclusive_range
+
+    values: list[float] = []
+    for part in (p.strip() for p in str(text).split(",")):
+        if not part:
+            continue
+        pieces = part.split(":")
+        try:
+            numbers = [float(x) for x in pieces]
+        except ValueError:
+            raise ValueError(f"{name}: cannot read {part!r}; give numbers separated by commas "
+                             "or a range start:stop:step") from None
+        if len(numbers) == 1:
+            values.append(numbers[0])
+        elif len(numbers) == 3:
+            try:
+                values.extend(inclusive_range(*numbers).tolist())
+            except ValueError as exc:
+                raise ValueError(f"{name}: {exc}") from None
+        else:
+            raise ValueError(f"{name}: a range is start:stop:step, got {part!r}")
+    if not values:
+        raise ValueError(f"{name} must not be empty")
+    if not all(math.isfinite(v) for v in values):
+        raise ValueError(f"{name} must be finite numbers, got {values}")
+    return values
+
+
+def _durations(text: str) -> list[float]:
+    values = parse_values(text, "--durations")
+    bad = [v for v in values if v <= 0]
+    if bad:
+        raise ValueError(f"--durations must be pulse durations > 0 [s], got {bad}")
+    return values
+
+
+def _amplitudes(text: str) -> list[float]:
+    values = parse_values(text, "--amplitudes")
+    if len(values) < 2 or any(b <= a for a, b in zip(values, values[1:], strict=False)):
+        raise ValueError("--amplitudes must be at least two increasing amplitudes [g]")
+    if values[0] < 0:
+        raise ValueError(f"--amplitudes must be >= 0 [g] (--direction gives the sign), got "
+                         f"{values[0]}")
+    return values
+
+
+def _save_figure(fig, path, plt) -> None:
+    try:
+        fig.savefig(path, dpi=150)
+    except OSError as exc:
+        raise ValueError(f"cannot write the figure {str(path)!r}: {exc.strerror}") from exc
+    finally:
+        plt.close(fig)
+
+
+def add_domain(subparsers) -> None:
+    """``archquake domain``: failure domain over (t_p, a) (paper Sect. 5.3.3, Fig. 16)."""
+    parser = subparsers.add_parser(
+        "domain",
+        help="failure domain of the arch over pulse duration and amplitude (Fig. 16)",
+        description="Outcome of Oppenheim's pulse (-a for t_p, +a/2 for 2 t_p, then 0) over a "
+                    "grid of durations t_p and amplitudes a: every change of outcome along the "
+                    "amplitude (rest, recovery, collapse in half cycle h) is bisected. Prints per "
+                    "duration the failure acceleration (lowest collapsing a), the lowest a "
+                    "collapsing in the first half cycle (Oppenheim's curve) and the intervals. "
+                    "Accelerations in g.",
+    )
+    add_geometry_options(parser)
+    add_restitution_option(parser)
+    parser.add_argument("--durations", default="0.1:1.0:0.025", metavar="LIST",
+                        help="pulse durations t_p [s]: comma list and/or ranges start:stop:step "
+                             "(stop included) (default: %(default)s)")
+    parser.add_argument("--amplitudes", default="0.05:1.5:0.01", metavar="LIST",
+                        help="scan grid of amplitudes a [g], increasing (default: %(default)s)")
+    parser.add_argument("--direction", choices=("l", "r"), default="l",
+                        help="l: the first pulse is -a g (opens Mech-l); r: +a g (Mech-r) "
+                             "(default: %(default)s)")
+    parser.add_argument("--resolution", type=float, default=1e-3, metavar="G",
+                        help="bisection tolerance of every boundary [g] (default: %(default)s)")
+    parser.add_argument("--plot", metavar="FILE.png", help="write the failure-domain figure")
+    parser.add_argument("--json", action="store_true", help="machine-readable output")
+    parser.set_defaults(func=_run_domain)
+
+
+def _run_domain(args: argparse.Namespace) -> int:
+    from .failure_domain import failure_domain
+
+    durations = _durations(args.durations)
+    amplitudes = _amplitudes(args.amplitudes)
+    if not (math.isfinite(args.resolution) and args.resolution > 0):
+        raise ValueError(f"--resolution must be > 0 [g], got {args.resolution}")
+    nominal, arch = arches_from_args(args)
+    domain = failure_domain(arch, durations, amplitudes,
+                            restitution=restitution_model(args.restitution),
+                            direction=args.direction, tolerance=args.resolution,
+                            nominal=nominal)
+    if args.plot:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        from .plotting import plot_failure_domain
+
+        ax = plot_failure_domain(domain)
+        _save_figure(ax.figure, args.plot, plt)
+    if args.json:
+        print_json(domain.to_list())
+        return 0
+    c_lr, c_rl = domain.restitution
+    print(f"Failure domain, first pulse {'-' if args.direction == 'l' else '+'}a g "
+          f"(Mech-{args.direction}); k = {domain.limit_multiplier:.4f}; restitution "
+          f"{c_lr:.4f} (l->r), {c_rl:.4f} (r->l); boundaries to {args.resolution:g} g")
+    print(f"{'t_p [s]':>8} {'failure [g]':>12} {'1st half [g]':>13}  intervals [g]")
+    for sl in domain.slices:
+        parts = []
+        for iv in sl.intervals:
+            what = (f"collapse h={iv.half_cycle}" if iv.status == "collapse" else iv.status)
+            parts.append(f"{iv.start:.3f}-{iv.end:.3f} {what}")
+        print(f"{sl.duration:>8.3f} {sl.failure_acceleration:>12.4f} "
+              f"{sl.first_half_cycle_acceleration:>13.4f}  " + "; ".join(parts))
+    if args.plot:
+        print(f"figure written to {args.plot}")
+    return 0
+
+
+COMMANDS.append(add_domain)
+
+
+def add_fragility(subparsers) -> None:
+    """``archquake fragility``: Monte Carlo fragility study (paper Sect. 5.3.3, Figs. 17-21)."""
+    parser = subparsers.add_parser(
+        "fragility",
+        help="fragility curves and surface of irregular arches under Oppenheim's pulse "
+             "(Figs. 17-21)",
+        description="Draw h irregular arches around the nominal arch (eq. 1), run Oppenheim's "
+                    "pulse in both directions over every (t_p, a) of the grid, and estimate "
+                    "P_F = h_f/h (eq. 9; an arch fails if it collapses in either direction), "
+                    "with quintic and lognormal fits per duration; the CDF of the limit-analysis "
+                    "multiplier k~ = min(k~_l, k~_r) of s arches; the nominal arch's failure "
+                    "acceleration and k. Default restitution: 'nominal', the nominal arch's "
+                    "computed c_v applied to every irregular arch (the paper's practice). "
+                    "Writes results.parquet/.csv (one row per analysis), curves.csv, "
+                    "summary.json and limit_sample/ to --out; checkpoints allow --resume.",
+    )
+    add_geometry_options(parser, sample=True)
+    parser.add_argument("--samples", type=int, default=40,
+                        help="number h of irregular arches analysed dynamically "
+                             "(default: %(default)s)")
+    parser.add_argument("--durations", default="0.4,0.5,0.6,0.7", metavar="LIST",
+                        help="pulse durations t_p [s] (default: %(default)s)")
+    parser.add_argument("--amplitudes", default="0.20:1.00:0.01", metavar="LIST",
+                        help="amplitudes a [g], increasing (default: %(default)s)")
+    add_restitution_option(parser, default="nominal")
+    parser.add_argument("--limit-samples", type=int, default=1000, metavar="S",
+                        help="number s of arches of the limit-analysis CDF of k~ "
+                             "(default: %(default)s)")
+    parser.add_argument("--limit-method", choices=("kinematic", "static"), default="kinematic",
+                        help="limit-analysis method of that sample (same k~; kinematic is "
+                             "faster) (default: %(default)s)")
+    parser.add_argument("--out", required=True, metavar="DIR",
+                        help="study directory (new or empty, or an interrupted study with "
+                             "--resume)")
+    run = parser.add_mutually_exclusive_group()
+    run.add_argument("--workers", type=int, default=None, metavar="N",
+                     help="local worker processes (default: 1, run in this process)")
+    run.add_argument("--scheduler", metavar="tcp://HOST:PORT",
+                     help="run the chunks on the Dask cluster of this scheduler")
+    parser.add_argument("--resume", action="store_true",
+                        help="continue the interrupted study in --out (same settings)")
+    parser.add_argument("--plot-dir", metavar="DIR",
+                        help="write the fragility curves and the surface as PNG files here")
+    parser.add_argument("--no-progress", action="store_true", help="no progress bars")
+    parser.add_argument("--json", action="store_true",
+                        help="print the summary as JSON")
+    parser.set_defaults(func=_run_fragility)
+
+
+def _run_fragility(args: argparse.Namespace) -> int:
+    from .fragility import CURVES_CSV, LIMIT_DIRECTORY, FragilitySettings, run_fragility
+
+    nominal, _ = arches_from_args(argparse.Namespace(**{**vars(args), "tolerance": None,
+                                                        "seed": None}))
+    for name, value in (("--samples", args.samples), ("--limit-samples", args.limit_samples)):
+        if value < 1:
+            raise ValueError(f"{name} must be an integer >= 1, got {value}")
+    if args.seed < 0:
+        raise ValueError(f"--seed must be an integer >= 0, got {args.seed}")
+    if not 0.0 <= args.tolerance < 1.0:
+        raise ValueError(f"--tolerance (epsilon) must be in [0, 1), got {args.tolerance}")
+    if args.workers is not None and args.workers < 1:
+        raise ValueError(f"--workers must be an integer >= 1, got {args.workers}")
+    settings = FragilitySettings(
+        nominal=nominal, samples=args.samples, tolerance=args.tolerance,
+        durations=tuple(_durations(args.durations)),
+        amplitudes=tuple(_amplitudes(args.amplitudes)), seed=args.seed,
+        restitution=restitution_model(args.restitution), limit_samples=args.limit_samples,
+        limit_method=args.limit_method)
+    if args.scheduler is not None:
+        backend, workers = "dask", None
+    elif args.workers is None or args.workers == 1:
+        backend, workers = "serial", None
+    else:
+        backend, workers = "processes", args.workers
+    result = run_fragility(settings, args.out, backend=backend, workers=workers,
+                           scheduler=args.scheduler, resume=args.resume,
+                           progress=not args.no_progress)
+    written = []
+    if args.plot_dir:
+        written = _plot_fragility(result, args.plot_dir)
+    summary = result.summary()
+    if args.json:
+        print_json(summary)
+        return 0
+    n_analyses = len(result.table)
+    c_lr, c_rl = summary["nominal_restitution"]
+    print(f"Fragility study: h = {settings.samples} irregular arches (epsilon = "
+          f"{settings.tolerance:g}, seed {settings.seed}), {len(settings.durations)} durations x "
+          f"{len(settings.amplitudes)} amplitudes x 2 directions = {n_analyses} analyses; "
+          f"restitution {settings.restitution!r} (nominal arch: {c_lr:.4f})")
+    print(f"nominal arch: k = {result.nominal_load_multiplier:.4f}")
+    print(f"{'t_p [s]':>8} {'Q nominal [g]':>14} {'P_F below Q':>12} {'lowest a_f [g]':>15} "
+          f"{'lognormal median [g]':>21} {'beta':>6}")
+    for row in summary["durations"]:
+        def fmt(x, width, digits=4):
+            return f"{'-':>{width}}" if x is None else f"{x:>{width}.{digits}f}"
+        print(f"{row['duration']:>8.3f} {fmt(row['nominal_failure_acceleration'], 14)} "
+              f"{fmt(row['probability_below_nominal'], 12, 3)} "
+              f"{fmt(row['lowest_failure_acceleration'], 15, 2)} "
+              f"{fmt(row['lognormal_median'], 21)} {fmt(row['lognormal_dispersion'], 6, 3)}")
+    k = summary["limit_sample"]
+    print(f"k~ = min(k~_l, k~_r) over s = {k['count']} arches ({k['method']}): mean "
+          f"{k['mean']:.4f}, std {k['std']:.4f}, min {k['min']:.4f}, max {k['max']:.4f}; "
+          f"fraction below the nominal k: {k['fraction_below_nominal']:.3f}")
+    print("P_F below Q: fraction of irregular arches that fail at the largest amplitude of "
+          "the grid below the nominal failure acceleration Q (where the nominal arch survives)")
+    print(f"written to {args.out}: results.parquet, results.csv, {CURVES_CSV}, summary.json, "
+          f"{LIMIT_DIRECTORY}/")
+    for path in written:
+        print(f"figure written to {path}")
+    return 0
+
+
+def _plot_fragility(result, plot_dir) -> list[str]:
+    from pathlib import Path
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from .plotting import plot_fragility_curve, plot_fragility_surface
+
+    directory = Path(plot_dir)
+    try:
+        directory.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise ValueError(f"cannot create --plot-dir {plot_dir!r}: {exc.strerror}") from exc
+    written = []
+    for tp in result.durations:
+        path = directory / f"fragility_tp{tp:.3f}.png"
+        ax = plot_fragility_curve(result, tp)
+        _save_figure(ax.figure, path, plt)
+        written.append(str(path))
+    path = directory / "fragility_surface.png"
+    ax = plot_fragility_surface(result)
+    _save_figure(ax.figure, path, plt)
+    written.append(str(path))
+    return written
+
+
+COMMANDS.append(add_fragility)
 
 
 if __name__ == "__main__":  # pragma: no cover

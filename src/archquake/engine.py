@@ -987,16 +987,28 @@ def _grid(scal, pieces, breaks, coefs, c_lr, c_rl, kind, params0, times0, values
 
 
 def check_restitution(c_lr, c_rl) -> tuple[float, float]:
-    """Validate the coefficients of restitution (each in (0, 1])."""
+    """Validate the coefficients of restitution: finite, > 0, and ``c_lr c_rl <= 1``.
+
+    A single coefficient may exceed 1: for an irregular arch the computed c_v is a ratio of the
+    rates of two different coordinates (theta of Mech-l and theta of Mech-r), not of one speed.
+    What an impact may not do is create energy. The kinetic energy ratio of one impact,
+    ``c^2 M_to / M_from``, is <= 1 for the computed coefficients (Cauchy-Schwarz, see
+    :mod:`archquake.impact`), and over a pair of impacts (l -> r -> l) the masses cancel, so the
+    kinetic energy at ``theta_u`` is multiplied by ``(c_lr c_rl)^2``; the outcome decision after the
+    excitation relies on that product being <= 1 (module docstring).
+    """
     out = []
     for name, c in (("c_lr", c_lr), ("c_rl", c_rl)):
         try:
             c = float(c)
         except (TypeError, ValueError) as exc:
-            raise ValueError(f"restitution {name} must be a number in (0, 1], got {c!r}") from exc
-        if not (0.0 < c <= 1.0):
-            raise ValueError(f"restitution {name} must be in (0, 1], got {c!r}")
+            raise ValueError(f"restitution {name} must be a finite number > 0, got {c!r}") from exc
+        if not (math.isfinite(c) and c > 0.0):
+            raise ValueError(f"restitution {name} must be a finite number > 0, got {c!r}")
         out.append(c)
+    if out[0] * out[1] > 1.0 + 1e-12:
+        raise ValueError(f"restitution c_lr * c_rl must be <= 1 (no energy gained over a pair of "
+                         f"impacts), got {out[0]!r} * {out[1]!r} = {out[0] * out[1]!r}")
     return out[0], out[1]
 
 

@@ -287,15 +287,38 @@ def _serial(task: Task, chunks: list[Chunk], workers: int | None,
         yield _run_chunk(chunk, task)
 
 
-def _processes(task: Task, chunks: list[Chunk], workers: int,
-               scheduler: Any) -> Iterator[tuple[int, dict, float]]:
-    import multiprocessing
-    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+def process_pool(workers: int | None = None):
+    """A pool of fresh local worker processes, as the ``"processes"`` backend starts them.
 
-    n = min(workers, len(chunks))
+    ``"spawn"`` context and threads capped per worker (module docstring). Give it to
+    :func:`run_study` as ``pool=`` to run several studies on the same (warm) workers: starting
+    a process and importing numpy, scipy and numba in it takes seconds, often more than a small
+    study. The caller owns the pool: use it as a context manager or call ``shutdown()``.
+
+    Parameters
+    ----------
+    workers : int, optional
+        Number of processes (default ``os.cpu_count()``).
+
+    Returns
+    -------
+    concurrent.futures.ProcessPoolExecutor
+    """
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+
+    n = _check_count("workers", workers) if workers is not None else (os.cpu_count() or 1)
     threads = max(1, (os.cpu_count() or 1) // n)
-    executor = ProcessPoolExecutor(max_workers=n, mp_context=multiprocessing.get_context("spawn"),
-                                   initializer=_limit_threads, initargs=(threads,))
+    return ProcessPoolExecutor(max_workers=n, mp_context=multiprocessing.get_context("spawn"),
+                               initializer=_limit_threads, initargs=(threads,))
+
+
+def _processes(task: Task, chunks: list[Chunk], workers: int,
+               pool: Any) -> Iterator[tuple[int, dict, float]]:
+    from concurrent.futures import FIRST_COMPLETED, wait
+
+    executor = process_pool(min(workers, len(chunks))) if pool is None else pool
+    pending = set()
     try:
         pending = {executor.submit(_run_chunk, chunk, task) for chunk in chunks}
         while pending:
@@ -303,7 +326,11 @@ def _processes(task: Task, chunks: list[Chunk], workers: int,
             for future in done:
                 yield future.result()
     finally:
-        executor.shutdown(wait=True, cancel_futures=True)
+        if pool is None:
+            executor.shutdown(wait=True, cancel_futures=True)
+        else:  # a pool owned by the caller stays open; drop what this study still queued
+            for future in pending:
+                future.cancel()
 
 
 def _dask_client(scheduler: Any):
@@ -365,11 +392,24 @@ def _dask(task: Task, chunks: list[Chunk], workers: int | None,
 _RUNNERS = {"serial": _serial, "processes": _processes, "dask": _dask}
 
 
-def _check_execution(backend: str | None, workers: Any, scheduler: Any) -> tuple[str, int | None]:
+def _check_execution(backend: str | None, workers: Any, scheduler: Any,
+                     pool: Any = None) -> tuple[str, int | None]:
     if backend is None:
         backend = "processes" if scheduler is None else "dask"
     if backend not in BACKENDS:
         raise ValueError(f"unknown backend {backend!r}; choose one of {', '.join(BACKENDS)}")
+    if pool is not None:
+        if backend != "processes":
+            raise ValueError(f"pool is only used by backend 'processes', not {backend!r}")
+        if not hasattr(pool, "submit"):
+            raise ValueError(f"pool must be a concurrent.futures executor (process_pool()), "
+                             f"got {type(pool).__name__}")
+        if workers is not None:
+            raise ValueError("workers must be None when a pool is given (the pool decides)")
+        workers = getattr(pool, "_max_workers", None)
+        if scheduler is not None:
+            raise ValueError(f"scheduler is only used by backend 'dask', not {backend!r}")
+        return backend, workers
     if workers is not None:
         workers = _check_count("workers", workers)
     if backend == "processes" and workers is None:
@@ -501,6 +541,7 @@ def run_study(
     scheduler: Any = None,
     resume: bool = False,
     progress: bool = True,
+    pool: Any = None,
 ) -> pd.DataFrame:
     """Evaluate every chunk of a study and return all rows as one tidy table.
 
@@ -536,6 +577,9 @@ def run_study(
         ``archquake_version``. An empty or missing ``out_dir`` simply starts the study.
     progress : bool, optional
         Show a progress bar over chunks on stderr (advancing as chunks finish).
+    pool : concurrent.futures.Executor, optional
+        With backend ``"processes"``: run the chunks on this existing pool (from
+        :func:`process_pool`; left open) instead of starting one; ``workers`` must then be None.
 
     Returns
     -------
@@ -565,7 +609,7 @@ def run_study(
         raise ValueError(f"plan must be a StudyPlan, got {type(plan).__name__}")
     if not callable(task):
         raise ValueError(f"task must be a callable task(chunk) -> dict, got {task!r}")
-    backend, workers = _check_execution(backend, workers, scheduler)
+    backend, workers = _check_execution(backend, workers, scheduler, pool)
 
     started = time.perf_counter()
     record = {"format": STUDY_FORMAT, "format_version": STUDY_FORMAT_VERSION,
@@ -586,7 +630,8 @@ def run_study(
     with tqdm(total=plan.n_chunks, initial=resumed, unit="chunk", desc="study",
               file=sys.stderr, disable=not progress, dynamic_ncols=True) as bar:
         if todo:
-            finished = _RUNNERS[backend](task, todo, workers, scheduler)
+            finished = _RUNNERS[backend](task, todo, workers,
+                                         pool if backend == "processes" else scheduler)
             try:
                 for index, columns, elapsed in finished:
                     if out_dir is not None:

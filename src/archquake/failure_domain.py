@@ -6,9 +6,17 @@ half cycle (h = 1). The outcome is not monotone in the amplitude in general, so 
 is found: the amplitude axis is scanned on a grid, then every edge between two different classes is
 bisected to the stated tolerance (recursively, should a third class appear inside an edge).
 
-The search is written against any ``classify(duration, amplitude) -> (status, half_cycle)``
-callable, so it is independent of how the outcome is computed; :func:`failure_domain` plugs in the
-compiled engine.
+The search is written against any ``classify(amplitude) -> (status, half_cycle)`` callable, so it
+is independent of how the outcome is computed; :func:`failure_domain` plugs in the compiled engine
+(:func:`archquake.engine.outcomes_grid`): the mechanisms, their tables and the coefficients of
+restitution are built once, the whole (duration x amplitude) scan is one compiled call, and only
+the bisection steps are single analyses.
+
+Direction of the pulse
+----------------------
+``direction="l"``: the first pulse is ``-a g`` (toward -x), which opens Mech-l when
+``a >= k_l``; ``direction="r"``: ``+a g``, which opens Mech-r when ``a >= k_r`` [paper, eq. (2)].
+Amplitudes ``a`` are given and reported in g, positive.
 """
 
 from __future__ import annotations
@@ -18,6 +26,8 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
+
+from .geometry import GRAVITY, Arch
 
 OutcomeKey = tuple[str, int]
 
@@ -140,3 +150,239 @@ def domain_slice(
         end = starts[j + 1][0] if j + 1 < len(starts) else float(grid[-1])
         intervals.append(Interval(float(start), float(end), key[0], key[1]))
     return DomainSlice(float(duration), tuple(intervals), float(tolerance))
+
+
+# ---------------------------------------------------------------------------------------------
+# The failure domain of an arch, with the compiled engine
+# ---------------------------------------------------------------------------------------------
+
+PULSE_SIGNS = {"l": -1.0, "r": 1.0}
+"""Sign of the first pulse for each direction: ``"l"`` is ``-a g`` (opens Mech-l), ``"r"`` +a g."""
+
+
+@dataclass(frozen=True)
+class FailureDomain:
+    """Outcome regions of one arch over (pulse duration, amplitude) [paper, Fig. 16].
+
+    Attributes
+    ----------
+    slices : tuple of DomainSlice
+        One per pulse duration, in the given order.
+    direction : str
+        ``"l"`` (first pulse ``-a g``, Mech-l) or ``"r"`` (``+a g``, Mech-r).
+    limit_multiplier : float
+        Limit-analysis load multiplier k of the mechanism the pulse opens (k_l or k_r) [-]:
+        below ``a = k`` the arch moves rigidly with the ground (the dashed line of Fig. 16).
+    load_multipliers : tuple of float
+        ``(k_l, k_r)`` of the arch [-].
+    restitution : tuple of float
+        ``(c_lr, c_rl)`` used at the impacts [-].
+    motion : str
+        Pulse shape (name in :data:`archquake.ground_motion.GROUND_MOTIONS`).
+    """
+
+    slices: tuple[DomainSlice, ...]
+    direction: str
+    limit_multiplier: float
+    load_multipliers: tuple[float, float]
+    restitution: tuple[float, float]
+    motion: str = "oppenheim"
+
+    @property
+    def durations(self) -> np.ndarray:
+        """Pulse durations t_p [s]."""
+        return np.array([s.duration for s in self.slices])
+
+    @property
+    def failure_accelerations(self) -> np.ndarray:
+        """Lowest collapsing amplitude per duration [g] (the failure curve; nan: none)."""
+        return np.array([s.failure_acceleration for s in self.slices])
+
+    @property
+    def first_half_cycle_accelerations(self) -> np.ndarray:
+        """Lowest amplitude collapsing in the first half cycle per duration [g] (Oppenheim's
+        curve; nan: none in the scanned range)."""
+        return np.array([s.first_half_cycle_acceleration for s in self.slices])
+
+    def slice(self, duration: float) -> DomainSlice:
+        """The slice of pulse duration ``duration`` [s] (to 1e-9 s)."""
+        for s in self.slices:
+            if abs(s.duration - duration) <= 1e-9:
+                return s
+        raise ValueError(f"duration {duration!r} s is not one of the domain's durations "
+                         f"{self.durations.tolist()}")
+
+    def to_list(self) -> list[dict]:
+        """JSON-ready list of the slices (amplitudes in g)."""
+        return [s.to_dict() for s in self.slices]
+
+
+def _check_durations(durations) -> np.ndarray:
+    d = np.atleast_1d(np.asarray(durations, dtype=float))
+    if d.ndim != 1 or d.size == 0:
+        raise ValueError("durations must be a non-empty sequence of pulse durations t_p [s]")
+    if not np.all(np.isfinite(d)) or np.any(d <= 0):
+        raise ValueError(f"durations must be finite and > 0 [s], got {d.tolist()}")
+    return d
+
+
+def _check_amplitudes(amplitudes_g) -> np.ndarray:
+    a = np.atleast_1d(np.asarray(amplitudes_g, dtype=float))
+    if a.ndim != 1 or a.size < 2 or not np.all(np.isfinite(a)) or np.any(np.diff(a) <= 0):
+        raise ValueError("amplitudes must be an increasing sequence of at least two finite "
+                         "values [g]")
+    if a[0] < 0:
+        raise ValueError(f"amplitudes must be >= 0 [g] (the direction gives the sign), got "
+                         f"{a[0]!r}")
+    return a
+
+
+def check_direction(direction: str) -> str:
+    """Validate a pulse direction, ``"l"`` or ``"r"``."""
+    if direction not in PULSE_SIGNS:
+        raise ValueError(f"direction must be 'l' (first pulse -a g) or 'r' (+a g), got "
+                         f"{direction!r}")
+    return direction
+
+
+def inclusive_range(start: float, stop: float, step: float) -> np.ndarray:
+    """``start, start + step, ...`` up to ``stop`` included (when within ``step/2``).
+
+    The values are rounded to 12 decimals so that e.g. ``inclusive_range(0.2, 1.0, 0.01)`` gives
+    exactly the decimal grid 0.20, 0.21, ..., 1.00 (as floats).
+
+    Parameters
+    ----------
+    start, stop : float
+        First value and last value (included if ``start + k step`` is within ``step/2`` of it).
+    step : float
+        Spacing, > 0.
+    """
+    for name, value in (("start", start), ("stop", stop), ("step", step)):
+        if not math.isfinite(value):
+            raise ValueError(f"range {name} must be a finite number, got {value!r}")
+    if not step > 0:
+        raise ValueError(f"range step must be > 0, got {step!r}")
+    if stop < start:
+        raise ValueError(f"range stop must be >= start, got {start!r}:{stop!r}")
+    count = int(math.floor((stop - start) / step + 0.5)) + 1
+    return np.round(start + step * np.arange(count), 12)
+
+
+def arch_dynamics(arch: Arch, restitution="paper", nominal: Arch | None = None, *,
+                  nominal_mechanisms=None):
+    """What the compiled engine needs for one arch, built once.
+
+    Parameters
+    ----------
+    arch : Arch
+        The arch.
+    restitution : str or float
+        Restitution model (name in :data:`archquake.impact.RESTITUTION_MODELS`) or an imposed
+        c_v.
+    nominal : Arch, optional
+        Nominal arch for the model ``"nominal"`` (default: ``arch`` itself).
+    nominal_mechanisms : (FourLinkMechanism, FourLinkMechanism), optional
+        Mech-l and Mech-r of the nominal arch, if already built (takes precedence over
+        ``nominal``).
+
+    Returns
+    -------
+    tables : (MechanismTable, MechanismTable)
+        Tables of Mech-l and Mech-r (:func:`archquake.engine.tabulate`).
+    coefficients : (float, float)
+        ``(c_lr, c_rl)`` [-].
+    load_multipliers : (float, float)
+        ``(k_l, k_r)`` from limit analysis [-].
+    """
+    from .engine import tabulate
+    from .impact import restitution as restitution_pair
+    from .limit_analysis import both_directions
+    from .mechanism import mechanisms
+
+    limit = both_directions(arch)
+    mech_l, mech_r = mechanisms(arch, limit=limit)
+    nominal_pair = None
+    if isinstance(restitution, str) and restitution == "nominal":
+        if nominal_mechanisms is not None:
+            nominal_pair = tuple(nominal_mechanisms)
+        else:
+            nominal_pair = (mech_l, mech_r) if nominal is None else mechanisms(nominal)
+    coefficients = restitution_pair(restitution, mech_l, mech_r, nominal=nominal_pair)
+    tables = (tabulate(mech_l), tabulate(mech_r))
+    k = (float(limit[0].load_multiplier), float(limit[1].load_multiplier))
+    return tables, coefficients, k
+
+
+def failure_domain(
+    arch: Arch,
+    durations,
+    amplitudes_g,
+    *,
+    restitution="paper",
+    direction: str = "l",
+    tolerance: float = 1e-3,
+    nominal: Arch | None = None,
+    motion: str = "oppenheim",
+) -> FailureDomain:
+    """Failure domain of ``arch`` under pulses of duration t_p and amplitude a [paper, Fig. 16].
+
+    For every duration the amplitudes are scanned on ``amplitudes_g`` and every change of outcome
+    class (rest, recovery, collapse in half cycle h) is bisected to ``tolerance``
+    (:func:`domain_slice`).
+
+    Parameters
+    ----------
+    arch : Arch
+        The arch.
+    durations : sequence of float
+        Pulse durations t_p [s].
+    amplitudes_g : sequence of float
+        Increasing scan grid of amplitudes a >= 0 [g]; its ends bound the domain.
+    restitution : str or float
+        Restitution model: ``"computed"``, ``"nominal"``, ``"paper"`` (0.875, the default, which
+        reproduces the paper's Fig. 16), ``"elastic"`` or a number (see
+        :func:`archquake.impact.restitution`).
+    direction : {"l", "r"}
+        ``"l"``: the first pulse is ``-a g`` and opens Mech-l; ``"r"``: ``+a g``, Mech-r.
+    tolerance : float
+        Bisection tolerance of every boundary [g].
+    nominal : Arch, optional
+        Nominal arch for ``restitution="nominal"`` (default: ``arch``).
+    motion : str
+        Pulse shape; default Oppenheim's pulse ``-a, +a/2, 0`` [paper, Sect. 5.3.1].
+
+    Returns
+    -------
+    FailureDomain
+    """
+    from .engine import STATUS_NAMES, outcomes_grid
+
+    sign = PULSE_SIGNS[check_direction(direction)]
+    d = _check_durations(durations)
+    a = _check_amplitudes(amplitudes_g)
+    if not (tolerance > 0):
+        raise ValueError(f"tolerance must be > 0 [g], got {tolerance!r}")
+    (table_l, table_r), (c_lr, c_rl), k = arch_dynamics(arch, restitution, nominal)
+
+    def run(dur, amp):
+        return outcomes_grid(table_l, table_r, c_lr, c_rl, dur, sign * GRAVITY * np.asarray(amp),
+                             motion)
+
+    scan = run(d[:, None], a[None, :])
+    slices = []
+    for i, tp in enumerate(d):
+        known = {float(x): (STATUS_NAMES[int(st)], int(hc)) for x, st, hc in
+                 zip(a, scan["status"][i], scan["half_cycle"][i], strict=True)}
+
+        def classify(amplitude, tp=tp, known=known):
+            key = known.get(float(amplitude))
+            if key is None:
+                out = run(tp, float(amplitude))
+                key = (STATUS_NAMES[int(out["status"])], int(out["half_cycle"]))
+            return key
+
+        slices.append(domain_slice(classify, a, duration=float(tp), tolerance=tolerance))
+    limit_k = k[0] if direction == "l" else k[1]
+    return FailureDomain(tuple(slices), direction, limit_k, k, (float(c_lr), float(c_rl)),
+                         motion)

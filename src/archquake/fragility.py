@@ -8,15 +8,50 @@ where h is the number of sampled irregular arches and h_f those that collapse. T
 fragility curve are provided: the paper's fifth-degree polynomial, and the lognormal fragility
 function ``P_F = Phi(ln(a / median) / dispersion)`` fitted by maximum likelihood to the binomial
 counts, the standard form in earthquake engineering.
+
+The study [paper, Sect. 5.3.3]
+------------------------------
+:func:`run_fragility` draws h irregular arches around a nominal one [eq. (1)], runs for each
+the pulse in both directions over the whole (t_p x a) grid (one compiled call per direction),
+and counts an arch as failed at (t_p, a) when it collapses in either direction (the paper
+analyses both directions and does not say how they are combined; "either" is the conservative
+reading, and the per-direction probabilities are kept too). Beside it, the limit analysis of s
+arches gives the empirical CDF of k~ = min(k~_l, k~_r) (the blue curves of Figs. 17-20), and the
+nominal arch gives its failure acceleration per duration (point Q of Fig. 16, the step fragility
+of eq. (10)) and its k.
+
+Arch ``i`` of both samples is drawn by :func:`archquake.geometry.irregular_arch` from
+``SeedSequence(seed, spawn_key=(i,))``, i.e. it is arch ``i`` of
+``irregular_sample(nominal, tolerance, count, seed)`` and of ``limit_sample(...)``: the first h
+arches of the limit sample are the arches of the dynamic study. The study runs through
+:func:`archquake.execution.run_study` (chunks of arches, serial / local processes / Dask, resumable
+checkpoints); the results do not depend on how it is run.
+
+Restitution: by default ``"nominal"``, the coefficient computed for the nominal arch applied to
+every irregular arch, which is the paper's practice (it applies its nominal c_v to the random
+arches); ``"computed"`` gives each arch its own pair (c_lr, c_rl), ``"paper"`` imposes 0.875.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
 
 import numpy as np
+import pandas as pd
 from scipy import optimize, stats
+
+from .failure_domain import (
+    PULSE_SIGNS,
+    FailureDomain,
+    arch_dynamics,
+    failure_domain,
+    inclusive_range,
+)
+from .geometry import GRAVITY, Arch, irregular_arch
 
 
 def probability_of_failure(failed: np.ndarray) -> np.ndarray:
@@ -114,3 +149,563 @@ def empirical_cdf(values) -> tuple[np.ndarray, np.ndarray]:
     if v.size == 0:
         raise ValueError("values must not be empty")
     return v, np.arange(1, v.size + 1) / v.size
+
+
+# ---------------------------------------------------------------------------------------------
+# The study
+# ---------------------------------------------------------------------------------------------
+
+DEFAULT_DURATIONS = (0.4, 0.5, 0.6, 0.7)
+"""Pulse durations t_p of the paper's fragility curves [s] (Figs. 17-20)."""
+DEFAULT_AMPLITUDES = tuple(inclusive_range(0.20, 1.00, 0.01).tolist())
+"""Amplitude grid [g]: steps of 0.01 g as in the paper; the range (not stated in the paper) covers
+the nominal failure accelerations of Fig. 16 with margin below (down to k~ of weak arches)."""
+LIMIT_METHODS = ("static", "kinematic")
+POLYNOMIAL_DEGREE = 5
+"""Degree of the paper's polynomial fit of a fragility curve."""
+
+
+def _nominal_dict(arch: Arch) -> dict:
+    return {**arch.to_dict(), "start_angle": arch.start_angle, "density": arch.density}
+
+
+def _nominal_from_dict(data: dict) -> Arch:
+    return Arch(data["angles"], data["thicknesses"], data["radii"], data["start_angle"],
+                data["density"])
+
+
+def _default_nominal() -> Arch:
+    from .reference_arches import oppenheim
+
+    return oppenheim()
+
+
+def _positive_int(name: str, value: Any, minimum: int = 1) -> int:
+    if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < minimum:
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    return int(value)
+
+
+@dataclass(frozen=True, eq=False)
+class FragilitySettings:
+    """Settings of a fragility study [paper, Sect. 5.3.3].
+
+    Parameters
+    ----------
+    nominal : Arch
+        Nominal arch (default: Oppenheim's arch).
+    samples : int
+        Number h of irregular arches analysed dynamically (the paper: 40).
+    tolerance : float
+        epsilon of the irregular draw [eq. (1)], in [0, 1) (the paper: 0.10).
+    durations : tuple of float
+        Pulse durations t_p [s] (the paper: 0.4, 0.5, 0.6, 0.7).
+    amplitudes : tuple of float
+        Increasing grid of pulse amplitudes a [g] (the paper: steps of 0.01 g).
+    seed : int
+        Root seed (>= 0); arch i uses ``SeedSequence(seed, spawn_key=(i,))``.
+    restitution : str or float
+        Restitution model (default ``"nominal"``, the paper's practice; see the module docstring).
+    limit_samples : int
+        Number s of arches of the limit-analysis CDF of k~ (the paper: 1000).
+    limit_method : {"kinematic", "static"}
+        Limit-analysis method of that sample (both give the same k~ to round-off; the kinematic
+        enumeration is about twice as fast).
+    motion : str
+        Pulse shape (default Oppenheim's pulse).
+    """
+
+    nominal: Arch = field(default_factory=_default_nominal)
+    samples: int = 40
+    tolerance: float = 0.10
+    durations: tuple[float, ...] = DEFAULT_DURATIONS
+    amplitudes: tuple[float, ...] = DEFAULT_AMPLITUDES
+    seed: int = 0
+    restitution: str | float = "nominal"
+    limit_samples: int = 1000
+    limit_method: str = "kinematic"
+    motion: str = "oppenheim"
+
+    def __post_init__(self) -> None:
+        from .ground_motion import ANALYTIC_GROUND_MOTIONS
+        from .impact import RESTITUTION_MODELS
+
+        if not isinstance(self.nominal, Arch):
+            raise ValueError(f"nominal must be an Arch, got {type(self.nominal).__name__}")
+        _positive_int("samples", self.samples)
+        _positive_int("limit_samples", self.limit_samples)
+        _positive_int("seed", self.seed, minimum=0)
+        try:
+            eps = float(self.tolerance)
+        except (TypeError, ValueError):
+            eps = math.nan
+        if not 0.0 <= eps < 1.0:
+            raise ValueError(f"tolerance (epsilon) must be in [0, 1), got {self.tolerance!r}")
+        d = np.atleast_1d(np.asarray(self.durations, dtype=float))
+        if d.ndim != 1 or d.size == 0 or not np.all(np.isfinite(d)) or np.any(d <= 0):
+            raise ValueError(f"durations must be a non-empty list of pulse durations > 0 [s], "
+                             f"got {list(np.ravel(self.durations))!r}")
+        if np.unique(d).size != d.size:
+            raise ValueError(f"durations must be distinct, got {d.tolist()}")
+        a = np.atleast_1d(np.asarray(self.amplitudes, dtype=float))
+        if (a.ndim != 1 or a.size < 2 or not np.all(np.isfinite(a)) or np.any(a <= 0)
+                or np.any(np.diff(a) <= 0)):
+            raise ValueError("amplitudes must be an increasing list of at least two amplitudes "
+                             "> 0 [g]")
+        if isinstance(self.restitution, str):
+            if self.restitution not in RESTITUTION_MODELS:
+                raise ValueError(f"restitution must be one of {sorted(RESTITUTION_MODELS)} or a "
+                                 f"number in (0, 1], got {self.restitution!r}")
+        elif (isinstance(self.restitution, bool) or not isinstance(self.restitution, int | float)
+              or not 0.0 < float(self.restitution) <= 1.0):
+            raise ValueError(f"restitution must be one of {sorted(RESTITUTION_MODELS)} or a "
+                             f"number in (0, 1], got {self.restitution!r}")
+        if self.limit_method not in LIMIT_METHODS:
+            raise ValueError(f"limit_method must be one of {LIMIT_METHODS}, got "
+                             f"{self.limit_method!r}")
+        if self.motion not in ANALYTIC_GROUND_MOTIONS:
+            raise ValueError(f"motion must be one of {ANALYTIC_GROUND_MOTIONS}, got "
+                             f"{self.motion!r}")
+        object.__setattr__(self, "samples", int(self.samples))
+        object.__setattr__(self, "limit_samples", int(self.limit_samples))
+        object.__setattr__(self, "seed", int(self.seed))
+        object.__setattr__(self, "tolerance", eps)
+        object.__setattr__(self, "durations", tuple(float(x) for x in d))
+        object.__setattr__(self, "amplitudes", tuple(float(x) for x in a))
+        if not isinstance(self.restitution, str):
+            object.__setattr__(self, "restitution", float(self.restitution))
+
+    def to_dict(self) -> dict:
+        """JSON-ready settings (the nominal arch as its voussoirs), as stored with the results."""
+        return {
+            "nominal": _nominal_dict(self.nominal),
+            "samples": self.samples,
+            "tolerance": self.tolerance,
+            "durations": list(self.durations),
+            "amplitudes_g": list(self.amplitudes),
+            "seed": self.seed,
+            "restitution": self.restitution,
+            "limit_samples": self.limit_samples,
+            "limit_method": self.limit_method,
+            "motion": self.motion,
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict) -> FragilitySettings:
+        """Inverse of :meth:`to_dict`."""
+        return cls(nominal=_nominal_from_dict(data["nominal"]), samples=data["samples"],
+                   tolerance=data["tolerance"], durations=tuple(data["durations"]),
+                   amplitudes=tuple(data["amplitudes_g"]), seed=data["seed"],
+                   restitution=data["restitution"], limit_samples=data["limit_samples"],
+                   limit_method=data["limit_method"], motion=data["motion"])
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, FragilitySettings):
+            return NotImplemented
+        return self.to_dict() == other.to_dict()
+
+    __hash__ = None  # mutable-free but holds arrays: compare by value, do not hash
+
+
+def chunk_arches(chunk, nominal: Arch, tolerance: float) -> list[Arch]:
+    """The irregular arches of the items of ``chunk``, drawn from their own seed sequences.
+
+    Arch ``i`` is ``irregular_arch(nominal, tolerance, default_rng(SeedSequence(seed,
+    spawn_key=(i,))))``: the same as ``irregular_sample(nominal, tolerance, count, seed)[i]``.
+    """
+    return [irregular_arch(nominal, tolerance, rng) for rng in chunk.generators()]
+
+
+def arch_outcomes(arch: Arch, durations, amplitudes_g, *, restitution="nominal",
+                  nominal_mechanisms=None, motion: str = "oppenheim") -> dict[str, np.ndarray]:
+    """Outcomes of one arch over the (duration x amplitude) grid, for both pulse directions.
+
+    One compiled call (:func:`archquake.engine.outcomes_grid`) per direction. Rows are ordered
+    by direction (``"l"`` then ``"r"``), duration, amplitude.
+
+    Parameters
+    ----------
+    arch : Arch
+        The arch.
+    durations : sequence of float
+        Pulse durations t_p [s].
+    amplitudes_g : sequence of float
+        Pulse amplitudes a > 0 [g]; direction ``"l"`` applies ``-a g`` first, ``"r"`` ``+a g``.
+    restitution : str or float
+        Restitution model.
+    nominal_mechanisms : pair of FourLinkMechanism, optional
+        The nominal arch's mechanisms, for ``restitution="nominal"``.
+    motion : str
+        Pulse shape.
+
+    Returns
+    -------
+    dict of ndarray
+        Columns ``direction, duration, amplitude_g, status, half_cycle, impacts,
+        collapse_time, k_l, k_r, c_lr, c_rl`` (2 x durations x amplitudes rows).
+    """
+    from .engine import outcomes_grid
+
+    (table_l, table_r), (c_lr, c_rl), (k_l, k_r) = arch_dynamics(
+        arch, restitution, nominal_mechanisms=nominal_mechanisms)
+    d = np.asarray(durations, dtype=float)
+    a = np.asarray(amplitudes_g, dtype=float)
+    grid_d, grid_a = np.meshgrid(d, a, indexing="ij")
+    parts = []
+    for direction, sign in PULSE_SIGNS.items():
+        out = outcomes_grid(table_l, table_r, c_lr, c_rl, grid_d, sign * GRAVITY * grid_a, motion)
+        parts.append({"direction": np.full(grid_d.size, direction),
+                      "duration": grid_d.ravel(), "amplitude_g": grid_a.ravel(),
+                      **{name: out[name].ravel() for name in
+                         ("status", "half_cycle", "impacts", "collapse_time")}})
+    columns = {name: np.concatenate([p[name] for p in parts]) for name in parts[0]}
+    rows = columns["duration"].size
+    for name, value in (("k_l", k_l), ("k_r", k_r), ("c_lr", c_lr), ("c_rl", c_rl)):
+        columns[name] = np.full(rows, float(value))
+    return columns
+
+
+def fragility_task(chunk) -> dict[str, np.ndarray]:
+    """Study task (:func:`archquake.execution.run_study`): the arches of one chunk.
+
+    ``chunk.settings`` is :meth:`FragilitySettings.to_dict`; every item is one irregular arch
+    (:func:`chunk_arches`), analysed by :func:`arch_outcomes`. Returns the tidy rows with the
+    column ``arch`` (item index) first.
+    """
+    settings = FragilitySettings.from_dict(chunk.settings)
+    nominal_mechanisms = None
+    if settings.restitution == "nominal":
+        from .mechanism import mechanisms
+
+        nominal_mechanisms = mechanisms(settings.nominal)
+    parts = []
+    for item, arch in zip(chunk.items, chunk_arches(chunk, settings.nominal,
+                                                    settings.tolerance), strict=True):
+        try:
+            columns = arch_outcomes(arch, settings.durations, settings.amplitudes,
+                                    restitution=settings.restitution,
+                                    nominal_mechanisms=nominal_mechanisms,
+                                    motion=settings.motion)
+        except ValueError as exc:
+            raise ValueError(f"irregular arch {item} (seed {chunk.seed}) cannot be analysed: "
+                             f"{exc}") from exc
+        n = columns["duration"].size
+        parts.append({"arch": np.full(n, item, dtype=np.int64), **columns})
+    return {name: np.concatenate([p[name] for p in parts]) for name in parts[0]}
+
+
+def limit_task(chunk) -> dict[str, np.ndarray]:
+    """Study task: k~_l and k~_r of the irregular arches of one chunk.
+
+    ``chunk.settings`` holds ``nominal``, ``tolerance`` and ``limit_method``; the arches are those
+    of :func:`chunk_arches`, hence the values are those of
+    :func:`archquake.limit_analysis.limit_sample` with the same seed.
+    """
+    from .limit_analysis import load_multipliers
+
+    nominal = _nominal_from_dict(chunk.settings["nominal"])
+    arches = chunk_arches(chunk, nominal, chunk.settings["tolerance"])
+    k = np.array([load_multipliers(a, chunk.settings["limit_method"]) for a in arches],
+                 dtype=float).reshape(-1, 2)
+    return {"arch": chunk.items, "k_l": k[:, 0], "k_r": k[:, 1]}
+
+
+@dataclass(frozen=True, eq=False)
+class FragilityResult:
+    """Result of :func:`run_fragility`.
+
+    Attributes
+    ----------
+    settings : FragilitySettings
+    table : pandas.DataFrame
+        Tidy table, one row per analysis: ``arch, direction, duration, amplitude_g, status
+        (0 rest, 1 recovery, 2 collapse), half_cycle, impacts, collapse_time, k_l, k_r, c_lr,
+        c_rl``.
+    durations : ndarray, shape (d,)
+        Pulse durations t_p [s].
+    amplitudes : ndarray, shape (a,)
+        Amplitudes [g].
+    failures, failures_l, failures_r : ndarray of int, shape (d, a)
+        Number h_f of arches that collapse in either direction, in direction l, in direction r.
+    probability, probability_l, probability_r : ndarray, shape (d, a)
+        P_F = h_f / h [eq. (9)].
+    polynomial_fits : tuple of numpy.polynomial.Polynomial
+        Quintic least-squares fit of P_F(a) per duration (the paper's dashed curves).
+    lognormal_fits : tuple of LognormalFragility or None
+        Maximum-likelihood lognormal fragility per duration (None when no arch, or every arch,
+        fails over the whole grid).
+    limit_sample : archquake.limit_analysis.LimitSample
+        k~_l, k~_r of the s arches of the limit analysis.
+    nominal_failure_acceleration : ndarray, shape (d,)
+        Lowest amplitude at which the nominal arch collapses (either direction) [g] (point Q of
+        Fig. 16); nan if it does not collapse in the grid.
+    nominal_load_multiplier : float
+        k = min(k_l, k_r) of the nominal arch [-].
+    nominal_domains : tuple of FailureDomain
+        The nominal arch's failure domain over the study grid, directions l and r.
+    metadata : dict
+        Settings, seed, version, timings of the study (from :func:`run_study`).
+    """
+
+    settings: FragilitySettings
+    table: pd.DataFrame = field(repr=False)
+    durations: np.ndarray
+    amplitudes: np.ndarray = field(repr=False)
+    failures: np.ndarray = field(repr=False)
+    failures_l: np.ndarray = field(repr=False)
+    failures_r: np.ndarray = field(repr=False)
+    probability: np.ndarray = field(repr=False)
+    probability_l: np.ndarray = field(repr=False)
+    probability_r: np.ndarray = field(repr=False)
+    polynomial_fits: tuple = field(repr=False)
+    lognormal_fits: tuple
+    limit_sample: Any = field(repr=False)
+    nominal_failure_acceleration: np.ndarray
+    nominal_load_multiplier: float
+    nominal_domains: tuple[FailureDomain, FailureDomain] = field(repr=False)
+    metadata: dict = field(repr=False, default_factory=dict)
+
+    @property
+    def limit_load_multipliers(self) -> np.ndarray:
+        """k~ = min(k~_l, k~_r) of the s arches of the limit analysis [-]."""
+        return self.limit_sample.load_multiplier
+
+    def duration_index(self, duration: float) -> int:
+        """Index of pulse duration ``duration`` [s] (to 1e-9 s)."""
+        hits = np.flatnonzero(np.abs(self.durations - duration) <= 1e-9)
+        if hits.size == 0:
+            raise ValueError(f"duration {duration!r} s is not one of the study's durations "
+                             f"{self.durations.tolist()}")
+        return int(hits[0])
+
+    def probability_below_nominal(self) -> np.ndarray:
+        """P_F at the largest grid amplitude below the nominal failure acceleration, per
+        duration (nan if there is none): where eq. (10) says P_F = 0."""
+        out = np.full(self.durations.size, np.nan)
+        for i, q in enumerate(self.nominal_failure_acceleration):
+            below = np.flatnonzero(self.amplitudes < q) if math.isfinite(q) else np.array([])
+            if below.size:
+                out[i] = self.probability[i, below[-1]]
+        return out
+
+    def lowest_failure_acceleration(self) -> np.ndarray:
+        """Lowest grid amplitude at which some irregular arch fails, per duration [g]."""
+        out = np.full(self.durations.size, np.nan)
+        for i in range(self.durations.size):
+            hit = np.flatnonzero(self.failures[i] > 0)
+            if hit.size:
+                out[i] = self.amplitudes[hit[0]]
+        return out
+
+    def curves(self) -> pd.DataFrame:
+        """Fragility curves as a table: one row per (duration, amplitude) with h_f, P_F (both
+        directions and each), the quintic and lognormal fits and the nominal step (eq. 10)."""
+        d, a = np.meshgrid(self.durations, self.amplitudes, indexing="ij")
+        poly = np.vstack([evaluate_polynomial_fit(p, self.amplitudes)
+                          for p in self.polynomial_fits])
+        logn = np.vstack([f(self.amplitudes) if f is not None
+                          else np.full(self.amplitudes.size, np.nan)
+                          for f in self.lognormal_fits])
+        step = (a >= self.nominal_failure_acceleration[:, None]).astype(float)
+        return pd.DataFrame({
+            "duration": d.ravel(), "amplitude_g": a.ravel(),
+            "failures": self.failures.ravel(), "failures_l": self.failures_l.ravel(),
+            "failures_r": self.failures_r.ravel(),
+            "probability": self.probability.ravel(),
+            "probability_l": self.probability_l.ravel(),
+            "probability_r": self.probability_r.ravel(),
+            "polynomial_fit": poly.ravel(), "lognormal_fit": logn.ravel(),
+            "nominal_step": step.ravel(),
+        })
+
+    def summary(self) -> dict:
+        """JSON-ready summary: per duration the nominal failure acceleration, P_F below it,
+        the fits; the k~ statistics of the limit sample."""
+        k = self.limit_load_multipliers
+        below = self.probability_below_nominal()
+        lowest = self.lowest_failure_acceleration()
+        per_duration = []
+        for i, tp in enumerate(self.durations):
+            lognormal = self.lognormal_fits[i]
+            q = float(self.nominal_failure_acceleration[i])
+            per_duration.append({
+                "duration": float(tp),
+                "nominal_failure_acceleration": _json_number(q),
+                "probability_below_nominal": _json_number(below[i]),
+                "lowest_failure_acceleration": _json_number(lowest[i]),
+                "polynomial_coefficients": self.polynomial_fits[i].convert().coef.tolist(),
+                "lognormal_median": None if lognormal is None else lognormal.median,
+                "lognormal_dispersion": None if lognormal is None else lognormal.dispersion,
+                "lognormal_at_nominal": (None if lognormal is None or not math.isfinite(q)
+                                         else float(lognormal(q))),
+            })
+        return {
+            "settings": self.settings.to_dict(),
+            "seed": self.settings.seed,
+            "nominal_load_multiplier": self.nominal_load_multiplier,
+            "nominal_restitution": list(self.nominal_domains[0].restitution),
+            "limit_sample": {
+                "count": int(k.size), "method": self.settings.limit_method,
+                "mean": float(np.mean(k)), "std": float(np.std(k, ddof=1)) if k.size > 1 else 0.0,
+                "min": float(np.min(k)), "max": float(np.max(k)),
+                "fraction_below_nominal": float(np.mean(k < self.nominal_load_multiplier)),
+            },
+            "durations": per_duration,
+        }
+
+
+def _json_number(x: float):
+    return None if not math.isfinite(x) else float(x)
+
+
+def _study_arrays(table: pd.DataFrame, settings: FragilitySettings):
+    """``status[arch, direction, duration, amplitude]`` from the tidy table (order checked)."""
+    h, nd, na = settings.samples, len(settings.durations), len(settings.amplitudes)
+    expected = h * 2 * nd * na
+    if len(table) != expected:
+        raise ValueError(f"the study table has {len(table)} rows, expected {expected}")
+    shape = (h, 2, nd, na)
+    arch = table["arch"].to_numpy().reshape(shape)
+    direction = table["direction"].to_numpy().astype(str).reshape(shape)
+    duration = table["duration"].to_numpy().reshape(shape)
+    amplitude = table["amplitude_g"].to_numpy().reshape(shape)
+    if (np.any(arch != np.arange(h)[:, None, None, None])
+            or np.any(direction != np.array(list(PULSE_SIGNS))[None, :, None, None])
+            or np.any(duration != np.asarray(settings.durations)[None, None, :, None])
+            or np.any(amplitude != np.asarray(settings.amplitudes)[None, None, None, :])):
+        raise ValueError("the study table is not ordered by arch, direction, duration, "
+                         "amplitude as the fragility task writes it")
+    return table["status"].to_numpy().reshape(shape)
+
+
+def fragility_curves(settings: FragilitySettings, table: pd.DataFrame, limit_sample,
+                     nominal_domains, metadata: dict | None = None) -> FragilityResult:
+    """Assemble a :class:`FragilityResult` from the study table, the limit sample and the
+    nominal arch's failure domains (both directions)."""
+    from .engine import STATUS_COLLAPSE
+
+    collapsed = _study_arrays(table, settings) == STATUS_COLLAPSE
+    failed_l, failed_r = collapsed[:, 0], collapsed[:, 1]
+    failed = failed_l | failed_r
+    a = np.asarray(settings.amplitudes)
+    h = settings.samples
+    polynomial_fits, lognormal_fits = [], []
+    probability = probability_of_failure(failed)
+    for i in range(len(settings.durations)):
+        degree = min(POLYNOMIAL_DEGREE, a.size - 1)
+        polynomial_fits.append(fit_polynomial(a, probability[i], degree))
+        z = failed[:, i].sum(axis=0)
+        lognormal_fits.append(fit_lognormal(a, h, z) if 0 < z.sum() < h * a.size else None)
+    q = np.fmin(nominal_domains[0].failure_accelerations, nominal_domains[1].failure_accelerations)
+    k_nominal = min(nominal_domains[0].load_multipliers)
+    return FragilityResult(
+        settings=settings, table=table, durations=np.asarray(settings.durations), amplitudes=a,
+        failures=failed.sum(axis=0), failures_l=failed_l.sum(axis=0),
+        failures_r=failed_r.sum(axis=0), probability=probability,
+        probability_l=probability_of_failure(failed_l),
+        probability_r=probability_of_failure(failed_r),
+        polynomial_fits=tuple(polynomial_fits), lognormal_fits=tuple(lognormal_fits),
+        limit_sample=limit_sample, nominal_failure_acceleration=q,
+        nominal_load_multiplier=float(k_nominal), nominal_domains=tuple(nominal_domains),
+        metadata=dict(metadata or {}))
+
+
+LIMIT_DIRECTORY = "limit_sample"
+"""Subdirectory of a fragility study directory holding the limit-analysis sample (its own study)."""
+CURVES_CSV = "curves.csv"
+"""File of the fragility curves (:meth:`FragilityResult.curves`) in a study directory."""
+
+
+def run_fragility(
+    settings: FragilitySettings,
+    out_dir: str | os.PathLike | None = None,
+    *,
+    backend: str | None = None,
+    workers: int | None = None,
+    scheduler: Any = None,
+    resume: bool = False,
+    progress: bool = True,
+    chunk_size: int = 2,
+    limit_chunk_size: int = 50,
+    nominal_tolerance: float = 1e-4,
+) -> FragilityResult:
+    """Fragility study of irregular arches [paper, Sect. 5.3.3, eq. (9), Figs. 17-21].
+
+    Parameters
+    ----------
+    settings : FragilitySettings
+        What to compute.
+    out_dir : str or os.PathLike, optional
+        Study directory (must be new or empty unless ``resume``). Written there: ``study.json``
+        and ``chunks/`` (checkpoints), ``results.parquet`` and ``results.csv`` (the tidy table),
+        ``curves.csv`` (:meth:`FragilityResult.curves`), ``summary.json`` (metadata: settings,
+        seed, ``archquake_version``, timings; and :meth:`FragilityResult.summary`), and the
+        limit-analysis sample as its own study in ``limit_sample/``.
+    backend : {"serial", "processes", "dask"}, optional
+        How to run the chunks (:func:`archquake.execution.run_study`); default ``"dask"`` with a
+        scheduler, else ``"processes"``. Both studies share one process pool / Dask cluster.
+    workers : int, optional
+        Local processes (default: the number of CPUs).
+    scheduler : str or distributed.Client, optional
+        Dask scheduler address ``tcp://HOST:PORT`` or a client.
+    resume : bool
+        Continue the study saved in ``out_dir`` (same settings required).
+    progress : bool
+        Progress bars on stderr.
+    chunk_size, limit_chunk_size : int
+        Arches per chunk of the dynamic study and of the limit sample (recorded; a resumed study
+        must use the same).
+    nominal_tolerance : float
+        Bisection tolerance of the nominal failure acceleration [g].
+
+    Returns
+    -------
+    FragilityResult
+    """
+    from .execution import StudyPlan, process_pool, run_study
+    from .limit_analysis import LimitSample
+    from .results_io import atomic_path, save_study
+
+    if not isinstance(settings, FragilitySettings):
+        raise ValueError(f"settings must be FragilitySettings, got {type(settings).__name__}")
+    plan = StudyPlan(settings.to_dict(), settings.seed, settings.samples,
+                     _positive_int("chunk_size", chunk_size))
+    limit_settings = {"nominal": _nominal_dict(settings.nominal),
+                      "tolerance": settings.tolerance, "limit_method": settings.limit_method}
+    limit_plan = StudyPlan(limit_settings, settings.seed, settings.limit_samples,
+                           _positive_int("limit_chunk_size", limit_chunk_size))
+    if backend is None:
+        backend = "dask" if scheduler is not None else "processes"
+    out = None if out_dir is None else Path(out_dir)
+    limit_dir = None if out is None else out / LIMIT_DIRECTORY
+    options = {"backend": backend, "resume": resume, "progress": progress}
+
+    def both(**run):
+        table = run_study(fragility_task, plan, out, **options, **run)
+        limit_table = run_study(limit_task, limit_plan, limit_dir, **options, **run)
+        return table, limit_table
+
+    if backend == "processes":
+        if workers is not None:
+            _positive_int("workers", workers)
+        if scheduler is not None:
+            raise ValueError(f"scheduler is only used by backend 'dask', not {backend!r}")
+        with process_pool(workers) as pool:
+            table, limit_table = both(pool=pool)
+    else:
+        table, limit_table = both(workers=workers, scheduler=scheduler)
+
+    limit = LimitSample(limit_table["k_l"].to_numpy(), limit_table["k_r"].to_numpy(),
+                        settings.tolerance, settings.seed, settings.limit_method)
+    domains = tuple(failure_domain(settings.nominal, settings.durations, settings.amplitudes,
+                                   restitution=settings.restitution, direction=direction,
+                                   tolerance=nominal_tolerance, nominal=settings.nominal,
+                                   motion=settings.motion)
+                    for direction in PULSE_SIGNS)
+    metadata = dict(table.attrs.get("study", {}))
+    result = fragility_curves(settings, table, limit, domains, metadata)
+    if out is not None:
+        with atomic_path(out / CURVES_CSV) as tmp:
+            result.curves().to_csv(tmp, index=False)
+        save_study(out, table, metadata=metadata, summary=result.summary())
+    return result

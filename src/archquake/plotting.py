@@ -287,3 +287,195 @@ def plot_pulse_response(histories, ax=None, *, labels=None, phi_limit: float | N
     if phi_limit is not None:
         ax.set_ylim(-phi_limit, phi_limit)
     return ax_ground, ax
+
+
+# ------------------------------------------------------------------ failure domain, fragility
+DOMAIN_COLOURS = {
+    "rest": "#eeeeee",
+    "recovery": "#d5ecd4",
+    "collapse_impacts": "#fbd9a6",
+    "collapse_first": "#f3a6a6",
+}
+DOMAIN_LABELS = {
+    "rest": "no motion (a < k)",
+    "recovery": "(1) recovery",
+    "collapse_impacts": "(2) collapse after impacts",
+    "collapse_first": "(3) collapse in the first half cycle",
+}
+
+
+def _region(status: str, half_cycle: int) -> str:
+    if status == "collapse":
+        return "collapse_first" if half_cycle == 1 else "collapse_impacts"
+    return status
+
+
+def _cell_edges(values: np.ndarray) -> np.ndarray:
+    """Edges of cells centred on sorted ``values`` (half-way between neighbours)."""
+    if values.size == 1:
+        return np.array([values[0] * 0.95, values[0] * 1.05])
+    mid = 0.5 * (values[1:] + values[:-1])
+    return np.concatenate([[values[0] - (mid[0] - values[0])], mid,
+                           [values[-1] + (values[-1] - mid[-1])]])
+
+
+def plot_failure_domain(domain, ax=None):
+    """Failure domain over (pulse duration, amplitude) [paper, Fig. 16].
+
+    The regions are shaded (no motion, recovery, collapse after impacts, collapse in the first
+    half cycle); the boundary of collapse in the first half cycle (Oppenheim's curve) is drawn
+    with asterisks, the failure curve (lowest collapsing amplitude) with dots, and the
+    limit-analysis multiplier k as a horizontal dashed line.
+
+    Parameters
+    ----------
+    domain : archquake.failure_domain.FailureDomain
+        The domain (:func:`archquake.failure_domain.failure_domain`).
+    ax : matplotlib Axes, optional
+    """
+    from matplotlib.collections import PolyCollection
+    from matplotlib.patches import Patch
+
+    ax = _axes(ax)
+    order = np.argsort(domain.durations)
+    durations = domain.durations[order]
+    slices = [domain.slices[i] for i in order]
+    edges = _cell_edges(durations)
+    polygons = {key: [] for key in DOMAIN_COLOURS}
+    for x0, x1, s in zip(edges[:-1], edges[1:], slices, strict=True):
+        for iv in s.intervals:
+            polygons[_region(iv.status, iv.half_cycle)].append(
+                [(x0, iv.start), (x1, iv.start), (x1, iv.end), (x0, iv.end)])
+    handles = []
+    for key, polys in polygons.items():
+        if polys:
+            ax.add_collection(PolyCollection(polys, facecolors=DOMAIN_COLOURS[key],
+                                             edgecolors="none", zorder=0))
+            handles.append(Patch(facecolor=DOMAIN_COLOURS[key], label=DOMAIN_LABELS[key]))
+    first = domain.first_half_cycle_accelerations[order]
+    failure = domain.failure_accelerations[order]
+    (curve_first,) = ax.plot(durations, first, "-*", color="black", markersize=7,
+                             linewidth=1.2, label="collapse in the first half cycle "
+                                                  "(Oppenheim's curve)")
+    (curve_failure,) = ax.plot(durations, failure, "-o", color="black", markersize=3.5,
+                               linewidth=1.2, label="failure curve (lowest collapsing amplitude)")
+    k = domain.limit_multiplier
+    line_k = ax.axhline(k, color="black", linestyle="--", linewidth=1.2,
+                        label=f"limit analysis, k = {k:.3f}")
+    low = min(s.intervals[0].start for s in slices)
+    high = max(s.intervals[-1].end for s in slices)
+    ax.set_xlim(edges[0], edges[-1])
+    ax.set_ylim(low, high)
+    ax.set_xlabel("pulse duration t$_p$ [s]")
+    ax.set_ylabel("pulse amplitude |$\\ddot{x}_g$| [g]")
+    name = _MECHANISM_NAMES[domain.direction]
+    sign = "-" if domain.direction == "l" else "+"
+    c_lr, c_rl = domain.restitution
+    c_text = f"{c_lr:.3f}" if abs(c_lr - c_rl) < 5e-4 else f"{c_lr:.3f} / {c_rl:.3f}"
+    ax.set_title(f"Failure domain: first pulse {sign}a g ({name}), c$_v$ = {c_text}")
+    ax.legend(handles=[curve_first, curve_failure, line_k] + handles, loc="upper right",
+              fontsize=8, framealpha=0.9)
+    return ax
+
+
+def plot_fragility_curve(result, duration: float, ax=None):
+    """Fragility curve at one pulse duration [paper, Figs. 17-20].
+
+    Black dots: P_F = h_f/h of the irregular arches [eq. (9)]; black dashed: the quintic fit;
+    grey: the lognormal (maximum-likelihood) fit; blue: the empirical CDF of the limit-analysis
+    multiplier k~ = min(k~_l, k~_r) of s arches; vertical lines: the nominal arch's failure
+    acceleration (black dash-dot, the step of eq. (10)) and its k (blue).
+
+    Parameters
+    ----------
+    result : archquake.fragility.FragilityResult
+    duration : float
+        Pulse duration t_p [s], one of the study's.
+    ax : matplotlib Axes, optional
+    """
+    from .fragility import evaluate_polynomial_fit
+
+    if ax is None:
+        _, ax = plt.subplots(figsize=(7.5, 6.2), constrained_layout=True)
+    i = result.duration_index(duration)
+    a = result.amplitudes
+    settings = result.settings
+    k_values = result.limit_load_multipliers
+    x_low = min(float(a[0]), float(np.min(k_values)))
+    fine = np.linspace(a[0], a[-1], 400)
+    k_sorted, k_prob = empirical_cdf(k_values)
+    ax.step(np.concatenate([[x_low], k_sorted]), np.concatenate([[0.0], k_prob]), where="post",
+            color="tab:blue", linewidth=1.3,
+            label=f"limit analysis: CDF of k~ (s = {k_values.size})")
+    ax.axvline(result.nominal_load_multiplier, color="tab:blue", linewidth=1.2,
+               label=f"nominal arch, limit analysis k = {result.nominal_load_multiplier:.3f}")
+    ax.plot(fine, evaluate_polynomial_fit(result.polynomial_fits[i], fine), "--", color="black",
+            linewidth=1.3, label="fifth-degree polynomial fit")
+    lognormal = result.lognormal_fits[i]
+    if lognormal is not None:
+        ax.plot(fine, lognormal(fine), "-", color="0.55", linewidth=1.3,
+                label=f"lognormal fit (median {lognormal.median:.3f} g, "
+                      f"beta {lognormal.dispersion:.3f})")
+    ax.plot(a, result.probability[i], "o", color="black", markersize=3.5,
+            label=f"P$_F$ = h$_f$/h, h = {settings.samples}")
+    q = float(result.nominal_failure_acceleration[i])
+    if np.isfinite(q):
+        ax.axvline(q, color="black", linestyle="-.", linewidth=1.2,
+                   label=f"nominal arch, failure acceleration {q:.3f} g")
+    ax.set_xlim(x_low - 0.02, float(a[-1]) + 0.02)
+    ax.set_ylim(-0.02, 1.04)
+    ax.set_xlabel("pulse amplitude |$\\ddot{x}_g$| [g]; load multiplier k~ [-]")
+    ax.set_ylabel("probability of failure P$_F$; cumulative probability [-]")
+    ax.set_title(f"Fragility curve, t$_p$ = {result.durations[i]:.2f} s, "
+                 f"$\\varepsilon$ = {settings.tolerance:g}")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, fontsize=7.5,
+              frameon=False)
+    return ax
+
+
+def plot_fragility_surface(result, ax=None):
+    """Fragility surface P_F(t_p, a) of the irregular arches [paper, Fig. 21].
+
+    The fragility curves are joined by plane facets over (amplitude, duration); the nominal
+    arch's step surface (eq. (10): P_F = 0 below its failure acceleration, 1 from it on) is drawn
+    as a translucent grey wall with its top edge.
+
+    Parameters
+    ----------
+    result : archquake.fragility.FragilityResult
+    ax : matplotlib 3-D Axes, optional
+        Created with ``projection="3d"`` when None.
+    """
+    if ax is None:
+        fig = plt.figure(figsize=(8.0, 6.0))
+        ax = fig.add_subplot(projection="3d")
+    a, d = np.meshgrid(result.amplitudes, result.durations)
+    ax.plot_surface(a, d, result.probability, cmap="viridis", vmin=0.0, vmax=1.0,
+                    edgecolor="none", linewidth=0, alpha=0.85, rstride=1, cstride=1)
+    for i, tp in enumerate(result.durations):
+        ax.plot(result.amplitudes, np.full(result.amplitudes.size, tp), result.probability[i],
+                color="black", linewidth=0.8)
+    q = result.nominal_failure_acceleration
+    ok = np.isfinite(q)
+    if np.count_nonzero(ok) >= 1:
+        qd, dd = q[ok], result.durations[ok]
+        wall_a = np.vstack([qd, qd])
+        wall_d = np.vstack([dd, dd])
+        wall_p = np.vstack([np.zeros(qd.size), np.ones(qd.size)])
+        if qd.size >= 2:
+            ax.plot_surface(wall_a, wall_d, wall_p, color="0.5", alpha=0.35, linewidth=0)
+        ax.plot(qd, dd, np.ones(qd.size), color="red", linewidth=1.8,
+                label="nominal arch (eq. 10): P$_F$ steps 0 -> 1 at its failure acceleration")
+        ax.plot(qd, dd, np.zeros(qd.size), color="red", linewidth=1.0, linestyle="--")
+        for x, y in zip(qd, dd, strict=True):
+            ax.plot([x, x], [y, y], [0.0, 1.0], color="red", linewidth=0.8)
+        ax.legend(loc="upper left", fontsize=8)
+    ax.set_xlabel("amplitude |$\\ddot{x}_g$| [g]")
+    ax.set_ylabel("pulse duration t$_p$ [s]")
+    ax.set_zlabel("P$_F$ [-]")
+    ax.set_zlim(0.0, 1.0)
+    ax.set_title(f"Fragility surface, $\\varepsilon$ = {result.settings.tolerance:g}, "
+                 f"h = {result.settings.samples}")
+    ax.view_init(elev=25, azim=-125)
+    return ax

@@ -173,7 +173,7 @@ def simulate(mechanisms, ground_motion: GroundMotion | None = None, restitution=
         Horizontal ground acceleration; ``None`` for a still ground.
     restitution : tuple of float
         ``(c_lr, c_rl)``: coefficients of restitution of the impacts Mech-l -> Mech-r and
-        Mech-r -> Mech-l [-], each in (0, 1].
+        Mech-r -> Mech-l [-], each > 0 with c_lr * c_rl <= 1.
     t_end : float, optional
         End of the record [s]; default: the instant the outcome is decided (at the latest, the
         end of the excitation) plus ``DEFAULT_EXTRA_TIME``; a collapse ends the record at the
