@@ -111,11 +111,14 @@ def test_free_vibrations_and_fragility_numbers(report):
                                                                                       abs=1e-6)
     frag = results["fragility"]
     assert frag["arches"] == 6 and len(frag["curves"]) == 4
-    for curve in frag["curves"]:
-        p = np.array(curve["probability"])
-        assert p.shape == (len(frag["amplitudes"]),)
-        assert p[0] == 0.0 and p[-1] == 1.0  # 0.05 g moves no arch; 1 g breaks all at 0.4-0.7 s
-        assert np.array_equal(p * 6, np.array(curve["failures"]))
+    probability, failures = np.array(frag["probability"]), np.array(frag["failures"])
+    assert probability.shape == (4, len(frag["amplitudes"]))
+    assert np.all(probability[:, 0] == 0.0)  # 0.2 g moves no arch (k~ > 0.25)
+    assert np.all(probability[:, -1] == 1.0)  # 0.8 g breaks every arch at t_p = 0.4-0.7 s
+    assert np.array_equal(probability * 6, failures)  # eq. (9): P_F = h_f / h
+    for curve, duration in zip(frag["curves"], (0.4, 0.5, 0.6, 0.7), strict=True):
+        assert curve["duration"] == duration
+        assert 0.37 < curve["nominal_failure_acceleration"] < 0.6
     assert results["limit_sample"]["count"] == 100
 
 
@@ -135,6 +138,8 @@ def test_settings_reject_bad_values():
         ReproductionSettings(fragility_arches=1)
     with pytest.raises(ValueError, match="tolerance"):
         ReproductionSettings(tolerance=1.0)
+    with pytest.raises(ValueError, match="amplitude"):
+        ReproductionSettings(amplitude_min=0.5, amplitude_max=0.52)
 
 
 def test_cli_reports_bad_restitution(tmp_path, capsys):

@@ -22,7 +22,6 @@ import math
 import platform
 import sys
 import time
-from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
@@ -64,10 +63,11 @@ class ReproductionSettings:
         h, irregular arches of the fragility study (paper: 40).
     limit_samples : int
         s, irregular arches of the limit-analysis CDF of k~ (paper: 1000).
+    amplitude_min, amplitude_max : float
+        Smallest and largest pulse amplitude of the fragility study [g] (the paper does not
+        say; 0.2-0.8 g spans the rise of every curve at epsilon = 0.10 and t_p = 0.4-0.7 s).
     amplitude_step : float
         Step of the pulse amplitude in the fragility study [g] (paper: 0.01).
-    amplitude_max : float
-        Largest pulse amplitude of the fragility study [g] (the paper does not say).
     fragility_durations : tuple of float
         Pulse durations t_p of Figs. 17-20 [s] (paper: 0.4, 0.5, 0.6, 0.7).
     domain_durations : tuple of float
@@ -90,8 +90,9 @@ class ReproductionSettings:
     seed: int = 2024
     fragility_arches: int = 40
     limit_samples: int = 1000
+    amplitude_min: float = 0.20
+    amplitude_max: float = 0.80
     amplitude_step: float = 0.01
-    amplitude_max: float = 1.0
     fragility_durations: tuple[float, ...] = (0.4, 0.5, 0.6, 0.7)
     domain_durations: tuple[float, ...] = field(default_factory=lambda: _durations(0.1, 1.0, 0.05))
     domain_amplitude_step: float = 0.05
@@ -110,14 +111,14 @@ class ReproductionSettings:
                 raise ValueError(f"{name} must be an integer >= 2, got {value!r}")
         if isinstance(self.seed, bool) or not float(self.seed).is_integer() or self.seed < 0:
             raise ValueError(f"seed must be an integer >= 0, got {self.seed!r}")
-        for name in ("amplitude_step", "amplitude_max", "domain_amplitude_step",
+        for name in ("amplitude_min", "amplitude_step", "amplitude_max", "domain_amplitude_step",
                      "domain_amplitude_max", "domain_tolerance", "free_vibration_time"):
             value = getattr(self, name)
             if not (math.isfinite(value) and value > 0):
                 raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
-        if self.amplitude_max < 6 * self.amplitude_step:
-            raise ValueError("amplitude_max must span at least 6 amplitude steps [g] (the "
-                             "fifth-degree fit needs them)")
+        if self.amplitude_max - self.amplitude_min < 6 * self.amplitude_step:
+            raise ValueError("amplitude_min to amplitude_max must span at least 6 amplitude "
+                             "steps [g] (the fifth-degree fit needs them)")
         if not (0.0 < self.restitution <= 1.0):
             raise ValueError(f"restitution must be in (0, 1], got {self.restitution!r}")
         for name in ("fragility_durations", "domain_durations"):
@@ -304,137 +305,45 @@ def _part_pulses(settings: ReproductionSettings, state: _Arches, paper: dict,
     return histories, summary
 
 
-def _outcome_key(result: dict) -> tuple[str, int]:
-    from .engine import STATUS_NAMES
+def _domain_grid(settings: ReproductionSettings) -> np.ndarray:
+    """Amplitudes [g] scanned by the failure domain: from below k (no motion) to the top."""
+    from .failure_domain import inclusive_range
 
-    return STATUS_NAMES[int(result["status"])], int(result["half_cycle"])
-
-
-def _classifier(tables, pair, duration: float) -> Callable[[float], tuple[str, int]]:
-    """``classify(amplitude [g])`` of an arch under Oppenheim's pulse of ``-amplitude``."""
-    from .engine import outcomes_grid
-
-    def classify(amplitude: float) -> tuple[str, int]:
-        res = outcomes_grid(*tables, *pair, duration, -amplitude * GRAVITY)
-        return _outcome_key({k: v.item() for k, v in res.items()})
-
-    return classify
-
-
-def _nominal_failure_acceleration(tables, pair, duration: float, settings) -> float:
-    """Lowest amplitude [g] of Oppenheim's pulse that collapses the nominal arch (point Q)."""
-    from .failure_domain import domain_slice
-
-    grid = np.arange(0.3, settings.domain_amplitude_max + 1e-9, settings.domain_amplitude_step)
-    part = domain_slice(_classifier(tables, pair, duration), grid, duration=duration,
-                        tolerance=1e-4)
-    return part.failure_acceleration
+    return inclusive_range(0.30, settings.domain_amplitude_max, settings.domain_amplitude_step)
 
 
 def _part_failure_domain(settings: ReproductionSettings, state: _Arches, cases: dict) -> dict:
-    """Failure domain of the nominal arch over (t_p, xg''/g) [paper, Fig. 16]."""
-    from . import engine, failure_domain
+    """Failure domain of the nominal arch over (t_p, xg''/g) [paper, Fig. 16] and point Q."""
+    from .failure_domain import failure_domain
 
-    tables = tuple(engine.tabulate(m) for m in state.mechanisms["NA"])
+    nominal = state.arches["NA"]
     pair = cases["paper"]
-    k = min(m.activation for m in state.mechanisms["NA"])
-    grid = np.arange(0.3, settings.domain_amplitude_max + 1e-9, settings.domain_amplitude_step)
-    if hasattr(failure_domain, "failure_domain"):
-        domain = failure_domain.failure_domain(
-            state.mechanisms["NA"], settings.domain_durations, grid, restitution=pair,
-            tolerance=settings.domain_tolerance)
-        slices = list(domain.slices)
-    else:
-        slices = [failure_domain.domain_slice(_classifier(tables, pair, tp), grid, duration=tp,
-                                              tolerance=settings.domain_tolerance)
-                  for tp in settings.domain_durations]
-        domain = None
-    q = {case: _nominal_failure_acceleration(tables, p, 0.4, settings)
-         for case, p in cases.items()}
-    return {"domain": domain, "slices": slices, "activation": k, "restitution": list(pair),
+    grid = _domain_grid(settings)
+    domain = failure_domain(nominal, settings.domain_durations, grid, restitution=pair[0],
+                            tolerance=settings.domain_tolerance)
+    q = {}
+    for case, p in cases.items():  # point Q, to 1e-4 g, with both coefficients of restitution
+        part = failure_domain(nominal, (0.4,), grid, restitution=p[0], tolerance=1e-4)
+        q[case] = part.slices[0].failure_acceleration
+    return {"domain": domain, "activation": domain.limit_multiplier, "restitution": list(pair),
             "q_tp040": q}
 
 
-def _part_limit_sample(settings: ReproductionSettings) -> dict:
-    from .limit_analysis import limit_sample
+def _part_fragility(settings: ReproductionSettings, cases: dict, progress: bool) -> dict:
+    """Fragility curves, surface and the k~ sample [paper, eq. (9), Figs. 17-21]."""
+    from .failure_domain import inclusive_range
+    from .fragility import FragilitySettings, run_fragility
 
-    sample = limit_sample(oppenheim(), settings.tolerance, settings.limit_samples, settings.seed)
-    k = sample.load_multiplier
-    return {"sample": sample, "k": k, "mean": float(np.mean(k)), "std": float(np.std(k, ddof=1)),
-            "min": float(np.min(k)), "max": float(np.max(k)),
-            "fraction_below_nominal": float(np.mean(k < 0.37))}
-
-
-def _transition(probability: np.ndarray, margin: int = 3) -> tuple[int, int]:
-    """Index range of the rise of a fragility curve (with ``margin`` points either side).
-
-    The paper fits its fifth-degree polynomial to the points of the rise; a polynomial through
-    long runs of 0 and 1 either side oscillates.
-    """
-    p = np.asarray(probability)
-    positive = np.flatnonzero(p > 0.0)
-    if positive.size == 0:
-        return 0, p.size
-    full = np.flatnonzero(p[positive[0]:] >= 1.0)
-    last = positive[0] + int(full[0]) if full.size else p.size - 1
-    lo = max(int(positive[0]) - margin, 0)
-    hi = min(last + 1 + margin, p.size)
-    while hi - lo < 7 and (lo > 0 or hi < p.size):
-        lo, hi = max(lo - 1, 0), min(hi + 1, p.size)
-    return lo, hi
-
-
-def _part_fragility(settings: ReproductionSettings, state: _Arches, cases: dict) -> dict:
-    """Fragility curves and surface of the irregular arches [paper, eq. (9), Figs. 17-21]."""
-    from . import engine, fragility
-    from .mechanism import mechanisms
-
-    amplitudes = np.round(np.arange(settings.amplitude_step, settings.amplitude_max + 1e-9,
-                                    settings.amplitude_step), 10)
-    durations = np.array(settings.fragility_durations)
-    pair = cases["paper"]
-    arches = irregular_sample(oppenheim(), settings.tolerance, settings.fragility_arches,
-                              settings.seed)
-    failed = np.zeros((len(arches), durations.size, amplitudes.size), dtype=bool)
-    tp, a = np.meshgrid(durations, amplitudes, indexing="ij")
-    for i, arch in enumerate(arches):
-        tables = tuple(engine.tabulate(m) for m in mechanisms(arch))
-        for sign in (-1.0, 1.0):  # both directions of the pulse [paper, Sect. 5.3.3]
-            res = engine.outcomes_grid(*tables, *pair, tp, sign * a * GRAVITY)
-            failed[i] |= res["status"] == 2
-    nominal_tables = tuple(engine.tabulate(m) for m in state.mechanisms["NA"])
-    curves = []
-    for j, duration in enumerate(durations):
-        p_f = fragility.probability_of_failure(failed[:, j, :])
-        h_f = failed[:, j, :].sum(axis=0)
-        entry = {"duration": float(duration), "amplitudes": amplitudes, "failures": h_f,
-                 "probability": p_f,
-                 "nominal_failure_acceleration": _nominal_failure_acceleration(
-                     nominal_tables, pair, float(duration), settings)}
-        lo, hi = _transition(p_f)
-        try:
-            poly = fragility.fit_polynomial(amplitudes[lo:hi], p_f[lo:hi], 5)
-            entry["polynomial"] = poly
-            entry["polynomial_coefficients"] = poly.convert().coef
-            entry["polynomial_range"] = [float(amplitudes[lo]), float(amplitudes[hi - 1])]
-        except ValueError:
-            entry["polynomial"] = None
-        try:
-            fit = fragility.fit_lognormal(amplitudes, len(arches), h_f)
-            entry["lognormal"] = {"median": fit.median, "dispersion": fit.dispersion}
-            entry["lognormal_fit"] = fit
-        except ValueError:
-            entry["lognormal"] = None
-        first = np.where(failed[:, j, :].any(axis=1),
-                         amplitudes[np.argmax(failed[:, j, :], axis=1)], np.nan)
-        entry["first_failure_acceleration"] = first
-        q = entry["nominal_failure_acceleration"]
-        below = amplitudes < q - 1e-9
-        entry["probability_below_nominal"] = float(p_f[below].max()) if below.any() else 0.0
-        curves.append(entry)
-    return {"amplitudes": amplitudes, "durations": durations, "failed": failed,
-            "curves": curves, "restitution": list(pair), "arches": len(arches),
-            "tolerance": settings.tolerance}
+    study = FragilitySettings(
+        samples=settings.fragility_arches, tolerance=settings.tolerance,
+        durations=settings.fragility_durations,
+        amplitudes=tuple(inclusive_range(settings.amplitude_min, settings.amplitude_max,
+                                         settings.amplitude_step).tolist()),
+        seed=settings.seed, restitution=cases["paper"][0],
+        limit_samples=settings.limit_samples, limit_method="static")
+    backend = "serial"  # on a few cores, faster than starting worker processes
+    result = run_fragility(study, backend=backend, progress=progress)
+    return {"result": result, "summary": result.summary(), "backend": backend}
 
 
 # ------------------------------------------------------------------------------ figures
@@ -594,126 +503,62 @@ def _fig_pulse(out: Path, histories: dict, summary: dict, case: str, pair) -> di
                         "Nominal arch - " + "; ".join(parts) + f". Overall: {_agree(ok)}.")}
 
 
-def _fig_failure_domain(out: Path, domain: dict, fragility_part: dict | None) -> dict:
+def _fig_failure_domain(out: Path, domain: dict) -> dict:
     import matplotlib.pyplot as plt
 
-    from . import plotting
+    from .plotting import plot_failure_domain
 
-    fig, ax = plt.subplots(figsize=(8.0, 5.2), constrained_layout=True)
-    if hasattr(plotting, "plot_failure_domain") and domain["domain"] is not None:
-        plotting.plot_failure_domain(domain["domain"], ax)
-    else:
-        _plot_domain_slices(domain["slices"], domain["activation"], ax)
+    fig, ax = plt.subplots(figsize=(8.0, 5.6), constrained_layout=True)
+    plot_failure_domain(domain["domain"], ax)
     q = domain["q_tp040"]["paper"]
     ax.plot([0.4], [q], "s", color="black", markersize=7, zorder=6)
-    ax.annotate(f"Q (0.40 s, {q:.2f} g)", (0.4, q), textcoords="offset points", xytext=(8, 6),
-                fontsize=9)
+    ax.annotate(f"Q (0.40 s, {q:.2f} g)", (0.4, q), textcoords="offset points", xytext=(8, 8),
+                fontsize=9, fontweight="bold")
     ok = abs(q - 0.49) < 0.01
     return {"file": _save(fig, out, "fig16_failure_domain.png"), "paper_figure": "Fig. 16",
             "agrees": ok,
             "caption": ("Failure domain of Oppenheim's arch (epsilon = 0) under Oppenheim's pulse "
                         "of duration t_p and amplitude xg''/g, c_v = "
-                        f"{domain['restitution'][0]:.3f}: (1) recovery, (2) collapse after impacts "
-                        "(second half cycle or later), (3) collapse in the first half cycle; "
+                        f"{domain['restitution'][0]:.3f}: recovery, collapse after impacts "
+                        "(second half cycle or later), collapse in the first half cycle; "
                         f"dashed: k = {domain['activation']:.4f}, below which the arch does not "
-                        f"move. The paper reads Q = (0.40 s, 0.49 g) off its failure curve; ours "
-                        f"{q:.3f} g - {_agree(ok)}.")}
+                        "move. At short durations the outcome is not monotone in the amplitude "
+                        "(bands of recovery inside the collapse region). The paper reads "
+                        f"Q = (0.40 s, 0.49 g) off its failure curve; ours {q:.3f} g - "
+                        f"{_agree(ok)}.")}
 
 
-def _plot_domain_slices(slices, activation: float, ax):
-    """Regions of a failure domain from its slices (used when plotting has no own function).
-
-    Every slice is drawn as a column of coloured bands, one per outcome interval, so that
-    outcomes that are not monotone in the amplitude show as they are.
-    """
-    from matplotlib.patches import Patch
-
-    colours = {"rest": "white", "recovery": "tab:green", "collapse_late": "tab:orange",
-               "collapse_first": "tab:red"}
-    durations = np.array([s.duration for s in slices])
-    edges = np.concatenate([[durations[0] - 0.5 * (durations[1] - durations[0])
-                             if durations.size > 1 else durations[0] - 0.05],
-                            0.5 * (durations[1:] + durations[:-1]),
-                            [durations[-1] + 0.5 * (durations[-1] - durations[-2])
-                             if durations.size > 1 else durations[0] + 0.05]])
-    for j, part in enumerate(slices):
-        for iv in part.intervals:
-            key = iv.status if iv.status != "collapse" else (
-                "collapse_first" if iv.half_cycle == 1 else "collapse_late")
-            ax.fill_between([edges[j], edges[j + 1]], iv.start, iv.end, color=colours[key],
-                            alpha=0.35, linewidth=0)
-    fail = np.array([s.failure_acceleration for s in slices])
-    first = np.array([s.first_half_cycle_acceleration for s in slices])
-    top = max(iv.end for s in slices for iv in s.intervals)
-    ax.plot(durations, fail, "o-", color="black", markersize=3.5,
-            label="failure curve (lowest collapse)")
-    ax.plot(durations, first, "*-", color="black", markersize=7,
-            label="lowest collapse in the first half cycle")
-    ax.axhline(activation, color="black", linestyle="--", linewidth=1.0,
-               label=f"k = {activation:.2f}: no motion below")
-    handles, _ = ax.get_legend_handles_labels()
-    handles += [Patch(color=colours["recovery"], alpha=0.35, label="(1) recovery"),
-                Patch(color=colours["collapse_late"], alpha=0.35,
-                      label="(2) collapse after impacts"),
-                Patch(color=colours["collapse_first"], alpha=0.35,
-                      label="(3) collapse in the first half cycle")]
-    ax.set_xlabel("pulse duration $t_p$ [s]")
-    ax.set_ylabel(r"pulse amplitude $|\ddot{x}_g| / g$ [-]")
-    ax.set_xlim(0.0, edges[-1])
-    ax.set_ylim(0.0, top)
-    ax.grid(True, alpha=0.3)
-    ax.legend(handles=handles, loc="upper right", fontsize=8)
-    return ax
-
-
-def _fig_fragility(out: Path, frag: dict, sample: dict, domain: dict) -> list[dict]:
+def _fig_fragility(out: Path, frag: dict) -> list[dict]:
     import matplotlib.pyplot as plt
 
-    from . import fragility as fragility_module
-    from . import plotting
+    from .plotting import plot_fragility_curve
 
+    result, summary = frag["result"], frag["summary"]
     figures = []
-    k_nominal = domain["activation"]
-    for j, curve in enumerate(frag["curves"]):
-        fig, ax = plt.subplots(figsize=(7.5, 4.8), constrained_layout=True)
-        plotting.plot_load_multiplier_cdf(sample["k"], ax, nominal_k=k_nominal)
-        a, p = curve["amplitudes"], curve["probability"]
-        ax.plot(a, p, "o", color="black", markersize=3,
-                label=f"$P_F = h_f/h$, dynamic analysis (h = {frag['arches']})")
-        if curve["polynomial"] is not None:
-            fine = np.linspace(*curve["polynomial_range"], 400)
-            ax.plot(fine, fragility_module.evaluate_polynomial_fit(curve["polynomial"], fine),
-                    "--", color="black", label="fifth-degree polynomial fit (the paper's)")
-        if curve["lognormal"] is not None:
-            fine = np.linspace(a.min(), a.max(), 400)
-            fit = curve["lognormal_fit"]
-            ax.plot(fine, fit(fine), "-", color="0.5", linewidth=1.0,
-                    label=f"lognormal fit: median {fit.median:.3f} g, beta {fit.dispersion:.3f}")
-        q = curve["nominal_failure_acceleration"]
-        ax.axvline(q, color="black", linestyle="-.", linewidth=1.0,
-                   label=f"nominal arch, failure at {q:.3f} g")
-        ax.set_xlabel(r"pulse amplitude $|\ddot{x}_g| / g$ (and $\tilde{k}$) [-]")
-        ax.set_ylabel(r"probability of failure $P_F$ / cumulative probability [-]")
-        ax.set_xlim(0.0, a.max())
-        ax.set_title(f"Fragility, irregular arches (epsilon = {frag['tolerance']:.2f}), "
-                     f"t_p = {curve['duration']:.2f} s")
-        ax.legend(loc="lower right", fontsize=7)
-        number = 17 + j if j < 4 else None
-        ok = curve["probability_below_nominal"] > 0.0
-        paper_q = " (the paper: 0.49 g)" if abs(curve["duration"] - 0.4) < 1e-9 else ""
-        fig_name = f"Fig. {number}" if number else "(no figure in the paper)"
+    for j, entry in enumerate(summary["durations"]):
+        duration = entry["duration"]
+        fig, ax = plt.subplots(figsize=(7.5, 6.2), constrained_layout=True)
+        plot_fragility_curve(result, duration, ax)
+        q = entry["nominal_failure_acceleration"]
+        below = entry["probability_below_nominal"]
+        ok = below is not None and below > 0.0
+        paper_q = " (the paper: 0.49 g)" if abs(duration - 0.4) < 1e-9 else ""
+        number = 17 + j
+        fig_name = f"Fig. {number}" if number <= 20 else "(no figure in the paper)"
         figures.append({
-            "file": _save(fig, out, f"fig{17 + j}_fragility_tp{curve['duration']:.2f}.png"),
+            "file": _save(fig, out, f"fig{number}_fragility_tp{duration:.2f}.png"),
             "paper_figure": fig_name, "agrees": ok,
-            "caption": (f"Fragility curve at t_p = {curve['duration']:.2f} s: P_F (eq. 9) of "
-                        f"h = {frag['arches']} irregular arches, failing under the pulse in either "
-                        "direction, with the paper's fifth-degree polynomial and a lognormal fit; "
-                        f"blue: CDF of k~ = min(k~_l, k~_r) of s = {sample['k'].size} arches by "
-                        "limit analysis; vertical lines: the nominal arch's k (blue) and failure "
-                        f"acceleration {q:.3f} g{paper_q} (black). The paper's point: irregular "
-                        "arches may fail below the nominal failure acceleration (P_F > 0 left of "
-                        f"the black line); ours: largest P_F there = "
-                        f"{curve['probability_below_nominal']:.3f} - {_agree(ok)}."),
+            "caption": (f"Fragility curve at t_p = {duration:.2f} s: P_F = h_f/h (eq. 9) of "
+                        f"h = {result.settings.samples} irregular arches, an arch failing when "
+                        "it collapses under the pulse in either direction, with the paper's "
+                        "fifth-degree polynomial and a lognormal fit; blue: CDF of "
+                        "k~ = min(k~_l, k~_r) of "
+                        f"s = {result.limit_load_multipliers.size} arches by limit analysis; "
+                        "vertical lines: the nominal arch's k (blue) and failure acceleration "
+                        f"{_f(q, 3)} g{paper_q} (black). The paper's point: irregular arches "
+                        "may fail below the nominal failure acceleration (P_F > 0 left of the "
+                        f"black line, where eq. 10 gives 0); ours: P_F = {_f(below, 3)} at the "
+                        f"last step below it - {_agree(ok)}."),
         })
     return figures
 
@@ -721,45 +566,25 @@ def _fig_fragility(out: Path, frag: dict, sample: dict, domain: dict) -> list[di
 def _fig_surface(out: Path, frag: dict) -> dict:
     import matplotlib.pyplot as plt
 
-    fig = plt.figure(figsize=(8.5, 6.2), constrained_layout=True)
+    from .plotting import plot_fragility_surface
+
+    result, summary = frag["result"], frag["summary"]
+    fig = plt.figure(figsize=(8.5, 6.4), constrained_layout=True)
     ax = fig.add_subplot(projection="3d")
-    q = np.array([c["nominal_failure_acceleration"] for c in frag["curves"]])
-    amplitudes = frag["amplitudes"]
-    window = (amplitudes >= np.nanmin(q) - 0.2) & (amplitudes <= np.nanmax(q) + 0.2)
-    a_win = amplitudes[window]
-    tp, a = np.meshgrid(frag["durations"], a_win, indexing="ij")
-    p = np.array([c["probability"][window] for c in frag["curves"]])
-    if tp.shape[0] > 1:
-        ax.plot_surface(tp, a, p, cmap="viridis", alpha=0.8, linewidth=0.0)
-    for c in frag["curves"]:
-        ax.plot(np.full_like(a_win, c["duration"]), a_win, c["probability"][window],
-                color="black", linewidth=1.2)
-    if q.size > 1 and np.all(np.isfinite(q)):
-        d2 = np.vstack([frag["durations"], frag["durations"]])
-        ax.plot_surface(d2, np.vstack([q, q]), np.vstack([np.zeros_like(q), np.ones_like(q)]),
-                        color="tab:red", alpha=0.25, linewidth=0.0)
-    ax.plot(frag["durations"], q, np.ones_like(q), color="tab:red", linewidth=1.5,
-            label="nominal arch (epsilon = 0): $P_F$ steps from 0 to 1 at its failure "
-                  "acceleration")
-    ax.plot(frag["durations"], q, np.zeros_like(q), color="tab:red", linewidth=1.5)
-    ax.set_xlabel("pulse duration $t_p$ [s]")
-    ax.set_ylabel(r"$|\ddot{x}_g| / g$ [-]")
-    ax.set_zlabel("$P_F$ [-]")
-    ax.set_title(f"Fragility surface, irregular arches (epsilon = {frag['tolerance']:.2f}, "
-                 f"h = {frag['arches']})", fontsize=10)
-    ax.legend(loc="upper left", fontsize=8)
-    ax.view_init(elev=22, azim=-58)
-    ok = all(c["probability_below_nominal"] > 0.0 for c in frag["curves"])
+    plot_fragility_surface(result, ax)
+    below = [e for e in summary["durations"]
+             if e["probability_below_nominal"] is not None and e["probability_below_nominal"] > 0]
+    ok = len(below) > 0
+    where = ", ".join(f"{e['duration']:.2f} s" for e in below) or "none"
     return {"file": _save(fig, out, "fig21_fragility_surface.png"), "paper_figure": "Fig. 21",
             "agrees": ok,
             "caption": ("Fragility surface P_F(t_p, xg''/g) of the irregular arches (epsilon = "
-                        "0.10), planes between the fragility curves as in the paper, with the "
-                        "nominal arch's step surface (eq. 10) in red (the 'cylinder'). The "
-                        "paper's point: part of the surface lies at lower accelerations than the "
-                        "cylinder; ours: P_F > 0 below the nominal failure acceleration at "
-                        + ", ".join(f"{c['duration']:.2f} s" for c in frag["curves"]
-                                    if c["probability_below_nominal"] > 0)
-                        + f" - {_agree(ok)}.")}
+                        f"{result.settings.tolerance:.2f}), plane facets between the fragility "
+                        "curves as in the paper, with the nominal arch's step surface (eq. 10, "
+                        "the paper's 'cylinder'). The paper's point: part of the surface lies at "
+                        "lower accelerations than the cylinder, where the nominal arch predicts "
+                        f"P_F = 0; ours: P_F > 0 below the nominal failure acceleration at "
+                        f"t_p = {where} - {_agree(ok)}.")}
 
 
 # ------------------------------------------------------------------------------ report text
@@ -974,10 +799,9 @@ def _sections(results: dict, figures: dict) -> list[tuple[str, list]]:
                   f"{results['fragility']['arches']} arches, amplitude step "
                   f"{s['amplitude_step']:.2f} g."),
             ("table", ["t_p [s]", "nominal failure acceleration [g]", "lognormal median [g]",
-                       "lognormal dispersion", "largest P_F below nominal"],
+                       "lognormal dispersion", "P_F just below the nominal failure acceleration"],
              [[f"{c['duration']:.2f}", _f(c["nominal_failure_acceleration"], 3),
-               _f(c["lognormal"]["median"], 3) if c["lognormal"] else "-",
-               _f(c["lognormal"]["dispersion"], 3) if c["lognormal"] else "-",
+               _f(c["lognormal_median"], 3), _f(c["lognormal_dispersion"], 3),
                _f(c["probability_below_nominal"], 3)]
               for c in results["fragility"]["curves"]]),
         ]
@@ -1159,21 +983,20 @@ def reproduce(out_dir, settings: ReproductionSettings | None = None, *,
         d = store["domain"]
         results["failure_domain"] = {
             "activation": d["activation"], "restitution": d["restitution"],
-            "q_tp040": d["q_tp040"], "slices": [s.to_dict() for s in d["slices"]]}
-
-    def part_sample():
-        store["sample"] = _part_limit_sample(settings)
-        results["limit_sample"] = {k: v for k, v in store["sample"].items() if k != "sample"}
-        results["limit_sample"]["count"] = int(store["sample"]["k"].size)
+            "q_tp040": d["q_tp040"], "slices": d["domain"].to_list()}
 
     def part_fragility():
-        store["fragility"] = _part_fragility(settings, store["state"], store["cases"])
-        frag = store["fragility"]
+        store["fragility"] = _part_fragility(settings, store["cases"], progress)
+        summary = store["fragility"]["summary"]
+        result = store["fragility"]["result"]
+        results["limit_sample"] = summary["limit_sample"]
         results["fragility"] = {
-            "arches": frag["arches"], "restitution": frag["restitution"],
-            "durations": frag["durations"], "amplitudes": frag["amplitudes"],
-            "curves": [{k: v for k, v in c.items() if k not in ("polynomial", "lognormal_fit")}
-                       for c in frag["curves"]]}
+            "arches": result.settings.samples, "restitution": list(store["cases"]["paper"]),
+            "backend": store["fragility"]["backend"],
+            "durations": result.durations, "amplitudes": result.amplitudes,
+            "failures": result.failures, "failures_l": result.failures_l,
+            "failures_r": result.failures_r, "probability": result.probability,
+            "curves": summary["durations"]}
 
     def part_figures():
         state, cases = store["state"], store["cases"]
@@ -1187,9 +1010,8 @@ def reproduce(out_dir, settings: ReproductionSettings | None = None, *,
                                                  case, pair)
             figures[f"fig15_{case}"] = _fig_pulse(out, store["pulse"], results["pulse"], case,
                                                   pair)
-        figures["fig16"] = _fig_failure_domain(out, store["domain"], store.get("fragility"))
-        figures["fragility"] = _fig_fragility(out, store["fragility"], store["sample"],
-                                              store["domain"])
+        figures["fig16"] = _fig_failure_domain(out, store["domain"])
+        figures["fragility"] = _fig_fragility(out, store["fragility"])
         figures["fig21"] = _fig_surface(out, store["fragility"])
 
     parts = [("limit analysis (Table 1)", part_limit),
@@ -1197,8 +1019,7 @@ def reproduce(out_dir, settings: ReproductionSettings | None = None, *,
              ("free vibrations (Figs. 9-14)", part_free),
              ("pulse responses (Fig. 15)", part_pulses),
              ("failure domain (Fig. 16)", part_domain),
-             ("limit-analysis sample (k~ CDF)", part_sample),
-             ("fragility (Figs. 17-21)", part_fragility),
+             ("fragility and k~ sample (Figs. 17-21)", part_fragility),
              ("figures", part_figures)]
     bar = tqdm(parts, desc="reproduce", unit="part", disable=not progress, file=sys.stderr)
     for name, run in bar:
