@@ -247,9 +247,17 @@ def _part_mechanisms(state: _Arches, paper: dict) -> tuple[dict, dict]:
 
 
 def _half_cycle_peaks(history) -> list[tuple[str, float]]:
-    """Largest phi [rad] of every half cycle of motion (segment in Mech-l or Mech-r)."""
-    return [(s.mechanism, float(np.max(s.phi))) for s in history.segments
-            if s.mechanism in ("l", "r") and s.phi.size]
+    """Largest phi [rad] of every complete half cycle of motion (Mech-l or Mech-r segment).
+
+    A half cycle is complete when it ends at an impact; the last one, cut by the end of the
+    record, is left out, and so are half cycles below 1e-6 rad (the arch is then at rest to
+    the resolution of the integration).
+    """
+    moving = [s for s in history.segments if s.mechanism in ("l", "r") and s.phi.size]
+    impacts = np.asarray(history.impact_times)
+    complete = [s for s in moving if np.any(np.abs(impacts - s.t[-1]) < 1e-9)]
+    peaks = [(s.mechanism, float(np.max(s.phi))) for s in complete]
+    return [(m, p) for m, p in peaks if p > 1e-6]
 
 
 def _part_free_vibrations(settings: ReproductionSettings, state: _Arches, paper: dict,
@@ -477,7 +485,7 @@ def _fig_pulse(out: Path, histories: dict, summary: dict, case: str, pair) -> di
     for row, colour in zip(rows, ("0.1", "tab:purple", "tab:brown"), strict=True):
         plot_ground_motion(oppenheim_pulse(row["amplitude"] * GRAVITY, row["duration"]),
                            axes[0], t_end=3.5, color=colour,
-                           label=f"t_p = {row['duration']:.2f} s")
+                           label=f"$t_p$ = {row['duration']:.2f} s")
     axes[0].set_title(r"(a) ground acceleration: Oppenheim's pulse, $\ddot{x}_g/g = -1$ for $t_p$, "
                       r"then $+1/2$ for $2 t_p$", fontsize=10)
     axes[0].set_xlabel("")
