@@ -712,6 +712,7 @@ def _restitution_rows(results: dict) -> list[list[str]]:
 
 def _notes(results: dict) -> list[str]:
     c = results["restitution"]["computed"][0]
+    s = results["settings"]
     return [
         "1. Coefficient of restitution. The paper uses c_v = 0.875 for Oppenheim's arch, "
         "quoting De Lorenzis et al. (2007). The momentum balance of the impact with the impulses "
@@ -734,7 +735,8 @@ def _notes(results: dict) -> list[str]:
         "5. Not stated by the paper, chosen here: g = 9.81 m/s^2; density 2000 kg/m^3 (it cancels "
         "from every result); the sum of the voussoir angles of an irregular arch is kept equal "
         "to the nominal embrace by rescaling the drawn angles; the amplitude range of the "
-        "fragility scan (0 to the largest amplitude in the settings); an irregular arch 'fails' "
+        f"fragility scan ({s['amplitude_min']:.2f} to {s['amplitude_max']:.2f} g, which spans the "
+        "rise of every curve); the seed of the irregular arches; an irregular arch 'fails' "
         "when it collapses under the pulse in either direction (the paper analyses both and "
         "counts arches, h_f <= h); the collapse test ('ever-increasing phi') is the energy "
         "criterion of archquake.engine: after the excitation an arch moving away from theta_u "
@@ -817,12 +819,13 @@ def _sections(results: dict, figures: dict) -> list[tuple[str, list]]:
         frag_blocks.append(("figure", figures["fig21"]))
         sections.append(("Fragility curves and surface (Figs. 17-21)", frag_blocks))
     notes = [("p", n) for n in _notes(results)]
-    notes.append(("table", ["c_v", "case", "paper", "ours", ""], _restitution_rows(results)))
+    notes.append(("table", ["c_v", "case", "paper", "ours", "verdict"],
+                  _restitution_rows(results)))
     sections.append(("Where the paper is wrong or silent, and the choices made", notes))
     env = results["environment"]
     sections.append(("Runtime and environment", [
         ("table", ["part", "wall time [s]"],
-         [[k, f"{v:.2f}"] for k, v in results["timings"].items()]),
+         [[k, f"{v:.2f}"] for k, v in results["timings"].items() if k != "report"]),
         ("p", ", ".join(f"{k} {v}" for k, v in env.items()) + f"; seed {s['seed']}."),
         ("p", "Settings: " + ", ".join(f"{k} = {v}" for k, v in s.items()) + "."),
     ]))
