@@ -42,7 +42,7 @@ def direct_table(seed, n_items, draws):
 def dask_scheduler():
     distributed = pytest.importorskip("distributed")
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  host="127.0.0.1", dashboard_address=None,
+                                  host="127.0.0.1", dashboard_address=":0",
                                   silence_logs=logging.ERROR) as cluster:
         yield cluster.scheduler_address
 
@@ -103,6 +103,7 @@ def test_plan_rejects_invalid_input(kwargs, message):
     ({"scheduler": "tcp://127.0.0.1:99999"}, "1..65535"),
     ({"backend": "dask", "scheduler": "tcp://127.0.0.1:8786", "workers": 2}, "workers"),
     ({"backend": "processes", "scheduler": "tcp://127.0.0.1:8786"}, "scheduler"),
+    ({"backend": "serial", "resume": True}, "out_dir"),
 ])
 def test_run_study_rejects_invalid_execution_options(kwargs, message):
     with pytest.raises(ValueError, match=message):
@@ -120,7 +121,7 @@ def test_rows_do_not_depend_on_chunking_and_match_direct_draws():
         assert_frame_equal(table, expected, check_dtype=False)
 
 
-def test_backends_and_worker_counts_give_identical_results(dask_scheduler):
+def test_backends_and_worker_counts_give_identical_results(dask_scheduler, capsys):
     plan = StudyPlan({"draws": 2}, seed=2024, n_items=9, chunk_size=2)
     expected = direct_table(2024, 9, 2)
     serial = run_study(toy_tasks.random_task, plan, backend="serial", progress=False)
@@ -131,9 +132,12 @@ def test_backends_and_worker_counts_give_identical_results(dask_scheduler):
         "dask address": dict(scheduler=dask_scheduler),
     }
     for name, options in runs.items():
-        table = run_study(toy_tasks.random_task, plan, progress=False, **options)
+        capsys.readouterr()
+        table = run_study(toy_tasks.random_task, plan, progress=True, **options)
         assert_frame_equal(table, serial, obj=name)
         assert table.attrs["study"]["backend"] == options.get("backend", "dask")
+        assert table.attrs["study"]["workers"] == options.get("workers", 2)
+        assert "5/5" in capsys.readouterr().err  # the progress bar followed every chunk
     distributed = pytest.importorskip("distributed")
     with distributed.Client(dask_scheduler, set_as_default=False) as client:
         table = run_study(toy_tasks.random_task, plan, scheduler=client, progress=False)
@@ -141,7 +145,17 @@ def test_backends_and_worker_counts_give_identical_results(dask_scheduler):
         assert client.status == "running"  # a client passed in is left open
 
 
-def test_unreachable_scheduler_fails_fast_with_clear_message(monkeypatch):
+def test_process_workers_share_the_cores_instead_of_oversubscribing():
+    table = run_study(toy_tasks.threads_task, StudyPlan({}, 0, 2, 1), backend="processes",
+                      workers=2, progress=False)
+    cap = max(1, os.cpu_count() // 2)  # two workers split the cores
+    expected_numba = int(os.environ.get("NUMBA_NUM_THREADS", cap))  # an explicit choice wins
+    assert table["numba_env"].tolist() == [expected_numba] * 2
+    assert table["omp_env"].tolist() == [int(os.environ.get("OMP_NUM_THREADS", cap))] * 2
+    assert table["numba_threads"].tolist() == [expected_numba] * 2
+
+
+def test_unreachable_scheduler_fails_fast_with_clear_message(monkeypatch, tmp_path):
     monkeypatch.setattr(execution, "SCHEDULER_TIMEOUT", 1.0)
     with socket.socket() as s:  # a port on which nothing listens
         s.bind(("127.0.0.1", 0))
@@ -149,18 +163,27 @@ def test_unreachable_scheduler_fails_fast_with_clear_message(monkeypatch):
     t0 = time.monotonic()
     with pytest.raises(ValueError, match=f"could not connect to the Dask scheduler at "
                                          f"tcp://127.0.0.1:{port}"):
-        run_study(toy_tasks.trivial_task, StudyPlan({}, 0, 2, 1),
+        run_study(toy_tasks.trivial_task, StudyPlan({}, 0, 2, 1), tmp_path / "study",
                   scheduler=f"tcp://127.0.0.1:{port}", progress=False)
     assert time.monotonic() - t0 < 5.0
+    assert not (tmp_path / "study").exists()  # nothing started, so a retry needs no --resume
 
 
 # --------------------------------------------------------------------------- task results
 
 
-def test_invalid_task_result_is_reported():
-    with pytest.raises(ValueError, match="equal lengths"):
-        run_study(toy_tasks.ragged_task, StudyPlan({}, 0, 3, 1), backend="serial",
-                  progress=False)
+@pytest.mark.parametrize("results, message", [
+    ([{"a": [1], "b": [1, 2]}], "equal lengths"),
+    ([{"a": [[1, 2]]}], "one-dimensional"),
+    ([{"__chunk__": [1]}], "not starting with '__'"),
+    ([{}], "non-empty dict"),
+    ([[1, 2]], "non-empty dict"),
+    ([{"a": [1]}, {"b": [1]}], "same columns"),
+])
+def test_invalid_task_result_is_reported(results, message):
+    plan = StudyPlan({"results": results}, 0, len(results), 1)
+    with pytest.raises(ValueError, match=message):
+        run_study(toy_tasks.echo_task, plan, backend="serial", progress=False)
 
 
 def test_task_exception_propagates_and_keeps_finished_chunks(tmp_path):
@@ -267,17 +290,12 @@ def test_resume_after_killing_the_study_process(tmp_path):
 # -------------------------------------------------------------------------------- progress
 
 
-@pytest.mark.parametrize("backend", ["serial", "processes", "dask"])
-def test_progress_bar_counts_finished_chunks(backend, capsys, request):
-    options = {"serial": {"backend": "serial"},
-               "processes": {"backend": "processes", "workers": 1},
-               "dask": {"scheduler": request.getfixturevalue("dask_scheduler")}
-               if backend == "dask" else {}}[backend]
+def test_progress_bar_counts_finished_chunks(capsys):
     plan = StudyPlan({}, 0, 5, 2)
-    run_study(toy_tasks.trivial_task, plan, progress=True, **options)
+    run_study(toy_tasks.trivial_task, plan, backend="serial", progress=True)
     err = capsys.readouterr().err
     assert "3/3" in err and "chunk" in err
-    run_study(toy_tasks.trivial_task, plan, progress=False, **options)
+    run_study(toy_tasks.trivial_task, plan, backend="serial", progress=False)
     assert capsys.readouterr().err == ""
 
 

@@ -50,9 +50,9 @@ def busy_task(chunk):
     return {"item": chunk.items, "value": np.array(out)}
 
 
-def ragged_task(chunk):
-    """Invalid: columns of different lengths."""
-    return {"a": np.zeros(len(chunk)), "b": np.zeros(len(chunk) + 1)}
+def echo_task(chunk):
+    """Returns ``settings["results"][chunk.index]`` as it is (to test result validation)."""
+    return chunk.settings["results"][chunk.index]
 
 
 def failing_task(chunk):
@@ -60,3 +60,12 @@ def failing_task(chunk):
     if chunk.index == 1:
         raise RuntimeError("chunk 1 failed")
     return {"item": chunk.items}
+
+
+def threads_task(chunk):
+    """The thread caps seen by the process that evaluates the chunk."""
+    import numba
+
+    return {"numba_env": [int(os.environ.get("NUMBA_NUM_THREADS", -1))],
+            "omp_env": [int(os.environ.get("OMP_NUM_THREADS", -1))],
+            "numba_threads": [numba.get_num_threads()]}

@@ -39,11 +39,19 @@ Threads
 The ``"processes"`` backend starts fresh interpreters (``"spawn"`` context: no state, locks or
 threads -- numba's or BLAS's -- are inherited through ``fork``) and caps the threads of every
 worker (``NUMBA_NUM_THREADS``, ``OMP_NUM_THREADS``, ... set to ``cpu_count // workers``, at
-least 1) so that parallel workers do not oversubscribe the cores.
+least 1) so that parallel workers do not oversubscribe the cores. The variables take effect for
+libraries a worker imports after start-up (numba's cap is also applied at run time); a value
+already set in the environment is kept. Dask workers are started by the cluster: for CPU-bound
+tasks that hold the GIL, start them with one thread each (``dask worker ADDRESS --nworkers N
+--nthreads 1``).
+
+The task function and this package must be importable where the task runs (the worker
+processes, or every Dask worker): the task is pickled by reference (module and name).
 """
 
 from __future__ import annotations
 
+import copy
 import datetime
 import json
 import math
@@ -215,9 +223,11 @@ class StudyPlan:
             raise ValueError(f"chunk index must be an integer in [0, {self.n_chunks}), "
                              f"got {index!r}")
         start = int(index) * self.chunk_size
+        # each chunk gets its own copy of the settings: a task that modifies them cannot affect
+        # other chunks, whichever backend runs it
         return Chunk(index=int(index), start=start,
                      stop=min(start + self.chunk_size, self.n_items),
-                     seed=self.seed, settings=self.settings)
+                     seed=self.seed, settings=copy.deepcopy(self.settings))
 
     def chunks(self) -> Iterator[Chunk]:
         """All chunks in order."""
@@ -282,7 +292,7 @@ def _limit_threads(threads: int) -> None:
 
 
 def _serial(task: Task, chunks: list[Chunk], workers: int | None,
-            scheduler: Any) -> Iterator[tuple[int, dict, float]]:
+            client: Any) -> Iterator[tuple[int, dict, float]]:
     for chunk in chunks:
         yield _run_chunk(chunk, task)
 
@@ -373,10 +383,9 @@ def _probe_scheduler(address: str, timeout: float) -> None:
 
 
 def _dask(task: Task, chunks: list[Chunk], workers: int | None,
-          scheduler: Any) -> Iterator[tuple[int, dict, float]]:
+          client: Any) -> Iterator[tuple[int, dict, float]]:
     import distributed
 
-    client, owned = _dask_client(scheduler)
     futures = []
     try:
         futures = client.map(_run_chunk, chunks, task=task, pure=False)
@@ -385,8 +394,6 @@ def _dask(task: Task, chunks: list[Chunk], workers: int | None,
             future.release()
     finally:
         client.cancel([f for f in futures if not f.done()])
-        if owned:
-            client.close()
 
 
 _RUNNERS = {"serial": _serial, "processes": _processes, "dask": _dask}
@@ -551,7 +558,8 @@ def run_study(
         Module-level function ``task(chunk) -> dict[str, array]`` (picklable by reference for the
         ``"processes"`` and ``"dask"`` backends). It receives a :class:`Chunk` and returns the
         columns of its rows: one-dimensional arrays of equal length, with numbers, booleans or
-        fixed-width strings; every chunk must return the same column names. It must draw item
+        fixed-width strings; every chunk must return the same column names (not starting with
+        ``"__"``, which is reserved for the checkpoint files). It must draw item
         ``i``'s random numbers only from ``chunk.generators()`` / ``chunk.seed_sequences()``.
     plan : StudyPlan
         Settings, seed, number of items and chunk size.
@@ -604,14 +612,47 @@ def run_study(
     The results do not depend on the backend, the number of workers, the chunk completion order
     or interruptions and resumption: every item has its own seed sequence
     (:func:`item_seed_sequence`) and the rows are assembled in chunk order.
+
+    Examples
+    --------
+    A task, defined in an importable module so that worker processes can load it:
+
+    >>> def draw_task(chunk):
+    ...     values = [rng.uniform(0.0, chunk.settings["high"]) for rng in chunk.generators()]
+    ...     return {"item": chunk.items, "value": np.array(values)}
+    >>> plan = StudyPlan({"high": 2.0}, seed=1, n_items=10, chunk_size=4)
+    >>> table = run_study(draw_task, plan, backend="serial", progress=False)
+    >>> len(table), table.attrs["study"]["n_chunks"]
+    (10, 3)
+
+    The same study on 4 local processes, saved in (and resumable from) ``out``:
+    ``run_study(draw_task, plan, "out", workers=4)``; on a Dask cluster:
+    ``run_study(draw_task, plan, "out", scheduler="tcp://10.0.0.5:8786")``.
     """
     if not isinstance(plan, StudyPlan):
         raise ValueError(f"plan must be a StudyPlan, got {type(plan).__name__}")
     if not callable(task):
         raise ValueError(f"task must be a callable task(chunk) -> dict, got {task!r}")
     backend, workers = _check_execution(backend, workers, scheduler, pool)
+    if resume and out_dir is None:
+        raise ValueError("resume=True needs out_dir, the directory of the study to continue")
 
     started = time.perf_counter()
+    client, owned = _dask_client(scheduler) if backend == "dask" else (None, False)
+    try:
+        return _run(task, plan, out_dir, backend, workers, client, resume, progress, started,
+                    pool)
+    finally:
+        if owned:
+            client.close()
+
+
+def _run(task: Task, plan: StudyPlan, out_dir: str | os.PathLike | None, backend: str,
+         workers: int | None, client: Any, resume: bool, progress: bool,
+         started: float, pool: Any = None) -> pd.DataFrame:
+    """:func:`run_study` once the options are checked and a Dask client (if any) connected."""
+    if client is not None:
+        workers = len(client.nthreads())  # record the size of the cluster
     record = {"format": STUDY_FORMAT, "format_version": STUDY_FORMAT_VERSION,
               "archquake_version": __version__, "task": task_name(task), **plan.describe(),
               "created": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")}
@@ -631,7 +672,7 @@ def run_study(
               file=sys.stderr, disable=not progress, dynamic_ncols=True) as bar:
         if todo:
             finished = _RUNNERS[backend](task, todo, workers,
-                                         pool if backend == "processes" else scheduler)
+                                         pool if backend == "processes" else client)
             try:
                 for index, columns, elapsed in finished:
                     if out_dir is not None:

@@ -123,172 +123,6 @@ def plot_load_multiplier_cdf(k_values, ax=None, *, nominal_k: float | None = Non
     return ax
 
 
-def plot_potential_energy(mechanism, ax=None, *, label: str | None = None, color=None,
-                          phi_max: float | None = None):
-    """Potential energy ``V(phi) - V(0)`` of a four-link mechanism [paper, eq. (3), Figs. 6-8].
-
-    ``phi = theta_u - theta`` [rad] from the undisplaced configuration (0) to ``phi_max``
-    (default: the kinematic limit ``theta_u - theta_limit``). The maximum at ``phi_cr`` (eq. (4))
-    is marked with a dot and a dotted vertical line.
-
-    Parameters
-    ----------
-    mechanism : FourLinkMechanism
-        Mech-l or Mech-r of an arch.
-    ax : matplotlib Axes, optional
-    label : str, optional
-        Legend label (default: the mechanism's name).
-    color : optional
-        Line colour.
-    phi_max : float, optional
-        Right end of the phi axis [rad].
-    """
-    ax = _axes(ax)
-    name = _MECHANISM_NAMES[mechanism.direction]
-    limit = mechanism.theta_u - mechanism.theta_limit
-    end = limit if phi_max is None else min(float(phi_max), limit)
-    phi = np.linspace(0.0, end, 400)
-    v0 = float(mechanism.potential_energy(mechanism.theta_u))
-    energy = (mechanism.potential_energy(mechanism.theta_u - phi) - v0) / 1e3
-    line, = ax.plot(phi, energy, color=color, label=label or name)
-    v_cr = (float(mechanism.potential_energy(mechanism.theta_cr)) - v0) / 1e3
-    ax.plot([mechanism.phi_cr], [v_cr], "o", color=line.get_color(), markersize=5)
-    ax.axvline(mechanism.phi_cr, color=line.get_color(), linestyle=":", linewidth=1.0)
-    ax.annotate(f"$\\phi_{{cr}}$ = {mechanism.phi_cr:.4f}", (mechanism.phi_cr, v_cr),
-                textcoords="offset points", xytext=(4, 6), fontsize=8, color=line.get_color())
-    ax.set_xlabel(r"$\phi = \theta_u - \theta$ [rad]")
-    ax.set_ylabel(r"$V(\phi) - V(0)$ [kJ/m]")
-    ax.grid(True, alpha=0.3)
-    ax.legend(loc="best", fontsize=8)
-    return ax
-
-
-def plot_ground_motion(motion, ax=None, *, t_end: float | None = None, label: str | None = None,
-                       color=None):
-    """Ground acceleration ``xg''/g`` of a :class:`GroundMotion` against time [Fig. 15a].
-
-    Parameters
-    ----------
-    motion : GroundMotion
-    ax : matplotlib Axes, optional
-    t_end : float, optional
-        End of the time axis [s] (default: 1.2 times the duration of the motion).
-    label : str, optional
-        Legend label (default: the motion's name).
-    color : optional
-        Line colour.
-    """
-    from .geometry import GRAVITY
-
-    ax = _axes(ax)
-    end = 1.2 * motion.duration if t_end is None else float(t_end)
-    breaks = motion.breakpoints
-    t = np.union1d(np.linspace(0.0, end, 1500), np.concatenate([breaks, breaks - 1e-9]))
-    t = t[(t >= 0.0) & (t <= end)]
-    ax.plot(t, motion.acceleration(t) / GRAVITY, color=color, linewidth=1.2,
-            label=label or motion.name)
-    ax.axhline(0.0, color="0.4", linewidth=0.6)
-    ax.set_xlabel("time t [s]")
-    ax.set_ylabel(r"$\ddot{x}_g / g$ [-]")
-    ax.grid(True, alpha=0.3)
-    ax.legend(loc="upper right", fontsize=8)
-    return ax
-# --- dynamics
-
-
-def plot_rotation_history(history, ax=None, *, label: str | None = None, mark_impacts=True,
-                          **style):
-    """Rotation phi(t) of a time history [rad], Mech-l positive and Mech-r negative
-    (Figs. 9-15 of the paper), impacts marked.
-
-    Parameters
-    ----------
-    history : archquake.time_history.TimeHistory
-        A recorded time history.
-    ax : matplotlib axes, optional
-    label : str, optional
-        Legend label.
-    mark_impacts : bool
-        Mark every impact on the time axis.
-    **style
-        Passed to ``ax.plot``.
-    """
-    ax = _axes(ax)
-    line = None
-    for seg in history.segments:
-        sign = -1.0 if seg.mechanism == "r" else 1.0
-        kwargs = dict(style)
-        if line is not None:
-            kwargs["color"] = line.get_color()
-        (line,) = ax.plot(seg.t, sign * seg.phi, label=label if line is None else None,
-                          **kwargs)
-    if mark_impacts and history.impact_times.size:
-        ax.plot(history.impact_times, np.zeros_like(history.impact_times), "o", ms=3.5,
-                mfc="none", color=line.get_color() if line is not None else "k")
-    outcome = history.outcome
-    if outcome.status == "collapse" and np.isfinite(outcome.collapse_time):
-        ax.axvline(outcome.collapse_time, ls=":", lw=0.8,
-                   color=line.get_color() if line is not None else "k")
-    ax.axhline(0.0, color="0.6", lw=0.6)
-    ax.set_xlabel("time t [s]")
-    ax.set_ylabel(r"$\phi$ (Mech-l $+$, Mech-r $-$) [rad]")
-    if label is not None:
-        ax.legend()
-    return ax
-
-
-def plot_free_vibration(history, ax=None, **style):
-    """Free vibration phi(t) (Figs. 9-14 of the paper); see :func:`plot_rotation_history`."""
-    ax = plot_rotation_history(history, ax, **style)
-    ax.set_title("free vibration")
-    return ax
-
-
-def plot_pulse_response(histories, ax=None, *, labels=None, phi_limit: float | None = None):
-    """Response phi(t) to a ground motion with the acceleration in a panel above (Fig. 15).
-
-    Parameters
-    ----------
-    histories : TimeHistory or sequence of TimeHistory
-        Time histories under the same ground motion (e.g. several arches).
-    ax : matplotlib axes, optional
-        Axes of the response; the ground-motion panel is added above it.
-    labels : sequence of str, optional
-        Legend labels.
-    phi_limit : float, optional
-        Clip the vertical axis at +-phi_limit [rad] (collapsing histories run to the limit).
-
-    Returns
-    -------
-    (ax_ground, ax_response)
-    """
-    from mpl_toolkits.axes_grid1 import make_axes_locatable
-
-    if not isinstance(histories, list | tuple):
-        histories = [histories]
-    labels = labels or [None] * len(histories)
-    if ax is None:
-        _, ax = plt.subplots(figsize=(7.0, 5.5))
-    divider = make_axes_locatable(ax)
-    ax_ground = divider.append_axes("top", size="35%", pad=0.15, sharex=ax)
-    t_max = max(float(h.t[-1]) for h in histories)
-    motion = histories[0].ground_motion
-    t = np.linspace(0.0, t_max, 4001)
-    t = np.unique(np.concatenate([t, motion.breakpoints[motion.breakpoints <= t_max],
-                                  np.nextafter(motion.breakpoints, -np.inf)]))
-    t = t[(t >= 0) & (t <= t_max)]
-    ax_ground.plot(t, motion.acceleration(t) / 9.81, color="k", lw=1.0)
-    ax_ground.axhline(0.0, color="0.6", lw=0.6)
-    ax_ground.set_ylabel(r"$\ddot{x}_g$ [g]")
-    ax_ground.tick_params(labelbottom=False)
-    ax_ground.set_title(motion.name)
-    for history, label in zip(histories, labels, strict=True):
-        plot_rotation_history(history, ax, label=label)
-    if phi_limit is not None:
-        ax.set_ylim(-phi_limit, phi_limit)
-    return ax_ground, ax
-
-
 # ------------------------------------------------------------------ failure domain, fragility
 DOMAIN_COLOURS = {
     "rest": "#eeeeee",
@@ -478,4 +312,175 @@ def plot_fragility_surface(result, ax=None):
     ax.set_title(f"Fragility surface, $\\varepsilon$ = {result.settings.tolerance:g}, "
                  f"h = {result.settings.samples}")
     ax.view_init(elev=25, azim=-125)
+    return ax
+
+
+# --- dynamics
+
+
+def plot_rotation_history(history, ax=None, *, label: str | None = None, mark_impacts=True,
+                          **style):
+    """Rotation phi(t) of a time history [rad], Mech-l positive and Mech-r negative
+    (Figs. 9-15 of the paper), impacts marked.
+
+    Parameters
+    ----------
+    history : archquake.time_history.TimeHistory
+        A recorded time history.
+    ax : matplotlib axes, optional
+    label : str, optional
+        Legend label.
+    mark_impacts : bool
+        Mark every impact on the time axis.
+    **style
+        Passed to ``ax.plot``.
+    """
+    ax = _axes(ax)
+    line = None
+    for seg in history.segments:
+        sign = -1.0 if seg.mechanism == "r" else 1.0
+        kwargs = dict(style)
+        if line is not None:
+            kwargs["color"] = line.get_color()
+        (line,) = ax.plot(seg.t, sign * seg.phi, label=label if line is None else None,
+                          **kwargs)
+    if mark_impacts and history.impact_times.size:
+        ax.plot(history.impact_times, np.zeros_like(history.impact_times), "o", ms=3.5,
+                mfc="none", color=line.get_color() if line is not None else "k")
+    outcome = history.outcome
+    if outcome.status == "collapse" and np.isfinite(outcome.collapse_time):
+        ax.axvline(outcome.collapse_time, ls=":", lw=0.8,
+                   color=line.get_color() if line is not None else "k")
+    ax.axhline(0.0, color="0.6", lw=0.6)
+    ax.set_xlabel("time t [s]")
+    ax.set_ylabel(r"$\phi$ (Mech-l $+$, Mech-r $-$) [rad]")
+    if label is not None:
+        ax.legend()
+    return ax
+
+
+def plot_free_vibration(history, ax=None, **style):
+    """Free vibration phi(t) (Figs. 9-14 of the paper); see :func:`plot_rotation_history`."""
+    ax = plot_rotation_history(history, ax, **style)
+    ax.set_title("free vibration")
+    return ax
+
+
+def plot_pulse_response(histories, ax=None, *, labels=None, phi_limit: float | None = None):
+    """Response phi(t) to a ground motion with the acceleration in a panel above (Fig. 15).
+
+    Parameters
+    ----------
+    histories : TimeHistory or sequence of TimeHistory
+        Time histories under the same ground motion (e.g. several arches).
+    ax : matplotlib axes, optional
+        Axes of the response; the ground-motion panel is added above it.
+    labels : sequence of str, optional
+        Legend labels.
+    phi_limit : float, optional
+        Clip the vertical axis at +-phi_limit [rad] (collapsing histories run to the limit).
+
+    Returns
+    -------
+    (ax_ground, ax_response)
+    """
+    from mpl_toolkits.axes_grid1 import make_axes_locatable
+
+    if not isinstance(histories, list | tuple):
+        histories = [histories]
+    labels = labels or [None] * len(histories)
+    if ax is None:
+        _, ax = plt.subplots(figsize=(7.0, 5.5))
+    divider = make_axes_locatable(ax)
+    ax_ground = divider.append_axes("top", size="35%", pad=0.15, sharex=ax)
+    t_max = max(float(h.t[-1]) for h in histories)
+    motion = histories[0].ground_motion
+    t = np.linspace(0.0, t_max, 4001)
+    t = np.unique(np.concatenate([t, motion.breakpoints[motion.breakpoints <= t_max],
+                                  np.nextafter(motion.breakpoints, -np.inf)]))
+    t = t[(t >= 0) & (t <= t_max)]
+    ax_ground.plot(t, motion.acceleration(t) / 9.81, color="k", lw=1.0)
+    ax_ground.axhline(0.0, color="0.6", lw=0.6)
+    ax_ground.set_ylabel(r"$\ddot{x}_g$ [g]")
+    ax_ground.tick_params(labelbottom=False)
+    ax_ground.set_title(motion.name)
+    for history, label in zip(histories, labels, strict=True):
+        plot_rotation_history(history, ax, label=label)
+    if phi_limit is not None:
+        ax.set_ylim(-phi_limit, phi_limit)
+    return ax_ground, ax
+
+
+# --- energy and ground motion
+
+
+def plot_potential_energy(mechanism, ax=None, *, label: str | None = None, color=None,
+                          phi_max: float | None = None):
+    """Potential energy ``V(phi) - V(0)`` of a four-link mechanism [paper, eq. (3), Figs. 6-8].
+
+    ``phi = theta_u - theta`` [rad] from the undisplaced configuration (0) to ``phi_max``
+    (default: the kinematic limit ``theta_u - theta_limit``). The maximum at ``phi_cr`` (eq. (4))
+    is marked with a dot and a dotted vertical line.
+
+    Parameters
+    ----------
+    mechanism : FourLinkMechanism
+        Mech-l or Mech-r of an arch.
+    ax : matplotlib Axes, optional
+    label : str, optional
+        Legend label (default: the mechanism's name).
+    color : optional
+        Line colour.
+    phi_max : float, optional
+        Right end of the phi axis [rad].
+    """
+    ax = _axes(ax)
+    name = _MECHANISM_NAMES[mechanism.direction]
+    limit = mechanism.theta_u - mechanism.theta_limit
+    end = limit if phi_max is None else min(float(phi_max), limit)
+    phi = np.linspace(0.0, end, 400)
+    v0 = float(mechanism.potential_energy(mechanism.theta_u))
+    energy = (mechanism.potential_energy(mechanism.theta_u - phi) - v0) / 1e3
+    line, = ax.plot(phi, energy, color=color, label=label or name)
+    v_cr = (float(mechanism.potential_energy(mechanism.theta_cr)) - v0) / 1e3
+    ax.plot([mechanism.phi_cr], [v_cr], "o", color=line.get_color(), markersize=5)
+    ax.axvline(mechanism.phi_cr, color=line.get_color(), linestyle=":", linewidth=1.0)
+    ax.annotate(f"$\\phi_{{cr}}$ = {mechanism.phi_cr:.4f}", (mechanism.phi_cr, v_cr),
+                textcoords="offset points", xytext=(4, 6), fontsize=8, color=line.get_color())
+    ax.set_xlabel(r"$\phi = \theta_u - \theta$ [rad]")
+    ax.set_ylabel(r"$V(\phi) - V(0)$ [kJ/m]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="best", fontsize=8)
+    return ax
+
+
+def plot_ground_motion(motion, ax=None, *, t_end: float | None = None, label: str | None = None,
+                       color=None):
+    """Ground acceleration ``xg''/g`` of a :class:`GroundMotion` against time [Fig. 15a].
+
+    Parameters
+    ----------
+    motion : GroundMotion
+    ax : matplotlib Axes, optional
+    t_end : float, optional
+        End of the time axis [s] (default: 1.2 times the duration of the motion).
+    label : str, optional
+        Legend label (default: the motion's name).
+    color : optional
+        Line colour.
+    """
+    from .geometry import GRAVITY
+
+    ax = _axes(ax)
+    end = 1.2 * motion.duration if t_end is None else float(t_end)
+    breaks = motion.breakpoints
+    t = np.union1d(np.linspace(0.0, end, 1500), np.concatenate([breaks, breaks - 1e-9]))
+    t = t[(t >= 0.0) & (t <= end)]
+    ax.plot(t, motion.acceleration(t) / GRAVITY, color=color, linewidth=1.2,
+            label=label or motion.name)
+    ax.axhline(0.0, color="0.4", linewidth=0.6)
+    ax.set_xlabel("time t [s]")
+    ax.set_ylabel(r"$\ddot{x}_g / g$ [-]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="upper right", fontsize=8)
     return ax

@@ -1,0 +1,261 @@
+"""The fragility study [paper, Sect. 5.3.3, eq. (9), Figs. 17-21] at reduced size."""
+
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from archquake.cli import main
+from archquake.execution import StudyPlan
+from archquake.failure_domain import inclusive_range
+from archquake.fragility import (
+    FragilitySettings,
+    chunk_arches,
+    fragility_task,
+    limit_task,
+    run_fragility,
+)
+from archquake.geometry import GRAVITY, irregular_sample
+from archquake.ground_motion import oppenheim_pulse
+from archquake.impact import restitution
+from archquake.limit_analysis import limit_sample, load_multipliers
+from archquake.mechanism import mechanisms
+from archquake.results_io import load_study
+from archquake.time_history import simulate
+
+TINY = {"samples": 3, "durations": (0.4,), "amplitudes": tuple(inclusive_range(0.3, 0.9, 0.1)),
+        "limit_samples": 6, "seed": 11}
+
+
+@pytest.fixture(scope="module")
+def small_result(tmp_path_factory):
+    settings = FragilitySettings(samples=4, durations=(0.4, 0.6),
+                                 amplitudes=tuple(inclusive_range(0.3, 0.9, 0.05)),
+                                 limit_samples=8, seed=3)
+    out = tmp_path_factory.mktemp("fragility") / "study"
+    return run_fragility(settings, out, backend="serial", progress=False), out
+
+
+def test_study_arches_are_those_of_irregular_sample(nominal):
+    plan = StudyPlan({}, seed=7, n_items=6, chunk_size=4)
+    drawn = chunk_arches(plan.chunk(1), nominal, 0.1)  # items 4 and 5
+    reference = irregular_sample(nominal, 0.1, 6, 7)[4:]
+    for a, b in zip(drawn, reference, strict=True):
+        for name in ("angles", "thicknesses", "radii"):
+            assert np.array_equal(getattr(a, name), getattr(b, name))
+        assert a.start_angle == b.start_angle
+
+
+def test_limit_task_gives_the_values_of_limit_sample(nominal):
+    settings = {"nominal": FragilitySettings(nominal=nominal).to_dict()["nominal"],
+                "tolerance": 0.1, "limit_method": "kinematic"}
+    plan = StudyPlan(settings, seed=5, n_items=6, chunk_size=4)
+    rows = [limit_task(chunk) for chunk in plan.chunks()]
+    k_l = np.concatenate([r["k_l"] for r in rows])
+    k_r = np.concatenate([r["k_r"] for r in rows])
+    reference = limit_sample(nominal, 0.1, 6, 5, "kinematic")
+    assert np.array_equal(k_l, reference.load_multiplier_l)
+    assert np.array_equal(k_r, reference.load_multiplier_r)
+
+
+def test_table_rows_agree_with_direct_simulations(nominal, small_result):
+    result, _ = small_result
+    table = result.table
+    assert list(table.columns[:8]) == ["arch", "direction", "duration", "amplitude_g", "status",
+                                       "half_cycle", "impacts", "collapse_time"]
+    assert len(table) == 4 * 2 * 2 * 13
+    arch = irregular_sample(nominal, 0.1, 4, 3)[2]
+    pair = mechanisms(arch)
+    c = restitution("nominal", *pair, nominal=mechanisms(nominal))
+    k_l, k_r = load_multipliers(arch)
+    rows = table[table["arch"] == 2]
+    assert rows["k_l"].to_numpy() == pytest.approx(k_l, abs=1e-9)
+    assert rows["k_r"].to_numpy() == pytest.approx(k_r, abs=1e-9)
+    names = {0: "rest", 1: "recovery", 2: "collapse"}
+    for _, row in rows.iloc[::5].iterrows():
+        sign = -1.0 if row["direction"] == "l" else 1.0
+        out = simulate(pair, oppenheim_pulse(sign * row["amplitude_g"] * GRAVITY,
+                                             row["duration"]), c, record=False)
+        assert (out.status, out.half_cycle) == (names[row["status"]], row["half_cycle"])
+
+
+def test_probability_of_failure_counts_either_direction(small_result):
+    result, _ = small_result
+    table = result.table
+    failed = (table.assign(collapsed=table["status"] == 2)
+              .groupby(["duration", "amplitude_g", "arch"])["collapsed"].any()
+              .groupby(["duration", "amplitude_g"]).mean())
+    expected = failed.to_numpy().reshape(result.probability.shape)
+    assert np.array_equal(result.probability, expected)
+    for direction, probability in (("l", result.probability_l), ("r", result.probability_r)):
+        one = table[table["direction"] == direction]
+        p = (one["status"] == 2).groupby([one["duration"], one["amplitude_g"]]).mean()
+        assert np.array_equal(probability, p.to_numpy().reshape(probability.shape))
+    assert np.all(result.probability >= np.maximum(result.probability_l, result.probability_r))
+
+
+def test_outputs_hold_table_curves_and_summary(small_result):
+    result, out = small_result
+    stored = load_study(out)
+    pd.testing.assert_frame_equal(stored.table, result.table, check_dtype=False)
+    assert stored.metadata["seed"] == 3
+    assert "archquake_version" in stored.metadata
+    assert stored.summary["settings"]["samples"] == 4
+    per = stored.summary["durations"]
+    assert [p["duration"] for p in per] == [0.4, 0.6]
+    curves = pd.read_csv(out / "curves.csv")
+    assert np.allclose(curves["probability"], result.probability.ravel())
+    k = load_study(out / "limit_sample").table
+    assert np.array_equal(np.minimum(k["k_l"], k["k_r"]), result.limit_load_multipliers)
+    # the nominal arch's step (eq. 10) is 0 below and 1 from its failure acceleration on
+    q = result.nominal_failure_acceleration
+    step = curves["nominal_step"].to_numpy().reshape(result.probability.shape)
+    assert np.array_equal(step, (result.amplitudes[None, :] >= q[:, None]).astype(float))
+
+
+def test_irregular_arches_fail_below_the_nominal_failure_acceleration():
+    # The paper's finding (Sect. 5.3.3, Fig. 21): where the nominal arch survives (a < Q),
+    # some irregular arches (epsilon = 0.10) already fail, at every pulse duration.
+    settings = FragilitySettings(samples=20, durations=(0.4, 0.6),
+                                 amplitudes=tuple(inclusive_range(0.20, 1.00, 0.02)),
+                                 limit_samples=20, seed=0)
+    result = run_fragility(settings, backend="serial", progress=False)
+    q = result.nominal_failure_acceleration
+    assert np.all(np.isfinite(q))
+    below = result.probability_below_nominal()
+    assert np.all(below > 0)
+    assert np.all(result.lowest_failure_acceleration() < q)
+
+
+def test_results_do_not_depend_on_the_backend():
+    from distributed import Client, LocalCluster
+
+    settings = FragilitySettings(**TINY)
+    serial = run_fragility(settings, backend="serial", progress=False, chunk_size=1,
+                           limit_chunk_size=2)
+    processes = run_fragility(settings, backend="processes", workers=2, progress=False,
+                              chunk_size=1, limit_chunk_size=2)
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
+                      dashboard_address=None) as cluster, Client(cluster) as client:
+        dask = run_fragility(settings, backend="dask", scheduler=client, progress=False,
+                             chunk_size=1, limit_chunk_size=2)
+    for other in (processes, dask):
+        pd.testing.assert_frame_equal(other.table, serial.table)
+        assert np.array_equal(other.probability, serial.probability)
+        assert np.array_equal(other.limit_load_multipliers, serial.limit_load_multipliers)
+
+
+def test_plots_of_fragility(small_result):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from archquake.plotting import plot_fragility_curve, plot_fragility_surface
+
+    result, _ = small_result
+    ax = plot_fragility_curve(result, 0.6)
+    dots = next(line for line in ax.get_lines() if line.get_label().startswith("P$_F$"))
+    assert np.array_equal(dots.get_ydata(), result.probability[1])
+    q_line = next(line for line in ax.get_lines()
+                  if line.get_label().startswith("nominal arch, failure"))
+    assert q_line.get_xdata()[0] == pytest.approx(result.nominal_failure_acceleration[1])
+    plt.close(ax.figure)
+    ax = plot_fragility_surface(result)
+    assert ax.name == "3d"
+    plt.close(ax.figure)
+
+
+# --------------------------------------------------------------------------------------------
+# Command line
+# --------------------------------------------------------------------------------------------
+def test_cli_domain_reproduces_point_q(capsys, paper):
+    code = main(["domain", "--durations", "0.4", "--amplitudes", "0.40:0.60:0.01",
+                 "--restitution", "paper", "--json"])
+    assert code == 0
+    (entry,) = json.loads(capsys.readouterr().out)
+    q = paper["dynamics"]["NA"]["failure_acceleration_tp040"]
+    assert entry["duration"] == 0.4
+    assert entry["failure_acceleration"] == pytest.approx(q, abs=0.01)
+    assert entry["intervals"][0]["outcome"] == "recovery"
+
+
+FRAGILITY_ARGS = ["fragility", "--samples", "3", "--durations", "0.4",
+                  "--amplitudes", "0.3:0.9:0.1", "--limit-samples", "6", "--seed", "11",
+                  "--no-progress"]
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["fragility", "--samples", "0"], "--samples"),
+    (["fragility", "--amplitudes", "0.2:1.0:0"], "step"),
+    (["fragility", "--amplitudes", "0.2:1.0:-0.1"], "step"),
+    (["fragility", "--durations", ""], "--durations must not be empty"),
+    (["fragility", "--durations=-0.4,0.5"], "--durations must be"),
+    (["fragility", "--tolerance", "1.0"], "[0, 1)"),
+    (["fragility", "--tolerance", "-0.1"], "[0, 1)"),
+    (["fragility", "--limit-samples", "0"], "--limit-samples"),
+    (["domain", "--durations", "0.4", "--amplitudes", "0.5:0.2:0.1"], "stop must be >= start"),
+    (["domain", "--durations", "0", "--amplitudes", "0.2:0.5:0.1"], "--durations must be"),
+    (["domain", "--durations", "0.4", "--amplitudes", "0.2:0.5:0.1", "--resolution", "0"],
+     "--resolution"),
+])
+def test_cli_bad_inputs_are_clear_errors(argv, message, tmp_path, capsys):
+    if argv[0] == "fragility":
+        argv = argv + ["--out", str(tmp_path / "out")]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("archquake: error:") and message in err
+
+
+def test_cli_unreachable_scheduler_is_a_clear_error(tmp_path, capsys, monkeypatch):
+    monkeypatch.setattr("archquake.execution.SCHEDULER_TIMEOUT", 0.5)
+    code = main(FRAGILITY_ARGS + ["--scheduler", "tcp://127.0.0.1:9", "--out",
+                                  str(tmp_path / "out")])
+    assert code == 2
+    assert "could not connect to the Dask scheduler" in capsys.readouterr().err
+
+
+def test_cli_fragility_resumes_an_interrupted_study(tmp_path, capsys):
+    out = tmp_path / "study"
+    assert main(FRAGILITY_ARGS + ["--out", str(out), "--json"]) == 0
+    first = json.loads(capsys.readouterr().out)
+    complete = load_study(out).table
+    # an interrupted study: two of the three chunk files and the final results are missing
+    for name in ("summary.json", "results.parquet", "results.csv", "curves.csv"):
+        (out / name).unlink()
+    for chunk in sorted((out / "chunks").glob("chunk-*.npz"))[1:]:
+        chunk.unlink()
+    assert main(FRAGILITY_ARGS + ["--out", str(out)]) == 2
+    assert "--resume" in capsys.readouterr().err
+    assert main(FRAGILITY_ARGS + ["--out", str(out), "--resume", "--json"]) == 0
+    resumed = json.loads(capsys.readouterr().out)
+    assert resumed == first
+    stored = load_study(out)
+    pd.testing.assert_frame_equal(stored.table, complete)
+    assert stored.metadata["timings"]["chunks_resumed"] >= 1
+    # a different setting cannot continue this study
+    other = [a if a != "0.3:0.9:0.1" else "0.3:0.8:0.1" for a in FRAGILITY_ARGS]
+    assert main(other + ["--out", str(out), "--resume"]) == 2
+    assert "differs" in capsys.readouterr().err
+
+
+def test_fragility_task_rows_are_tidy():
+    settings = FragilitySettings(**TINY)
+    plan = StudyPlan(settings.to_dict(), settings.seed, settings.samples, 2)
+    columns = fragility_task(plan.chunk(0))
+    n = 2 * 2 * 1 * 7
+    assert all(len(v) == n for v in columns.values())
+    assert columns["arch"].tolist() == [0] * 14 + [1] * 14
+    assert set(columns["direction"]) == {"l", "r"}
+
+
+def test_run_study_pool_is_only_for_the_processes_backend():
+    from archquake.execution import run_study
+
+    plan = StudyPlan(FragilitySettings(**TINY).to_dict(), 11, 3, 2)
+    with pytest.raises(ValueError, match="pool is only used by backend 'processes'"):
+        run_study(fragility_task, plan, backend="serial", pool=object(), progress=False)
+    with pytest.raises(ValueError, match="workers must be None when a pool is given"):
+        run_study(fragility_task, plan, backend="processes", workers=2,
+                  pool=type("P", (), {"submit": None})(), progress=False)
