@@ -13,7 +13,7 @@ $(STAMP): pyproject.toml
 	touch $(STAMP)
 
 run: $(STAMP)
-	$(BIN)/archquake limit
+	$(BIN)/archquake reproduce --out report
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q

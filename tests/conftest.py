@@ -1,17 +1,16 @@
 import math
-import tomllib
-from pathlib import Path
 
 import pytest
 
 from archquake import oppenheim
+from archquake.reference_arches import paper_values
 
-PAPER = tomllib.loads((Path(__file__).parent / "data" / "paper_values.toml").read_text())
+PAPER = paper_values()
 
 
 @pytest.fixture(scope="session")
 def paper():
-    """The paper's published numbers (tests/data/paper_values.toml)."""
+    """The paper's published numbers (src/archquake/data/paper_values.toml)."""
     return PAPER
 
 

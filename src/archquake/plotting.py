@@ -409,3 +409,78 @@ def plot_pulse_response(histories, ax=None, *, labels=None, phi_limit: float | N
     if phi_limit is not None:
         ax.set_ylim(-phi_limit, phi_limit)
     return ax_ground, ax
+
+
+# --- energy and ground motion
+
+
+def plot_potential_energy(mechanism, ax=None, *, label: str | None = None, color=None,
+                          phi_max: float | None = None):
+    """Potential energy ``V(phi) - V(0)`` of a four-link mechanism [paper, eq. (3), Figs. 6-8].
+
+    ``phi = theta_u - theta`` [rad] from the undisplaced configuration (0) to ``phi_max``
+    (default: the kinematic limit ``theta_u - theta_limit``). The maximum at ``phi_cr`` (eq. (4))
+    is marked with a dot and a dotted vertical line.
+
+    Parameters
+    ----------
+    mechanism : FourLinkMechanism
+        Mech-l or Mech-r of an arch.
+    ax : matplotlib Axes, optional
+    label : str, optional
+        Legend label (default: the mechanism's name).
+    color : optional
+        Line colour.
+    phi_max : float, optional
+        Right end of the phi axis [rad].
+    """
+    ax = _axes(ax)
+    name = _MECHANISM_NAMES[mechanism.direction]
+    limit = mechanism.theta_u - mechanism.theta_limit
+    end = limit if phi_max is None else min(float(phi_max), limit)
+    phi = np.linspace(0.0, end, 400)
+    v0 = float(mechanism.potential_energy(mechanism.theta_u))
+    energy = (mechanism.potential_energy(mechanism.theta_u - phi) - v0) / 1e3
+    line, = ax.plot(phi, energy, color=color, label=label or name)
+    v_cr = (float(mechanism.potential_energy(mechanism.theta_cr)) - v0) / 1e3
+    ax.plot([mechanism.phi_cr], [v_cr], "o", color=line.get_color(), markersize=5)
+    ax.axvline(mechanism.phi_cr, color=line.get_color(), linestyle=":", linewidth=1.0)
+    ax.annotate(f"$\\phi_{{cr}}$ = {mechanism.phi_cr:.4f}", (mechanism.phi_cr, v_cr),
+                textcoords="offset points", xytext=(4, 6), fontsize=8, color=line.get_color())
+    ax.set_xlabel(r"$\phi = \theta_u - \theta$ [rad]")
+    ax.set_ylabel(r"$V(\phi) - V(0)$ [kJ/m]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="best", fontsize=8)
+    return ax
+
+
+def plot_ground_motion(motion, ax=None, *, t_end: float | None = None, label: str | None = None,
+                       color=None):
+    """Ground acceleration ``xg''/g`` of a :class:`GroundMotion` against time [Fig. 15a].
+
+    Parameters
+    ----------
+    motion : GroundMotion
+    ax : matplotlib Axes, optional
+    t_end : float, optional
+        End of the time axis [s] (default: 1.2 times the duration of the motion).
+    label : str, optional
+        Legend label (default: the motion's name).
+    color : optional
+        Line colour.
+    """
+    from .geometry import GRAVITY
+
+    ax = _axes(ax)
+    end = 1.2 * motion.duration if t_end is None else float(t_end)
+    breaks = motion.breakpoints
+    t = np.union1d(np.linspace(0.0, end, 1500), np.concatenate([breaks, breaks - 1e-9]))
+    t = t[(t >= 0.0) & (t <= end)]
+    ax.plot(t, motion.acceleration(t) / GRAVITY, color=color, linewidth=1.2,
+            label=label or motion.name)
+    ax.axhline(0.0, color="0.4", linewidth=0.6)
+    ax.set_xlabel("time t [s]")
+    ax.set_ylabel(r"$\ddot{x}_g / g$ [-]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="upper right", fontsize=8)
+    return ax
