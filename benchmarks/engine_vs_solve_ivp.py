@@ -249,7 +249,9 @@ def main(argv=None):
     print(f"model: {'rocking block' if args.block else 'Oppenheim arch + irregular arches'}, "
           f"{len(pairs)} arch(es), c = {c}")
     print(f"analyses compared           : {n_total}")
-    print(f"identical (status, half cycle, impacts): {n_total - len(mismatches)} / {n_total}")
+    finished = n_total - len(failed)
+    print(f"identical (status, half cycle, impacts), baseline finished: "
+          f"{finished - len(mismatches)} / {finished}")
     print(f"identical (status, half cycle), baseline finished: {same_status} / "
           f"{n_total - len(failed)}; baseline did not finish: {len(failed)}")
     for d, a, e, b in mismatches:
