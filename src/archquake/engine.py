@@ -211,10 +211,14 @@ def tabulate(mechanism, *, degree: int = TABLE_DEGREE, tolerance: float = TABLE_
     direction = str(getattr(mechanism, "direction", "l"))
     if direction not in ("l", "r"):
         raise ValueError(f"mechanism direction must be 'l' or 'r', got {direction!r}")
-    if not theta_lo < theta_cr < theta_u:
-        raise ValueError(
-            "a mechanism needs theta_limit + limit_margin < theta_cr < theta_u, got "
-            f"{theta_lo!r}, {theta_cr!r}, {theta_u!r}")
+    if not theta_lo < theta_u:
+        raise ValueError(f"a mechanism needs theta_limit + limit_margin < theta_u, got "
+                         f"{theta_lo!r} and {theta_u!r}")
+    if not theta_cr < theta_u:
+        raise ValueError(f"theta_cr must be < theta_u (gravity must resist the motion at rest), "
+                         f"got {theta_cr!r} and {theta_u!r}")
+    # gravity resisting down to the kinematic limit: the barrier is at the end of the table
+    theta_cr = max(theta_cr, theta_lo)
     func = _exact_functions(mechanism)
     grid = np.linspace(theta_lo, theta_u, 2001)
     scale = np.max(np.abs(func(grid)), axis=1)
