@@ -152,9 +152,14 @@ def baseline_outcome(mech_l, mech_r, c_lr, c_rl, motion, *, rtol=1e-9, atol=1e-1
         m_new = other.coefficients(other.theta_u)[0]
         kinetic_new = c_of[m] ** 2 * m_new / m_u * kinetic
         barrier = other.potential_energy(other.theta_cr) - other.potential_energy(other.theta_u)
-        if kinetic_new <= barrier:
-            return 1, 0, state["impacts"], math.nan
-        collapse_extra = 1
+        if kinetic_new > barrier:
+            collapse_extra = 1
+        else:  # back into this mechanism after the second impact, against its own barrier
+            kinetic_back = c_of[1 - m] ** 2 * m_u / m_new * kinetic_new
+            own = v_cr - mech.potential_energy(mech.theta_u)
+            if kinetic_back <= own:
+                return 1, 0, state["impacts"], math.nan
+            collapse_extra = 2
     half_cycle = state["impacts"] + 1 + collapse_extra
     # ---- time of the point of no return: integrate the free motion to the outward crossing
     t = state["t"]
