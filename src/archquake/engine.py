@@ -386,10 +386,14 @@ def _rhs(t, th, thd, m, pieces, breaks, coefs, xg_step, tcap, tcap_left, kind, p
 
 
 @numba.njit(cache=True)
-def _stages(first, last, t, y0, y1, h, m, pieces, breaks, coefs, xg_step, tcap, tcap_left,
-            kind, params, times, values, K):
-    """Runge-Kutta stages ``first .. last-1`` of the Dormand-Prince tableau into ``K``."""
-    for s in range(first, last):
+def _step(t, y0, y1, f0, f1, h, m, pieces, breaks, coefs, xg_step, tcap, tcap_left,
+          kind, params, times, values, rtol, atol, K):
+    """One Dormand-Prince 8(5,3) step; stages kept in ``K`` for the dense output.
+
+    Returns ``(theta, theta', theta'', error_norm)`` at ``t + h``."""
+    K[0, 0] = f0
+    K[0, 1] = f1
+    for s in range(1, 12):
         d0 = 0.0
         d1 = 0.0
         for j in range(s):
@@ -402,18 +406,6 @@ def _stages(first, last, t, y0, y1, h, m, pieces, breaks, coefs, xg_step, tcap, 
         K[s, 0] = z1
         K[s, 1] = _rhs(t + _C[s] * h, z0, z1, m, pieces, breaks, coefs, xg_step, tcap,
                        tcap_left, kind, params, times, values)
-
-
-@numba.njit(cache=True)
-def _step(t, y0, y1, f0, f1, h, m, pieces, breaks, coefs, xg_step, tcap, tcap_left,
-          kind, params, times, values, rtol, atol, K):
-    """One Dormand-Prince 8(5,3) step; stages kept in ``K`` for the dense output.
-
-    Returns ``(theta, theta', theta'', error_norm)`` at ``t + h``."""
-    K[0, 0] = f0
-    K[0, 1] = f1
-    _stages(1, 12, t, y0, y1, h, m, pieces, breaks, coefs, xg_step, tcap, tcap_left,
-            kind, params, times, values, K)
     d0 = 0.0
     d1 = 0.0
     for j in range(12):
@@ -449,8 +441,19 @@ def _step(t, y0, y1, f0, f1, h, m, pieces, breaks, coefs, xg_step, tcap, tcap_le
 def _dense(t, y0, y1, n0, n1, h, m, pieces, breaks, coefs, xg_step, tcap, tcap_left,
            kind, params, times, values, K, Fd):
     """Coefficients ``Fd`` (7, 2) of the 7th-order dense output of the last step."""
-    _stages(13, 16, t, y0, y1, h, m, pieces, breaks, coefs, xg_step, tcap, tcap_left,
-            kind, params, times, values, K)
+    for s in range(13, 16):
+        d0 = 0.0
+        d1 = 0.0
+        for j in range(s):
+            a = _A[s, j]
+            if a != 0.0:
+                d0 += a * K[j, 0]
+                d1 += a * K[j, 1]
+        z0 = y0 + h * d0
+        z1 = y1 + h * d1
+        K[s, 0] = z1
+        K[s, 1] = _rhs(t + _C[s] * h, z0, z1, m, pieces, breaks, coefs, xg_step, tcap,
+                       tcap_left, kind, params, times, values)
     for c in range(2):
         dy = (n0 - y0) if c == 0 else (n1 - y1)
         Fd[0, c] = dy
