@@ -441,6 +441,8 @@ def _step(t, y0, y1, f0, f1, h, m, pieces, breaks, coefs, xg_step, tcap, tcap_le
 def _dense(t, y0, y1, n0, n1, h, m, pieces, breaks, coefs, xg_step, tcap, tcap_left,
            kind, params, times, values, K, Fd):
     """Coefficients ``Fd`` (7, 2) of the 7th-order dense output of the last step."""
+    # the same stage loop as in _step, written out: a shared helper costs 15 % per analysis
+    # (measured; numba does not fold the call into this loop even with inline="always")
     for s in range(13, 16):
         d0 = 0.0
         d1 = 0.0
