@@ -6,8 +6,6 @@ from archquake import irregular_arch
 from archquake.equations_of_motion import (
     angular_acceleration,
     coefficients,
-    coefficients_from_parameters,
-    compiled_kernels,
     kinetic_energy,
 )
 from archquake.geometry import GRAVITY, Hinge
@@ -126,12 +124,3 @@ def test_ground_acceleration_sign_of_each_mechanism(nominal, paper):
     assert angular_acceleration(mech_r, mech_r.theta_u, 0.0, (mech_r.activation + 0.01) * g) < 0
     assert angular_acceleration(mech_r, mech_r.theta_u, 0.0, (mech_r.activation - 0.01) * g) > 0
     assert angular_acceleration(mech_r, mech_r.theta_u, 0.0, -2.0 * g) > 0
-
-
-def test_coefficients_compile_with_numba(nominal, paper):
-    mech = mechanism_from_hinges(irregular_arch(nominal, 0.1, rng=2), nominal_hinges(paper))
-    compiled = compiled_kernels().coefficients
-    for theta in (mech.theta_u, mech.theta_u - 0.3):
-        assert np.array(compiled(theta, mech.parameters)) == pytest.approx(
-            np.array(coefficients_from_parameters(theta, mech.parameters)), rel=1e-13
-        )

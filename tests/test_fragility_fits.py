@@ -4,12 +4,12 @@ from scipy import stats
 
 from archquake.fragility import (
     LognormalFragility,
-    empirical_cdf,
     evaluate_polynomial_fit,
     fit_lognormal,
     fit_polynomial,
     probability_of_failure,
 )
+from archquake.limit_analysis import empirical_cdf
 
 
 def test_probability_of_failure_is_fraction_of_failed_arches():

@@ -29,20 +29,14 @@ eq. (3) and the four-bar rates ``w_bc, w_cd, a_bc, a_cd`` of
 Mech-r lives in the mirrored frame, so the ground acceleration of the original frame enters with
 the opposite sign (eq. (7) of the paper): ``M theta'' + L theta'^2 + F g = -P xg''``.
 
-:func:`coefficients_from_parameters` is written with plain float/array operations only;
-:func:`compiled_kernels` compiles this very source with numba for a compiled integrator, so the
-plain functions checked by the tests and the compiled ones are the same physics.
+This is the one definition of M, L, F, P: the compiled engine (:mod:`archquake.engine`) does not
+re-derive them, it tabulates these very functions (:func:`archquake.engine.tabulate`).
 """
 
 from __future__ import annotations
 
-import functools
-import types
-from typing import NamedTuple
-
 import numpy as np
 
-from . import mechanism as _mechanism
 from .geometry import GRAVITY
 from .mechanism import FourLinkMechanism, four_bar_closure, four_bar_rates
 
@@ -135,37 +129,3 @@ def kinetic_energy(mechanism: FourLinkMechanism, theta, theta_dot):
     """Kinetic energy ``T = 1/2 M(theta) theta'^2`` [J/m] (relative to the ground)."""
     m, _, _, _ = coefficients(mechanism, theta)
     return 0.5 * m * np.asarray(theta_dot, dtype=float) ** 2
-
-
-class CompiledKernels(NamedTuple):
-    """numba-compiled versions of the plain kernels (same source, same signatures)."""
-
-    closure: object
-    """:func:`archquake.mechanism.four_bar_closure`"""
-    rates: object
-    """:func:`archquake.mechanism.four_bar_rates`"""
-    coefficients: object
-    """:func:`coefficients_from_parameters`"""
-
-
-def _rebind(function, **names):
-    """A copy of ``function`` whose global ``names`` are replaced (to call compiled helpers)."""
-    return types.FunctionType(function.__code__, {**function.__globals__, **names},
-                              function.__name__, function.__defaults__, function.__closure__)
-
-
-@functools.cache
-def compiled_kernels() -> CompiledKernels:
-    """Compile the closure, the four-bar rates and M, L, F, P with ``numba.njit``.
-
-    The compiled functions take the same arguments as the plain ones (floats, or arrays of
-    ``theta``); compilation happens on the first call of each.
-    """
-    import numba
-
-    wrap = numba.njit(_mechanism._wrap)
-    closure = numba.njit(_rebind(four_bar_closure, _wrap=wrap))
-    rates = numba.njit(four_bar_rates)
-    kernel = numba.njit(_rebind(coefficients_from_parameters, four_bar_closure=closure,
-                                four_bar_rates=rates))
-    return CompiledKernels(closure, rates, kernel)

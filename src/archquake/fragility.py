@@ -34,6 +34,8 @@ arches); ``"computed"`` gives each arch its own pair (c_lr, c_rl), ``"paper"`` i
 
 from __future__ import annotations
 
+import functools
+import json
 import math
 import os
 from dataclasses import dataclass, field
@@ -141,14 +143,6 @@ def fit_polynomial(amplitudes, probabilities, degree: int = 5) -> np.polynomial.
 def evaluate_polynomial_fit(poly: np.polynomial.Polynomial, amplitude) -> np.ndarray:
     """The polynomial fit clipped to probabilities in [0, 1]."""
     return np.clip(poly(np.asarray(amplitude, dtype=float)), 0.0, 1.0)
-
-
-def empirical_cdf(values) -> tuple[np.ndarray, np.ndarray]:
-    """Sorted values and their empirical cumulative probabilities i/s, i = 1..s."""
-    v = np.sort(np.asarray(values, dtype=float).ravel())
-    if v.size == 0:
-        raise ValueError("values must not be empty")
-    return v, np.arange(1, v.size + 1) / v.size
 
 
 # ---------------------------------------------------------------------------------------------
@@ -365,6 +359,19 @@ def arch_outcomes(arch: Arch, durations, amplitudes_g, *, restitution="nominal",
     return columns
 
 
+@functools.lru_cache(maxsize=4)
+def _nominal_mechanisms(nominal_json: str):
+    """Mech-l and Mech-r of the nominal arch, built once per process and nominal arch.
+
+    Every chunk of a study needs them for ``restitution="nominal"``; rebuilding them (limit
+    analysis and linkage) in every chunk cost about a tenth of the chunk. Mechanisms are frozen
+    values, so sharing them between chunks changes no result.
+    """
+    from .mechanism import mechanisms
+
+    return mechanisms(_nominal_from_dict(json.loads(nominal_json)))
+
+
 def fragility_task(chunk) -> dict[str, np.ndarray]:
     """Study task (:func:`archquake.execution.run_study`): the arches of one chunk.
 
@@ -375,9 +382,8 @@ def fragility_task(chunk) -> dict[str, np.ndarray]:
     settings = FragilitySettings.from_dict(chunk.settings)
     nominal_mechanisms = None
     if settings.restitution == "nominal":
-        from .mechanism import mechanisms
-
-        nominal_mechanisms = mechanisms(settings.nominal)
+        nominal_mechanisms = _nominal_mechanisms(
+            json.dumps(chunk.settings["nominal"], sort_keys=True))
     parts = []
     for item, arch in zip(chunk.items, chunk_arches(chunk, settings.nominal,
                                                     settings.tolerance), strict=True):

@@ -163,6 +163,8 @@ class _Arches:
     arches: dict
     limit: dict = field(default_factory=dict)
     mechanisms: dict = field(default_factory=dict)
+    tables: dict = field(default_factory=dict)
+    """Engine tables of each arch's (Mech-l, Mech-r), built once for all its time histories."""
 
 
 def _restitution_cases(settings: ReproductionSettings, nominal_mechanisms) -> dict:
@@ -215,12 +217,14 @@ def _part_limit(settings: ReproductionSettings, paper: dict) -> tuple[_Arches, d
 
 
 def _part_mechanisms(state: _Arches, paper: dict) -> tuple[dict, dict]:
+    from .engine import tabulate
     from .mechanism import mechanisms
 
     table2, table3 = {}, {}
     for name, arch in state.arches.items():
         pair = mechanisms(arch, limit=state.limit[name])
         state.mechanisms[name] = pair
+        state.tables[name] = (tabulate(pair[0]), tabulate(pair[1]))
         table2[name], table3[name] = {}, {}
         for mech in pair:
             d = mech.direction
@@ -269,7 +273,7 @@ def _part_free_vibrations(settings: ReproductionSettings, state: _Arches, paper:
     for case, pair in (("elastic", (1.0, 1.0)), *cases.items()):
         histories[case], summary[case] = {}, {"restitution": list(pair)}
         for name in ARCH_NAMES:
-            history = free_vibration(state.mechanisms[name], pair, phi0,
+            history = free_vibration(state.tables[name], pair, phi0,
                                      t_end=settings.free_vibration_time)
             peaks = _half_cycle_peaks(history)
             histories[case][name] = history
@@ -301,7 +305,7 @@ def _part_pulses(settings: ReproductionSettings, state: _Arches, paper: dict,
             motion = oppenheim_pulse(amplitude * GRAVITY, duration)
             row = {"duration": duration, "amplitude": amplitude}
             for name in ARCH_NAMES:
-                history = simulate(state.mechanisms[name], motion, pair, t_end=3.5)
+                history = simulate(state.tables[name], motion, pair, t_end=3.5)
                 histories[case][(name, duration)] = history
                 ref = next(r for r in expected[name] if r[0] == duration)
                 out = _outcome_dict(history.outcome)
