@@ -65,3 +65,18 @@ def test_record_and_free_vibration(capsys):
 def test_simulate_bad_input(capsys, argv, message):
     assert main(["simulate", *argv]) == 2
     assert message in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["simulate", "--plot", "{missing}/x.png"], "cannot write the figure"),
+    (["simulate", "--output", "{missing}/x.csv"], "cannot write the time history"),
+    (["limit", "--plot", "{missing}/x.png"], "cannot write the figure"),
+    (["reproduce", "--quick", "--no-progress", "--out", "{file}/report"], "error:"),
+])
+def test_unusable_output_paths_are_errors_not_tracebacks(tmp_path, capsys, argv, message):
+    blocker = tmp_path / "a_file"
+    blocker.write_text("")
+    argv = [a.format(missing=tmp_path / "missing", file=blocker) for a in argv]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert message in err and "Traceback" not in err

@@ -190,11 +190,31 @@ def _run_limit(args: argparse.Namespace) -> int:
     return 0
 
 
-def _plot_limit(args: argparse.Namespace, results) -> None:
+def _pyplot():
+    """``matplotlib.pyplot`` on the file-only Agg backend (the command line opens no window)."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+
+    return plt
+
+
+def _save_figure(fig, path, **savefig_options) -> None:
+    """Write ``fig`` to ``path`` (PNG by default) and close it; a bad path is a ValueError."""
+    import matplotlib.pyplot as plt
+
+    options = {"dpi": 150, **savefig_options}
+    try:
+        fig.savefig(path, **options)
+    except OSError as exc:
+        raise ValueError(f"cannot write the figure {str(path)!r}: {exc.strerror}") from exc
+    finally:
+        plt.close(fig)
+
+
+def _plot_limit(args: argparse.Namespace, results) -> None:
+    plt = _pyplot()
 
     from .plotting import plot_limit_analysis
 
@@ -207,12 +227,7 @@ def _plot_limit(args: argparse.Namespace, results) -> None:
         frame = None if nominal is None else (nominal if r.direction == "l"
                                               else nominal.mirrored())
         plot_limit_analysis(r, ax, nominal=frame)
-    try:
-        fig.savefig(args.plot, dpi=150)
-    except OSError as exc:
-        raise ValueError(f"cannot write the figure {args.plot!r}: {exc.strerror}") from exc
-    finally:
-        plt.close(fig)
+    _save_figure(fig, args.plot)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -237,6 +252,10 @@ def main(argv: list[str] | None = None) -> int:
         return int(args.func(args) or 0)
     except ValueError as exc:
         print(f"archquake: error: {exc}", file=sys.stderr)
+        return 2
+    except OSError as exc:  # a file or directory given on the command line cannot be used
+        where = f": {exc.filename!r}" if exc.filename else ""
+        print(f"archquake: error: {exc.strerror or exc}{where}", file=sys.stderr)
         return 2
 
 
@@ -390,15 +409,6 @@ def _amplitudes(text: str) -> list[float]:
     return values
 
 
-def _save_figure(fig, path, plt) -> None:
-    try:
-        fig.savefig(path, dpi=150)
-    except OSError as exc:
-        raise ValueError(f"cannot write the figure {str(path)!r}: {exc.strerror}") from exc
-    finally:
-        plt.close(fig)
-
-
 def add_domain(subparsers) -> None:
     """``archquake domain``: failure domain over (t_p, a) (paper Sect. 5.3.3, Fig. 16)."""
     parser = subparsers.add_parser(
@@ -441,15 +451,12 @@ def _run_domain(args: argparse.Namespace) -> int:
                             direction=args.direction, tolerance=args.resolution,
                             nominal=nominal)
     if args.plot:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        _pyplot()
 
         from .plotting import plot_failure_domain
 
         ax = plot_failure_domain(domain)
-        _save_figure(ax.figure, args.plot, plt)
+        _save_figure(ax.figure, args.plot)
     if args.json:
         print_json(domain.to_list())
         return 0
@@ -590,10 +597,7 @@ def _run_fragility(args: argparse.Namespace) -> int:
 def _plot_fragility(result, plot_dir) -> list[str]:
     from pathlib import Path
 
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    _pyplot()
 
     from .plotting import plot_fragility_curve, plot_fragility_surface
 
@@ -606,11 +610,11 @@ def _plot_fragility(result, plot_dir) -> list[str]:
     for tp in result.durations:
         path = directory / f"fragility_tp{tp:.3f}.png"
         ax = plot_fragility_curve(result, tp)
-        _save_figure(ax.figure, path, plt)
+        _save_figure(ax.figure, path)
         written.append(str(path))
     path = directory / "fragility_surface.png"
     ax = plot_fragility_surface(result)
-    _save_figure(ax.figure, path, plt)
+    _save_figure(ax.figure, path)
     written.append(str(path))
     return written
 
@@ -673,6 +677,8 @@ def motion_from_args(args: argparse.Namespace):
         return read_record(args.record, scale_to=args.scale_to)
     if args.scale_to is not None:
         raise ValueError("--scale-to applies to a recorded accelerogram (--record FILE)")
+    if not math.isfinite(args.amplitude):
+        raise ValueError(f"--amplitude must be a finite number [g], got {args.amplitude!r}")
     kwargs = {} if args.cycles is None else {"cycles": args.cycles}
     if args.cycles is not None and args.motion != "harmonic":
         raise ValueError("--cycles applies to --motion harmonic")
@@ -702,15 +708,16 @@ def _run_simulate(args: argparse.Namespace) -> int:
 
         table = np.column_stack([history.t, history.phi, np.concatenate(
             [s.theta_dot for s in history.segments])])
-        with atomic_path(args.output) as tmp, open(tmp, "w") as fh:
-            fh.write("t_s,phi_rad,theta_dot_rad_s,mechanism\n")
-            for (t, phi, thd), mech in zip(table, history.mechanism, strict=True):
-                fh.write(f"{t!r},{phi!r},{thd!r},{mech}\n")
+        try:
+            with atomic_path(args.output) as tmp, open(tmp, "w") as fh:
+                fh.write("t_s,phi_rad,theta_dot_rad_s,mechanism\n")
+                for (t, phi, thd), mech in zip(table, history.mechanism, strict=True):
+                    fh.write(f"{t!r},{phi!r},{thd!r},{mech}\n")
+        except OSError as exc:
+            raise ValueError(f"cannot write the time history {args.output!r}: "
+                             f"{exc.strerror}") from exc
     if args.plot:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        _pyplot()
 
         from .plotting import plot_free_vibration, plot_pulse_response
 
@@ -720,8 +727,7 @@ def _run_simulate(args: argparse.Namespace) -> int:
         else:
             _, ax = plot_pulse_response(history, phi_limit=min(1.0, 1.5 * o.max_phi + 0.02))
             fig = ax.figure
-        fig.savefig(args.plot, dpi=120, bbox_inches="tight")
-        plt.close(fig)
+        _save_figure(fig, args.plot, dpi=120, bbox_inches="tight")
     if args.json:
         print_json(result)
         return 0
