@@ -7,7 +7,7 @@ import pandas as pd
 import pytest
 
 from archquake.cli import main
-from archquake.execution import StudyPlan
+from archquake.execution import StudyPlan, process_pool
 from archquake.failure_domain import inclusive_range
 from archquake.fragility import (
     FragilitySettings,
@@ -15,6 +15,7 @@ from archquake.fragility import (
     fragility_task,
     limit_task,
     run_fragility,
+    warm_up,
 )
 from archquake.geometry import GRAVITY, irregular_sample
 from archquake.ground_motion import oppenheim_pulse
@@ -136,11 +137,17 @@ def test_results_do_not_depend_on_the_backend():
                            limit_chunk_size=2)
     processes = run_fragility(settings, backend="processes", workers=2, progress=False,
                               chunk_size=1, limit_chunk_size=2)
+    # a pool started once (workers warmed up as they start) runs several studies
+    with process_pool(2, warm_up=warm_up) as pool:
+        pooled = [run_fragility(settings, pool=pool, progress=False, chunk_size=chunk,
+                                limit_chunk_size=2) for chunk in (1, 2)]
+        with pytest.raises(ValueError, match="pool is only used by backend 'processes'"):
+            run_fragility(settings, backend="serial", pool=pool, progress=False)
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
                       dashboard_address=None) as cluster, Client(cluster) as client:
         dask = run_fragility(settings, backend="dask", scheduler=client, progress=False,
                              chunk_size=1, limit_chunk_size=2)
-    for other in (processes, dask):
+    for other in (processes, dask, *pooled):
         pd.testing.assert_frame_equal(other.table, serial.table)
         assert np.array_equal(other.probability, serial.probability)
         assert np.array_equal(other.limit_load_multipliers, serial.limit_load_multipliers)

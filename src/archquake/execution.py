@@ -276,14 +276,17 @@ def _run_chunk(chunk: Chunk, task: Task) -> tuple[int, dict[str, np.ndarray], fl
     return chunk.index, columns, time.perf_counter() - t0
 
 
-def _limit_threads(threads: int) -> None:
-    """Process-pool initializer: cap the threads of numba and BLAS in a worker process."""
+def _limit_threads(threads: int, warm_up: Callable[[], Any] | None = None) -> None:
+    """Process-pool initializer: cap the threads of numba and BLAS in a worker process, then
+    run ``warm_up`` (if given) once."""
     for name in _THREAD_VARIABLES:
         os.environ.setdefault(name, str(threads))
     numba = sys.modules.get("numba")
     if numba is not None:  # already imported (e.g. by the parent's __main__): set at run time
         with suppress(ValueError):
             numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
+    if warm_up is not None:
+        warm_up()
 
 
 # --------------------------------------------------------------------------------------------
@@ -297,7 +300,7 @@ def _serial(task: Task, chunks: list[Chunk], workers: int | None,
         yield _run_chunk(chunk, task)
 
 
-def process_pool(workers: int | None = None):
+def process_pool(workers: int | None = None, *, warm_up: Callable[[], Any] | None = None):
     """A pool of fresh local worker processes, as the ``"processes"`` backend starts them.
 
     ``"spawn"`` context and threads capped per worker (module docstring). Give it to
@@ -309,6 +312,10 @@ def process_pool(workers: int | None = None):
     ----------
     workers : int, optional
         Number of processes (default ``os.cpu_count()``).
+    warm_up : callable, optional
+        Picklable function run once in every worker as it starts (e.g.
+        :func:`archquake.fragility.warm_up`, which loads the compiled engine), so that the
+        first chunks of a study do not pay for it.
 
     Returns
     -------
@@ -320,7 +327,7 @@ def process_pool(workers: int | None = None):
     n = _check_count("workers", workers) if workers is not None else (os.cpu_count() or 1)
     threads = max(1, (os.cpu_count() or 1) // n)
     return ProcessPoolExecutor(max_workers=n, mp_context=multiprocessing.get_context("spawn"),
-                               initializer=_limit_threads, initargs=(threads,))
+                               initializer=_limit_threads, initargs=(threads, warm_up))
 
 
 def _processes(task: Task, chunks: list[Chunk], workers: int,

@@ -616,6 +616,18 @@ def fragility_curves(settings: FragilitySettings, table: pd.DataFrame, limit_sam
         metadata=dict(metadata or {}))
 
 
+def warm_up() -> None:
+    """Load everything a fragility study runs (compiled engine, limit analysis) in this process
+    by running a two-arch study of two analyses each, serially.
+
+    The compiled functions are cached on disk, so this costs loading them (a fraction of a
+    second), not compiling them, unless the cache is cold. Use it as the ``warm_up`` of
+    :func:`archquake.execution.process_pool`, or on Dask workers with ``client.run``.
+    """
+    tiny = FragilitySettings(samples=2, durations=(0.4,), amplitudes=(0.3, 0.6), limit_samples=2)
+    run_fragility(tiny, backend="serial", progress=False)
+
+
 LIMIT_DIRECTORY = "limit_sample"
 """Subdirectory of a fragility study directory holding the limit-analysis sample (its own study)."""
 CURVES_CSV = "curves.csv"
@@ -629,6 +641,7 @@ def run_fragility(
     backend: str | None = None,
     workers: int | None = None,
     scheduler: Any = None,
+    pool: Any = None,
     resume: bool = False,
     progress: bool = True,
     chunk_size: int = 2,
@@ -654,6 +667,10 @@ def run_fragility(
         Local processes (default: the number of CPUs).
     scheduler : str or distributed.Client, optional
         Dask scheduler address ``tcp://HOST:PORT`` or a client.
+    pool : concurrent.futures.Executor, optional
+        Running worker processes (:func:`archquake.execution.process_pool`) for backend
+        ``"processes"``, to run several studies on the same warm workers; ``workers`` is then
+        ignored. The caller keeps ownership of the pool.
     resume : bool
         Continue the study saved in ``out_dir`` (same settings required).
     progress : bool
@@ -696,9 +713,14 @@ def run_fragility(
             _positive_int("workers", workers)
         if scheduler is not None:
             raise ValueError(f"scheduler is only used by backend 'dask', not {backend!r}")
-        with process_pool(workers) as pool:
+        if pool is not None:
             table, limit_table = both(pool=pool)
+        else:
+            with process_pool(workers) as own_pool:
+                table, limit_table = both(pool=own_pool)
     else:
+        if pool is not None:
+            raise ValueError(f"pool is only used by backend 'processes', not {backend!r}")
         table, limit_table = both(workers=workers, scheduler=scheduler)
 
     limit = LimitSample(limit_table["k_l"].to_numpy(), limit_table["k_r"].to_numpy(),
