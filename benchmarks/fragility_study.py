@@ -27,8 +27,8 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 
 from archquake import engine, oppenheim  # noqa: E402
-from archquake.failure_domain import arch_dynamics, inclusive_range  # noqa: E402
 from archquake.execution import process_pool  # noqa: E402
+from archquake.failure_domain import arch_dynamics, inclusive_range  # noqa: E402
 from archquake.fragility import FragilitySettings, run_fragility, warm_up  # noqa: E402
 from archquake.geometry import GRAVITY, irregular_sample  # noqa: E402
 from archquake.ground_motion import oppenheim_pulse  # noqa: E402
