@@ -65,7 +65,7 @@ def breakdown(settings: FragilitySettings) -> None:
     arches = irregular_sample(settings.nominal, settings.tolerance, 10, settings.seed)
     nominal_pair = mechanisms(settings.nominal)
     times = {"limit analysis (hinges, k)": 0.0, "mechanisms + restitution": 0.0,
-             "tables (Chebyshev)": 0.0, "integration (2 x outcomes_grid)": 0.0}
+             "tables (polynomial pieces)": 0.0, "integration (2 x outcomes_grid)": 0.0}
     d, a = np.meshgrid(settings.durations, settings.amplitudes, indexing="ij")
     for arch in arches:
         t0 = time.perf_counter()
@@ -93,12 +93,12 @@ def breakdown(settings: FragilitySettings) -> None:
           f"analysis ({analyses} analyses per arch)")
     # steps per analysis and the instant the outcome is decided (no integration after it)
     (tl, tr), (c_lr, c_rl), _ = arch_dynamics(arches[0], "nominal", nominal_mechanisms=nominal_pair)
-    scal, pieces, breaks, coefs = engine.pack_pair(tl, tr)
+    tab = engine.pack_pair(tl, tr)
     steps, after = [], []
     for tp in settings.durations:
         for amp in settings.amplitudes[::5]:
             motion = engine.compiled_motion(oppenheim_pulse(-amp * GRAVITY, tp))
-            out, *_ = engine._run(scal, pieces, breaks, coefs, c_lr, c_rl, *motion, 0.0, np.inf,
+            out, *_ = engine._run(tab, c_lr, c_rl, *motion, 0.0, np.inf,
                                   engine.REST_STATE, 0.0, 0.0, engine.DEFAULT_RTOL,
                                   engine.DEFAULT_ATOL, engine.DEFAULT_REST_VELOCITY,
                                   engine.DEFAULT_MAX_STEP, engine.DEFAULT_MAX_STEPS, False, 1.0)

@@ -75,6 +75,87 @@ def test_table_reproduces_exact_coefficients(which, nominal_mechanisms):
     assert table.activation == pytest.approx(mech.activation, rel=1e-12)
 
 
+def test_table_ratios_and_piece_lookup(nominal_mechanisms):
+    # the right-hand side uses P/M, gF/M and L/M directly; the piece of any theta is found by
+    # equal cells plus a short scan: compare with a search of the breaks
+    from archquake import irregular_arch
+
+    for mech in (*nominal_mechanisms, *mechanisms(irregular_arch(oppenheim(), 0.1, rng=5))):
+        table = engine.tabulate(mech)
+        rng = np.random.default_rng(1)
+        theta = np.concatenate([
+            rng.uniform(table.theta_lo, table.theta_u, 2000), table.breaks,
+            table.theta_lo + (table.theta_u - table.theta_lo) * np.arange(table.n_cells + 1)
+            / table.n_cells,
+            table.theta_u - np.geomspace(1e-12, 1e-2, 50),
+            table.theta_lo + np.geomspace(1e-12, 1e-2, 50)])
+        theta = np.clip(theta, table.theta_lo, table.theta_u)
+        inv_cell = table.n_cells / (table.theta_u - table.theta_lo)
+        found = np.array([engine._piece(x, table.theta_lo, inv_cell, table.cells, table.breaks)
+                          for x in theta])
+        expected = np.clip(np.searchsorted(table.breaks, theta, side="right") - 1, 0,
+                           table.pieces - 1)
+        assert np.array_equal(found, expected)
+        m, l_, f, p = (np.broadcast_to(c, theta.shape) for c in mech.coefficients(theta))
+        exact = np.vstack([p / m, GRAVITY * f / m, l_ / m])
+        approx = table.functions(theta)[:3]
+        scale = np.max(np.abs(exact), axis=1)
+        assert np.all(np.max(np.abs(approx - exact), axis=1) / scale < 1e-11)
+        rhs = np.array([engine._table_rhs(x, table.theta_lo, inv_cell, table.cells,
+                                          table.breaks, table.coefficients) for x in theta]).T
+        assert np.allclose(rhs, approx, rtol=1e-13, atol=1e-13 * scale[:, None])
+
+
+def test_written_out_step_is_the_tableau(nominal_tables):
+    """The engine's step and dense output hold the text generated from the DOP853 tableau, and
+    that text computes what loops over the tableau compute."""
+    from archquake import _dop853 as dop
+
+    source = Path(engine.__file__).read_text()
+    begin = source.index(dop.GENERATED_BEGIN)
+    end = source.index(dop.GENERATED_END) + len(dop.GENERATED_END) + 1
+    assert source[begin:end] == dop.written_out_source()
+
+    tab = engine.pack_pair(*nominal_tables)
+    xg = -0.6 * GRAVITY
+    none = np.zeros(1)
+
+    def rhs(th, thd):
+        return float(engine._rhs(0.0, th, thd, 0, tab, xg, np.inf, np.inf, 0, none, none, none))
+
+    y0, y1, h = nominal_tables[0].theta_u - 0.05, -0.4, 0.02
+    K = np.zeros((16, 2))
+    K[0] = y1, rhs(y0, y1)
+    for s in range(1, 16):
+        if s == 12:
+            continue
+        z0 = y0 + h * (dop.A[s, :s] @ K[:s, 0])
+        z1 = y1 + h * (dop.A[s, :s] @ K[:s, 1])
+        K[s] = z1, rhs(z0, z1)
+        if s == 11:  # stage 12 is the end point
+            n0, n1 = y0 + h * (dop.B @ K[:12, 0]), y1 + h * (dop.B @ K[:12, 1])
+            K[12] = n1, rhs(n0, n1)
+    got = np.zeros((16, 2))
+    out = engine._step(0.0, y0, y1, K[0, 0], K[0, 1], h, 0, tab, xg, np.inf, np.inf, 0, none,
+                       none, none, 1e-11, 1e-13, got)
+    assert out[0] == pytest.approx(n0, rel=1e-14) and out[1] == pytest.approx(n1, rel=1e-14)
+    assert np.allclose(got[:13], K[:13], rtol=1e-13, atol=0)
+    sc = 1e-13 + 1e-11 * np.maximum(np.abs([y0, y1]), np.abs([n0, n1]))
+    e5, e3 = (dop.E5 @ K[:13]) / sc, (dop.E3 @ K[:13]) / sc
+    err = h * (e5 @ e5) / math.sqrt((e5 @ e5 + 0.01 * (e3 @ e3)) * 2.0)
+    assert out[3] == pytest.approx(err, rel=1e-3)  # a difference of near-equal sums
+    Fd = np.zeros((7, 2))
+    engine._dense(0.0, y0, y1, n0, n1, h, 0, tab, xg, np.inf, np.inf, 0, none, none, none,
+                  got, Fd)
+    dy = np.array([n0 - y0, n1 - y1])
+    expected = np.vstack([dy, h * K[0] - dy, 2.0 * dy - h * (K[12] + K[0]),
+                          h * (dop.D @ K)])
+    assert np.allclose(Fd[:3], expected[:3], rtol=1e-9, atol=1e-16)
+    # rows 3-6 are small differences of large sums: compare with the size of their terms
+    terms = h * (np.abs(dop.D) @ np.abs(K))
+    assert np.all(np.abs(Fd[3:] - expected[3:]) <= 1e-13 * terms.max(axis=0))
+
+
 # ------------------------------------------------------------------------------ free rocking
 
 

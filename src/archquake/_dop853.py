@@ -129,3 +129,118 @@ D = np.array([
         -149.72683625798564,
     ],
 ])
+
+
+# ---------------------------------------------------------------------------------------------
+# The step and the dense output written out stage by stage
+# ---------------------------------------------------------------------------------------------
+
+GENERATED_BEGIN = ("# --- begin: written out by archquake._dop853.written_out_source(); "
+                   "do not edit by hand")
+GENERATED_END = "# --- end: written out by archquake._dop853.written_out_source()"
+
+_DECORATOR = '@numba.njit(cache=True, fastmath={"reassoc", "contract"})'
+"""Compiled with reassociation and fused multiply-adds allowed: the stage sums are evaluated in
+whatever order is fastest (round-off level differences; NaN and infinity keep their meaning)."""
+
+
+def _combination(weights, names) -> str:
+    """``w_0 * name_0 + w_1 * name_1 + ...`` over the non-zero weights (exact float literals)."""
+    terms = [f"{float(w)!r} * {n}" for w, n in zip(weights, names, strict=False) if w != 0.0]
+    return " + ".join(terms) if terms else "0.0"
+
+
+def _wrap(line: str, indent: int, width: int = 99) -> list[str]:
+    """Break a long assignment at `` + `` into continuation lines inside its parentheses."""
+    pad = " " * indent
+    if len(pad + line) <= width:
+        return [pad + line]
+    head, _, rest = line.partition("(")
+    terms = rest.split(" + ")
+    lines, current = [], pad + head + "("
+    for k, term in enumerate(terms):
+        piece = term + ("" if k == len(terms) - 1 else " +")
+        if len(current) + 1 + len(piece) > width and not current.endswith("("):
+            lines.append(current)
+            current = pad + "    " + piece
+        else:
+            current = current + ("" if current.endswith("(") else " ") + piece
+    lines.append(current)
+    return lines
+
+
+def _rhs_call(target: str, time: str, theta: str, theta_dot: str) -> list[str]:
+    return [f"    {target} = _rhs({time}, {theta}, {theta_dot}, m, tab, xg_step, tcap, tcap_left,",
+            "               kind, params, times, values)"]
+
+
+def written_out_source() -> str:
+    """Source of the engine's ``_step`` and ``_dense``: the stages of the tableau above written
+    out with their non-zero coefficients as literals, every stage held in local variables.
+
+    The same arithmetic as loops over ``A``, ``B``, ``E5``, ``E3`` and ``D``, but a loop over the
+    tableau with a test for zero entries made a step cost about three times the twelve
+    right-hand-side evaluations it needs. The engine holds the text this function returns between
+    :data:`GENERATED_BEGIN` and :data:`GENERATED_END`, and a test checks that it is unchanged.
+    """
+    v = [f"v{j}" for j in range(16)]  # theta' at stage j
+    w = [f"w{j}" for j in range(16)]  # theta'' at stage j
+    out = [GENERATED_BEGIN, "", "",
+           _DECORATOR,
+           "def _step(t, y0, y1, f0, f1, h, m, tab, xg_step, tcap, tcap_left, kind, params, times,",
+           "          values, rtol, atol, K):",
+           '    """One Dormand-Prince 8(5,3) step; stages kept in ``K`` for the dense output.',
+           "",
+           "    Returns ``(theta, theta', theta'', error_norm)`` at ``t + h``.\"\"\"",
+           "    v0 = f0",
+           "    w0 = f1"]
+    for s in range(1, 12):
+        out += _wrap(f"z = y0 + h * ({_combination(A[s, :s], v)})", 4)
+        out += _wrap(f"v{s} = y1 + h * ({_combination(A[s, :s], w)})", 4)
+        out += _rhs_call(f"w{s}", f"t + {float(C[s])!r} * h", "z", f"v{s}")
+    out += _wrap(f"n0 = y0 + h * ({_combination(B, v)})", 4)
+    out += _wrap(f"n1 = y1 + h * ({_combination(B, w)})", 4)
+    out += ["    v12 = n1"]
+    out += _rhs_call("w12", "t + h", "n0", "n1")
+    for j in range(13):
+        out += [f"    K[{j}, 0] = v{j}", f"    K[{j}, 1] = w{j}"]
+    out += _wrap(f"e50 = ({_combination(E5, v)})", 4)
+    out += _wrap(f"e51 = ({_combination(E5, w)})", 4)
+    out += _wrap(f"e30 = ({_combination(E3, v)})", 4)
+    out += _wrap(f"e31 = ({_combination(E3, w)})", 4)
+    out += [
+        "    sc0 = atol + rtol * max(abs(y0), abs(n0))",
+        "    sc1 = atol + rtol * max(abs(y1), abs(n1))",
+        "    e50 /= sc0",
+        "    e51 /= sc1",
+        "    e30 /= sc0",
+        "    e31 /= sc1",
+        "    n5 = e50 * e50 + e51 * e51",
+        "    n3 = e30 * e30 + e31 * e31",
+        "    if n5 == 0.0 and n3 == 0.0:",
+        "        err = 0.0",
+        "    else:",
+        "        err = abs(h) * n5 / math.sqrt((n5 + 0.01 * n3) * 2.0)",
+        "    return n0, n1, w12, err",
+        "", "",
+        _DECORATOR,
+        "def _dense(t, y0, y1, n0, n1, h, m, tab, xg_step, tcap, tcap_left, kind, params, times,",
+        "           values, K, Fd):",
+        '    """Coefficients ``Fd`` (7, 2) of the 7th-order dense output of the last step."""',
+    ]
+    used = {0, 12} | {j for j in range(13) if np.any(A[13:16, j] != 0.0) or np.any(D[:, j] != 0.0)}
+    for j in sorted(used):
+        out += [f"    v{j} = K[{j}, 0]", f"    w{j} = K[{j}, 1]"]
+    for s in range(13, 16):
+        out += _wrap(f"z = y0 + h * ({_combination(A[s, :s], v)})", 4)
+        out += _wrap(f"v{s} = y1 + h * ({_combination(A[s, :s], w)})", 4)
+        out += _rhs_call(f"w{s}", f"t + {float(C[s])!r} * h", "z", f"v{s}")
+    for c, (y, n, k) in enumerate((("y0", "n0", v), ("y1", "n1", w))):
+        out += [f"    dy = {n} - {y}",
+                f"    Fd[0, {c}] = dy",
+                f"    Fd[1, {c}] = h * {k[0]} - dy",
+                f"    Fd[2, {c}] = 2.0 * dy - h * ({k[12]} + {k[0]})"]
+        for i in range(4):
+            out += _wrap(f"Fd[{3 + i}, {c}] = h * ({_combination(D[i], k)})", 4)
+    out += ["", "", GENERATED_END]
+    return "\n".join(out) + "\n"

@@ -202,7 +202,8 @@ def simulate(mechanisms, ground_motion: GroundMotion | None = None, restitution=
     motion = still_ground() if ground_motion is None else ground_motion
     if not isinstance(motion, GroundMotion):
         raise ValueError(f"ground_motion must be a GroundMotion or None, got {motion!r}")
-    scal, pieces, breaks, coefs = engine.pack_pair(table_l, table_r)
+    tab = engine.pack_pair(table_l, table_r)
+    scal = tab[0]
     mech0, theta0, thetadot0 = _initial(initial, scal)
     for name, value in (("rtol", rtol), ("atol", atol), ("rest_velocity", rest_velocity),
                         ("max_step", max_step), ("record_dt", record_dt)):
@@ -211,7 +212,7 @@ def simulate(mechanisms, ground_motion: GroundMotion | None = None, restitution=
     if t_end is not None and not (math.isfinite(t_end) and t_end > 0):
         raise ValueError(f"t_end must be a finite time > 0 [s], got {t_end!r}")
     gm = engine.compiled_motion(motion)
-    args = (scal, pieces, breaks, coefs, c_lr, c_rl) + gm
+    args = (tab, c_lr, c_rl) + gm
     opts = (rtol, atol, rest_velocity, max_step, engine.DEFAULT_MAX_STEPS)
     out, *_ = engine._run(*args, 0.0, np.inf, mech0, theta0, thetadot0, *opts, False, 1.0)
     outcome = _outcome(out)
