@@ -28,6 +28,7 @@ from archquake.geometry import GRAVITY  # noqa: E402
 from archquake.ground_motion import STEP, oppenheim_pulse  # noqa: E402
 
 LIMIT_MARGIN = 1e-6  # as engine.tabulate
+BASELINE_TOL = {"rtol": 1e-9, "atol": 1e-12}  # solve_ivp's tolerances below
 IMPACT_OFFSET = 1e-12  # [rad]
 MAX_EVENTS = 2_000
 
@@ -214,7 +215,8 @@ def main(argv=None):
     engine.outcomes_grid(*tables[0], c, c, [0.3], [-GRAVITY])
 
     n_total = 0
-    t_engine = t_base = 0.0
+    t_engine = t_engine_same = t_base = 0.0
+    same_tol_mismatch = 0
     mismatches = []
     failed = []
     base_times = []
@@ -224,6 +226,12 @@ def main(argv=None):
         t0 = time.perf_counter()
         res = engine.outcomes_grid(tl, tr, c, c, durations, amps_g * GRAVITY)
         t_engine += time.perf_counter() - t0
+        t0 = time.perf_counter()
+        same_tol = engine.outcomes_grid(tl, tr, c, c, durations, amps_g * GRAVITY, **BASELINE_TOL)
+        t_engine_same += time.perf_counter() - t0
+        same_tol_mismatch += int(np.sum(
+            (same_tol["status"] != res["status"]) | (same_tol["half_cycle"] != res["half_cycle"])
+            | (same_tol["impacts"] != res["impacts"])))
         for q in range(per_arch):
             motion = oppenheim_pulse(amps_g[q] * GRAVITY, durations[q])
             t0 = time.perf_counter()
@@ -248,6 +256,9 @@ def main(argv=None):
     t0 = time.perf_counter()
     engine.outcomes_grid(tl, tr, c, c, big_d, big_a * GRAVITY)
     t_big = (time.perf_counter() - t0) / big_d.size
+    t0 = time.perf_counter()
+    engine.outcomes_grid(tl, tr, c, c, big_d, big_a * GRAVITY, **BASELINE_TOL)
+    t_big_same = (time.perf_counter() - t0) / big_d.size
 
     per_engine = t_engine / n_total
     per_base = t_base / n_total
@@ -264,12 +275,17 @@ def main(argv=None):
     median_base = float(np.median(base_times))
     print(f"solve_ivp (DOP853, Python)  : {per_base * 1e3:9.3f} ms per analysis "
           f"(median {median_base * 1e3:.3f} ms)")
-    print(f"engine (outcomes_grid)      : {per_engine * 1e6:9.2f} us per analysis "
-          f"({t_big * 1e6:.2f} us on a grid of {big_d.size})")
-    print(f"speed-up                    : {per_base / per_engine:9.0f} x "
-          f"({per_base / t_big:.0f} x on the large grid; median baseline / engine "
-          f"{median_base / per_engine:.0f} x)")
-
+    per_same = t_engine_same / n_total
+    print(f"engine (outcomes_grid), its default rtol {engine.DEFAULT_RTOL:g}: "
+          f"{per_engine * 1e6:6.2f} us per analysis ({t_big * 1e6:.2f} us on a grid of "
+          f"{big_d.size}) -> {per_base / per_engine:5.0f} x "
+          f"({per_base / t_big:.0f} x on the large grid)")
+    print(f"engine at the baseline's rtol {BASELINE_TOL['rtol']:g}: "
+          f"{per_same * 1e6:6.2f} us per analysis ({t_big_same * 1e6:.2f} us on the large grid) "
+          f"-> {per_base / per_same:5.0f} x ({per_base / t_big_same:.0f} x on the large grid); "
+          f"outcomes different from the default tolerance: {same_tol_mismatch} / {n_total}")
+    print(f"median baseline / mean engine: {median_base / per_engine:.0f} x (default), "
+          f"{median_base / per_same:.0f} x (same tolerance)")
 
 if __name__ == "__main__":
     main()

@@ -907,6 +907,29 @@ def _decide(m, th, thd, tab, c_lr, c_rl):
 
 
 @numba.njit(cache=True)
+def _initial_step(t, th, thd, f1, m, tab, xg_step, kind, params, times, values, rtol, atol,
+                  max_step):
+    """First step size of a motion that starts (from rest or a given state): the usual estimate
+    from the size of the solution, of its derivative and of the change of the derivative
+    (Hairer, Norsett & Wanner, Sect. II.4), for the 7th-order error estimate of DOP853."""
+    sc0 = atol + rtol * abs(th)
+    sc1 = atol + rtol * abs(thd)
+    d0 = math.sqrt(0.5 * ((th / sc0) ** 2 + (thd / sc1) ** 2))
+    d1 = math.sqrt(0.5 * ((thd / sc0) ** 2 + (f1 / sc1) ** 2))
+    h0 = 1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1
+    h0 = min(h0, max_step)
+    th1 = th + h0 * thd
+    thd1 = thd + h0 * f1
+    f2 = _rhs(t + h0, th1, thd1, m, tab, xg_step, np.inf, np.inf, kind, params, times, values)
+    d2 = math.sqrt(0.5 * (((thd1 - thd) / sc0) ** 2 + ((f2 - f1) / sc1) ** 2)) / h0
+    if d1 <= 1e-15 and d2 <= 1e-15:
+        h1 = max(1e-6, h0 * 1e-3)
+    else:
+        h1 = (0.01 / max(d1, d2)) ** (1.0 / 8.0)
+    return min(100.0 * h0, h1, max_step)
+
+
+@numba.njit(cache=True)
 def _run(tab, c_lr, c_rl, kind, params, times, values, bps, duration,
          t_start, t_end, mech0, theta0, thetadot0, rtol, atol, rest_velocity, max_step,
          max_steps, record, record_dt):
@@ -943,6 +966,7 @@ def _run(tab, c_lr, c_rl, kind, params, times, values, bps, duration,
     thd = thetadot0
     t = t_start
     h = min(1e-3, max_step)
+    fresh = True  # a motion starts: estimate its first step
     steps = 0
     truncated = False
     seg = 0
@@ -1006,6 +1030,7 @@ def _run(tab, c_lr, c_rl, kind, params, times, values, bps, duration,
                 ib += 1
             if m_act >= 0:
                 fsal = False
+                fresh = True
                 m = m_act
                 th = scal[m, 0]
                 thd = 0.0
@@ -1026,6 +1051,10 @@ def _run(tab, c_lr, c_rl, kind, params, times, values, bps, duration,
         if not fsal:
             f1 = _rhs(t, th, thd, m, tab, xg_step, np.inf, np.inf,
                       kind, params, times, values)
+        if fresh:
+            h = _initial_step(t, th, thd, f1, m, tab, xg_step, kind, params, times, values, rtol,
+                              atol, max_step)
+            fresh = False
         rejected = False
         while True:
             hh = min(h, max_step)
