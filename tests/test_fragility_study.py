@@ -14,6 +14,7 @@ from archquake.fragility import (
     chunk_arches,
     fragility_task,
     limit_task,
+    load_fragility,
     run_fragility,
     warm_up,
 )
@@ -113,6 +114,21 @@ def test_outputs_hold_table_curves_and_summary(small_result):
     q = result.nominal_failure_acceleration
     step = curves["nominal_step"].to_numpy().reshape(result.probability.shape)
     assert np.array_equal(step, (result.amplitudes[None, :] >= q[:, None]).astype(float))
+
+
+def test_a_saved_study_reloads_as_the_same_result(small_result, tmp_path):
+    result, out = small_result
+    loaded = load_fragility(out)
+    assert loaded.settings == result.settings
+    pd.testing.assert_frame_equal(loaded.table, result.table, check_dtype=False)
+    for name in ("failures", "failures_l", "failures_r", "probability",
+                 "nominal_failure_acceleration", "limit_load_multipliers"):
+        assert np.array_equal(getattr(loaded, name), getattr(result, name)), name
+    assert loaded.summary() == result.summary()
+    # an interrupted study (no summary yet) is not a result
+    (tmp_path / "empty").mkdir()
+    with pytest.raises(ValueError):
+        load_fragility(tmp_path / "empty")
 
 
 def test_irregular_arches_fail_below_the_nominal_failure_acceleration():

@@ -737,3 +737,42 @@ def run_fragility(
             result.curves().to_csv(tmp, index=False)
         save_study(out, table, metadata=metadata, summary=result.summary())
     return result
+
+
+def load_fragility(out_dir: str | os.PathLike, *,
+                   nominal_tolerance: float = 1e-4) -> FragilityResult:
+    """Reload a finished fragility study (:func:`run_fragility` with ``out_dir``) as a
+    :class:`FragilityResult`.
+
+    The tidy table, the settings and the limit-analysis sample are read from the directory; the
+    fits are refitted from the table and the nominal arch's failure domains (a fraction of a
+    second) recomputed, so the curves equal those of the original run.
+
+    Raises
+    ------
+    ValueError
+        If the directory holds no complete study (e.g. an interrupted one: continue it with
+        ``resume=True``), or its files do not belong together.
+    """
+    from .limit_analysis import LimitSample
+    from .results_io import load_study
+
+    out = Path(out_dir)
+    stored = load_study(out)
+    try:
+        settings = FragilitySettings.from_dict(stored.summary["settings"])
+    except (KeyError, TypeError) as exc:
+        raise ValueError(f"{out} does not hold a fragility study (no settings in its "
+                         f"summary)") from exc
+    limit_table = load_study(out / LIMIT_DIRECTORY).table
+    if len(limit_table) != settings.limit_samples:
+        raise ValueError(f"{out / LIMIT_DIRECTORY} has {len(limit_table)} arches, the study's "
+                         f"settings say {settings.limit_samples}")
+    limit = LimitSample(limit_table["k_l"].to_numpy(), limit_table["k_r"].to_numpy(),
+                        settings.tolerance, settings.seed, settings.limit_method)
+    domains = tuple(failure_domain(settings.nominal, settings.durations, settings.amplitudes,
+                                   restitution=settings.restitution, direction=direction,
+                                   tolerance=nominal_tolerance, nominal=settings.nominal,
+                                   motion=settings.motion)
+                    for direction in PULSE_SIGNS)
+    return fragility_curves(settings, stored.table, limit, domains, stored.metadata)
