@@ -628,6 +628,16 @@ def warm_up() -> None:
     run_fragility(tiny, backend="serial", progress=False)
 
 
+def _nominal_domains(settings: FragilitySettings, tolerance: float) -> tuple:
+    """The nominal arch's failure domains over the study grid, directions l and r (point Q of
+    Fig. 16 per duration), to ``tolerance`` [g]."""
+    return tuple(failure_domain(settings.nominal, settings.durations, settings.amplitudes,
+                                restitution=settings.restitution, direction=direction,
+                                tolerance=tolerance, nominal=settings.nominal,
+                                motion=settings.motion)
+                 for direction in PULSE_SIGNS)
+
+
 LIMIT_DIRECTORY = "limit_sample"
 """Subdirectory of a fragility study directory holding the limit-analysis sample (its own study)."""
 CURVES_CSV = "curves.csv"
@@ -725,11 +735,7 @@ def run_fragility(
 
     limit = LimitSample(limit_table["k_l"].to_numpy(), limit_table["k_r"].to_numpy(),
                         settings.tolerance, settings.seed, settings.limit_method)
-    domains = tuple(failure_domain(settings.nominal, settings.durations, settings.amplitudes,
-                                   restitution=settings.restitution, direction=direction,
-                                   tolerance=nominal_tolerance, nominal=settings.nominal,
-                                   motion=settings.motion)
-                    for direction in PULSE_SIGNS)
+    domains = _nominal_domains(settings, nominal_tolerance)
     metadata = dict(table.attrs.get("study", {}))
     result = fragility_curves(settings, table, limit, domains, metadata)
     if out is not None:
@@ -770,9 +776,5 @@ def load_fragility(out_dir: str | os.PathLike, *,
                          f"settings say {settings.limit_samples}")
     limit = LimitSample(limit_table["k_l"].to_numpy(), limit_table["k_r"].to_numpy(),
                         settings.tolerance, settings.seed, settings.limit_method)
-    domains = tuple(failure_domain(settings.nominal, settings.durations, settings.amplitudes,
-                                   restitution=settings.restitution, direction=direction,
-                                   tolerance=nominal_tolerance, nominal=settings.nominal,
-                                   motion=settings.motion)
-                    for direction in PULSE_SIGNS)
+    domains = _nominal_domains(settings, nominal_tolerance)
     return fragility_curves(settings, stored.table, limit, domains, stored.metadata)
