@@ -14,6 +14,7 @@ from archquake.limit_analysis import (
     limit_analysis,
     limit_sample,
     load_multipliers,
+    load_multipliers_of,
     min_thickness,
     self_weight_margin,
 )
@@ -131,6 +132,17 @@ def test_sample_static_and_kinematic_agree(nominal):
     kinematic = limit_sample(nominal, 0.10, 30, seed=5, method="kinematic")
     assert np.max(np.abs(static.load_multiplier_l - kinematic.load_multiplier_l)) <= 1e-9
     assert np.max(np.abs(static.load_multiplier_r - kinematic.load_multiplier_r)) <= 1e-9
+
+
+def test_batched_kinematic_multipliers_equal_one_by_one(nominal):
+    # arches of two sizes in one call, and more than one batch of the same size
+    arches = (list(irregular_sample(nominal, 0.10, 70, 4))
+              + list(irregular_sample(circular_arch(5.0, math.pi, 0.6, 9), 0.1, 3, 1)))
+    together = load_multipliers_of(arches, "kinematic")
+    alone = np.array([load_multipliers(a, "kinematic") for a in arches])
+    assert np.array_equal(together, alone)
+    static = load_multipliers_of(arches[:5], "static")
+    assert np.max(np.abs(static - together[:5])) <= 1e-9
 
 
 # ------------------------------------------------------------------ thrust line

@@ -407,12 +407,11 @@ def limit_task(chunk) -> dict[str, np.ndarray]:
     of :func:`chunk_arches`, hence the values are those of
     :func:`archquake.limit_analysis.limit_sample` with the same seed.
     """
-    from .limit_analysis import load_multipliers
+    from .limit_analysis import load_multipliers_of
 
     nominal = _nominal_from_dict(chunk.settings["nominal"])
     arches = chunk_arches(chunk, nominal, chunk.settings["tolerance"])
-    k = np.array([load_multipliers(a, chunk.settings["limit_method"]) for a in arches],
-                 dtype=float).reshape(-1, 2)
+    k = load_multipliers_of(arches, chunk.settings["limit_method"]).reshape(-1, 2)
     return {"arch": chunk.items, "k_l": k[:, 0], "k_r": k[:, 1]}
 
 
