@@ -712,10 +712,17 @@ def run_fragility(
     limit_dir = None if out is None else out / LIMIT_DIRECTORY
     options = {"backend": backend, "resume": resume, "progress": progress}
 
-    def both(**run):
+    def studies(**run):
+        # with local processes, one worker computes the nominal arch's failure domains while
+        # the others start on the chunks (it would otherwise be serial work after them)
+        running = run.get("pool")
+        nominal = (None if running is None
+                   else running.submit(_nominal_domains, settings, nominal_tolerance))
         table = run_study(fragility_task, plan, out, **options, **run)
         limit_table = run_study(limit_task, limit_plan, limit_dir, **options, **run)
-        return table, limit_table
+        domains = (_nominal_domains(settings, nominal_tolerance) if nominal is None
+                   else nominal.result())
+        return table, limit_table, domains
 
     if backend == "processes":
         if workers is not None:
@@ -723,18 +730,17 @@ def run_fragility(
         if scheduler is not None:
             raise ValueError(f"scheduler is only used by backend 'dask', not {backend!r}")
         if pool is not None:
-            table, limit_table = both(pool=pool)
+            table, limit_table, domains = studies(pool=pool)
         else:
             with process_pool(workers) as own_pool:
-                table, limit_table = both(pool=own_pool)
+                table, limit_table, domains = studies(pool=own_pool)
     else:
         if pool is not None:
             raise ValueError(f"pool is only used by backend 'processes', not {backend!r}")
-        table, limit_table = both(workers=workers, scheduler=scheduler)
+        table, limit_table, domains = studies(workers=workers, scheduler=scheduler)
 
     limit = LimitSample(limit_table["k_l"].to_numpy(), limit_table["k_r"].to_numpy(),
                         settings.tolerance, settings.seed, settings.limit_method)
-    domains = _nominal_domains(settings, nominal_tolerance)
     metadata = dict(table.attrs.get("study", {}))
     result = fragility_curves(settings, table, limit, domains, metadata)
     if out is not None:
