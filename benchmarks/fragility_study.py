@@ -173,7 +173,10 @@ def main(argv=None) -> int:
                     workers=2)
     from distributed import Client, LocalCluster
 
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+    # one thread per worker for numba and BLAS too, as the local process pool does
+    single = {name: "1" for name in ("NUMBA_NUM_THREADS", "OMP_NUM_THREADS",
+                                      "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")}
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, env=single,
                       dashboard_address=None) as cluster, Client(cluster) as client:
         client.run(warm_up)  # on every worker
         warm, warm_result = timed(settings, "2 workers, warm Dask LocalCluster",
