@@ -8,6 +8,7 @@ from archquake.fragility import (
     fit_lognormal,
     fit_polynomial,
     probability_of_failure,
+    rising_part,
 )
 from archquake.limit_analysis import empirical_cdf
 
@@ -63,3 +64,12 @@ def test_bad_fit_input():
         fit_lognormal([0.0, 0.2], [5, 5], [1, 2])
     with pytest.raises(ValueError, match="more than 5 points"):
         fit_polynomial([0.1, 0.2], [0, 1])
+
+
+def test_rising_part_ends_at_the_first_maximum():
+    # a pulse's fragility rises, holds, dips in the recovery band and rises again
+    p = np.array([0.0, 0.1, 0.6, 0.95, 0.95, 0.7, 0.5, 0.9, 0.95])
+    assert rising_part(p) == 4
+    assert rising_part(np.array([0.0, 0.5, 1.0])) == 3
+    with pytest.raises(ValueError):
+        rising_part(np.array([]))

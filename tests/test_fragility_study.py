@@ -12,6 +12,7 @@ from archquake.failure_domain import inclusive_range
 from archquake.fragility import (
     FragilitySettings,
     chunk_arches,
+    fit_lognormal,
     fragility_task,
     limit_task,
     load_fragility,
@@ -114,6 +115,17 @@ def test_outputs_hold_table_curves_and_summary(small_result):
     q = result.nominal_failure_acceleration
     step = curves["nominal_step"].to_numpy().reshape(result.probability.shape)
     assert np.array_equal(step, (result.amplitudes[None, :] >= q[:, None]).astype(float))
+
+
+def test_lognormal_is_fitted_to_the_rising_part(small_result):
+    result, _ = small_result
+    h = result.settings.samples
+    for i, fit in enumerate(result.lognormal_fits):
+        end = int(np.argmax(result.probability[i])) + 1
+        assert result.lognormal_upper[i] == result.amplitudes[end - 1]
+        if fit is not None:
+            direct = fit_lognormal(result.amplitudes[:end], h, result.failures[i, :end])
+            assert (fit.median, fit.dispersion) == (direct.median, direct.dispersion)
 
 
 def test_a_saved_study_reloads_as_the_same_result(small_result, tmp_path):

@@ -7,7 +7,11 @@ The estimated probability of failure at a pulse duration t_p and amplitude a is
 where h is the number of sampled irregular arches and h_f those that collapse. Two fits of a
 fragility curve are provided: the paper's fifth-degree polynomial, and the lognormal fragility
 function ``P_F = Phi(ln(a / median) / dispersion)`` fitted by maximum likelihood to the binomial
-counts, the standard form in earthquake engineering.
+counts, the standard form in earthquake engineering. Under a pulse P_F(a) need not be monotone:
+above the failure accelerations a band of amplitudes lets arches recover again (the last phase of
+the pulse brings them back, README). A lognormal CDF cannot follow that, so it is fitted to the
+rising part of the data, the amplitudes up to the first maximum of P_F (recorded with the fit);
+the polynomial, as in the paper, is fitted to the whole grid.
 
 The study [paper, Sect. 5.3.3]
 ------------------------------
@@ -126,6 +130,15 @@ def fit_lognormal(amplitudes, trials, failures) -> LognormalFragility:
                             options={"xatol": 1e-10, "fatol": 1e-12, "maxiter": 4000})
     mu, log_beta = res.x
     return LognormalFragility(float(math.exp(mu)), float(math.exp(log_beta)))
+
+
+def rising_part(probability) -> int:
+    """Number of leading grid points up to and including the first maximum of ``probability``:
+    the part of a fragility curve a monotone (lognormal) model can describe."""
+    p = np.asarray(probability, dtype=float)
+    if p.ndim != 1 or p.size == 0:
+        raise ValueError("probability must be a non-empty 1-D array")
+    return int(np.argmax(p)) + 1
 
 
 def fit_polynomial(amplitudes, probabilities, degree: int = 5) -> np.polynomial.Polynomial:
@@ -437,8 +450,10 @@ class FragilityResult:
     polynomial_fits : tuple of numpy.polynomial.Polynomial
         Quintic least-squares fit of P_F(a) per duration (the paper's dashed curves).
     lognormal_fits : tuple of LognormalFragility or None
-        Maximum-likelihood lognormal fragility per duration (None when no arch, or every arch,
-        fails over the whole grid).
+        Maximum-likelihood lognormal fragility per duration, fitted to the amplitudes up to the
+        first maximum of P_F (None when no arch, or every arch, fails there).
+    lognormal_upper : ndarray, shape (d,)
+        Largest amplitude of the data of each lognormal fit [g].
     limit_sample : archquake.limit_analysis.LimitSample
         k~_l, k~_r of the s arches of the limit analysis.
     nominal_failure_acceleration : ndarray, shape (d,)
@@ -464,6 +479,7 @@ class FragilityResult:
     probability_r: np.ndarray = field(repr=False)
     polynomial_fits: tuple = field(repr=False)
     lognormal_fits: tuple
+    lognormal_upper: np.ndarray = field(repr=False)
     limit_sample: Any = field(repr=False)
     nominal_failure_acceleration: np.ndarray
     nominal_load_multiplier: float
@@ -540,6 +556,7 @@ class FragilityResult:
                 "lowest_failure_acceleration": _json_number(lowest[i]),
                 "polynomial_coefficients": self.polynomial_fits[i].convert().coef.tolist(),
                 "lognormal_median": None if lognormal is None else lognormal.median,
+                "lognormal_fitted_up_to": float(self.lognormal_upper[i]),
                 "lognormal_dispersion": None if lognormal is None else lognormal.dispersion,
                 "lognormal_at_nominal": (None if lognormal is None or not math.isfinite(q)
                                          else float(lognormal(q))),
@@ -594,13 +611,16 @@ def fragility_curves(settings: FragilitySettings, table: pd.DataFrame, limit_sam
     failed = failed_l | failed_r
     a = np.asarray(settings.amplitudes)
     h = settings.samples
-    polynomial_fits, lognormal_fits = [], []
+    polynomial_fits, lognormal_fits, lognormal_upper = [], [], []
     probability = probability_of_failure(failed)
     for i in range(len(settings.durations)):
         degree = min(POLYNOMIAL_DEGREE, a.size - 1)
         polynomial_fits.append(fit_polynomial(a, probability[i], degree))
         z = failed[:, i].sum(axis=0)
-        lognormal_fits.append(fit_lognormal(a, h, z) if 0 < z.sum() < h * a.size else None)
+        end = rising_part(probability[i])
+        lognormal_upper.append(a[end - 1])
+        lognormal_fits.append(fit_lognormal(a[:end], h, z[:end])
+                              if end >= 2 and 0 < z[:end].sum() < h * end else None)
     q = np.fmin(nominal_domains[0].failure_accelerations, nominal_domains[1].failure_accelerations)
     k_nominal = min(nominal_domains[0].load_multipliers)
     return FragilityResult(
@@ -610,6 +630,7 @@ def fragility_curves(settings: FragilitySettings, table: pd.DataFrame, limit_sam
         probability_l=probability_of_failure(failed_l),
         probability_r=probability_of_failure(failed_r),
         polynomial_fits=tuple(polynomial_fits), lognormal_fits=tuple(lognormal_fits),
+        lognormal_upper=np.asarray(lognormal_upper),
         limit_sample=limit_sample, nominal_failure_acceleration=q,
         nominal_load_multiplier=float(k_nominal), nominal_domains=tuple(nominal_domains),
         metadata=dict(metadata or {}))

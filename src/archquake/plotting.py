@@ -248,8 +248,8 @@ def plot_fragility_curve(result, duration: float, ax=None):
     lognormal = result.lognormal_fits[i]
     if lognormal is not None:
         ax.plot(fine, lognormal(fine), "-", color="0.55", linewidth=1.3,
-                label=f"lognormal fit (median {lognormal.median:.3f} g, "
-                      f"beta {lognormal.dispersion:.3f})")
+                label=f"lognormal fit to {result.lognormal_upper[i]:.2f} g (median "
+                      f"{lognormal.median:.3f} g, beta {lognormal.dispersion:.3f})")
     ax.plot(a, result.probability[i], "o", color="black", markersize=3.5,
             label=f"P$_F$ = h$_f$/h, h = {settings.samples}")
     q = float(result.nominal_failure_acceleration[i])
