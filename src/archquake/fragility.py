@@ -217,7 +217,7 @@ class FragilitySettings:
         Number s of arches of the limit-analysis CDF of k~ (the paper: 1000).
     limit_method : {"kinematic", "static"}
         Limit-analysis method of that sample (both give the same k~ to round-off; the kinematic
-        enumeration is about twice as fast).
+        enumeration is about five times as fast).
     motion : str
         Pulse shape (default Oppenheim's pulse).
     """
