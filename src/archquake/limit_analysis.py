@@ -585,7 +585,7 @@ def _separation_family(combos: np.ndarray):
     return joints, faces, np.tile(role, n_t).astype(np.int64)
 
 
-@functools.lru_cache(maxsize=32)
+@functools.lru_cache(maxsize=8)
 def _family_arrays(pool: tuple[int, ...]):
     """``(joints, faces, separating)`` of both mechanism families over the joints ``pool``
     (built once per pool: every arch with as many voussoirs shares them)."""
@@ -748,9 +748,12 @@ def load_multipliers_of(arches: Sequence[Arch], method: str = "static") -> np.nd
             by_size: dict[int, list[int]] = {}
             for i, a in enumerate(oriented):
                 by_size.setdefault(a.n_voussoirs, []).append(i)
-            for rows in by_size.values():
-                for start in range(0, len(rows), KINEMATIC_BATCH):
-                    part = rows[start:start + KINEMATIC_BATCH]
+            for size, rows in by_size.items():
+                # at most KINEMATIC_BATCH arches, and about 4 million multipliers, per call
+                count = _family_arrays(tuple(range(size + 1)))[0].shape[0]
+                batch = max(1, min(KINEMATIC_BATCH, 4_000_000 // count))
+                for start in range(0, len(rows), batch):
+                    part = rows[start:start + batch]
                     out[part, col] = _kinematic_multipliers([oriented[i] for i in part])
             continue
         for i, a in enumerate(oriented):
