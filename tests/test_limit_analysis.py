@@ -295,6 +295,8 @@ def test_arch_that_never_collapses_is_reported():
 def test_kinematic_method_refuses_huge_enumerations():
     with pytest.raises(ValueError, match="voussoirs"):
         limit_analysis(circular_arch(1.0, math.pi, 0.2, 80), method="kinematic")
+    with pytest.raises(ValueError, match="voussoirs"):  # the sample path, before any array
+        load_multipliers(circular_arch(1.0, math.pi, 0.2, 200), method="kinematic")
 
 
 # ------------------------------------------------------------------ command line

@@ -101,7 +101,7 @@ TABLE_FUNCTIONS = ("P/M", "gF/M", "L/M", "M", "V")
 """Functions of a :class:`MechanismTable`, in the order of its rows: the three ratios of the
 right-hand side ``theta'' = s P/M xg'' - gF/M - L/M theta'^2`` (``s = +1`` for Mech-l, ``-1`` for
 Mech-r), then ``M`` and ``V`` for the energy rules."""
-_ROW_A, _ROW_B, _ROW_C, _ROW_M, _ROW_V, _ROW_MAP = 0, 1, 2, 3, 4, 5
+_ROW_B, _ROW_M, _ROW_V, _ROW_MAP = 1, 3, 4, 5  # rows 0-2 are read together by _table_rhs
 
 
 # ---------------------------------------------------------------------------------------------
@@ -205,8 +205,8 @@ def _table_functions(mechanism):
 
 @functools.lru_cache(maxsize=8)
 def _fit_matrices(degree: int):
-    """Chebyshev points, check points, and the matrices from values at the points to monomial
-    coefficients and from monomial coefficients to values at the check points."""
+    """Chebyshev points, check points, and the matrix from values at the points to monomial
+    coefficients."""
     n = degree + 1
     nodes = np.cos(np.pi * (np.arange(n) + 0.5) / n)
     checks = np.linspace(-1.0, 1.0, 4 * degree + 3)
@@ -220,8 +220,7 @@ def _fit_matrices(degree: int):
         mono = np.polynomial.chebyshev.cheb2poly(unit)
         cheb_to_mono[k, : mono.size] = mono
     to_mono = cheb_to_mono.T @ to_cheb  # (n, n): values at nodes -> monomial coefficients
-    at_checks = np.vander(checks, n, increasing=True)  # (nc, n)
-    return nodes, checks, to_mono, at_checks
+    return nodes, checks, to_mono
 
 
 def _horner(coef, x):
@@ -240,11 +239,11 @@ def tabulate(mechanism, *, degree: int = TABLE_DEGREE, tolerance: float = TABLE_
 
     The interval ``[theta_lo, theta_u]``, ``theta_lo = theta_limit + limit_margin``, is bisected
     until every piece of ``degree`` reproduces the mechanism's exact functions to ``tolerance``
-    (relative to each function's largest magnitude) on a check grid, evaluated exactly as the
-    compiled code does; a linkage that is singular near an end of its range (at its kinematic
-    limit, or just beyond ``theta_u`` where the links line up) gets ever smaller pieces toward
-    it. All pieces of one level of the bisection are fitted together (one call of the exact
-    functions per level).
+    (relative to each function's largest magnitude) on a check grid, evaluated from the monomial
+    coefficients the compiled code uses; a linkage that is singular near an end of its range (at
+    its kinematic limit, or just beyond ``theta_u`` where the links line up) gets ever smaller
+    pieces toward it. All pieces of one level of the bisection are fitted together (one call
+    of the exact functions per level).
 
     Parameters
     ----------
@@ -282,7 +281,7 @@ def tabulate(mechanism, *, degree: int = TABLE_DEGREE, tolerance: float = TABLE_
     scale = np.max(np.abs(func(np.linspace(theta_lo, theta_u, 2001))), axis=1)
     scale[scale == 0.0] = 1.0
     max_depth = 20
-    nodes, checks, to_mono, at_checks = _fit_matrices(degree)
+    nodes, checks, to_mono = _fit_matrices(degree)
     points = np.concatenate([nodes, checks])
     n = degree + 1
 
@@ -349,6 +348,13 @@ def _piece(theta, lo, inv_cell, cells, breaks):
 
 
 @numba.njit(cache=True, inline="always")
+def _estrin9(c, x, x2, x4, x8):
+    """``sum c[k] x^k``, k = 0..9, by Estrin's scheme (given the powers of ``x``)."""
+    return ((c[0] + c[1] * x) + x2 * (c[2] + c[3] * x)
+            + x4 * ((c[4] + c[5] * x) + x2 * (c[6] + c[7] * x)) + x8 * (c[8] + c[9] * x))
+
+
+@numba.njit(cache=True, inline="always")
 def _table_rhs(theta, lo, inv_cell, cells, breaks, coefs):
     """``(P/M, gF/M, L/M)`` of one table at ``theta``: Estrin's scheme for degree 9 (short
     dependency chains: the integrator's stages wait on these values), else Horner's rule."""
@@ -359,15 +365,9 @@ def _table_rhs(theta, lo, inv_cell, cells, breaks, coefs):
         x2 = x * x
         x4 = x2 * x2
         x8 = x4 * x4
-        a = ((c[0, 0] + c[0, 1] * x) + x2 * (c[0, 2] + c[0, 3] * x)
-             + x4 * ((c[0, 4] + c[0, 5] * x) + x2 * (c[0, 6] + c[0, 7] * x))
-             + x8 * (c[0, 8] + c[0, 9] * x))
-        b = ((c[1, 0] + c[1, 1] * x) + x2 * (c[1, 2] + c[1, 3] * x)
-             + x4 * ((c[1, 4] + c[1, 5] * x) + x2 * (c[1, 6] + c[1, 7] * x))
-             + x8 * (c[1, 8] + c[1, 9] * x))
-        r = ((c[2, 0] + c[2, 1] * x) + x2 * (c[2, 2] + c[2, 3] * x)
-             + x4 * ((c[2, 4] + c[2, 5] * x) + x2 * (c[2, 6] + c[2, 7] * x))
-             + x8 * (c[2, 8] + c[2, 9] * x))
+        a = _estrin9(c[0], x, x2, x4, x8)
+        b = _estrin9(c[1], x, x2, x4, x8)
+        r = _estrin9(c[2], x, x2, x4, x8)
         return a, b, r
     a = c[0, deg]
     b = c[1, deg]

@@ -599,6 +599,15 @@ def _family_arrays(pool: tuple[int, ...]):
     return arrays
 
 
+def _check_enumerable(n_voussoirs: int) -> None:
+    """Refuse an enumeration of every mechanism of an arch with too many voussoirs."""
+    if n_voussoirs > MAX_ENUMERATED_VOUSSOIRS:
+        raise ValueError(
+            f"method 'kinematic' enumerates every mechanism and needs voussoirs <= "
+            f"{MAX_ENUMERATED_VOUSSOIRS}, got {n_voussoirs}; use method 'static'"
+        )
+
+
 def _mechanism_families(arches: Sequence[Arch], candidate_joints: np.ndarray | None = None):
     """``(joints (M, 4), faces (M, 4), k (B, M))``: the virtual-work multiplier of every
     one-degree-of-freedom mechanism of each arch of a batch (same number of voussoirs), nan if
@@ -613,11 +622,8 @@ def _mechanism_families(arches: Sequence[Arch], candidate_joints: np.ndarray | N
     n = arches[0].n_voussoirs
     if any(a.n_voussoirs != n for a in arches):
         raise ValueError("a batch of arches must have the same number of voussoirs")
-    if candidate_joints is None and n > MAX_ENUMERATED_VOUSSOIRS:
-        raise ValueError(
-            f"method 'kinematic' enumerates every mechanism and needs voussoirs <= "
-            f"{MAX_ENUMERATED_VOUSSOIRS}, got {n}; use method 'static'"
-        )
+    if candidate_joints is None:
+        _check_enumerable(n)
     pool = np.arange(n + 1) if candidate_joints is None else np.asarray(candidate_joints, int)
     joints, faces, separating = _family_arrays(tuple(pool.tolist()))
     geo = _Geometry(arches)
@@ -750,6 +756,7 @@ def load_multipliers_of(arches: Sequence[Arch], method: str = "static") -> np.nd
                 by_size.setdefault(a.n_voussoirs, []).append(i)
             for size, rows in by_size.items():
                 # at most KINEMATIC_BATCH arches, and about 4 million multipliers, per call
+                _check_enumerable(size)
                 count = _family_arrays(tuple(range(size + 1)))[0].shape[0]
                 batch = max(1, min(KINEMATIC_BATCH, 4_000_000 // count))
                 for start in range(0, len(rows), batch):
