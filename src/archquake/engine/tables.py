@@ -156,13 +156,35 @@ class MechanismTable:
         return np.stack([m, c * m, b * m / GRAVITY, a * m, v])
 
     def coefficients_at(self, theta):
-        """Interpolated ``(M, L, F, P)`` at ``theta`` [rad]: [kg m^2/m], [kg m^2/m], [kg m/m],
-        [kg m/m], as :func:`archquake.equations_of_motion.coefficients` gives them."""
+        """Interpolated coefficients of the equation of motion at ``theta``, as
+        :func:`archquake.equations_of_motion.coefficients` gives them exactly.
+
+        Parameters
+        ----------
+        theta : float or array_like
+            Lagrangian coordinate [rad].
+
+        Returns
+        -------
+        M, L, F, P : ndarray
+            [kg m^2/m], [kg m^2/m], [kg m/m], [kg m/m], of the shape of ``theta``.
+        """
         m, l_, f, p, _ = self.evaluate(theta)
         return m, l_, f, p
 
     def potential_energy(self, theta):
-        """Interpolated potential energy ``V`` [J/m] at ``theta`` [rad]."""
+        """Interpolated potential energy of eq. (3) of the paper at ``theta``.
+
+        Parameters
+        ----------
+        theta : float or array_like
+            Lagrangian coordinate [rad].
+
+        Returns
+        -------
+        ndarray
+            ``V`` [J/m], of the shape of ``theta``.
+        """
         return self.functions(theta)[_ROW_V]
 
 
