@@ -1,7 +1,8 @@
 r"""Failure domain of one arch over (pulse duration, amplitude) [paper, Sect. 5.3.3, Fig. 16].
 
 For every pulse duration :math:`t_p` [s] the amplitudes :math:`a` [g] are split into intervals of
-one outcome class: at rest (never activated, :math:`a < k`), recovery (region (1) of Fig. 16 of
+one outcome class: at rest (the pulse never reaches an activation threshold, e.g.
+:math:`a < k` for Oppenheim's pulse on the nominal arch), recovery (region (1) of Fig. 16 of
 [1]_), collapse after impacts (half cycle :math:`h \ge 2`, region (2)) and collapse in the first
 half cycle (:math:`h = 1`, region (3)). The lowest collapsing amplitude of a duration is the
 failure curve of Fig. 16 of [1]_: its point :math:`Q = (\bar t_p, \bar{\ddot x}_g / g)` is the
@@ -77,7 +78,13 @@ class Interval:
     half_cycle: int
 
     def to_dict(self) -> dict:
-        """JSON-ready ``{"from", "to", "outcome", "half_cycle"}`` (amplitudes in g)."""
+        """The interval as JSON-ready data.
+
+        Returns
+        -------
+        dict
+            ``{"from": start [g], "to": end [g], "outcome": status, "half_cycle": ...}``.
+        """
         return {"from": self.start, "to": self.end, "outcome": self.status,
                 "half_cycle": self.half_cycle}
 
@@ -125,8 +132,14 @@ class DomainSlice:
         return self.intervals[-1].end
 
     def to_dict(self) -> dict:
-        """JSON-ready slice: duration [s], the two accelerations and the scanned end [g] (None
-        for nan), and the intervals (:meth:`Interval.to_dict`)."""
+        """The slice as JSON-ready data.
+
+        Returns
+        -------
+        dict
+            ``duration`` [s], ``failure_acceleration``, ``first_half_cycle_acceleration`` (None
+            for nan) and ``scanned_to`` [g], and the ``intervals`` (:meth:`Interval.to_dict`).
+        """
         return {
             "duration": self.duration,
             "failure_acceleration": _json_float(self.failure_acceleration_g),
@@ -286,7 +299,22 @@ class FailureDomain:
         return np.array([s.first_half_cycle_acceleration_g for s in self.slices])
 
     def slice(self, duration: float) -> DomainSlice:
-        """The slice of pulse duration ``duration`` [s] (to 1e-9 s)."""
+        """The slice of one pulse duration.
+
+        Parameters
+        ----------
+        duration : float
+            Pulse duration t_p [s], one of :attr:`durations` (to 1e-9 s).
+
+        Returns
+        -------
+        DomainSlice
+
+        Raises
+        ------
+        ValueError
+            If ``duration`` is not one of the domain's.
+        """
         for s in self.slices:
             if abs(s.duration - duration) <= 1e-9:
                 return s
@@ -294,7 +322,13 @@ class FailureDomain:
                          f"{self.durations.tolist()}")
 
     def to_list(self) -> list[dict]:
-        """JSON-ready list of the slices (amplitudes in g)."""
+        """The domain as JSON-ready data.
+
+        Returns
+        -------
+        list of dict
+            :meth:`DomainSlice.to_dict` of every slice (durations in s, amplitudes in g).
+        """
         return [s.to_dict() for s in self.slices]
 
 
