@@ -490,7 +490,13 @@ class FragilitySettings:
         object.__setattr__(self, "amplitudes_g", tuple(float(x) for x in a))
 
     def to_dict(self) -> dict:
-        """JSON-ready settings (the nominal arch as its voussoirs), as stored with the results."""
+        """The settings as JSON-ready data, as stored with the results.
+
+        Returns
+        -------
+        dict
+            Every field, the nominal arch as :meth:`archquake.geometry.Arch.to_dict`.
+        """
         return {
             "nominal": _nominal_dict(self.nominal),
             "sample_size": self.sample_size,
@@ -506,7 +512,17 @@ class FragilitySettings:
 
     @classmethod
     def from_dict(cls, data: dict) -> FragilitySettings:
-        """Inverse of :meth:`to_dict` (the settings are validated again)."""
+        """Inverse of :meth:`to_dict` (the settings are validated again).
+
+        Parameters
+        ----------
+        data : dict
+            As :meth:`to_dict` writes it.
+
+        Returns
+        -------
+        FragilitySettings
+        """
         return cls(nominal=_nominal_from_dict(data["nominal"]), sample_size=data["sample_size"],
                    tolerance=data["tolerance"], durations=tuple(data["durations"]),
                    amplitudes_g=tuple(data["amplitudes_g"]), seed=data["seed"],
@@ -693,10 +709,21 @@ def fragility_task(chunk) -> dict[str, np.ndarray]:
     """Study task (:func:`archquake.execution.run_study`): the arches of one chunk.
 
     ``chunk.settings`` is :meth:`FragilitySettings.to_dict`; every item is one irregular arch
-    (:func:`chunk_arches`), analysed by :func:`arch_outcomes`. Returns the tidy rows with the
-    column ``arch`` (item index) first and ``excluded`` last: why the arch was not analysed
-    (:data:`EXCLUSIONS`; its rows then have status :data:`STATUS_EXCLUDED`), "" if it was.
-    Any other error stops the study with a message that names the arch (index and seed).
+    (:func:`chunk_arches`), analysed by :func:`arch_outcomes`. An arch that cannot be analysed
+    is excluded (:data:`EXCLUSIONS`; its rows then have status :data:`STATUS_EXCLUDED`); any
+    other error stops the study with a message that names the arch (index and seed).
+
+    Parameters
+    ----------
+    chunk : archquake.execution.Chunk
+        The arches of the chunk.
+
+    Returns
+    -------
+    dict of ndarray
+        The tidy rows: the column ``arch`` (item index) first, the columns of
+        :func:`arch_outcomes`, and ``excluded`` last: why the arch was not analysed, "" if it
+        was.
 
     Raises
     ------
@@ -732,6 +759,11 @@ def limit_task(chunk) -> dict[str, np.ndarray]:
     :func:`archquake.limit_analysis.limit_sample` with the same seed. An arch that is not an
     arch or cannot stand has k~ = nan and its reason in the column ``excluded``
     (:data:`EXCLUSIONS`); one that never collapses has k~ = inf.
+
+    Parameters
+    ----------
+    chunk : archquake.execution.Chunk
+        The arches of the chunk.
 
     Returns
     -------
@@ -837,8 +869,22 @@ class FragilityResult:
         return self.limit_sample.load_multiplier
 
     def duration_index(self, duration: float) -> int:
-        """Index of pulse duration ``duration`` [s] (to 1e-9 s); a ValueError if it is not one
-        of the study's."""
+        """Index of a pulse duration in :attr:`durations`.
+
+        Parameters
+        ----------
+        duration : float
+            Pulse duration t_p [s] (to 1e-9 s).
+
+        Returns
+        -------
+        int
+
+        Raises
+        ------
+        ValueError
+            If it is not one of the study's durations.
+        """
         hits = np.flatnonzero(np.abs(self.durations - duration) <= 1e-9)
         if hits.size == 0:
             raise ValueError(f"duration {duration!r} s is not one of the study's durations "
@@ -846,8 +892,14 @@ class FragilityResult:
         return int(hits[0])
 
     def probability_below_nominal(self) -> np.ndarray:
-        """P_F [-] at the largest grid amplitude below the nominal failure acceleration, per
-        duration (nan if there is none): where the step of eq. (10) says P_F = 0, shape (d,)."""
+        """P_F at the largest grid amplitude below the nominal failure acceleration, per
+        duration: where the step of eq. (10) says P_F = 0.
+
+        Returns
+        -------
+        ndarray, shape (d,)
+            P_F [-] (nan where there is no such amplitude).
+        """
         out = np.full(self.durations.size, np.nan)
         for i, q in enumerate(self.nominal_failure_acceleration_g):
             below = np.flatnonzero(self.amplitudes_g < q) if math.isfinite(q) else np.array([])
@@ -856,8 +908,13 @@ class FragilityResult:
         return out
 
     def lowest_failure_acceleration_g(self) -> np.ndarray:
-        """Lowest grid amplitude at which some irregular arch fails, per duration [g] (nan if
-        none), shape (d,)."""
+        """Lowest grid amplitude at which some irregular arch fails, per duration.
+
+        Returns
+        -------
+        ndarray, shape (d,)
+            Amplitude [g] (nan where no arch fails).
+        """
         out = np.full(self.durations.size, np.nan)
         for i in range(self.durations.size):
             hit = np.flatnonzero(self.failures[i] > 0)
@@ -901,7 +958,13 @@ class FragilityResult:
         (:data:`EXCLUSIONS`); the k~ statistics of the limit sample over its arches that are
         not excluded (``count``; ``excluded``; ``never_collapse``: k~ = inf, left out of the
         mean, std, min and max; ``fraction_below_nominal``: the fraction with
-        ``k~ < k (1 - BELOW_NOMINAL_RTOL)``)."""
+        ``k~ < k (1 - BELOW_NOMINAL_RTOL)``).
+
+        Returns
+        -------
+        dict
+            JSON-ready (accelerations in g, non-finite numbers as None).
+        """
         k = self.limit_load_multipliers
         counted = k[~np.isnan(k)]  # excluded arches have k~ = nan; inf: never collapses
         finite = counted[np.isfinite(counted)]
