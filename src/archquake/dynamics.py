@@ -284,14 +284,34 @@ class ArchDynamics:
                        motion: str = "oppenheim"):
         """Failure domain over (pulse duration, amplitude) [paper, Sect. 5.3.3, Fig. 16].
 
-        See :func:`archquake.failure_domain.domain_of` for the parameters and their defaults
-        (those of ``archquake domain``): pulse durations [s], amplitudes [g] > 0, the direction
-        of the first pulse, ``resolution`` the bisection width of every boundary [g],
-        ``extend_to_g`` [g] and the pulse shape.
+        What :func:`archquake.failure_domain.domain_of` computes for this arch, with its
+        defaults (those of ``archquake domain``).
+
+        Parameters
+        ----------
+        durations : sequence of float, optional
+            Pulse durations t_p [s] (default :data:`archquake.defaults.DOMAIN_DURATIONS`).
+        amplitudes_g : sequence of float, optional
+            Increasing scan grid of amplitudes a >= 0 [g] (default
+            :data:`archquake.defaults.DOMAIN_AMPLITUDES_G`).
+        direction : {"l", "r"}
+            ``"l"``: the first pulse is ``-a g`` and opens Mech-l; ``"r"``: ``+a g``, Mech-r.
+        resolution : float
+            Bisection width of every boundary [g].
+        extend_to_g : float or None
+            Cap [g] of the extension of the scan to find the collapse in the first half cycle
+            (None: the grid alone).
+        motion : str
+            Pulse shape (:data:`archquake.ground_motion.ANALYTIC_GROUND_MOTIONS`).
 
         Returns
         -------
         FailureDomain
+
+        Raises
+        ------
+        ValueError
+            As :func:`archquake.failure_domain.domain_of`.
         """
         from .failure_domain import domain_of
 
