@@ -189,11 +189,23 @@ class Chunk:
         return np.arange(self.start, self.stop, dtype=np.int64)
 
     def seed_sequences(self) -> list[np.random.SeedSequence]:
-        """Seed sequence of each item of the chunk (see :func:`item_seed_sequence`)."""
+        """Seed sequence of each item of the chunk.
+
+        Returns
+        -------
+        list of numpy.random.SeedSequence
+            :func:`item_seed_sequence` of items ``start .. stop-1``.
+        """
         return [item_seed_sequence(self.seed, i) for i in range(self.start, self.stop)]
 
     def generators(self) -> list[np.random.Generator]:
-        """A fresh :class:`numpy.random.Generator` (PCG64) seeded for each item of the chunk."""
+        """A fresh random generator for each item of the chunk.
+
+        Returns
+        -------
+        list of numpy.random.Generator
+            PCG64 generators seeded by :meth:`seed_sequences`.
+        """
         return [np.random.default_rng(s) for s in self.seed_sequences()]
 
 
@@ -266,11 +278,22 @@ class StudyPlan:
                      seed=self.seed, settings=copy.deepcopy(self.settings))
 
     def chunks(self) -> Iterator[Chunk]:
-        """All chunks in order."""
+        """All chunks in order.
+
+        Returns
+        -------
+        iterator of Chunk
+        """
         return (self.chunk(i) for i in range(self.n_chunks))
 
     def describe(self) -> dict:
-        """The plan as a JSON-serialisable dictionary (what ``study.json`` records)."""
+        """The plan as a JSON-serialisable dictionary (what ``study.json`` records).
+
+        Returns
+        -------
+        dict
+            ``settings``, ``seed``, ``n_items``, ``chunk_size`` and ``n_chunks``.
+        """
         return {"settings": self.settings, "seed": self.seed, "n_items": self.n_items,
                 "chunk_size": self.chunk_size, "n_chunks": self.n_chunks}
 
