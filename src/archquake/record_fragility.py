@@ -305,7 +305,12 @@ class RecordSuite:
         return len(self.files) if self.files else int(self.stochastic["count"])
 
     def motions(self) -> list:
-        """The ground motions (``LINEAR`` [m/s^2]), named as :attr:`names`.
+        """The ground motions of the suite.
+
+        Returns
+        -------
+        list of GroundMotion
+            ``LINEAR`` motions [m/s^2], named as :attr:`names`.
 
         Raises
         ------
@@ -331,7 +336,14 @@ class RecordSuite:
         return motions
 
     def to_dict(self) -> dict:
-        """JSON-ready description (what a study's settings store)."""
+        """The suite as JSON-ready data (what a study's settings store).
+
+        Returns
+        -------
+        dict
+            ``{"kind": "files", "records": [{name, path, format, sha256}, ...]}`` or
+            ``{"kind": "stochastic", "count", "seed", "parameters"}``.
+        """
         if self.stochastic is not None:
             return {"kind": "stochastic", **self.stochastic}
         return {"kind": "files", "records": [
@@ -340,7 +352,17 @@ class RecordSuite:
 
     @classmethod
     def from_dict(cls, data: dict) -> RecordSuite:
-        """Inverse of :meth:`to_dict`."""
+        """Inverse of :meth:`to_dict`.
+
+        Parameters
+        ----------
+        data : dict
+            As :meth:`to_dict` writes it.
+
+        Returns
+        -------
+        RecordSuite
+        """
         if data.get("kind") == "stochastic":
             return cls(stochastic={"count": data["count"], "seed": data["seed"],
                                    "parameters": dict(data["parameters"])})
@@ -480,7 +502,14 @@ class RecordFragilitySettings:
         return stripe_measure(self.im).unit
 
     def to_dict(self) -> dict:
-        """JSON-ready settings, as stored with the results."""
+        """The settings as JSON-ready data, as stored with the results.
+
+        Returns
+        -------
+        dict
+            Every field (the suite by :meth:`RecordSuite.to_dict`, the nominal arch by
+            :meth:`archquake.geometry.Arch.to_dict`) and ``im_unit``.
+        """
         return {
             "suite": self.suite.to_dict(),
             "im": self.im,
@@ -497,7 +526,17 @@ class RecordFragilitySettings:
 
     @classmethod
     def from_dict(cls, data: dict) -> RecordFragilitySettings:
-        """Inverse of :meth:`to_dict`."""
+        """Inverse of :meth:`to_dict` (the settings are validated again).
+
+        Parameters
+        ----------
+        data : dict
+            As :meth:`to_dict` writes it.
+
+        Returns
+        -------
+        RecordFragilitySettings
+        """
         return cls(suite=RecordSuite.from_dict(data["suite"]), levels=tuple(data["levels"]),
                    im=data["im"], nominal=_nominal_from_dict(data["nominal"]),
                    sample_size=data["sample_size"], tolerance=data["tolerance"],
@@ -900,8 +939,15 @@ class BootstrapBand:
     confidence: float
 
     def to_dict(self) -> dict:
-        """JSON-ready summary: resamples, degenerate, confidence and the two intervals (the
-        band itself is in :meth:`RecordFragilityResult.curves`)."""
+        """The band's numbers as JSON-ready data.
+
+        Returns
+        -------
+        dict
+            ``resamples``, ``degenerate``, ``confidence``, ``median_interval`` [the IM's unit]
+            and ``dispersion_interval`` [-] (the band itself is in
+            :meth:`RecordFragilityResult.curves`).
+        """
         return {"resamples": self.resamples, "degenerate": self.degenerate,
                 "confidence": self.confidence, "median_interval": list(self.median_interval),
                 "dispersion_interval": list(self.dispersion_interval)}
@@ -1344,7 +1390,14 @@ class RecordFragilityResult:
                                     max_iml=float(self.levels[-1]), description=description)
 
     def summary(self) -> dict:
-        """JSON-ready summary: IM, levels, stripes, fits, bands, variability, incremental view."""
+        """JSON-ready summary: IM, levels, stripes, fits, bands, variability, incremental view.
+
+        Returns
+        -------
+        dict
+            What ``summary.json`` of the study holds under ``summary`` (levels in the IM's
+            unit, probabilities and dispersions [-]).
+        """
         incremental = self.incremental()
         sample = incremental[incremental["arch"] != NOMINAL_ARCH]
         total = _fit_dict(self.lognormal)
