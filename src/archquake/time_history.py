@@ -56,7 +56,8 @@ class Outcome:
         Impacts before the outcome was decided [-] (for a collapse, ``half_cycle - 1``).
     collapse_time : float
         Time [s] of the last crossing of ``theta_cr`` away from ``theta_u`` before the collapse
-        (the point of no return); nan if the arch does not collapse.
+        (the point of no return); nan if the arch does not collapse (or, released beyond
+        ``theta_cr``, never crosses it).
     max_phi : float
         Largest rotation ``phi = theta_u - theta`` [rad] of the mechanisms: reached during the
         excitation or, for a recovery, still to come after it (from the conserved energy,
