@@ -35,25 +35,27 @@ class ArchDynamics:
     """One arch with its limit analyses, mechanisms, restitution and compiled tables.
 
     Build it with :meth:`from_arch`. It is immutable and compared by identity; building it costs
-    two limit analyses and the tabulation of two mechanisms (a few milliseconds), after which
-    every analysis is a call of the compiled engine.
+    two limit analyses and the tabulation of two mechanisms (a few tens of milliseconds), after
+    which every analysis is a call of the compiled engine.
 
     Attributes
     ----------
     arch : BlockArch
         The arch (of any shape: :mod:`archquake.geometry`).
     limit : (LimitAnalysis, LimitAnalysis)
-        Limit analyses of Mech-l and Mech-r [paper, Sect. 3] (Mech-r on the mirrored arch).
+        Limit analyses of Mech-l and Mech-r [paper, Sect. 3] (Mech-r on the mirrored arch):
+        the load multipliers ``k_l``, ``k_r`` [-] and the hinges.
     mechanisms : (FourLinkMechanism, FourLinkMechanism)
         Mech-l and Mech-r [paper, Sects. 4.1-4.2].
     restitution : (float, float)
         Coefficients of restitution ``(c_lr, c_rl)`` of the impacts Mech-l -> Mech-r and
-        Mech-r -> Mech-l [-].
+        Mech-r -> Mech-l [-] (eq. (8) of the paper: ``theta'`` after = ``-c`` times before).
     restitution_model : str or float
         The model they come from (a name of :data:`archquake.impact.RESTITUTION_MODELS` or an
         imposed value).
     tables : (MechanismTable, MechanismTable)
-        Compiled tables of the equations of motion of Mech-l and Mech-r.
+        Compiled tables of the equations of motion of Mech-l and Mech-r (eqs. (6)-(7) of the
+        paper; :func:`archquake.engine.tabulate`).
     """
 
     arch: BlockArch
@@ -85,6 +87,15 @@ class ArchDynamics:
         Returns
         -------
         ArchDynamics
+
+        Raises
+        ------
+        ValueError
+            If ``arch`` is not an :class:`~archquake.geometry.Arch`, the restitution model is
+            unknown, ``limit_method`` is unknown, or the arch cannot be analysed:
+            :class:`~archquake.errors.CannotStandError` (it cannot stand under its own weight),
+            :class:`~archquake.errors.NeverCollapsesError` (no load multiplier sets it in
+            motion), or a collapse mechanism that is not a four-link mechanism.
         """
         from .engine import tabulate
         from .impact import check_restitution_model
@@ -104,8 +115,24 @@ class ArchDynamics:
     def with_restitution(self, restitution, nominal: BlockArch | ArchDynamics | None = None
                          ) -> ArchDynamics:
         """The same arch with another restitution model (the limit analyses, mechanisms and
-        tables are shared, not rebuilt); see :meth:`from_arch` for ``restitution`` and
-        ``nominal``."""
+        tables are shared, not rebuilt).
+
+        Parameters
+        ----------
+        restitution : str or float
+            Restitution model, as in :meth:`from_arch`.
+        nominal : Arch or ArchDynamics, optional
+            The nominal arch, for ``restitution="nominal"`` (default: this arch).
+
+        Returns
+        -------
+        ArchDynamics
+
+        Raises
+        ------
+        ValueError
+            For an unknown model or an invalid ``nominal``.
+        """
         from .impact import check_restitution_model
         from .impact import restitution as restitution_pair
 
@@ -136,7 +163,8 @@ class ArchDynamics:
 
     @property
     def load_multiplier(self) -> float:
-        """``k = min(k_l, k_r)``: the ground acceleration [g] at which the arch starts to move."""
+        """``k = min(k_l, k_r)`` [-]: the ground acceleration, in g, at which the arch starts to
+        move in one direction or the other (eq. (2) of the paper)."""
         return min(self.load_multipliers)
 
     # ------------------------------------------------------------------ analyses
@@ -150,18 +178,24 @@ class ArchDynamics:
             Horizontal ground acceleration [m/s^2]; ``None``: a still ground (free vibration,
             with ``initial``).
         t_end : float, optional
-            End of the record [s] (default: a few seconds after the outcome is decided).
+            End of the record [s] (default: the end of the excitation or the decision, whichever
+            is later, plus :data:`archquake.time_history.DEFAULT_EXTRA_TIME`).
         initial : tuple, optional
             ``(mechanism, phi0 [rad], phidot0 [rad/s])``; default: at rest.
         record_dt : float
             Spacing of the recorded samples [s].
         **options
             Integrator options of :func:`archquake.time_history.simulate` (``rtol``, ``atol``,
-            ``rest_velocity``, ``max_step``).
+            ``rest_velocity``, ``max_step``, ``max_steps``).
 
         Returns
         -------
         TimeHistory
+
+        Raises
+        ------
+        ValueError, RuntimeError
+            As :func:`archquake.time_history.simulate`.
         """
         from .time_history import simulate
 
@@ -171,15 +205,43 @@ class ArchDynamics:
     def free_vibration(self, phi0: float = 0.02, *, mechanism: str = "l",
                        t_end: float = 10.0, **options):
         """Free rocking released from rest at ``phi0`` [rad] in ``mechanism`` [paper, Sect. 5.2,
-        Figs. 9-14]; see :meth:`simulate`."""
+        Figs. 9-14].
+
+        Parameters
+        ----------
+        phi0 : float
+            Initial rotation ``phi = theta_u - theta`` [rad] (the paper: 0.02).
+        mechanism : {"l", "r"}
+            Mechanism displaced initially.
+        t_end : float
+            End of the record [s].
+        **options
+            As :meth:`simulate`.
+
+        Returns
+        -------
+        TimeHistory
+        """
         return self.simulate(None, initial=(mechanism, phi0, 0.0), t_end=t_end, **options)
 
     def outcome(self, ground_motion, **options):
         """Outcome of the arch under ``ground_motion`` (no record: the compiled fast path).
 
+        Parameters
+        ----------
+        ground_motion : GroundMotion
+            Horizontal ground acceleration [m/s^2].
+        **options
+            Integrator options of :func:`archquake.time_history.simulate`.
+
         Returns
         -------
         Outcome
+
+        Raises
+        ------
+        ValueError
+            As :func:`archquake.time_history.simulate`.
         """
         from .time_history import simulate
 
@@ -196,13 +258,19 @@ class ArchDynamics:
             Signed amplitudes of the first pulse [g] (``-1`` is the paper's -1 g, which opens
             Mech-l); broadcast against ``durations``.
         motion : str
-            Pulse shape, a name of :data:`archquake.ground_motion.ANALYTIC_GROUND_MOTIONS`.
+            Pulse shape, a name of :data:`archquake.ground_motion.ANALYTIC_GROUND_MOTIONS`
+            (default Oppenheim's pulse: ``a`` for ``t_p``, then ``-a/2`` for ``2 t_p``).
 
         Returns
         -------
         dict of ndarray
-            ``status`` (:class:`archquake.engine.Status` codes), ``half_cycle``, ``impacts``,
-            ``collapse_time`` [s], ``max_phi`` [rad], each of the broadcast shape.
+            ``status`` (:class:`archquake.status.Status` codes), ``half_cycle``, ``impacts``,
+            ``collapse_time`` [s], ``max_phi`` [rad] and ``steps``, each of the broadcast shape.
+
+        Raises
+        ------
+        ValueError, RuntimeError
+            As :func:`archquake.engine.outcomes_grid`.
         """
         from .engine import outcomes_grid
 
@@ -217,13 +285,34 @@ class ArchDynamics:
                        motion: str = "oppenheim"):
         """Failure domain over (pulse duration, amplitude) [paper, Sect. 5.3.3, Fig. 16].
 
-        See :func:`archquake.failure_domain.domain_of` for the parameters and their defaults
-        (those of ``archquake domain``); ``resolution`` is the bisection width of every boundary
-        [g].
+        What :func:`archquake.failure_domain.domain_of` computes for this arch, with its
+        defaults (those of ``archquake domain``).
+
+        Parameters
+        ----------
+        durations : sequence of float, optional
+            Pulse durations t_p [s] (default :data:`archquake.defaults.DOMAIN_DURATIONS`).
+        amplitudes_g : sequence of float, optional
+            Increasing scan grid of amplitudes a >= 0 [g] (default
+            :data:`archquake.defaults.DOMAIN_AMPLITUDES_G`).
+        direction : {"l", "r"}
+            ``"l"``: the first pulse is ``-a g`` and opens Mech-l; ``"r"``: ``+a g``, Mech-r.
+        resolution : float
+            Bisection width of every boundary [g].
+        extend_to_g : float or None
+            Cap [g] of the extension of the scan to find the collapse in the first half cycle
+            (None: the grid alone).
+        motion : str
+            Pulse shape (:data:`archquake.ground_motion.ANALYTIC_GROUND_MOTIONS`).
 
         Returns
         -------
         FailureDomain
+
+        Raises
+        ------
+        ValueError
+            As :func:`archquake.failure_domain.domain_of`.
         """
         from .failure_domain import domain_of
 

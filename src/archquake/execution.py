@@ -14,7 +14,7 @@ all chunks, in chunk (hence item) order, as one :class:`pandas.DataFrame`.
 
 Random numbers
 --------------
-Item ``i`` draws its random numbers from its own :class:`numpy.random.SeedSequence`,
+Item ``i`` draws its random numbers from its own :class:`numpy.random.SeedSequence` [1]_,
 ``SeedSequence(seed, spawn_key=(i,))``, which is the very same sequence as
 ``SeedSequence(seed).spawn(n_items)[i]`` (the ``i``-th child of the root sequence): same entropy,
 same spawn key, same generated state. A task must draw item ``i``'s numbers only from
@@ -47,6 +47,11 @@ tasks that hold the GIL, start them with one thread each (``dask worker ADDRESS 
 
 The task function and this package must be importable where the task runs (the worker
 processes, or every Dask worker): the task is pickled by reference (module and name).
+
+References
+----------
+.. [1] NumPy documentation, "Parallel Random Number Generation" (:mod:`numpy.random`):
+   independent streams from ``SeedSequence.spawn``.
 """
 
 from __future__ import annotations
@@ -121,6 +126,12 @@ def item_seed_sequence(seed: int, item: int) -> np.random.SeedSequence:
     Returns
     -------
     numpy.random.SeedSequence
+
+    Examples
+    --------
+    >>> child = np.random.SeedSequence(7).spawn(3)[2]
+    >>> item_seed_sequence(7, 2).generate_state(4).tolist() == child.generate_state(4).tolist()
+    True
     """
     return np.random.SeedSequence(seed, spawn_key=(item,))
 
@@ -178,11 +189,23 @@ class Chunk:
         return np.arange(self.start, self.stop, dtype=np.int64)
 
     def seed_sequences(self) -> list[np.random.SeedSequence]:
-        """Seed sequence of each item of the chunk (see :func:`item_seed_sequence`)."""
+        """Seed sequence of each item of the chunk.
+
+        Returns
+        -------
+        list of numpy.random.SeedSequence
+            :func:`item_seed_sequence` of items ``start .. stop-1``.
+        """
         return [item_seed_sequence(self.seed, i) for i in range(self.start, self.stop)]
 
     def generators(self) -> list[np.random.Generator]:
-        """A fresh :class:`numpy.random.Generator` (PCG64) seeded for each item of the chunk."""
+        """A fresh random generator for each item of the chunk.
+
+        Returns
+        -------
+        list of numpy.random.Generator
+            PCG64 generators seeded by :meth:`seed_sequences`.
+        """
         return [np.random.default_rng(s) for s in self.seed_sequences()]
 
 
@@ -226,7 +249,23 @@ class StudyPlan:
         return math.ceil(self.n_items / self.chunk_size)
 
     def chunk(self, index: int) -> Chunk:
-        """Chunk number ``index`` (``0 <= index < n_chunks``)."""
+        """Chunk number ``index``.
+
+        Parameters
+        ----------
+        index : int
+            ``0 <= index < n_chunks``.
+
+        Returns
+        -------
+        Chunk
+            Its items, the seed and its own copy of the settings.
+
+        Raises
+        ------
+        ValueError
+            If ``index`` is not an integer in range.
+        """
         if isinstance(index, bool) or not isinstance(index, int | np.integer) \
                 or not 0 <= index < self.n_chunks:
             raise ValueError(f"chunk index must be an integer in [0, {self.n_chunks}), "
@@ -239,11 +278,22 @@ class StudyPlan:
                      seed=self.seed, settings=copy.deepcopy(self.settings))
 
     def chunks(self) -> Iterator[Chunk]:
-        """All chunks in order."""
+        """All chunks in order.
+
+        Returns
+        -------
+        iterator of Chunk
+        """
         return (self.chunk(i) for i in range(self.n_chunks))
 
     def describe(self) -> dict:
-        """The plan as a JSON-serialisable dictionary (what ``study.json`` records)."""
+        """The plan as a JSON-serialisable dictionary (what ``study.json`` records).
+
+        Returns
+        -------
+        dict
+            ``settings``, ``seed``, ``n_items``, ``chunk_size`` and ``n_chunks``.
+        """
         return {"settings": self.settings, "seed": self.seed, "n_items": self.n_items,
                 "chunk_size": self.chunk_size, "n_chunks": self.n_chunks}
 
@@ -328,8 +378,14 @@ class WorkerPool(ProcessPoolExecutor):
     """
 
     def terminate_workers(self, timeout: float = 5.0) -> None:
-        """Cancel the queued work and terminate the worker processes (SIGTERM, then SIGKILL
-        after ``timeout`` [s]), waiting for them to exit."""
+        """Cancel the queued work and terminate the worker processes, waiting for them to exit.
+
+        Parameters
+        ----------
+        timeout : float
+            Time [s] the processes are given to exit after SIGTERM, all together, before they
+            are killed (SIGKILL).
+        """
         processes = list((getattr(self, "_processes", None) or {}).values())
         self.shutdown(wait=False, cancel_futures=True)
         for process in processes:
@@ -371,6 +427,11 @@ def process_pool(workers: int | None = None, *,
     Returns
     -------
     WorkerPool
+
+    Raises
+    ------
+    ValueError
+        If ``workers`` is not an integer >= 1.
     """
     import multiprocessing
 
@@ -528,7 +589,20 @@ def default_backend(backend: str | None = None, workers: Any = None, scheduler: 
                     pool: Any = None) -> str:
     """The backend of a study: ``backend`` if given, else ``"dask"`` with a scheduler,
     ``"processes"`` with workers or a pool, else :data:`archquake.defaults.DEFAULT_BACKEND` (in
-    this process) -- the one rule of the Python API, the command line and the report."""
+    this process) -- the one rule of the Python API, the command line and the report.
+
+    Parameters
+    ----------
+    backend : str, optional
+        An explicit choice, returned as it is (:func:`run_study` validates it).
+    workers, scheduler, pool : optional
+        The other execution options of :func:`run_study`; only whether they are given counts.
+
+    Returns
+    -------
+    str
+        ``backend``, ``"dask"``, ``"processes"`` or the default.
+    """
     if backend is not None:
         return backend
     if scheduler is not None:
@@ -587,13 +661,35 @@ def _check_execution(backend: str | None, workers: Any, scheduler: Any,
 
 
 def task_name(task: Callable) -> str:
-    """``module.qualname`` of a task (recorded in ``study.json`` and checked on resume)."""
+    """``module.qualname`` of a task (recorded in ``study.json`` and checked on resume).
+
+    Parameters
+    ----------
+    task : callable
+        A task function, or a :func:`functools.partial` of one (named after the function).
+
+    Returns
+    -------
+    str
+    """
     func = getattr(task, "func", task)  # functools.partial
     return f"{getattr(func, '__module__', '?')}.{getattr(func, '__qualname__', repr(func))}"
 
 
 def chunk_path(out_dir: str | os.PathLike, index: int) -> Path:
-    """Path of the checkpoint file of chunk ``index``: ``DIR/chunks/chunk-000123.npz``."""
+    """Path of the checkpoint file of chunk ``index``: ``DIR/chunks/chunk-000123.npz``.
+
+    Parameters
+    ----------
+    out_dir : str or os.PathLike
+        The study directory ``DIR``.
+    index : int
+        Chunk number.
+
+    Returns
+    -------
+    pathlib.Path
+    """
     return Path(out_dir) / CHUNK_DIR / f"chunk-{index:06d}.npz"
 
 

@@ -1,10 +1,23 @@
-"""Failure domain of one arch over (pulse duration, amplitude) [paper, Sect. 5.3.3, Fig. 16].
+r"""Failure domain of one arch over (pulse duration, amplitude) [paper, Sect. 5.3.3, Fig. 16].
 
-For every pulse duration t_p the amplitudes are split into intervals of one outcome class: at rest
-(never activated), recovery, collapse after impacts (half cycle h >= 2) and collapse in the first
-half cycle (h = 1). The outcome is not monotone in the amplitude in general, so every class change
-is found: the amplitude axis is scanned on a grid, then every edge between two different classes is
-bisected to the stated resolution (recursively, should a third class appear inside an edge).
+For every pulse duration :math:`t_p` [s] the amplitudes :math:`a` [g] are split into intervals of
+one outcome class: at rest (the pulse never reaches an activation threshold, e.g.
+:math:`a < k` for Oppenheim's pulse on the nominal arch), recovery (region (1) of Fig. 16 of
+[1]_), collapse after impacts (half cycle :math:`h \ge 2`, region (2)) and collapse in the first
+half cycle (:math:`h = 1`, region (3)). The lowest collapsing amplitude of a duration is the
+failure curve of Fig. 16 of [1]_: its point :math:`Q = (\bar t_p, \bar{\ddot x}_g / g)` is the
+threshold of the step fragility of the nominal arch, Eq. (10) in [1]_,
+
+.. math::
+
+    P_F(\bar t_p, \ddot x_g) = \begin{cases} 0 & \ddot x_g < \bar{\ddot x}_g, \\
+    1 & \ddot x_g \ge \bar{\ddot x}_g \end{cases}
+
+(:attr:`DomainSlice.failure_acceleration_g`). The outcome is not monotone in the amplitude in
+general, so every class change is found: the amplitude axis is scanned on a grid, then every edge
+between two different classes is bisected to the stated resolution (recursively, should a third
+class appear inside an edge); a boundary is reported at the middle of its last bracket, within
+half the resolution of the class change.
 
 The search is written against any ``classify(amplitude) -> (status, half_cycle)`` callable, so it
 is independent of how the outcome is computed; :func:`domain_of` plugs in an arch's
@@ -18,6 +31,10 @@ Direction of the pulse
 ``direction="l"``: the first pulse is ``-a g`` (toward -x), which opens Mech-l when
 ``a >= k_l``; ``direction="r"``: ``+a g``, which opens Mech-r when ``a >= k_r`` [paper, eq. (2)].
 Amplitudes ``a`` are given and reported in g, positive.
+
+References
+----------
+.. [1] The paper, Sect. 5.3.3, Fig. 16 and Eq. (10).
 """
 
 from __future__ import annotations
@@ -42,7 +59,18 @@ OutcomeKey = tuple[str, int]
 
 @dataclass(frozen=True)
 class Interval:
-    """Amplitudes ``[start, end]`` [g] with one outcome class (status and half cycle)."""
+    """Amplitudes ``[start, end]`` [g] with one outcome class (status and half cycle).
+
+    Attributes
+    ----------
+    start, end : float
+        Ends of the interval [g].
+    status : str
+        Label of the outcome (:attr:`archquake.status.Status.label`): ``"rest"``,
+        ``"recovery"`` or ``"collapse"``.
+    half_cycle : int
+        Half cycle of the collapse [-] (1: the first, with no impact); 0 unless a collapse.
+    """
 
     start: float
     end: float
@@ -50,6 +78,13 @@ class Interval:
     half_cycle: int
 
     def to_dict(self) -> dict:
+        """The interval as JSON-ready data.
+
+        Returns
+        -------
+        dict
+            ``{"from": start [g], "to": end [g], "outcome": status, "half_cycle": ...}``.
+        """
         return {"from": self.start, "to": self.end, "outcome": self.status,
                 "half_cycle": self.half_cycle}
 
@@ -74,7 +109,9 @@ class DomainSlice:
 
     @property
     def failure_acceleration_g(self) -> float:
-        """Lowest amplitude [g] that collapses (nan if none in the scanned range)."""
+        """Lowest amplitude [g] that collapses, to the resolution (nan if none in the scanned
+        range): the failure curve of Fig. 16 of the paper at this duration, i.e. its point Q,
+        the threshold of the step fragility of eq. (10)."""
         for iv in self.intervals:
             if iv.status == "collapse":
                 return iv.start
@@ -82,7 +119,8 @@ class DomainSlice:
 
     @property
     def first_half_cycle_acceleration_g(self) -> float:
-        """Lowest amplitude [g] that collapses in the first half cycle, with no impact."""
+        """Lowest amplitude [g] that collapses in the first half cycle, with no impact
+        (Oppenheim's boundary in Fig. 16 of the paper; nan if none in the scanned range)."""
         for iv in self.intervals:
             if iv.status == "collapse" and iv.half_cycle == 1:
                 return iv.start
@@ -94,6 +132,14 @@ class DomainSlice:
         return self.intervals[-1].end
 
     def to_dict(self) -> dict:
+        """The slice as JSON-ready data.
+
+        Returns
+        -------
+        dict
+            ``duration`` [s], ``failure_acceleration``, ``first_half_cycle_acceleration`` (None
+            for nan) and ``scanned_to`` [g], and the ``intervals`` (:meth:`Interval.to_dict`).
+        """
         return {
             "duration": self.duration,
             "failure_acceleration": _json_float(self.failure_acceleration_g),
@@ -151,6 +197,30 @@ def domain_slice(
     resolution : float
         Bisection width of the boundaries [g]; a width below the spacing of floating-point
         numbers ends with the boundary between two neighbouring floats.
+
+    Returns
+    -------
+    DomainSlice
+        Contiguous intervals from the first to the last grid amplitude; a boundary lies at the
+        middle of its last bracket.
+
+    Raises
+    ------
+    ValueError
+        If ``amplitudes`` is not increasing with at least two values, or ``resolution <= 0``.
+    RuntimeError
+        If new classes keep appearing inside an edge (more than 60 nested bisections).
+
+    Examples
+    --------
+    A classifier with one class change, at 0.3:
+
+    >>> s = domain_slice(lambda a: ("collapse", 1) if a >= 0.3 else ("recovery", 0),
+    ...                  [0.1, 0.2, 0.4, 0.5], resolution=1e-3)
+    >>> [(iv.status, round(iv.start, 3)) for iv in s.intervals]
+    [('recovery', 0.1), ('collapse', 0.3)]
+    >>> abs(s.failure_acceleration_g - 0.3) <= 0.5e-3
+    True
     """
     grid = np.asarray(amplitudes, dtype=float)
     if grid.ndim != 1 or grid.size < 2 or np.any(np.diff(grid) <= 0):
@@ -229,7 +299,22 @@ class FailureDomain:
         return np.array([s.first_half_cycle_acceleration_g for s in self.slices])
 
     def slice(self, duration: float) -> DomainSlice:
-        """The slice of pulse duration ``duration`` [s] (to 1e-9 s)."""
+        """The slice of one pulse duration.
+
+        Parameters
+        ----------
+        duration : float
+            Pulse duration t_p [s], one of :attr:`durations` (to 1e-9 s).
+
+        Returns
+        -------
+        DomainSlice
+
+        Raises
+        ------
+        ValueError
+            If ``duration`` is not one of the domain's.
+        """
         for s in self.slices:
             if abs(s.duration - duration) <= 1e-9:
                 return s
@@ -237,7 +322,13 @@ class FailureDomain:
                          f"{self.durations.tolist()}")
 
     def to_list(self) -> list[dict]:
-        """JSON-ready list of the slices (amplitudes in g)."""
+        """The domain as JSON-ready data.
+
+        Returns
+        -------
+        list of dict
+            :meth:`DomainSlice.to_dict` of every slice (durations in s, amplitudes in g).
+        """
         return [s.to_dict() for s in self.slices]
 
 
@@ -265,7 +356,23 @@ def _check_amplitudes(amplitudes_g) -> np.ndarray:
 
 
 def check_direction(direction: str) -> str:
-    """Validate a pulse direction, ``"l"`` or ``"r"``."""
+    """Validate a pulse direction, ``"l"`` or ``"r"``.
+
+    Parameters
+    ----------
+    direction : str
+        ``"l"`` (first pulse ``-a g``, opens Mech-l) or ``"r"`` (``+a g``, opens Mech-r).
+
+    Returns
+    -------
+    str
+        ``direction``.
+
+    Raises
+    ------
+    ValueError
+        For any other value.
+    """
     if direction not in PULSE_SIGNS:
         raise ValueError(f"direction must be 'l' (first pulse -a g) or 'r' (+a g), got "
                          f"{direction!r}")
@@ -284,6 +391,11 @@ def inclusive_range(start: float, stop: float, step: float) -> np.ndarray:
         First value and last value (included if ``start + k step`` is within ``step/2`` of it).
     step : float
         Spacing, > 0.
+
+    Returns
+    -------
+    ndarray
+        The values.
 
     Raises
     ------
@@ -313,8 +425,8 @@ def domain_of(dynamics, durations=None, amplitudes_g=None, *, direction: str = "
     What :meth:`archquake.dynamics.ArchDynamics.failure_domain` runs; with its defaults it is
     ``archquake domain`` with its defaults. For every duration the amplitudes are scanned on
     ``amplitudes_g`` (one compiled call for the whole grid) and every change of outcome class
-    (rest, recovery, collapse in half cycle h) is bisected to ``resolution``
-    (:func:`domain_slice`).
+    (rest, recovery, collapse in half cycle h: the regions of Fig. 16 of [1]_) is bisected to
+    ``resolution`` (:func:`domain_slice`).
 
     Parameters
     ----------
@@ -330,7 +442,9 @@ def domain_of(dynamics, durations=None, amplitudes_g=None, *, direction: str = "
     resolution : float
         Bisection width of every boundary [g].
     motion : str
-        Pulse shape; default Oppenheim's pulse ``-a, +a/2, 0`` [paper, Sect. 5.3.1].
+        Pulse shape, a name of :data:`archquake.ground_motion.ANALYTIC_GROUND_MOTIONS`; default
+        Oppenheim's pulse: ``-a g`` (direction ``"l"``) for ``t_p``, then ``+a g/2`` for
+        ``2 t_p`` [paper, Sect. 5.3.1].
     extend_to_g : float or None
         A duration whose grid holds no collapse in the first half cycle is scanned further, at
         the grid's last spacing, until that collapse is found or the amplitude reaches this cap
@@ -340,6 +454,17 @@ def domain_of(dynamics, durations=None, amplitudes_g=None, *, direction: str = "
     Returns
     -------
     FailureDomain
+
+    Raises
+    ------
+    ValueError
+        For an invalid direction, durations, amplitudes (increasing, >= 0, at most
+        :data:`~archquake.defaults.MAX_ACCELERATION_G`), resolution or ``extend_to_g``, or a scan
+        of more than :data:`~archquake.defaults.MAX_GRID_POINTS` analyses.
+
+    References
+    ----------
+    .. [1] The paper, Sect. 5.3.3 and Fig. 16.
     """
     from .status import Status
 

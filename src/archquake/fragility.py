@@ -1,17 +1,37 @@
-"""Fragility of irregular arches [paper, Sect. 5.3.3, eq. (9), Figs. 17–21].
+r"""Fragility of irregular arches [paper, Sect. 5.3.3, eq. (9), Figs. 17–21].
 
-The estimated probability of failure at a pulse duration t_p and amplitude a is
+The estimated probability of failure at a pulse duration :math:`t_p` [s] and amplitude
+:math:`a` [g] is Eq. (9) in [1]_,
 
-    P_F(t_p, a) = h_f(t_p, a) / h                                             (eq. 9)
+.. math::
 
-where h is the number of sampled irregular arches and h_f those that collapse. Two fits of a
-fragility curve are provided: the paper's fifth-degree polynomial, and the lognormal fragility
-function ``P_F = Phi(ln(a / median) / dispersion)`` fitted by maximum likelihood to the binomial
-counts, the standard form in earthquake engineering. Under a pulse P_F(a) need not be monotone:
-above the failure accelerations a band of amplitudes lets arches recover again (the last phase of
-the pulse brings them back, README). A lognormal CDF cannot follow that, so it is fitted to the
-rising part of the data, the amplitudes up to the first maximum of P_F (recorded with the fit);
-the polynomial, as in the paper, is fitted to the whole grid.
+    P_F(t_p, a) = \frac{h_f(t_p, a)}{h},
+
+where :math:`h` is the number of sampled irregular arches and :math:`h_f \le h` those that
+collapse. For the nominal arch alone it is the step of Eq. (10) in [1]_,
+
+.. math::
+
+    P_F(t_p, a) = \begin{cases} 0 & a < \bar a(t_p), \\ 1 & a \ge \bar a(t_p), \end{cases}
+
+with :math:`\bar a(t_p)` its failure acceleration (point Q of Fig. 16 of [1]_,
+:attr:`FragilityResult.nominal_failure_acceleration_g`).
+
+Two fits of a fragility curve are provided: the paper's fifth-degree polynomial (least squares,
+the dashed curves of Figs. 17-20 of [1]_), and the lognormal fragility function
+
+.. math::
+
+    P_F(a) = \Phi\left(\frac{\ln(a/\theta)}{\beta}\right)
+
+with median :math:`\theta` [g] and dispersion :math:`\beta` [-], fitted by maximum likelihood to
+the binomial counts of the grid (Eq. (11) in [2]_, :func:`fit_lognormal`), the standard form in
+earthquake engineering. Under a pulse :math:`P_F(a)` need not be monotone: above the failure
+accelerations a band of amplitudes lets arches recover again (the last phase of the pulse brings
+them back, README). A lognormal CDF cannot follow that, so it is fitted to the rising part of the
+data, the amplitudes up to the first grid point where :math:`P_F` takes its largest value
+(:func:`rising_part`, recorded with the fit); the polynomial, as in the paper, is fitted to the
+whole grid.
 
 The study [paper, Sect. 5.3.3]
 ------------------------------
@@ -42,6 +62,12 @@ Restitution: by default ``"computed"`` (:data:`archquake.defaults.DEFAULT_RESTIT
 analysis of the package), each arch its own pair (c_lr, c_rl); ``"nominal"`` applies the
 coefficients computed for the nominal arch to every irregular arch, which is the paper's practice
 (it applies its nominal c_v to the random arches); ``"paper"`` imposes 0.875.
+
+References
+----------
+.. [1] The paper, Sect. 5.3.3, Eqs. (9)-(10), Figs. 16-21.
+.. [2] Baker, J. W. (2015). Efficient analytical fragility function fitting using dynamic
+   structural analysis. Earthquake Spectra 31(1), 579-599.
 """
 
 from __future__ import annotations
@@ -83,7 +109,38 @@ from .geometry import BlockArch, arch_from_dict, irregular_arch
 
 
 def probability_of_failure(failed: np.ndarray) -> np.ndarray:
-    """P_F = h_f / h (eq. 9) from a boolean array ``failed[arch, ...]`` [-]."""
+    r"""The estimated probability of failure of Eq. (9) in [1]_,
+
+    .. math::
+
+        P_F = \frac{h_f}{h},
+
+    the fraction of the :math:`h` arches (first axis) that fail.
+
+    Parameters
+    ----------
+    failed : array_like of bool, shape (h, ...)
+        Failure of every arch (first axis) at every point of the rest of the shape.
+
+    Returns
+    -------
+    ndarray, shape (...)
+        :math:`P_F` [-].
+
+    Raises
+    ------
+    ValueError
+        If ``failed`` has no arch.
+
+    References
+    ----------
+    .. [1] The paper, Sect. 5.3.3, Eq. (9).
+
+    Examples
+    --------
+    >>> probability_of_failure([[False, True], [True, True], [False, True], [False, False]])
+    array([0.25, 0.75])
+    """
     failed = np.asarray(failed, dtype=bool)
     if failed.ndim < 1 or failed.shape[0] == 0:
         raise ValueError("failed must have at least one arch (first axis)")
@@ -92,14 +149,27 @@ def probability_of_failure(failed: np.ndarray) -> np.ndarray:
 
 @dataclass(frozen=True)
 class LognormalFragility:
-    """Lognormal fragility function ``P_F(a) = Phi(ln(a / median) / dispersion)``.
+    r"""Lognormal fragility function [1]_:
+
+    .. math::
+
+        P_F(a) = \Phi\left(\frac{\ln(a/\theta)}{\beta}\right),
+
+    :math:`\Phi` the standard normal CDF. Calling it evaluates :math:`P_F` [-] at amplitudes
+    :math:`a` (0 for :math:`a \le 0`).
 
     Attributes
     ----------
     median : float
-        Amplitude with 50 % probability of failure [g].
+        :math:`\theta`: the amplitude with 50 % probability of failure [g] (or the unit of the
+        intensity measure it was fitted to, :mod:`archquake.record_fragility`).
     dispersion : float
-        Logarithmic standard deviation beta [-].
+        :math:`\beta`: the logarithmic standard deviation [-].
+
+    References
+    ----------
+    .. [1] Baker, J. W. (2015). Efficient analytical fragility function fitting using dynamic
+       structural analysis. Earthquake Spectra 31(1), 579-599.
     """
 
     median: float
@@ -113,18 +183,51 @@ class LognormalFragility:
 
 
 def fit_lognormal(amplitudes, trials, failures) -> LognormalFragility:
-    """Maximum-likelihood lognormal fragility from binomial counts.
+    r"""Maximum-likelihood lognormal fragility from binomial counts.
 
-    Maximises ``sum_j z_j ln P(a_j) + (n_j - z_j) ln(1 - P(a_j))`` over (median, dispersion).
+    With :math:`z_j` collapses in :math:`n_j` analyses at amplitude :math:`a_j`, the counts are
+    binomial with probability :math:`P(a_j) = \Phi(\ln(a_j/\theta)/\beta)`, and the fit
+    maximises the log-likelihood (Eq. (11) in [1]_, without its constant binomial coefficients)
+
+    .. math::
+
+        \{\hat\theta, \hat\beta\} = \arg\max_{\theta, \beta} \sum_j \Bigl[z_j \ln P(a_j)
+        + (n_j - z_j) \ln\bigl(1 - P(a_j)\bigr)\Bigr].
+
+    It is solved by Nelder-Mead in :math:`(\ln\theta, \ln\beta)` from the amplitude nearest
+    50 % failures and :math:`\beta = 0.3`. Separated data (every survival at an amplitude no
+    higher than every failure) have no maximum: the fit then tends to a step, and its
+    dispersion is only as small as the optimizer's tolerances leave it
+    (:func:`archquake.record_fragility.separated` tells such data).
 
     Parameters
     ----------
-    amplitudes : array of float
-        Amplitudes a_j > 0 [g].
-    trials : array of int
-        Number of analyses n_j at each amplitude.
-    failures : array of int
-        Number of collapses z_j at each amplitude.
+    amplitudes : array_like of float
+        Amplitudes :math:`a_j` > 0 [g] (or the unit of the intensity measure), 1-D, at least 2.
+    trials : int or array_like of int
+        Number of analyses :math:`n_j` at each amplitude (one number: the same at every one).
+    failures : array_like of int
+        Number of collapses :math:`z_j` at each amplitude, :math:`0 \le z_j \le n_j`.
+
+    Returns
+    -------
+    LognormalFragility
+        :math:`\hat\theta` [unit of ``amplitudes``] and :math:`\hat\beta` [-].
+
+    Raises
+    ------
+    ValueError
+        If the arrays do not match, an amplitude is not finite and > 0, a count is out of range,
+        or the data hold no failure or no survival (no maximum exists).
+
+    See Also
+    --------
+    archquake.record_fragility.lognormal_fit : the same fit, None where no maximum exists.
+
+    References
+    ----------
+    .. [1] Baker, J. W. (2015). Efficient analytical fragility function fitting using dynamic
+       structural analysis. Earthquake Spectra 31(1), 579-599.
     """
     a = np.asarray(amplitudes, dtype=float)
     n = np.broadcast_to(np.asarray(trials, dtype=float), a.shape)
@@ -155,8 +258,33 @@ def fit_lognormal(amplitudes, trials, failures) -> LognormalFragility:
 
 
 def rising_part(probability) -> int:
-    """Number of leading grid points up to and including the first maximum of ``probability``:
-    the part of a fragility curve a monotone (lognormal) model can describe."""
+    """Number of leading grid points up to and including the first point where ``probability``
+    takes its largest value: the part of a fragility curve a monotone (lognormal) model can
+    describe.
+
+    A local maximum below the largest value does not end the rising part (a dip on the way up
+    is kept in the data of the fit).
+
+    Parameters
+    ----------
+    probability : array_like, shape (n,)
+        P_F [-] on an increasing amplitude grid.
+
+    Returns
+    -------
+    int
+        In ``1 .. n``.
+
+    Raises
+    ------
+    ValueError
+        If ``probability`` is not a non-empty 1-D array.
+
+    Examples
+    --------
+    >>> rising_part([0.0, 0.5, 0.25, 1.0, 1.0, 0.5])
+    4
+    """
     p = np.asarray(probability, dtype=float)
     if p.ndim != 1 or p.size == 0:
         raise ValueError("probability must be a non-empty 1-D array")
@@ -166,7 +294,28 @@ def rising_part(probability) -> int:
 def fit_polynomial(amplitudes, probabilities, degree: int = 5) -> np.polynomial.Polynomial:
     """Least-squares polynomial of ``degree`` (the paper: 5) through (a [g], P_F) points.
 
-    Evaluate with :func:`evaluate_polynomial_fit`, which clips to [0, 1].
+    The paper fits such a polynomial to each fragility curve (the dashed curves of Figs. 17-20).
+    Evaluate it with :func:`evaluate_polynomial_fit`, which clips to [0, 1].
+
+    Parameters
+    ----------
+    amplitudes : array_like
+        Amplitudes [g].
+    probabilities : array_like
+        P_F [-] at ``amplitudes``.
+    degree : int
+        Degree of the polynomial.
+
+    Returns
+    -------
+    numpy.polynomial.Polynomial
+        The fit (in the scaled variable of :meth:`numpy.polynomial.Polynomial.fit`; ``convert()``
+        gives the coefficients in powers of the amplitude [g]).
+
+    Raises
+    ------
+    ValueError
+        If the arrays differ in shape or hold no more than ``degree`` points.
     """
     a = np.asarray(amplitudes, dtype=float)
     p = np.asarray(probabilities, dtype=float)
@@ -176,7 +325,20 @@ def fit_polynomial(amplitudes, probabilities, degree: int = 5) -> np.polynomial.
 
 
 def evaluate_polynomial_fit(poly: np.polynomial.Polynomial, amplitude) -> np.ndarray:
-    """The polynomial fit clipped to probabilities in [0, 1]."""
+    """The polynomial fit clipped to probabilities in [0, 1].
+
+    Parameters
+    ----------
+    poly : numpy.polynomial.Polynomial
+        A fit of :func:`fit_polynomial`.
+    amplitude : float or array_like
+        Amplitudes [g].
+
+    Returns
+    -------
+    ndarray
+        P_F [-], in [0, 1].
+    """
     return np.clip(poly(np.asarray(amplitude, dtype=float)), 0.0, 1.0)
 
 
@@ -251,10 +413,17 @@ class FragilitySettings:
         Number s of arches of the limit-analysis CDF of k~ (the paper: 1000), at most
         :data:`~archquake.defaults.MAX_LIMIT_SAMPLES`.
     limit_method : {"kinematic", "static"}
-        Limit-analysis method of that sample (both give the same k~ to round-off; the kinematic
-        enumeration is about five times as fast).
+        Limit-analysis method of that sample (both give the same k~ to round-off; on a sample
+        the kinematic enumeration is about ten times as fast).
     motion : str
-        Pulse shape (default Oppenheim's pulse).
+        Pulse shape, a name of :data:`archquake.ground_motion.ANALYTIC_GROUND_MOTIONS` (default
+        Oppenheim's pulse).
+
+    Raises
+    ------
+    ValueError
+        For a setting out of its range (the message names it), or a study larger than
+        :data:`~archquake.defaults.MAX_STUDY_ANALYSES` analyses.
     """
 
     nominal: BlockArch = field(default_factory=_default_nominal)
@@ -328,7 +497,13 @@ class FragilitySettings:
         object.__setattr__(self, "amplitudes_g", tuple(float(x) for x in a))
 
     def to_dict(self) -> dict:
-        """JSON-ready settings (the nominal arch as its voussoirs), as stored with the results."""
+        """The settings as JSON-ready data, as stored with the results.
+
+        Returns
+        -------
+        dict
+            Every field, the nominal arch as :meth:`archquake.geometry.Arch.to_dict`.
+        """
         return {
             "nominal": _nominal_dict(self.nominal),
             "sample_size": self.sample_size,
@@ -344,7 +519,17 @@ class FragilitySettings:
 
     @classmethod
     def from_dict(cls, data: dict) -> FragilitySettings:
-        """Inverse of :meth:`to_dict`."""
+        """Inverse of :meth:`to_dict` (the settings are validated again).
+
+        Parameters
+        ----------
+        data : dict
+            As :meth:`to_dict` writes it.
+
+        Returns
+        -------
+        FragilitySettings
+        """
         return cls(nominal=_nominal_from_dict(data["nominal"]), sample_size=data["sample_size"],
                    tolerance=data["tolerance"], durations=tuple(data["durations"]),
                    amplitudes_g=tuple(data["amplitudes_g"]), seed=data["seed"],
@@ -363,7 +548,22 @@ def chunk_arches(chunk, nominal: BlockArch, tolerance: float) -> list[BlockArch]
     """The irregular arches of the items of ``chunk``, drawn from their own seed sequences.
 
     Arch ``i`` is ``irregular_arch(nominal, tolerance, default_rng(SeedSequence(seed,
-    spawn_key=(i,))))``: the same as ``irregular_sample(nominal, tolerance, count, seed)[i]``.
+    spawn_key=(i,))))``: the same as ``irregular_sample(nominal, tolerance, count, seed)[i]``
+    (eq. (1) of the paper).
+
+    Parameters
+    ----------
+    chunk : archquake.execution.Chunk
+        The items (arch indices) and the root seed.
+    nominal : Arch
+        The nominal arch.
+    tolerance : float
+        epsilon of eq. (1) [-], in [0, 1).
+
+    Returns
+    -------
+    list of Arch
+        One arch per item, in item order.
     """
     return [irregular_arch(nominal, tolerance, rng) for rng in chunk.generators()]
 
@@ -385,18 +585,24 @@ def arch_outcomes(arch: BlockArch, durations, amplitudes_g, *, restitution=DEFAU
     amplitudes_g : sequence of float
         Pulse amplitudes a > 0 [g]; direction ``"l"`` applies ``-a g`` first, ``"r"`` ``+a g``.
     restitution : str or float
-        Restitution model.
+        Restitution model (:func:`archquake.impact.check_restitution_model`).
     nominal : BlockArch or ArchDynamics, optional
         The nominal arch, for ``restitution="nominal"``.
     motion : str
-        Pulse shape.
+        Pulse shape (:data:`archquake.ground_motion.ANALYTIC_GROUND_MOTIONS`).
 
     Returns
     -------
     dict of ndarray
-        Columns ``direction, duration, amplitude_g, status, half_cycle, impacts,
-        collapse_time, k_l, k_r, c_lr, c_rl`` (2 x durations x amplitudes rows); ``status``
-        holds the integer codes of :class:`archquake.status.Status`.
+        Columns ``direction``, ``duration`` [s], ``amplitude_g`` [g], ``status``,
+        ``half_cycle``, ``impacts``, ``collapse_time`` [s], ``k_l``, ``k_r``, ``c_lr``,
+        ``c_rl`` [-] (2 x durations x amplitudes rows); ``status`` holds the integer codes of
+        :class:`archquake.status.Status`.
+
+    Raises
+    ------
+    ValueError
+        If the arch cannot be analysed (:meth:`archquake.dynamics.ArchDynamics.from_arch`).
     """
     from .dynamics import ArchDynamics
 
@@ -510,10 +716,26 @@ def fragility_task(chunk) -> dict[str, np.ndarray]:
     """Study task (:func:`archquake.execution.run_study`): the arches of one chunk.
 
     ``chunk.settings`` is :meth:`FragilitySettings.to_dict`; every item is one irregular arch
-    (:func:`chunk_arches`), analysed by :func:`arch_outcomes`. Returns the tidy rows with the
-    column ``arch`` (item index) first and ``excluded`` last: why the arch was not analysed
-    (:data:`EXCLUSIONS`; its rows then have status :data:`STATUS_EXCLUDED`), "" if it was.
-    Any other error stops the study with a message that names the arch (index and seed).
+    (:func:`chunk_arches`), analysed by :func:`arch_outcomes`. An arch that cannot be analysed
+    is excluded (:data:`EXCLUSIONS`; its rows then have status :data:`STATUS_EXCLUDED`); any
+    other error stops the study with a message that names the arch (index and seed).
+
+    Parameters
+    ----------
+    chunk : archquake.execution.Chunk
+        The arches of the chunk.
+
+    Returns
+    -------
+    dict of ndarray
+        The tidy rows: the column ``arch`` (item index) first, the columns of
+        :func:`arch_outcomes`, and ``excluded`` last: why the arch was not analysed, "" if it
+        was.
+
+    Raises
+    ------
+    archquake.errors.StudyError
+        For an error of an arch other than the exclusions, naming the arch.
     """
     from .errors import StudyError
 
@@ -544,6 +766,16 @@ def limit_task(chunk) -> dict[str, np.ndarray]:
     :func:`archquake.limit_analysis.limit_sample` with the same seed. An arch that is not an
     arch or cannot stand has k~ = nan and its reason in the column ``excluded``
     (:data:`EXCLUSIONS`); one that never collapses has k~ = inf.
+
+    Parameters
+    ----------
+    chunk : archquake.execution.Chunk
+        The arches of the chunk.
+
+    Returns
+    -------
+    dict of ndarray
+        Columns ``arch`` (item index), ``k_l``, ``k_r`` [-] and ``excluded``.
     """
     from .limit_analysis import load_multipliers_of
 
@@ -569,37 +801,44 @@ class FragilityResult:
     Attributes
     ----------
     settings : FragilitySettings
+        The settings of the study.
     table : pandas.DataFrame
-        Tidy table, one row per analysis: ``arch, direction, duration, amplitude_g, status
-        (the codes of :class:`archquake.status.Status`: 0 rest, 1 recovery, 2 collapse),
-        half_cycle, impacts, collapse_time, k_l, k_r, c_lr,
-        c_rl``.
+        Tidy table, one row per analysis, ordered by arch, direction, duration and amplitude:
+        ``arch`` (item index), ``direction`` (``"l"``, ``"r"``), ``duration`` [s],
+        ``amplitude_g`` [g], ``status`` (the codes of :class:`archquake.status.Status`: 0 rest,
+        1 recovery, 2 collapse; :data:`STATUS_EXCLUDED` for an excluded arch),
+        ``half_cycle``, ``impacts``, ``collapse_time`` [s], ``k_l``, ``k_r``, ``c_lr``,
+        ``c_rl`` [-] and ``excluded`` (:data:`EXCLUSIONS`, "" for an analysed arch).
     durations : ndarray, shape (d,)
         Pulse durations t_p [s].
-    amplitudes : ndarray, shape (a,)
+    amplitudes_g : ndarray, shape (a,)
         Amplitudes [g].
     failures, failures_l, failures_r : ndarray of int, shape (d, a)
         Number h_f of arches that collapse in either direction, in direction l, in direction r.
     probability, probability_l, probability_r : ndarray, shape (d, a)
-        P_F = h_f / h [eq. (9)].
+        P_F = h_f / h [-] (eq. (9) of the paper), h the :attr:`analysed` arches.
     polynomial_fits : tuple of numpy.polynomial.Polynomial
         Quintic least-squares fit of P_F(a) per duration (the paper's dashed curves).
     lognormal_fits : tuple of LognormalFragility or None
-        Maximum-likelihood lognormal fragility per duration, fitted to the amplitudes up to the
-        first maximum of P_F (None when no arch, or every arch, fails there).
+        Maximum-likelihood lognormal fragility per duration (:func:`fit_lognormal`), fitted to
+        the amplitudes up to the first one where P_F takes its largest value
+        (:func:`rising_part`); None when no arch, or every arch, fails there, or fewer than two
+        amplitudes are left.
     lognormal_upper : ndarray, shape (d,)
         Largest amplitude of the data of each lognormal fit [g].
     limit_sample : archquake.limit_analysis.LimitSample
         k~_l, k~_r of the s arches of the limit analysis.
     nominal_failure_acceleration_g : ndarray, shape (d,)
         Lowest amplitude at which the nominal arch collapses (either direction) [g] (point Q of
-        Fig. 16); nan if it does not collapse in the grid.
+        Fig. 16, the threshold of the step fragility of eq. (10)), bisected to the study's
+        ``nominal_resolution_g``; nan if it does not collapse in the grid.
     nominal_load_multiplier : float
         k = min(k_l, k_r) of the nominal arch [-].
     nominal_domains : tuple of FailureDomain
         The nominal arch's failure domain over the study grid, directions l and r.
     metadata : dict
-        Settings, seed, version, timings of the study (from :func:`run_study`).
+        Settings, seed, version, timings of the study (from
+        :func:`archquake.execution.run_study`).
     excluded : dict of int to str
         The irregular arches of the dynamic study that were not analysed, by index, with the
         reason (a key of :data:`EXCLUSIONS`); they are left out of h, so ``failures`` and the
@@ -637,7 +876,22 @@ class FragilityResult:
         return self.limit_sample.load_multiplier
 
     def duration_index(self, duration: float) -> int:
-        """Index of pulse duration ``duration`` [s] (to 1e-9 s)."""
+        """Index of a pulse duration in :attr:`durations`.
+
+        Parameters
+        ----------
+        duration : float
+            Pulse duration t_p [s] (to 1e-9 s).
+
+        Returns
+        -------
+        int
+
+        Raises
+        ------
+        ValueError
+            If it is not one of the study's durations.
+        """
         hits = np.flatnonzero(np.abs(self.durations - duration) <= 1e-9)
         if hits.size == 0:
             raise ValueError(f"duration {duration!r} s is not one of the study's durations "
@@ -646,7 +900,13 @@ class FragilityResult:
 
     def probability_below_nominal(self) -> np.ndarray:
         """P_F at the largest grid amplitude below the nominal failure acceleration, per
-        duration (nan if there is none): where eq. (10) says P_F = 0."""
+        duration: where the step of eq. (10) says P_F = 0.
+
+        Returns
+        -------
+        ndarray, shape (d,)
+            P_F [-] (nan where there is no such amplitude).
+        """
         out = np.full(self.durations.size, np.nan)
         for i, q in enumerate(self.nominal_failure_acceleration_g):
             below = np.flatnonzero(self.amplitudes_g < q) if math.isfinite(q) else np.array([])
@@ -655,7 +915,13 @@ class FragilityResult:
         return out
 
     def lowest_failure_acceleration_g(self) -> np.ndarray:
-        """Lowest grid amplitude at which some irregular arch fails, per duration [g]."""
+        """Lowest grid amplitude at which some irregular arch fails, per duration.
+
+        Returns
+        -------
+        ndarray, shape (d,)
+            Amplitude [g] (nan where no arch fails).
+        """
         out = np.full(self.durations.size, np.nan)
         for i in range(self.durations.size):
             hit = np.flatnonzero(self.failures[i] > 0)
@@ -665,7 +931,16 @@ class FragilityResult:
 
     def curves(self) -> pd.DataFrame:
         """Fragility curves as a table: one row per (duration, amplitude) with h_f, P_F (both
-        directions and each), the quintic and lognormal fits and the nominal step (eq. 10)."""
+        directions and each), the quintic and lognormal fits and the nominal step of eq. (10).
+
+        Returns
+        -------
+        pandas.DataFrame
+            Columns ``duration`` [s], ``amplitude_g`` [g], ``failures``, ``failures_l``,
+            ``failures_r``, ``probability``, ``probability_l``, ``probability_r``,
+            ``polynomial_fit``, ``lognormal_fit`` (nan without a fit) and ``nominal_step``
+            (1 at and above the nominal failure acceleration, else 0) [-].
+        """
         d, a = np.meshgrid(self.durations, self.amplitudes_g, indexing="ij")
         poly = np.vstack([evaluate_polynomial_fit(p, self.amplitudes_g)
                           for p in self.polynomial_fits])
@@ -690,7 +965,13 @@ class FragilityResult:
         (:data:`EXCLUSIONS`); the k~ statistics of the limit sample over its arches that are
         not excluded (``count``; ``excluded``; ``never_collapse``: k~ = inf, left out of the
         mean, std, min and max; ``fraction_below_nominal``: the fraction with
-        ``k~ < k (1 - BELOW_NOMINAL_RTOL)``)."""
+        ``k~ < k (1 - BELOW_NOMINAL_RTOL)``).
+
+        Returns
+        -------
+        dict
+            JSON-ready (accelerations in g, non-finite numbers as None).
+        """
         k = self.limit_load_multipliers
         counted = k[~np.isnan(k)]  # excluded arches have k~ = nan; inf: never collapses
         finite = counted[np.isfinite(counted)]
@@ -768,7 +1049,34 @@ def _study_arrays(table: pd.DataFrame, settings: FragilitySettings):
 def fragility_curves(settings: FragilitySettings, table: pd.DataFrame, limit_sample,
                      nominal_domains, metadata: dict | None = None) -> FragilityResult:
     """Assemble a :class:`FragilityResult` from the study table, the limit sample and the
-    nominal arch's failure domains (both directions)."""
+    nominal arch's failure domains (both directions).
+
+    P_F of eq. (9) of the paper counts an arch as failed where it collapses in either direction,
+    over the arches that are not excluded; the fits are :func:`fit_polynomial` (whole grid) and
+    :func:`fit_lognormal` (rising part).
+
+    Parameters
+    ----------
+    settings : FragilitySettings
+        The settings of the study.
+    table : pandas.DataFrame
+        The tidy table of :func:`fragility_task` rows, in its order.
+    limit_sample : archquake.limit_analysis.LimitSample
+        k~_l, k~_r of the limit-analysis sample.
+    nominal_domains : (FailureDomain, FailureDomain)
+        The nominal arch's failure domains, directions l and r, over the study grid.
+    metadata : dict, optional
+        Metadata of the study.
+
+    Returns
+    -------
+    FragilityResult
+
+    Raises
+    ------
+    ValueError
+        If the table does not match the settings, or every arch was excluded.
+    """
     from .status import Status
 
     excluded = excluded_arches(table)
@@ -812,8 +1120,18 @@ def fragility_curves(settings: FragilitySettings, table: pd.DataFrame, limit_sam
 
 
 def excluded_arches(table: pd.DataFrame) -> dict[int, str]:
-    """The excluded arches of a study table (column ``excluded``, :data:`EXCLUSIONS`) by index:
-    ``{arch: reason}``; empty for a table without that column."""
+    """The excluded arches of a study table (column ``excluded``, :data:`EXCLUSIONS`).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A study table (:func:`fragility_task` rows).
+
+    Returns
+    -------
+    dict of int to str
+        ``{arch: reason}``; empty for a table without that column.
+    """
     if "excluded" not in table.columns:
         return {}
     why = table["excluded"].fillna("").astype(str)  # "" reads back from CSV as missing
@@ -915,6 +1233,15 @@ def run_fragility(
     Returns
     -------
     FragilityResult
+
+    Raises
+    ------
+    ValueError
+        For invalid settings or execution options, a nominal arch that cannot be analysed, an
+        output directory that is not empty (without ``resume``) or holds another study.
+    archquake.errors.StudyError
+        If an irregular arch fails for a reason other than the exclusions (naming it), or the
+        Dask cluster can no longer finish the study (:func:`archquake.execution.run_study`).
     """
     from .execution import StudyPlan, default_backend, process_pool, run_study
     from .limit_analysis import LimitSample
@@ -980,6 +1307,18 @@ def load_fragility(out_dir: str | os.PathLike, *,
     The tidy table, the settings and the limit-analysis sample are read from the directory; the
     fits are refitted from the table and the nominal arch's failure domains (a fraction of a
     second) recomputed, so the curves equal those of the original run.
+
+    Parameters
+    ----------
+    out_dir : str or os.PathLike
+        The study directory.
+    nominal_resolution_g : float
+        Bisection width of the nominal failure acceleration [g] (that of the original run, to
+        reproduce it).
+
+    Returns
+    -------
+    FragilityResult
 
     Raises
     ------

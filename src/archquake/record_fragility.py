@@ -1,24 +1,33 @@
 r"""Record-based fragility of irregular arches: multiple-stripe analysis [1]_.
 
-Every record of a suite is scaled to each level ``x_j`` of an intensity measure (IM, e.g. PGA)
-and applied in both polarities (as recorded, and with its sign flipped) to every arch of the
-irregular sample drawn around a nominal arch [paper, eq. (1)], and to the nominal arch itself.
-An arch-record pair *fails* at ``x_j`` if the arch collapses in either polarity (the
+Every record of a suite is scaled to each level :math:`x_j` of an intensity measure (IM, e.g.
+PGA [g]) and applied in both polarities (as recorded, and with its sign flipped) to every arch of
+the irregular sample drawn around a nominal arch [paper, eq. (1)], and to the nominal arch
+itself. An arch-record pair *fails* at :math:`x_j` if the arch collapses in either polarity (the
 conservative reading, as in the pulse study of :mod:`archquake.fragility`); the per-polarity
-outcomes are kept in the table. With ``y[a, r, j]`` the failure of arch ``a`` under record ``r``
-at level ``x_j`` (``h`` arches, ``R`` records), the stripe of ``x_j`` has ``n_j = h R`` trials
-and ``z_j = sum_{a, r} y[a, r, j]`` failures, and
+outcomes are kept in the table. With :math:`y_{a r j} \in \{0, 1\}` the failure of arch
+:math:`a` under record :math:`r` at level :math:`x_j` (:math:`h` arches, :math:`R` records), the
+stripe of :math:`x_j` has :math:`n_j = h R` trials and
+:math:`z_j = \sum_{a, r} y_{a r j}` failures, and (the record-based counterpart of the paper's
+:math:`P_F = h_f / h`, eq. (9))
 
 .. math::
-    P(\mathrm{collapse} \mid IM = x_j) \approx z_j / n_j .
+
+    P(\mathrm{collapse} \mid IM = x_j) \approx \frac{z_j}{n_j}.
 
 Fits and variability
 --------------------
 Each fragility function is the lognormal CDF :math:`P(x) = \Phi(\ln(x/\theta)/\beta)` with
-median :math:`\theta` (in the IM's unit) and dispersion :math:`\beta`, fitted by maximum
-likelihood on the binomial counts per stripe ([1]_, eq. (11)):
-:math:`\max \sum_j z_j \ln P(x_j) + (n_j - z_j) \ln(1 - P(x_j))`
-(:func:`archquake.fragility.fit_lognormal`). Three dispersions are reported:
+median :math:`\theta` (in the IM's unit) and dispersion :math:`\beta` [-], fitted by maximum
+likelihood on the binomial counts per stripe (Eq. (11) in [1]_):
+
+.. math::
+
+    \{\hat\theta, \hat\beta\} = \arg\max_{\theta, \beta} \sum_j \Bigl[z_j \ln P(x_j)
+    + (n_j - z_j) \ln\bigl(1 - P(x_j)\bigr)\Bigr]
+
+(:func:`archquake.fragility.fit_lognormal`; none exists for separated counts,
+:func:`separated`). Three dispersions are reported:
 
 record-to-record, :math:`\beta_{RTR}`
     the fit to the nominal arch's stripes (``n_j = R`` records): how the collapse level of one
@@ -37,13 +46,21 @@ total, :math:`\beta`
     the two sources were independent lognormal factors of the collapse level,
     :math:`\beta^2 \approx \beta_{RTR}^2 + \beta_G^2` (reported as ``"srss"`` beside it).
 
-The confidence band of a fit is a percentile bootstrap [2]_: the arches and the records are
-resampled with replacement (both, for the sample; the records, for the nominal arch), the counts
-rebuilt from the resampled pairs and refitted (:func:`bootstrap_lognormal`; ``bootstrap``
-resamples, 1000 by default, from ``SeedSequence(seed, spawn_key=(BOOTSTRAP_KEY,))``); the band
-holds the central ``confidence`` (90 %) of the refitted curves at every IM value. A resample whose
-counts admit no maximum-likelihood fit (no failure, no survival, or failures and survivals
-separated by one level: a step) is counted and left out.
+The confidence band of a fit is a percentile bootstrap (ch. 13 of [2]_): the arches and the
+records are resampled with replacement (both, for the sample; the records, for the nominal
+arch), the counts rebuilt from the resampled pairs and refitted (:func:`bootstrap_lognormal`;
+:math:`B` = ``bootstrap`` resamples, 1000 by default, from
+``SeedSequence(seed, spawn_key=(BOOTSTRAP_KEY,))``); with :math:`\alpha = 1 -` ``confidence``,
+the band at every IM value :math:`x` is
+
+.. math::
+
+    \Bigl[\, q_{\alpha/2}\bigl\{P^{*b}(x)\bigr\}_{b=1}^{B},\;
+    q_{1-\alpha/2}\bigl\{P^{*b}(x)\bigr\}_{b=1}^{B} \Bigr],
+
+:math:`q_p` the empirical :math:`p`-quantile of the refitted curves :math:`P^{*b}` (the central
+90 % by default). A resample whose counts admit no maximum-likelihood fit (no failure, no
+survival, or failures and survivals separated by one level: a step) is counted and left out.
 
 The incremental view
 --------------------
@@ -133,7 +150,23 @@ INCREMENTAL_CSV = "incremental.csv"
 
 
 def file_digest(path: str | os.PathLike) -> str:
-    """SHA-256 digest of a file's content (hexadecimal)."""
+    """SHA-256 digest of a file's content.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file.
+
+    Returns
+    -------
+    str
+        The digest in hexadecimal (64 characters).
+
+    Raises
+    ------
+    OSError
+        If the file cannot be read.
+    """
     h = hashlib.sha256()
     with open(path, "rb") as f:
         for block in iter(lambda: f.read(1 << 20), b""):
@@ -192,6 +225,20 @@ class RecordSuite:
         them (a folder stands for its files with a record extension; sorted by file name).
 
         Every file is read once here, so a bad file is reported (naming it) before a study starts.
+
+        Parameters
+        ----------
+        paths : str, os.PathLike or sequence of them
+            Record files and folders (:func:`archquake.ground_motion.read_suite`).
+
+        Returns
+        -------
+        RecordSuite
+
+        Raises
+        ------
+        ValueError
+            If a file cannot be read as a record (the message names it), or there is none.
         """
         from .ground_motion import read_suite
         from .ground_motion.records import _suite_files, record_format
@@ -209,9 +256,28 @@ class RecordSuite:
 
     @classmethod
     def from_stochastic(cls, count: int, seed: int = 0, **parameters) -> RecordSuite:
-        """``count`` motions of :func:`archquake.ground_motion.stochastic_suite` (``seed``,
-        model ``parameters`` [SI units, see :func:`~archquake.ground_motion.stochastic_motion`]);
-        no files are needed."""
+        """``count`` motions of :func:`archquake.ground_motion.stochastic_suite`; no files are
+        needed.
+
+        Parameters
+        ----------
+        count : int
+            Number of motions, >= 1.
+        seed : int
+            Seed of the suite, >= 0.
+        **parameters
+            Model parameters [SI units, see :func:`~archquake.ground_motion.stochastic_motion`]
+            (checked here by drawing one motion).
+
+        Returns
+        -------
+        RecordSuite
+
+        Raises
+        ------
+        ValueError
+            For an invalid count, seed or parameter.
+        """
         from .ground_motion import stochastic_suite
 
         _positive_int("count", count)
@@ -239,7 +305,12 @@ class RecordSuite:
         return len(self.files) if self.files else int(self.stochastic["count"])
 
     def motions(self) -> list:
-        """The ground motions (``LINEAR`` [m/s^2]), named as :attr:`names`.
+        """The ground motions of the suite.
+
+        Returns
+        -------
+        list of GroundMotion
+            ``LINEAR`` motions [m/s^2], named as :attr:`names`.
 
         Raises
         ------
@@ -265,7 +336,14 @@ class RecordSuite:
         return motions
 
     def to_dict(self) -> dict:
-        """JSON-ready description (what a study's settings store)."""
+        """The suite as JSON-ready data (what a study's settings store).
+
+        Returns
+        -------
+        dict
+            ``{"kind": "files", "records": [{name, path, format, sha256}, ...]}`` or
+            ``{"kind": "stochastic", "count", "seed", "parameters"}``.
+        """
         if self.stochastic is not None:
             return {"kind": "stochastic", **self.stochastic}
         return {"kind": "files", "records": [
@@ -274,7 +352,17 @@ class RecordSuite:
 
     @classmethod
     def from_dict(cls, data: dict) -> RecordSuite:
-        """Inverse of :meth:`to_dict`."""
+        """Inverse of :meth:`to_dict`.
+
+        Parameters
+        ----------
+        data : dict
+            As :meth:`to_dict` writes it.
+
+        Returns
+        -------
+        RecordSuite
+        """
         if data.get("kind") == "stochastic":
             return cls(stochastic={"count": data["count"], "seed": data["seed"],
                                    "parameters": dict(data["parameters"])})
@@ -291,8 +379,23 @@ class RecordSuite:
 
 def stripe_measure(name: str):
     """The :class:`~archquake.ground_motion.IntensityMeasure` of a stripe: one that scales with
-    the record (``pga``, ``pgv``, ``pgd``, ``arias``, ``sa(T)``), or a ValueError naming
-    ``im``."""
+    the record.
+
+    Parameters
+    ----------
+    name : str
+        ``pga``, ``pgv``, ``pgd``, ``arias`` or ``sa(T)`` (T the period [s]).
+
+    Returns
+    -------
+    IntensityMeasure
+
+    Raises
+    ------
+    ValueError
+        For an unknown name, or a measure that does not change when a record is scaled
+        (``d5-95``); the message names ``im``.
+    """
     from .ground_motion import intensity_measure
 
     try:
@@ -326,18 +429,25 @@ class RecordFragilitySettings:
     nominal : Arch or ShapedArch
         Nominal arch (default: Oppenheim's arch).
     sample_size : int
-        Number h of irregular arches.
+        Number h of irregular arches (default 40).
     tolerance : float
-        epsilon of the irregular draw [eq. (1)], in [0, 1); 0 makes every arch the nominal one.
+        epsilon of the irregular draw [eq. (1)], in [0, 1) (default 0.10); 0 makes every arch
+        the nominal one.
     seed : int
         Root seed (>= 0) of the arches and of the bootstrap.
     restitution : str or float
-        Restitution model (default ``"nominal"``, as in
+        Restitution model (:func:`archquake.impact.check_restitution_model`; default
+        ``"computed"``, :data:`archquake.defaults.DEFAULT_RESTITUTION`, as in
         :class:`archquake.fragility.FragilitySettings`).
     bootstrap : int
         Number of bootstrap resamples of the confidence bands (>= 10).
     confidence : float
-        Confidence level of the bands, in (0, 1).
+        Confidence level of the bands [-], in (0, 1).
+
+    Raises
+    ------
+    ValueError
+        For a setting out of its range (the message names it).
     """
 
     suite: RecordSuite
@@ -392,7 +502,14 @@ class RecordFragilitySettings:
         return stripe_measure(self.im).unit
 
     def to_dict(self) -> dict:
-        """JSON-ready settings, as stored with the results."""
+        """The settings as JSON-ready data, as stored with the results.
+
+        Returns
+        -------
+        dict
+            Every field (the suite by :meth:`RecordSuite.to_dict`, the nominal arch by
+            :meth:`archquake.geometry.Arch.to_dict`) and ``im_unit``.
+        """
         return {
             "suite": self.suite.to_dict(),
             "im": self.im,
@@ -409,7 +526,17 @@ class RecordFragilitySettings:
 
     @classmethod
     def from_dict(cls, data: dict) -> RecordFragilitySettings:
-        """Inverse of :meth:`to_dict`."""
+        """Inverse of :meth:`to_dict` (the settings are validated again).
+
+        Parameters
+        ----------
+        data : dict
+            As :meth:`to_dict` writes it.
+
+        Returns
+        -------
+        RecordFragilitySettings
+        """
         return cls(suite=RecordSuite.from_dict(data["suite"]), levels=tuple(data["levels"]),
                    im=data["im"], nominal=_nominal_from_dict(data["nominal"]),
                    sample_size=data["sample_size"], tolerance=data["tolerance"],
@@ -431,8 +558,37 @@ class RecordFragilitySettings:
 
 
 def scale_factors(im_values, levels, exponent: float) -> np.ndarray:
-    """Factors ``(level / im) ** (1 / exponent)`` [-] that scale each record to each level, as
-    :func:`archquake.ground_motion.scale_to_im` does; shape ``(records, levels)``."""
+    r"""Factors that scale each record to each level, as
+    :func:`archquake.ground_motion.scale_to_im` does.
+
+    An intensity measure of exponent :math:`p` scales as :math:`IM(s\,\ddot x_g) = s^p\,
+    IM(\ddot x_g)` (:math:`p = 1` for PGA, PGV, PGD and SA, 2 for the Arias intensity), so the
+    factor that brings record :math:`r` to level :math:`x_j` is
+
+    .. math::
+
+        s_{rj} = \left(\frac{x_j}{IM_r}\right)^{1/p}.
+
+    Parameters
+    ----------
+    im_values : array_like, shape (R,)
+        The intensity measure of every record [the IM's unit].
+    levels : array_like, shape (L,)
+        Stripe levels [the IM's unit].
+    exponent : float
+        :math:`p` [-].
+
+    Returns
+    -------
+    ndarray, shape (R, L)
+        :math:`s_{rj}` [-].
+
+    Examples
+    --------
+    >>> scale_factors([0.2, 0.5], [0.1, 1.0], 1.0)
+    array([[0.5, 5. ],
+           [0.2, 2. ]])
+    """
     im_values = np.asarray(im_values, dtype=float)
     levels = np.asarray(levels, dtype=float)
     return (levels[None, :] / im_values[:, None]) ** (1.0 / exponent)
@@ -441,13 +597,18 @@ def scale_factors(im_values, levels, exponent: float) -> np.ndarray:
 def record_outcomes(dynamics, motion, factors) -> dict[str, np.ndarray]:
     """Outcomes of one arch under one record scaled by each of ``factors``.
 
+    An analysis whose scaled record stays strictly inside the activation accelerations
+    (``-k_l g < s xg'' < k_r g`` at every sample, eq. (2) of the paper, with the relative margin
+    :data:`REST_MARGIN`) is at rest without being integrated: the record is piecewise linear, so
+    its extremes are samples, and the engine would decide the same.
+
     Parameters
     ----------
-    dynamics
+    dynamics : ArchDynamics
         The arch's :class:`~archquake.dynamics.ArchDynamics`.
     motion : GroundMotion
         A ``LINEAR`` record [m/s^2].
-    factors : array of float
+    factors : array_like of float
         Signed scale factors [-]; a negative factor applies the reversed record.
 
     Returns
@@ -456,6 +617,14 @@ def record_outcomes(dynamics, motion, factors) -> dict[str, np.ndarray]:
         ``status`` (0 rest, 1 recovery, 2 collapse), ``half_cycle``, ``impacts``,
         ``collapse_time`` [s], ``max_phi`` [rad] and ``integrated`` (False where the scaled
         record stays below the activation acceleration: rest, not integrated), one per factor.
+
+    Raises
+    ------
+    ValueError
+        If ``motion`` is not piecewise linear, or as
+        :func:`archquake.engine.outcomes_grid`.
+    RuntimeError
+        As :func:`archquake.engine.outcomes_grid`.
     """
     from .engine import outcomes_grid
     from .ground_motion import LINEAR
@@ -512,8 +681,24 @@ def record_fragility_task(chunk) -> dict[str, np.ndarray]:
     """Study task (:func:`archquake.execution.run_study`): the arches of one chunk.
 
     ``chunk.settings`` is :meth:`RecordFragilitySettings.to_dict`; item ``i < h`` is irregular
-    arch ``i`` (drawn from ``chunk.generators()``), item ``h`` the nominal arch. Returns one row
-    per arch, record, level and polarity (in that order).
+    arch ``i`` (drawn from ``chunk.generators()``), item ``h`` the nominal arch.
+
+    Parameters
+    ----------
+    chunk : archquake.execution.Chunk
+        The arches of the chunk.
+
+    Returns
+    -------
+    dict of ndarray
+        One row per arch, record, level and polarity (in that order), with the columns of
+        :attr:`RecordFragilityResult.table`.
+
+    Raises
+    ------
+    ValueError
+        If an arch cannot be analysed (naming it; unlike the pulse study, no arch is
+        excluded), or a record file changed.
     """
     settings = RecordFragilitySettings.from_dict(chunk.settings)
     suite_json = json.dumps(chunk.settings["suite"], sort_keys=True)
@@ -568,6 +753,27 @@ def separated(levels, trials, failures) -> bool:
     True if there is no failure or no survival, or if every survival lies at a level no higher
     than every failure (complete or quasi-complete separation: the likelihood grows without
     bound as the fit tends to a step, beta -> 0).
+
+    Parameters
+    ----------
+    levels : array_like, shape (L,)
+        Stripe levels [the IM's unit].
+    trials : int or array_like
+        Trials ``n_j`` per stripe.
+    failures : array_like, shape (L,)
+        Failures ``z_j`` per stripe.
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    Survivals above a failure leave a maximum; a single mixed level between all survivals and
+    all failures does not (quasi-complete separation):
+
+    >>> separated([0.1, 0.2, 0.3], 10, [0, 4, 8]), separated([0.1, 0.2, 0.3], 10, [0, 4, 10])
+    (False, True)
     """
     x = np.asarray(levels, dtype=float)
     n = np.broadcast_to(np.asarray(trials, dtype=float), x.shape)
@@ -579,8 +785,23 @@ def separated(levels, trials, failures) -> bool:
 
 
 def lognormal_fit(levels, trials, failures) -> LognormalFragility | None:
-    """Maximum-likelihood lognormal fragility of stripe counts
-    (:func:`archquake.fragility.fit_lognormal`), or None when none exists (:func:`separated`)."""
+    """Maximum-likelihood lognormal fragility of stripe counts, or None when none exists.
+
+    Parameters
+    ----------
+    levels : array_like, shape (L,)
+        Stripe levels [the IM's unit].
+    trials : int or array_like
+        Trials ``n_j`` per stripe.
+    failures : array_like, shape (L,)
+        Failures ``z_j`` per stripe.
+
+    Returns
+    -------
+    LognormalFragility or None
+        :func:`archquake.fragility.fit_lognormal`; None for fewer than two levels or separated
+        counts (:func:`separated`).
+    """
     if np.asarray(levels).size < 2 or separated(levels, trials, failures):
         return None
     return fit_lognormal(levels, trials, failures)
@@ -601,13 +822,22 @@ def _probit_log_likelihood(eta, n, z):
 
 def probit_newton(log_levels, trials, failures, *, slope=None, start=(0.0, 1.0),
                   iterations: int = 60, tolerance: float = 1e-12):
-    """Maximum likelihood of ``P = Phi(a + b ln x)`` for many sets of stripe counts at once.
+    r"""Maximum likelihood of ``P = Phi(a + b ln x)`` for many sets of stripe counts at once.
 
-    The lognormal fragility function is this probit model with ``b = 1/beta`` and
-    ``a = -ln(theta)/beta``; its log-likelihood is concave in ``(a, b)``, so Newton's method
-    with step halving converges from any start when the maximum exists. Used where many fits are
-    needed at once (bootstrap resamples, the records of :func:`common_dispersion_fit`); a single
-    fit is :func:`archquake.fragility.fit_lognormal`.
+    The lognormal fragility function is this probit model with :math:`b = 1/\beta` and
+    :math:`a = -\ln(\theta)/\beta`; its log-likelihood
+
+    .. math::
+
+        \ell(a, b) = \sum_j z_j \ln\Phi(\eta_j) + (n_j - z_j) \ln\Phi(-\eta_j),
+        \qquad \eta_j = a + b \ln x_j,
+
+    is concave in :math:`(a, b)`, so Newton's method with step halving converges from any start
+    when the maximum exists. Its score and (negative) Hessian come from
+    :math:`\partial\ell/\partial\eta_j = z_j \lambda(\eta_j) - (n_j - z_j) \lambda(-\eta_j)`,
+    :math:`\lambda = \varphi/\Phi` the inverse Mills ratio. Used where many fits are needed at
+    once (bootstrap resamples, the records of :func:`common_dispersion_fit`); a single fit is
+    :func:`archquake.fragility.fit_lognormal`.
 
     Parameters
     ----------
@@ -629,7 +859,7 @@ def probit_newton(log_levels, trials, failures, *, slope=None, start=(0.0, 1.0),
     Returns
     -------
     a, b : ndarray, shape (...)
-        The estimates (nan for a set that did not converge).
+        The estimates [-] and [1/ln of the IM's unit] (nan for a set that did not converge).
     """
     u = np.asarray(log_levels, dtype=float)
     z = np.asarray(failures, dtype=float)
@@ -709,6 +939,15 @@ class BootstrapBand:
     confidence: float
 
     def to_dict(self) -> dict:
+        """The band's numbers as JSON-ready data.
+
+        Returns
+        -------
+        dict
+            ``resamples``, ``degenerate``, ``confidence``, ``median_interval`` [the IM's unit]
+            and ``dispersion_interval`` [-] (the band itself is in
+            :meth:`RecordFragilityResult.curves`).
+        """
         return {"resamples": self.resamples, "degenerate": self.degenerate,
                 "confidence": self.confidence, "median_interval": list(self.median_interval),
                 "dispersion_interval": list(self.dispersion_interval)}
@@ -716,7 +955,22 @@ class BootstrapBand:
 
 def bootstrap_lognormal(levels, failed, fit: LognormalFragility, *, resamples: int,
                         confidence: float, rng, x=None) -> BootstrapBand | None:
-    """Confidence band of a lognormal fit by resampling the units of ``failed`` with replacement.
+    r"""Confidence band of a lognormal fit by resampling the units of ``failed`` with replacement.
+
+    Every leading axis of ``failed`` (arches, records) is resampled with replacement (drawn as
+    multinomial multiplicities of its units), the counts :math:`z^{*b}_j` of resample :math:`b`
+    rebuilt from the resampled units and refitted by maximum likelihood
+    (:func:`probit_newton`, started from ``fit``); the band is the percentile interval (ch. 13
+    of [1]_) of the refitted curves at every IM value :math:`x`,
+
+    .. math::
+
+        \Bigl[q_{\alpha/2}\{P^{*b}(x)\},\; q_{1-\alpha/2}\{P^{*b}(x)\}\Bigr], \qquad
+        \alpha = 1 - \text{confidence},
+
+    and the intervals of :math:`\theta` and :math:`\beta` are the same percentiles of their
+    refitted values. Resamples whose counts are separated (:func:`separated`) or whose fit does
+    not converge are left out and counted.
 
     Parameters
     ----------
@@ -728,18 +982,24 @@ def bootstrap_lognormal(levels, failed, fit: LognormalFragility, *, resamples: i
     fit : LognormalFragility
         The fit to all data (start of every refit).
     resamples : int
-        Number of resamples B.
+        Number of resamples :math:`B`.
     confidence : float
-        Central fraction of the refitted curves the band holds.
-    rng : numpy Generator
+        Central fraction of the refitted curves the band holds [-], in (0, 1).
+    rng : numpy.random.Generator
         Source of the resampling.
     x : array, optional
-        IM values of the band (default: :data:`BAND_POINTS` log-spaced over the levels).
+        IM values of the band [the IM's unit] (default: :data:`BAND_POINTS` log-spaced over
+        the levels).
 
     Returns
     -------
     BootstrapBand or None
         None if no resample has a fit.
+
+    References
+    ----------
+    .. [1] Efron, B. and Tibshirani, R. J. (1993). An Introduction to the Bootstrap. Chapman &
+       Hall, ch. 13 (percentile intervals).
     """
     from scipy import stats
 
@@ -802,25 +1062,36 @@ def common_dispersion_fit(levels, trials, failures) -> CommonDispersionFit | Non
     r"""Joint maximum-likelihood fit of :math:`P_r(x) = \Phi(\ln(x/\theta_r)/\beta)`: one median
     per set of counts (row of ``failures``) and one common dispersion.
 
-    The log-likelihood is maximised over ``beta`` by a bounded scalar search on ``ln beta`` in
-    ``[ln 1e-3, ln 10]``, each ``theta_r`` at given ``beta`` by Newton's method
-    (:func:`probit_newton` with the slope held): the profile likelihood. Rows with no failure or
-    no survival are left out (they hold no information on ``beta``).
+    .. math::
+
+        \hat\beta = \arg\max_\beta \max_{\theta_1 \dots \theta_R} \sum_r \sum_j
+        \Bigl[z_{rj} \ln P_r(x_j) + (n_{rj} - z_{rj}) \ln\bigl(1 - P_r(x_j)\bigr)\Bigr]:
+
+    the profile likelihood of :math:`\beta`, maximised by a bounded scalar search on
+    :math:`\ln\beta \in [\ln 10^{-3}, \ln 10]`, each :math:`\theta_r` at given :math:`\beta` by
+    Newton's method (:func:`probit_newton` with the slope held). It is the multiple-stripe fit
+    of [1]_ with the records as groups. Rows with no failure or no survival are left out (they
+    hold no information on :math:`\beta`).
 
     Parameters
     ----------
     levels : array, shape (L,)
         Stripe levels [the IM's unit].
     trials : int or array
-        Trials per stripe (e.g. the number of arches).
+        Trials :math:`n_{rj}` per stripe (e.g. the number of arches).
     failures : array, shape (R, L)
-        Failures per row and stripe.
+        Failures :math:`z_{rj}` per row and stripe.
 
     Returns
     -------
     CommonDispersionFit or None
         None if no row has both failures and survivals, or if every used row is a step
         (:func:`separated`), for which beta -> 0.
+
+    References
+    ----------
+    .. [1] Baker, J. W. (2015). Efficient analytical fragility function fitting using dynamic
+       structural analysis. Earthquake Spectra 31(1), 579-599.
     """
     from scipy import optimize
 
@@ -870,17 +1141,18 @@ def _fit_dict(fit: LognormalFragility | None) -> dict:
 
 @dataclass(frozen=True, eq=False)
 class RecordFragilityResult:
-    """Result of :func:`run_record_fragility`.
+    r"""Result of :func:`run_record_fragility`.
 
     Attributes
     ----------
     settings : RecordFragilitySettings
+        The settings of the study.
     table : pandas.DataFrame
         One row per arch, record, level and polarity: ``arch`` (0 .. h-1; -1 the nominal arch),
         ``record``, ``level`` [IM unit], ``polarity`` (+1 as recorded, -1 reversed),
         ``scale_factor`` [-], ``status`` (0 rest, 1 recovery, 2 collapse), ``half_cycle``,
         ``impacts``, ``collapse_time`` [s], ``max_phi`` [rad], ``integrated`` (False: rest
-        without integrating), ``k_l``, ``k_r``, ``c_lr``, ``c_rl``.
+        without integrating), ``k_l``, ``k_r``, ``c_lr``, ``c_rl`` [-].
     records : tuple of str
         Record names, in suite order.
     levels : ndarray, shape (L,)
@@ -890,11 +1162,13 @@ class RecordFragilityResult:
     nominal_collapsed : bool ndarray, shape (R, L, 2)
         The same for the nominal arch.
     lognormal : LognormalFragility or None
-        Total fit (all arch-record pairs pooled).
+        Total fit (all arch-record pairs pooled), dispersion :math:`\beta`; None if the counts
+        are separated.
     nominal_lognormal : LognormalFragility or None
-        Record-to-record fit (the nominal arch).
+        Record-to-record fit (the nominal arch), dispersion :math:`\beta_{RTR}`.
     geometric : CommonDispersionFit or None
-        Geometric fit (common dispersion, a median per record).
+        Geometric fit (common dispersion :math:`\beta_G`, a median per record); None with
+        epsilon = 0 or when it has no estimate.
     band, nominal_band : BootstrapBand or None
         Bootstrap bands of the total and nominal fits.
     metadata : dict
@@ -942,7 +1216,23 @@ class RecordFragilityResult:
         return self.failures / self.trials
 
     def probability_of_polarity(self, polarity: int) -> np.ndarray:
-        """P(collapse | IM = x_j) with the records in one polarity only (+1 or -1) [-]."""
+        """P(collapse | IM = x_j) [-] of the irregular arches with the records in one polarity
+        only, shape (L,).
+
+        Parameters
+        ----------
+        polarity : {1, -1}
+            +1 as recorded, -1 reversed.
+
+        Returns
+        -------
+        ndarray
+
+        Raises
+        ------
+        ValueError
+            For another polarity.
+        """
         k = POLARITIES.index(polarity)
         return self.collapsed[..., k].mean(axis=(0, 1))
 
@@ -960,7 +1250,16 @@ class RecordFragilityResult:
         return None if self.geometric is None else self.geometric.dispersion
 
     def variability(self) -> dict:
-        """The three dispersions [-] (module docstring) and their square-root sum of squares."""
+        r"""The three dispersions [-] (module docstring) and their square-root sum of squares.
+
+        Returns
+        -------
+        dict
+            ``record_to_record`` (:math:`\beta_{RTR}`), ``geometric`` (:math:`\beta_G`),
+            ``total`` (:math:`\beta`), ``srss``
+            (:math:`\sqrt{\beta_{RTR}^2 + \beta_G^2}`, to compare with the total), each None
+            without an estimate; ``geometric_records_used`` and the ``definitions`` in words.
+        """
         rtr = None if self.nominal_lognormal is None else self.nominal_lognormal.dispersion
         geo = self.geometric_dispersion
         total = None if self.lognormal is None else self.lognormal.dispersion
@@ -1009,7 +1308,17 @@ class RecordFragilityResult:
         return pd.DataFrame(rows)
 
     def curves(self) -> pd.DataFrame:
-        """The stripes and fits as a table, one row per level."""
+        """The stripes and fits as a table, one row per level.
+
+        Returns
+        -------
+        pandas.DataFrame
+            ``level`` [the IM's unit], ``trials``, ``failures``, ``probability``,
+            ``probability_as_recorded``, ``probability_reversed``, ``lognormal_fit``,
+            ``band_lower``, ``band_upper`` (the bootstrap band, interpolated in ``ln x``),
+            ``nominal_records``, ``nominal_failures``, ``nominal_probability`` and
+            ``nominal_lognormal_fit`` [-]; nan where a fit or band does not exist.
+        """
         x = self.levels
 
         def fitted(fit):
@@ -1038,6 +1347,18 @@ class RecordFragilityResult:
         (:func:`archquake.results_io.write_fragility_nrml`), limit state ``collapse``, in the
         study's intensity measure (OpenQuake's units): ``taxonomy`` is the total fit of the
         irregular arches, ``taxonomy + "-nominal"`` the nominal arch's fit.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The XML file.
+        taxonomy : str
+            Id of the total fit (OpenQuake's taxonomy).
+
+        Returns
+        -------
+        pathlib.Path
+            ``path``.
 
         Raises
         ------
@@ -1069,7 +1390,14 @@ class RecordFragilityResult:
                                     max_iml=float(self.levels[-1]), description=description)
 
     def summary(self) -> dict:
-        """JSON-ready summary: IM, levels, stripes, fits, bands, variability, incremental view."""
+        """JSON-ready summary: IM, levels, stripes, fits, bands, variability, incremental view.
+
+        Returns
+        -------
+        dict
+            What ``summary.json`` of the study holds under ``summary`` (levels in the IM's
+            unit, probabilities and dispersions [-]).
+        """
         incremental = self.incremental()
         sample = incremental[incremental["arch"] != NOMINAL_ARCH]
         total = _fit_dict(self.lognormal)
@@ -1129,7 +1457,30 @@ def _study_arrays(table: pd.DataFrame, settings: RecordFragilitySettings):
 
 def record_fragility_result(settings: RecordFragilitySettings, table: pd.DataFrame,
                             metadata: dict | None = None) -> RecordFragilityResult:
-    """Assemble a :class:`RecordFragilityResult` (stripes, fits, bands) from the study table."""
+    """Assemble a :class:`RecordFragilityResult` (stripes, fits, bands) from the study table.
+
+    The bootstrap draws from ``SeedSequence(settings.seed, spawn_key=(BOOTSTRAP_KEY,))`` (one
+    child stream for the total band, one for the nominal band), so the same table gives the
+    same bands.
+
+    Parameters
+    ----------
+    settings : RecordFragilitySettings
+        The settings of the study.
+    table : pandas.DataFrame
+        The rows of :func:`record_fragility_task`, in its order.
+    metadata : dict, optional
+        Metadata of the study.
+
+    Returns
+    -------
+    RecordFragilityResult
+
+    Raises
+    ------
+    ValueError
+        If the table does not match the settings.
+    """
     collapsed = _study_arrays(table, settings)
     sample, nominal = collapsed[:-1], collapsed[-1]
     levels = np.asarray(settings.levels)
@@ -1248,6 +1599,16 @@ def run_record_fragility(
     Returns
     -------
     RecordFragilityResult
+
+    Raises
+    ------
+    ValueError
+        For invalid settings or execution options, a record that cannot be read or scaled
+        (IM = 0), changed record files on resume, an arch that cannot be analysed, or an output
+        directory that is not empty (without ``resume``) or holds another study.
+    archquake.errors.StudyError
+        If the Dask cluster can no longer finish the study
+        (:func:`archquake.execution.run_study`).
     """
     from .execution import StudyPlan, run_study
     from .results_io import atomic_path, save_study
@@ -1278,7 +1639,22 @@ def run_record_fragility(
 
 def load_record_fragility(out_dir: str | os.PathLike) -> RecordFragilityResult:
     """Reload a finished study (:func:`run_record_fragility` with ``out_dir``); the fits and
-    bands are recomputed from the table (same seed, so the same numbers)."""
+    bands are recomputed from the table (same seed, so the same numbers).
+
+    Parameters
+    ----------
+    out_dir : str or os.PathLike
+        The study directory.
+
+    Returns
+    -------
+    RecordFragilityResult
+
+    Raises
+    ------
+    ValueError
+        If the directory holds no complete study, or not a record fragility study.
+    """
     from .results_io import load_study
 
     out = Path(out_dir)
@@ -1340,7 +1716,7 @@ def oppenheim_record_fragility(ims=("pga", "pgv"), *, records: int = 20, sample_
         How the studies run (:func:`run_record_fragility`); with ``"processes"`` and no pool,
         one pool of warm workers serves every IM.
     out_dir : str or os.PathLike, optional
-        If given, each study is saved in ``out_dir/<im>``.
+        If given, each study is saved in ``out_dir/<im>`` (``sa(T)`` as ``sa_T``).
     progress : bool
         Progress bars.
 
@@ -1348,6 +1724,11 @@ def oppenheim_record_fragility(ims=("pga", "pgv"), *, records: int = 20, sample_
     -------
     dict
         ``{im: RecordFragilityResult}``.
+
+    Raises
+    ------
+    ValueError
+        For an invalid setting, or an IM without default levels and none given.
     """
     from .execution import process_pool
 

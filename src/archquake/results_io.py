@@ -319,10 +319,30 @@ def openquake_imt(im_name: str) -> tuple[str, float]:
     """OpenQuake's name of an intensity measure and the factor that converts a value from
     archquake's unit to OpenQuake's (e.g. ``("PGV", 100.0)``: m/s to cm/s).
 
+    Parameters
+    ----------
+    im_name : str
+        archquake's name of the measure (:mod:`archquake.ground_motion.intensity`): ``pga``,
+        ``pgv``, ``pgd``, ``arias`` or ``sa(T)`` with T the period [s] (case and spaces
+        ignored).
+
+    Returns
+    -------
+    imt : str
+        OpenQuake's intensity measure type: ``PGA``, ``PGV``, ``PGD``, ``IA`` or ``SA(T)``.
+    factor : float
+        OpenQuake's value per archquake's value [-]: 1 for PGA and SA [g] and IA [m/s], 100
+        for PGV [m/s -> cm/s] and PGD [m -> cm].
+
     Raises
     ------
     ValueError
         For a measure OpenQuake has no counterpart of (e.g. ``d5-95``).
+
+    Examples
+    --------
+    >>> openquake_imt("pgv"), openquake_imt("SA(0.5)")
+    (('PGV', 100.0), ('SA(0.5)', 1.0))
     """
     import re
 
@@ -346,11 +366,49 @@ def lognormal_moments(median: float, dispersion: float) -> tuple[float, float]:
     logarithmic standard deviation ``dispersion``: OpenQuake's ``mean`` and ``stddev`` of a
     continuous ``logncdf`` fragility function.
 
-    .. math::
-        m = \theta e^{\beta^2/2}, \qquad s = m \sqrt{e^{\beta^2} - 1}
+    For :math:`\ln X \sim N(\ln\theta, \beta^2)`, the fragility function
+    :math:`\Phi(\ln(x/\theta)/\beta)` is the CDF of :math:`X`, whose mean and standard deviation
+    are
 
-    (inverted by OpenQuake as :math:`\beta = \sqrt{\ln(1 + s^2/m^2)}`,
-    :math:`\theta = m^2 / \sqrt{m^2 + s^2}`).
+    .. math::
+
+        m = \theta\, e^{\beta^2/2}, \qquad s = m \sqrt{e^{\beta^2} - 1},
+
+    inverted by OpenQuake (``FragilityFunctionContinuous`` of ``openquake.risklib.scientific``
+    [1]_) as
+
+    .. math::
+
+        \beta = \sqrt{\ln\left(1 + s^2/m^2\right)}, \qquad \theta = \frac{m^2}{\sqrt{m^2 + s^2}}.
+
+    Parameters
+    ----------
+    median : float
+        :math:`\theta` > 0 [the unit of the intensity measure].
+    dispersion : float
+        :math:`\beta` > 0 [-].
+
+    Returns
+    -------
+    mean, stddev : float
+        :math:`m` and :math:`s` [the unit of ``median``].
+
+    Raises
+    ------
+    ValueError
+        If ``median`` or ``dispersion`` is not a finite number > 0.
+
+    References
+    ----------
+    .. [1] GEM Foundation. The OpenQuake engine: continuous fragility functions
+       (``format="continuous"``, ``shape="logncdf"``) of NRML 0.5 fragility models.
+
+    Examples
+    --------
+    >>> import math
+    >>> m, s = lognormal_moments(0.5, 0.4)
+    >>> round(m**2 / (m**2 + s**2) ** 0.5, 12), round(math.sqrt(math.log(1 + s**2 / m**2)), 12)
+    (0.5, 0.4)
     """
     import math
 
@@ -373,7 +431,9 @@ def write_fragility_nrml(path: str | os.PathLike, functions, *, im: str, min_iml
     Each function is a ``fragilityFunction`` of ``format="continuous" shape="logncdf"`` with one
     limit state; OpenQuake takes its ``mean`` and ``stddev`` as those of the intensity
     measure's lognormal distribution in linear space (:func:`lognormal_moments`), in its own
-    units (:func:`openquake_imt`), and clips the intensity to ``[minIML, maxIML]``.
+    units (:func:`openquake_imt`), and clips the intensity to ``[minIML, maxIML]`` [1]_. The
+    file reads back with OpenQuake's ``openquake.hazardlib.nrml.to_python`` (checked by the test
+    suite when OpenQuake is installed).
 
     Parameters
     ----------
@@ -392,6 +452,19 @@ def write_fragility_nrml(path: str | os.PathLike, functions, *, im: str, min_iml
     Returns
     -------
     pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    ValueError
+        If there is no function, an id is empty or holds ``#``, ``'`` or ``"``, the range is
+        not ``0 < min_iml < max_iml``, a median or dispersion is not > 0, or ``im`` has no
+        OpenQuake counterpart.
+
+    References
+    ----------
+    .. [1] GEM Foundation. The OpenQuake engine: NRML 0.5 fragility models
+       (``fragilityModel``, continuous ``logncdf`` fragility functions).
     """
     import xml.etree.ElementTree as ET
 

@@ -18,9 +18,11 @@ import enum
 class Status(enum.IntEnum):
     """Outcome of one dynamic analysis [paper, Sect. 5.3].
 
-    ``REST``: the ground never activated a mechanism; ``RECOVERY``: the arch moved and came back
-    (it rocks with less and less energy); ``COLLAPSE``: the linkage reaches its kinematic limit.
-    ``UNDECIDED`` is the engine's code while an analysis runs; no result carries it.
+    ``REST`` (0): the ground never activated a mechanism (its acceleration stayed between
+    ``-k_l g`` and ``k_r g``, eq. (2) of the paper); ``RECOVERY`` (1): the arch moved and came
+    back (it rocks with less and less energy, or comes to rest); ``COLLAPSE`` (2): the linkage
+    reaches its kinematic limit (the "ever-increasing" rotation of Sect. 5.3.1 of the paper).
+    ``UNDECIDED`` (-1) is the engine's code while an analysis runs; no result carries it.
 
     Members are integers (the engine's codes, the tables' column); ``str()`` and formatting give
     the label. Comparing a member with a string raises ``TypeError`` instead of answering
@@ -39,7 +41,22 @@ class Status(enum.IntEnum):
 
     @classmethod
     def from_label(cls, label: str) -> Status:
-        """The member named ``label`` (``"rest"``, ``"recovery"`` or ``"collapse"``)."""
+        """The member named ``label``.
+
+        Parameters
+        ----------
+        label : str
+            ``"rest"``, ``"recovery"`` or ``"collapse"`` (any case).
+
+        Returns
+        -------
+        Status
+
+        Raises
+        ------
+        ValueError
+            For any other label (``"undecided"`` included: no result carries it).
+        """
         try:
             member = cls[str(label).upper()]
         except KeyError:

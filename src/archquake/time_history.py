@@ -1,11 +1,24 @@
-"""Time histories of the rocking motion of an arch: :func:`simulate` and :func:`free_vibration`.
+r"""Time histories of the rocking motion of an arch: :func:`simulate` and :func:`free_vibration`.
 
-Both run the compiled engine of :mod:`archquake.engine` (one physics for plots and studies):
-the outcome comes from its outcome-only path, the record from its recording path.
+The arch moves in Mech-l or Mech-r by Eqs. (6) and (7) in [1]_,
 
-Sign convention of the convenience array ``TimeHistory.phi``: ``+phi`` while Mech-l moves,
-``-phi`` while Mech-r moves, 0 at rest (as in Figs. 9-15 of the paper, where Mech-l and Mech-r are
-drawn on either side of the time axis).
+.. math::
+
+    M(\theta)\,\ddot\theta + L(\theta)\,\dot\theta^2 + F(\theta)\,g = \pm P(\theta)\,\ddot x_g(t)
+
+(``+`` Mech-l, ``-`` Mech-r), solved alternately, with an impact at every return to
+:math:`\theta_u` (Sect. 4.4 of [1]_: :math:`\dot\theta^+ = -c\,\dot\theta^-`, Eq. (8) in [1]_).
+Both functions run the compiled engine of :mod:`archquake.engine` (one physics for plots and
+studies): the outcome comes from its outcome-only path, the record from its recording path.
+
+Sign convention of the convenience array ``TimeHistory.phi``: :math:`+\varphi` while Mech-l
+moves, :math:`-\varphi` while Mech-r moves, 0 at rest, with :math:`\varphi = \theta_u - \theta`
+(as in Figs. 9-15 of [1]_, where Mech-l and Mech-r are drawn on either side of the time axis).
+
+References
+----------
+.. [1] The paper, Sect. 4.3, Eqs. (6)-(7); Sect. 4.4, Eq. (8); Sect. 5.2 (free vibrations,
+   Figs. 9-14) and Sect. 5.3 (pulses, Fig. 15).
 """
 
 from __future__ import annotations
@@ -37,19 +50,22 @@ class Outcome:
         (:class:`archquake.status.Status`; ``status.label`` is ``"rest"``, ``"recovery"`` or
         ``"collapse"``).
     half_cycle : int
-        Half cycle of motion in which the arch collapses: 1 = the first, with no impact; ``h`` =
-        after ``h - 1`` impacts; 0 if it does not collapse.
+        Half cycle of motion in which the arch collapses [-]: 1 = the first, with no impact;
+        ``h`` = after ``h - 1`` impacts; 0 if it does not collapse (Sect. 5.3 of the paper).
     impacts : int
-        Impacts before the outcome was decided (for a collapse, ``half_cycle - 1``).
+        Impacts before the outcome was decided [-] (for a collapse, ``half_cycle - 1``).
     collapse_time : float
         Time [s] of the last crossing of ``theta_cr`` away from ``theta_u`` before the collapse
-        (the point of no return); nan if the arch does not collapse.
+        (the point of no return); nan if the arch does not collapse (or, released beyond
+        ``theta_cr``, never crosses it).
     max_phi : float
-        Largest rotation ``phi = theta_u - theta`` [rad] reached by the mechanisms; for a
-        collapse, ``theta_u - theta_lo`` of the collapsing mechanism (its kinematic limit).
+        Largest rotation ``phi = theta_u - theta`` [rad] of the mechanisms: reached during the
+        excitation or, for a recovery, still to come after it (from the conserved energy,
+        :mod:`archquake.engine.rules`); for a collapse, ``theta_u - theta_lo`` of the
+        collapsing mechanism (its kinematic limit).
     steps : int
-        Integration steps of the analysis (attempted steps, rejected ones included, and waits at
-        rest) up to the decision (for a time history, up to the end of the record).
+        Integration steps of the analysis [-] (attempted steps, rejected ones included, and
+        waits at rest) up to the decision (for a time history, up to the end of the record).
     """
 
     status: Status
@@ -103,11 +119,13 @@ class TimeHistory:
     impact_times : ndarray
         Times of the impacts [s].
     impact_velocities : ndarray, shape (n, 2)
-        theta' just before and just after every impact [rad/s].
+        ``theta'`` just before every impact, in the closing mechanism (>= 0), and just after
+        it, in the mechanism that takes over (``-c`` times the first, <= 0) [rad/s].
     impact_mechanisms : tuple of str
-        Mechanism moving before every impact.
+        Mechanism moving before every impact (``"l"`` or ``"r"``).
     crossing_times : ndarray
-        Times [s] at which theta crosses theta_cr of the moving mechanism.
+        Times [s] at which theta crosses theta_cr of the moving mechanism, in either
+        direction.
     ground_motion : GroundMotion
         The excitation.
     """
@@ -197,21 +215,40 @@ def simulate(mechanisms, ground_motion: GroundMotion | None = None, restitution=
              rest_velocity: float = engine.DEFAULT_REST_VELOCITY,
              max_step: float = engine.DEFAULT_MAX_STEP, record_dt: float = 2e-3,
              max_steps: int = engine.DEFAULT_MAX_STEPS):
-    """Rocking motion of an arch under a ground motion [eqs. (6)-(7) of the paper].
+    r"""Rocking motion of an arch under a ground motion [paper, Sect. 5.3].
+
+    From rest (or ``initial``), Eq. (6) in [1]_ is integrated while Mech-l moves and Eq. (7) in
+    [1]_ while Mech-r moves,
+
+    .. math::
+
+        M_l(\theta)\,\ddot\theta + L_l(\theta)\,\dot\theta^2 + F_l(\theta)\,g
+            = P_l(\theta)\,\ddot x_g,
+        \qquad
+        M_r(\theta')\,\ddot\theta' + L_r(\theta')\,\dot\theta'^2 + F_r(\theta')\,g
+            = -P_r(\theta')\,\ddot x_g,
+
+    a mechanism starts from rest when the ground opens it (Eq. (2) in [1]_:
+    :math:`\ddot x_g/g < -k_l` or :math:`> k_r`), and at every return to :math:`\theta_u` the
+    other one takes over with :math:`\dot\theta'^{+} = -c\,\dot\theta^{-}` (Sect. 4.4 of [1]_).
+    The outcome is decided as in :mod:`archquake.engine.rules`; the record follows the motion
+    up to ``t_end`` and checks the decision against it.
 
     Parameters
     ----------
     mechanisms : tuple
-        ``(Mech-l, Mech-r)``: mechanisms (tabulated here) or :class:`engine.MechanismTable`.
+        ``(Mech-l, Mech-r)``: :class:`~archquake.mechanism.FourLinkMechanism` (tabulated here)
+        or :class:`~archquake.engine.MechanismTable`.
     ground_motion : GroundMotion, optional
-        Horizontal ground acceleration; ``None`` for a still ground.
-    restitution : tuple of float
+        Horizontal ground acceleration [m/s^2]; ``None`` for a still ground.
+    restitution : tuple of float, or float
         ``(c_lr, c_rl)``: coefficients of restitution of the impacts Mech-l -> Mech-r and
-        Mech-r -> Mech-l [-], each > 0 with c_lr * c_rl <= 1.
+        Mech-r -> Mech-l [-], each > 0 with ``c_lr * c_rl <= 1``; a single number is used for
+        both.
     t_end : float, optional
-        End of the record [s]; default: the instant the outcome is decided (at the latest, the
-        end of the excitation) plus ``DEFAULT_EXTRA_TIME``; a collapse ends the record at the
-        kinematic limit.
+        End of the record [s]; default: the end of the excitation or the instant the outcome is
+        decided, whichever is later, plus :data:`DEFAULT_EXTRA_TIME`; a collapse ends the
+        record at the kinematic limit.
     initial : tuple, optional
         ``(mechanism, phi0, phidot0)``: start moving in ``"l"`` or ``"r"`` at ``phi = phi0``
         [rad] with ``phi' = phidot0`` [rad/s]; default: at rest.
@@ -233,6 +270,19 @@ def simulate(mechanisms, ground_motion: GroundMotion | None = None, restitution=
     -------
     TimeHistory or Outcome
         A :class:`TimeHistory` if ``record``, else the :class:`Outcome`.
+
+    Raises
+    ------
+    ValueError
+        For an invalid argument (the message names it), or if the analysis or the record needs
+        more than ``max_steps`` steps.
+    RuntimeError
+        If the motion recorded after the decision contradicts the decided outcome (a check of
+        the engine, :mod:`archquake.engine.driver`).
+
+    References
+    ----------
+    .. [1] The paper, Sect. 3, Eq. (2); Sect. 4.3, Eqs. (6)-(7); Sect. 4.4; Sect. 5.3.
     """
     c_lr, c_rl = engine.check_restitution(*_pair(restitution))
     table_l, table_r = _tables(mechanisms)
@@ -339,19 +389,34 @@ def free_vibration(mechanisms, restitution=(1.0, 1.0), phi0: float = 0.02, *,
                    mechanism: str = "l", phidot0: float = 0.0, **kwargs):
     """Free rocking from a displaced configuration [paper, Sect. 5.2, Figs. 9-14].
 
+    Eq. (6) (or (7)) of the paper with a still ground, from ``phi = phi0``, ``phi' = phidot0``
+    in ``mechanism``: the paper releases its arches from ``phi0 = 0.02`` rad at rest,
+    with ``c_v = 1`` (Figs. 9-11) and ``c_v = 0.875`` (Figs. 12-14).
+
     Parameters
     ----------
     mechanisms : tuple
         ``(Mech-l, Mech-r)`` (mechanisms or tables).
-    restitution : tuple of float
-        ``(c_lr, c_rl)`` [-].
+    restitution : tuple of float, or float
+        ``(c_lr, c_rl)`` [-] (see :func:`simulate`).
     phi0 : float
-        Initial rotation ``phi = theta_u - theta`` [rad] (the paper uses 0.02).
+        Initial rotation ``phi = theta_u - theta`` [rad], in ``[0, theta_u - theta_lo)`` (the
+        paper uses 0.02).
     mechanism : str
         Mechanism displaced initially, ``"l"`` or ``"r"``.
     phidot0 : float
-        Initial ``phi'`` [rad/s].
+        Initial ``phi'`` [rad/s] (>= 0 when ``phi0 = 0``).
     **kwargs
         Passed to :func:`simulate` (``t_end``, ``record``, tolerances).
+
+    Returns
+    -------
+    TimeHistory or Outcome
+        As :func:`simulate`.
+
+    Raises
+    ------
+    ValueError
+        For an invalid argument (see :func:`simulate`).
     """
     return simulate(mechanisms, None, restitution, initial=(mechanism, phi0, phidot0), **kwargs)

@@ -1,7 +1,8 @@
 """Coefficients of the Dormand-Prince 8(5,3) pair with its 7th-order dense output.
 
 E. Hairer, S. P. Norsett, G. Wanner, "Solving Ordinary Differential Equations I", 2nd ed.,
-Springer (1993), Sect. II.10 (the DOP853 code); the same numbers as scipy's DOP853.
+Springer (1993), Sect. II.5 (the DOP853 pair) and Sect. II.6 (its dense output); the same
+numbers as scipy's DOP853.
 """
 
 import numpy as np

@@ -58,9 +58,12 @@ OUT_IMPACTS = 2
 OUT_COLLAPSE_TIME = 3
 """Last crossing of ``theta_cr`` away from ``theta_u`` before the collapse [s], else nan."""
 OUT_MAX_PHI = 4
-"""Largest ``phi = theta_u - theta`` [rad] (the kinematic limit for a collapse)."""
+"""Largest ``phi = theta_u - theta`` [rad], reached before the decision or, for a recovery, still
+to come after it (from the energy, :mod:`~archquake.engine.rules`); for a collapse
+``theta_u - theta_lo`` of the collapsing mechanism (its kinematic limit)."""
 OUT_DECISION_TIME = 5
-"""Time [s] at which the outcome was decided."""
+"""Time [s] at which the outcome was decided: the kinematic limit reached during the excitation,
+or the end of the excitation (steps end on it: it is the last breakpoint of the motion)."""
 OUT_STEPS = 6
 """Integration steps (attempted, rejected ones included) and waits at rest."""
 OUT_TRUNCATED = 7
@@ -82,4 +85,4 @@ DEFAULT_REST_VELOCITY = 1e-6
 DEFAULT_MAX_STEP = 0.25
 """Largest step [s] (keeps two roots of an event function from hiding inside one step)."""
 DEFAULT_MAX_STEPS = 2_000_000
-"""Safety limit on the number of steps of one analysis."""
+"""Safety limit on the number of steps of one analysis [-] (:data:`OUT_STEPS`)."""

@@ -1,7 +1,8 @@
 """The event-driven driver: one analysis, from rest (or a given state) to its outcome.
 
-The driver loop of :func:`_run` follows scipy's ``solve_ivp``: take a step with error control,
-look for events inside it on its dense output, locate them, handle them, record. Its parts are
+The driver loop of :func:`_run` follows scipy's ``solve_ivp``: take a step with error control
+(Sect. II.4 of [1]_), look for events inside it on its dense output (Sect. II.6 of [1]_), locate
+them [2]_, handle them (the rules of Sects. 4.4 and 5.3 of [3]_), record. Its parts are
 the small compiled helpers of this module and of :mod:`~archquake.engine.stepper` (the step),
 :mod:`~archquake.engine.rules` (activation, impact, decision) and
 :mod:`~archquake.engine.tables`. How each is compiled was chosen by measurement:
@@ -34,6 +35,14 @@ decision (record mode checks itself): a recovery whose free motion passes ``thet
 comes to rest, or a collapse in another half cycle than decided, is a contradiction; the driver
 stops there and returns its code in ``out[OUT_CONTRADICTION]`` (:data:`~.codes.CONTRADICTIONS`),
 which the Python wrappers turn into a ``RuntimeError`` naming the case.
+
+References
+----------
+.. [1] Hairer, E., Norsett, S. P. and Wanner, G. (1993). Solving Ordinary Differential
+   Equations I: Nonstiff Problems, 2nd ed. Springer, Sects. II.4-II.6.
+.. [2] Shampine, L. F. and Thompson, S. (2000). Event location for ordinary differential
+   equations. Computers and Mathematics with Applications 39(5-6), 43-54.
+.. [3] The paper, Sects. 4.3-4.4 (Eqs. (6)-(8)) and 5.3.
 """
 
 from __future__ import annotations
@@ -568,15 +577,42 @@ def _grid(tab, c_lr, c_rl, kind, params0, times0, values0, amplitudes, durations
 
 
 def check_restitution(c_lr, c_rl) -> tuple[float, float]:
-    """Validate the coefficients of restitution: finite, > 0, and ``c_lr c_rl <= 1``.
+    r"""Validate the coefficients of restitution: finite, > 0, and ``c_lr c_rl <= 1``.
 
-    A single coefficient may exceed 1: for an irregular arch the computed c_v is a ratio of the
-    rates of two different coordinates (theta of Mech-l and theta of Mech-r), not of one speed.
-    What an impact may not do is create energy. The kinetic energy ratio of one impact,
-    ``c^2 M_to / M_from``, is <= 1 for the computed coefficients (Cauchy-Schwarz, see
-    :mod:`archquake.impact`), and over a pair of impacts (l -> r -> l) the masses cancel, so the
-    kinetic energy at ``theta_u`` is multiplied by ``(c_lr c_rl)^2``; the outcome decision after
-    the excitation relies on that product being <= 1 (:mod:`archquake.engine.rules`).
+    A single coefficient may exceed 1: for an irregular arch the computed :math:`c_v` (Eq. (8)
+    in [1]_) is a ratio of the rates of two different coordinates (:math:`\theta` of Mech-l and
+    :math:`\theta'` of Mech-r), not of one speed. What an impact may not do is create energy.
+    The kinetic energy ratio of one impact, :math:`c^2 M_{to}(\theta_u) / M_{from}(\theta_u)`,
+    is at most 1 for the computed coefficients (Cauchy-Schwarz, see :mod:`archquake.impact`),
+    and over a pair of impacts (l -> r -> l) the masses cancel,
+
+    .. math::
+
+        \frac{K''}{K} = c_{lr}^2 \frac{M_r}{M_l}\; c_{rl}^2 \frac{M_l}{M_r}
+        = (c_{lr} c_{rl})^2 \le 1:
+
+    the outcome decision after the excitation relies on that product being at most 1
+    (:mod:`archquake.engine.rules`).
+
+    Parameters
+    ----------
+    c_lr, c_rl : float
+        Coefficients of restitution of the impacts Mech-l -> Mech-r and Mech-r -> Mech-l [-].
+
+    Returns
+    -------
+    (float, float)
+        ``(c_lr, c_rl)`` as floats.
+
+    Raises
+    ------
+    ValueError
+        If a coefficient is not a finite number > 0, or if ``c_lr c_rl > 1`` (beyond a
+        round-off of 1e-12).
+
+    References
+    ----------
+    .. [1] The paper, Sect. 4.4, Eq. (8).
     """
     out = []
     for name, c in (("c_lr", c_lr), ("c_rl", c_rl)):
@@ -594,10 +630,33 @@ def check_restitution(c_lr, c_rl) -> tuple[float, float]:
 
 
 def compiled_motion(motion):
-    """``(kind, params, times, values, breakpoints, duration)`` of a GroundMotion for _run.
+    """A ground motion in the form the compiled driver takes.
 
     The arrays are writable copies: the motion's own arrays are read-only, and numba compiles a
-    function again for read-only arrays; the grids of :func:`outcomes_grid` are writable."""
+    function again for read-only arrays; the grids of :func:`outcomes_grid` are writable.
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The ground motion.
+
+    Returns
+    -------
+    kind : int
+        Kind of the motion (``STEP``, ``LINEAR`` or an analytic kind of
+        :mod:`archquake.ground_motion`).
+    params : ndarray
+        Parameters of an analytic motion (its amplitude [m/s^2] and time scale [s] first).
+    times : ndarray
+        Sample times of a table motion [s].
+    values : ndarray
+        Accelerations at ``times`` [m/s^2].
+    breakpoints : ndarray
+        Times [s] at which the acceleration or its slope may jump, sorted, from 0 to
+        ``duration``; a step never crosses one.
+    duration : float
+        Time [s] from which the ground acceleration is zero for ever.
+    """
     kind, params, times, values = motion.compiled()
     params, times, values, bps = (np.array(x, dtype=float) for x in
                                   (params, times, values, motion.breakpoints))
@@ -605,7 +664,18 @@ def compiled_motion(motion):
 
 
 def contradiction_message(code: int) -> str:
-    """What the continuation did, for a nonzero ``out[OUT_CONTRADICTION]``."""
+    """What the continuation did, for a nonzero ``out[OUT_CONTRADICTION]``.
+
+    Parameters
+    ----------
+    code : int
+        A code of :data:`~archquake.engine.codes.CONTRADICTIONS`.
+
+    Returns
+    -------
+    str
+        Its description (an unknown code is named as such).
+    """
     return CONTRADICTIONS.get(int(code), f"unknown contradiction code {code!r}")
 
 
@@ -617,6 +687,10 @@ def outcomes_grid(table_l: MechanismTable, table_r: MechanismTable, c_lr: float,
                   continuation: float = 0.0) -> dict[str, np.ndarray]:
     """Outcomes of one arch under many pulses, in one compiled call.
 
+    Every case ``q`` is the template motion scaled to ``amplitudes[q]`` and ``durations[q]``,
+    applied to the arch at rest from ``t = 0``, and integrated until its outcome is decided
+    (:mod:`~archquake.engine.driver`; the rules of :mod:`~archquake.engine.rules`).
+
     Parameters
     ----------
     table_l, table_r : MechanismTable
@@ -624,10 +698,11 @@ def outcomes_grid(table_l: MechanismTable, table_r: MechanismTable, c_lr: float,
     c_lr, c_rl : float
         Coefficients of restitution of the impacts Mech-l -> Mech-r and Mech-r -> Mech-l [-].
     durations : array_like
-        Pulse durations t_p [s].
+        Pulse durations t_p [s] (the time scale of the template: the duration of a pulse, the
+        period of a wavelet; ``1`` keeps a record's own time), each > 0.
     amplitudes : array_like
         Signed ground accelerations of the pulse [m/s^2] (``-GRAVITY`` is the paper's -1 g);
-        broadcast against ``durations``.
+        broadcast against ``durations``. For a template record, its scale factor [-].
     motion : str or GroundMotion
         Name of the pulse shape in :data:`archquake.ground_motion.GROUND_MOTIONS` (every analytic
         shape of the registry is ``amplitude * shape(t / duration)``, which is how the cases are
@@ -653,6 +728,10 @@ def outcomes_grid(table_l: MechanismTable, table_r: MechanismTable, c_lr: float,
 
     Raises
     ------
+    ValueError
+        If a coefficient of restitution is invalid (:func:`check_restitution`), a duration is
+        not finite and > 0, an amplitude is not finite, ``continuation < 0``, or ``motion`` is
+        not a known name or a motion the compiled engine can evaluate.
     RuntimeError
         If an analysis stops before its outcome is decided (the safety limit on the number of
         steps), or if ``continuation > 0`` and the motion after a decision contradicts it.

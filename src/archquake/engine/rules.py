@@ -1,26 +1,70 @@
-"""The rules of the rocking arch that are not integration: activation from rest, impacts, and
+r"""The rules of the rocking arch that are not integration: activation from rest, impacts, and
 the outcome once the excitation is over [paper, Sects. 4.2-4.4 and 5.3].
 
-REST
-    the arch moves rigidly with the ground at ``theta_u`` of both mechanisms. Mech-l starts when
-    ``P xg'' - F g < 0`` at ``theta_u``, i.e. ``xg''/g < -k_l``, Mech-r when ``xg''/g > k_r``
-    [eq. (2)], with ``k = -F(theta_u)/P(theta_u)`` the activation multiplier. For a piecewise
-    linear (recorded) ground motion the instant of activation between samples is located.
+Rest and activation
+    At rest the arch moves rigidly with the ground, at :math:`\theta_u` of both mechanisms. A
+    mechanism starts when its :math:`\ddot\theta` from rest (:math:`\theta = \theta_u`,
+    :math:`\dot\theta = 0`) is negative, i.e. when the ground acceleration :math:`\ddot x_g`
+    [m/s^2] opens it (Eq. (2) in [1]_):
+
+    .. math::
+
+        \text{Mech-l: } P\,\ddot x_g - F g < 0 \iff \ddot x_g / g < -k_l, \qquad
+        \text{Mech-r: } -P\,\ddot x_g - F g < 0 \iff \ddot x_g / g > k_r,
+
+    with :math:`k = -F(\theta_u)/P(\theta_u)` [-] the activation multiplier of each mechanism
+    (its limit-analysis load multiplier, Sect. 3 of [1]_). For a piecewise-linear (recorded)
+    ground motion the instant of activation between samples is located.
 Impact
-    mechanism switch, ``theta' <- -c theta'`` [Sect. 4.4]; if then ``|theta'|`` is below
-    ``rest_velocity`` and the ground does not activate the new mechanism, the arch comes to REST
-    (this ends the geometric sequence of ever shorter rocking cycles).
+    When the moving mechanism closes at :math:`\theta_u` the other one takes over at its own
+    :math:`\theta_u` with :math:`\dot\theta^+ = -c\,\dot\theta^-` (Sect. 4.4 and Eq. (8) in
+    [1]_; :math:`c = c_{lr}` from Mech-l, :math:`c_{rl}` from Mech-r). If then
+    :math:`|\dot\theta^+|` is below ``rest_velocity`` [rad/s] and the ground does not open the
+    new mechanism, the arch comes to rest (this ends the geometric sequence of ever shorter
+    rocking cycles).
 Decision after the excitation
-    the system is then conservative between impacts: with ``E = M theta'^2 / 2 + V``, an arch
-    moving away from ``theta_u`` with ``E > V(theta_cr)`` (or beyond ``theta_cr`` and not coming
-    back) collapses. Otherwise it returns to ``theta_u`` with kinetic energy ``E - V(theta_u)``;
-    the impact leaves ``c^2 M_new/M_old`` times that kinetic energy, compared with the barrier
-    ``V(theta_cr) - V(theta_u)`` of the new mechanism, and after the second impact the arrival
-    back into the first mechanism against its own barrier (the arch may have been on its way
-    back with energy above it). Surviving both arrivals is recovery when ``c_lr c_rl <= 1``: two
-    successive impacts multiply the kinetic energy at ``theta_u`` by
-    ``(c_lr^2 M_r/M_l)(c_rl^2 M_l/M_r) = (c_lr c_rl)^2 <= 1``, so every later arrival into either
-    mechanism has no more energy than the first checked one, which did not pass the barrier.
+    Once :math:`\ddot x_g = 0` for good, the motion between impacts conserves
+
+    .. math::
+
+        E = \tfrac12 M(\theta)\,\dot\theta^2 + V(\theta)
+
+    (Eq. (6) in [1]_ times :math:`\dot\theta`, with :math:`L = \tfrac12\, dM/d\theta` and
+    :math:`dV/d\theta = g F`, Eq. (4) in [1]_), and :math:`V` has its maximum on
+    :math:`[\theta_{lo}, \theta_u]` at :math:`\theta_{cr}` (Sect. 4.2 of [1]_). From the state
+    :math:`(\theta, \dot\theta)` of the moving mechanism (:func:`_decide`):
+
+    1. *this half cycle*: the arch collapses if it is beyond :math:`\theta_{cr}`
+       (:math:`\theta \le \theta_{cr}`) and moving away from :math:`\theta_u`
+       (:math:`\dot\theta \le 0`) or unable to come back (:math:`E \le V(\theta_{cr})`), or
+       if, short of :math:`\theta_{cr}`, it moves away (:math:`\dot\theta < 0`) with
+       :math:`E > V(\theta_{cr})`;
+    2. otherwise it returns to :math:`\theta_u` with the kinetic energy
+       :math:`K = E - V(\theta_u)`, and after the impact the other mechanism (primed) has
+
+       .. math::
+
+           K' = c^2\, \frac{M'(\theta'_u)}{M(\theta_u)}\, K,
+
+       which collapses it, after one more impact, if :math:`K' > V'(\theta'_{cr}) -
+       V'(\theta'_u)`;
+    3. otherwise the second impact brings back into the first mechanism
+       :math:`K'' = c'^2\, (M(\theta_u)/M'(\theta'_u))\, K'`, checked against its own barrier
+       :math:`V(\theta_{cr}) - V(\theta_u)` (the arch may have been on its way back with energy
+       above it): collapse after two more impacts if it passes;
+    4. surviving both arrivals is recovery: two successive impacts multiply the kinetic energy
+       at :math:`\theta_u` by :math:`(c_{lr}^2 M_r/M_l)(c_{rl}^2 M_l/M_r) = (c_{lr}
+       c_{rl})^2 \le 1` (:func:`archquake.engine.check_restitution` refuses a larger product),
+       so every later arrival into either mechanism has no more energy than the first checked
+       one, which did not pass the barrier.
+
+    The largest :math:`\varphi = \theta_u - \theta` still to come is the root of
+    :math:`V(\theta) = E` (or of its counterpart after an impact) below :math:`\theta_u`.
+
+References
+----------
+.. [1] The paper, Sect. 3, Eq. (2); Sect. 4.2, Eqs. (3)-(4); Sect. 4.3, Eq. (6); Sect. 4.4,
+   Eq. (8); Sect. 5.3.
 """
 
 import math
@@ -173,9 +217,9 @@ def _decide(m, th, thd, tab, c_lr, c_rl):
 
     Returns ``(status, extra_half_cycles, peak_phi, time_known)``: ``extra_half_cycles`` is 0 if
     a collapse happens in the current half cycle, 1 (2) if after the next (second) impact;
-    ``peak_phi`` the
-    largest phi still to come if the arch recovers; ``time_known`` whether the point of no
-    return has already been passed.
+    ``peak_phi`` [rad] the largest phi still to come if the arch recovers; ``time_known``
+    whether the point of no return (the crossing of ``theta_cr`` away from ``theta_u``) has
+    already been passed.
     """
     scal = tab[0]
     other = 1 - m

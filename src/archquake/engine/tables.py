@@ -1,11 +1,27 @@
-"""Tables of a mechanism's coefficients and their compiled evaluation.
+r"""Tables of a mechanism's coefficients and their compiled evaluation.
 
 :func:`tabulate` samples a mechanism once, as piecewise polynomials (degree 9, interpolation at
-Chebyshev points, 1e-12 relative accuracy) on ``[theta_lo, theta_u]``: the ratios ``P/M``,
-``gF/M``, ``L/M`` that make up ``theta''`` (no division while integrating) and ``M`` and the
-potential energy ``V`` [eq. (3) of the paper] for the energy rules. Nothing about the linkage is
-recomputed while integrating, and one table serves every analysis of that arch.
+Chebyshev points, 1e-12 relative accuracy) on :math:`[\theta_{lo}, \theta_u]`: the ratios
+:math:`P/M` [1/m], :math:`gF/M` [1/s^2] and :math:`L/M` [-] that make up the right-hand side of
+Eqs. (6) and (7) in [1]_ solved for :math:`\ddot\theta`,
+
+.. math::
+
+    \ddot\theta = s\,\frac{P}{M}\,\ddot x_g - \frac{gF}{M} - \frac{L}{M}\,\dot\theta^2,
+    \qquad s = +1 \text{ (Mech-l)}, \; -1 \text{ (Mech-r)},
+
+(no division while integrating), and the generalised mass :math:`M` [kg m^2/m] and the
+potential energy :math:`V` [J/m] of Eq. (3) in [1]_ for the energy rules. Nothing about the
+linkage is recomputed while integrating, and one table serves every analysis of that arch.
 :func:`pack_pair` stacks the tables of Mech-l and Mech-r into the tuple the compiled driver takes.
+
+The exact functions come from :mod:`archquake.equations_of_motion` (:math:`M, L, F, P`) and
+:meth:`archquake.mechanism.FourLinkMechanism.potential_energy` (:math:`V`): the tables hold no
+physics of their own.
+
+References
+----------
+.. [1] The paper, Sect. 4.2, Eq. (3), and Sect. 4.3, Eqs. (6)-(7).
 """
 
 from __future__ import annotations
@@ -53,14 +69,17 @@ class MechanismTable:
     theta_u : float
         Undisplaced configuration [rad].
     theta_cr : float
-        Critical angle, maximum of the potential energy [rad] (eq. (4) of the paper).
+        Critical angle [rad]: the maximum of the potential energy, where ``dV/d theta = g F``
+        vanishes (Sect. 4.2 of the paper, Eq. (4)); ``theta_lo`` when the mechanism has no
+        maximum inside the table (gravity then resists the motion down to the kinematic limit).
     theta_lo : float
         Lower end of the table [rad]: the kinematic limit of the linkage (reaching it during the
         excitation is collapse).
     activation_g : float
-        Activation multiplier ``k = -F(theta_u)/P(theta_u)`` [-] (acceleration in g).
+        Activation multiplier ``k = -F(theta_u)/P(theta_u)`` [-] (the ground acceleration in g
+        that opens the mechanism, Eq. (2) of the paper), from the tabulated ``P/M`` and ``gF/M``.
     direction : str
-        ``"l"`` or ``"r"``.
+        ``"l"`` (Mech-l) or ``"r"`` (Mech-r).
     breaks : ndarray, shape (pieces + 1,)
         Ends of the pieces [rad], increasing from ``theta_lo`` to ``theta_u``.
     coefficients : ndarray, shape (pieces, 6, TABLE_DEGREE + 1)
@@ -96,8 +115,19 @@ class MechanismTable:
         return self.cells.size - 1
 
     def functions(self, theta) -> np.ndarray:
-        """Interpolated ``(P/M, gF/M, L/M, M, V)`` at ``theta`` [rad], shape
-        ``(5,) + shape(theta)``."""
+        """The tabulated functions at ``theta``.
+
+        Parameters
+        ----------
+        theta : float or array_like
+            Lagrangian coordinate [rad], in ``[theta_lo, theta_u]`` (outside it the end piece is
+            extrapolated).
+
+        Returns
+        -------
+        ndarray, shape ``(5,) + shape(theta)``
+            ``P/M`` [1/m], ``gF/M`` [1/s^2], ``L/M`` [-], ``M`` [kg m^2/m] and ``V`` [J/m].
+        """
         theta = np.asarray(theta, dtype=float)
         flat = np.ascontiguousarray(theta.ravel())
         out = np.empty((5, flat.size))
@@ -109,17 +139,52 @@ class MechanismTable:
         return out.reshape((5,) + theta.shape)
 
     def evaluate(self, theta) -> np.ndarray:
-        """Interpolated ``(M, L, F, P, V)`` at ``theta`` [rad], shape ``(5,) + shape(theta)``."""
+        """The coefficients of the equation of motion and the potential energy at ``theta``.
+
+        Parameters
+        ----------
+        theta : float or array_like
+            Lagrangian coordinate [rad].
+
+        Returns
+        -------
+        ndarray, shape ``(5,) + shape(theta)``
+            ``M`` [kg m^2/m], ``L`` [kg m^2/m], ``F`` [kg m/m], ``P`` [kg m/m] (rebuilt from
+            the tabulated ratios and ``M``) and ``V`` [J/m].
+        """
         a, b, c, m, v = self.functions(theta)
         return np.stack([m, c * m, b * m / GRAVITY, a * m, v])
 
     def coefficients_at(self, theta):
-        """Interpolated ``(M, L, F, P)`` at ``theta`` [rad] (same units as the mechanism)."""
+        """Interpolated coefficients of the equation of motion at ``theta``, as
+        :func:`archquake.equations_of_motion.coefficients` gives them exactly.
+
+        Parameters
+        ----------
+        theta : float or array_like
+            Lagrangian coordinate [rad].
+
+        Returns
+        -------
+        M, L, F, P : ndarray
+            [kg m^2/m], [kg m^2/m], [kg m/m], [kg m/m], of the shape of ``theta``.
+        """
         m, l_, f, p, _ = self.evaluate(theta)
         return m, l_, f, p
 
     def potential_energy(self, theta):
-        """Interpolated potential energy ``V`` [J/m] at ``theta`` [rad]."""
+        """Interpolated potential energy of eq. (3) of the paper at ``theta``.
+
+        Parameters
+        ----------
+        theta : float or array_like
+            Lagrangian coordinate [rad].
+
+        Returns
+        -------
+        ndarray
+            ``V`` [J/m], of the shape of ``theta``.
+        """
         return self.functions(theta)[_ROW_V]
 
 
@@ -165,34 +230,61 @@ def _horner(coef, x):
 
 def tabulate(mechanism, *, degree: int = TABLE_DEGREE, tolerance: float = TABLE_TOLERANCE,
              limit_margin: float = 1e-6, max_pieces: int = 1024) -> MechanismTable:
-    """Tabulate a mechanism for the compiled engine: ``P/M, gF/M, L/M`` (the right-hand side of
+    r"""Tabulate a mechanism for the compiled engine: ``P/M, gF/M, L/M`` (the right-hand side of
     the equation of motion) and ``M, V`` (the energy rules).
 
-    The interval ``[theta_lo, theta_u]``, ``theta_lo = theta_limit + limit_margin``, is bisected
-    until every piece of ``degree`` reproduces the mechanism's exact functions to ``tolerance``
-    (relative to each function's largest magnitude) on a check grid, evaluated from the monomial
-    coefficients the compiled code uses; a linkage that is singular near an end of its range (at
-    its kinematic limit, or just beyond ``theta_u`` where the links line up) gets ever smaller
-    pieces toward it. All pieces of one level of the bisection are fitted together (one call
-    of the exact functions per level).
+    The right-hand side is that of Eqs. (6)-(7) in [1]_ solved for :math:`\ddot\theta`, and
+    ``V`` is the potential energy of Eq. (3) in [1]_.
+
+    The interval :math:`[\theta_{lo}, \theta_u]`, :math:`\theta_{lo} = \theta_{limit} + \delta`
+    with :math:`\delta` = ``limit_margin``, is bisected until every piece :math:`[a, b]` of
+    ``degree`` reproduces the mechanism's exact functions to ``tolerance`` (relative to each
+    function's largest magnitude on the interval) on a check grid. On a piece each function is
+    the interpolant at the Chebyshev points of the first kind,
+
+    .. math::
+
+        f(\theta) \approx \sum_{k=0}^{d} c_k\, x^k, \qquad
+        x = \frac{\theta - (a + b)/2}{(b - a)/2} \in [-1, 1], \qquad
+        x_i = \cos\frac{(i + 1/2)\pi}{d + 1}, \; i = 0 \dots d,
+
+    checked in the monomial form the compiled code evaluates. A linkage that is singular near an
+    end of its range (at its kinematic limit, or just beyond :math:`\theta_u` where the links
+    line up) gets ever smaller pieces toward it. All pieces of one level of the bisection are
+    fitted together (one call of the exact functions per level).
 
     Parameters
     ----------
-    mechanism : object
-        Has ``theta_u``, ``theta_cr``, ``theta_limit`` [rad], ``direction`` (``"l"``/``"r"``),
-        vectorised ``coefficients(theta) -> (M, L, F, P)`` and ``potential_energy(theta)``.
+    mechanism : FourLinkMechanism
+        Or any object with ``theta_u``, ``theta_cr``, ``theta_limit`` [rad], ``direction``
+        (``"l"``/``"r"``), vectorised ``coefficients(theta) -> (M, L, F, P)`` and
+        ``potential_energy(theta)`` [J/m].
     degree : int
-        Degree of each piece.
+        Degree :math:`d` of each piece [-] (the compiled engine takes :data:`TABLE_DEGREE`).
     tolerance : float
         Target relative interpolation error [-].
     limit_margin : float
         Distance [rad] kept from the kinematic limit, where a linkage may be singular.
     max_pieces : int
-        Largest number of pieces.
+        Largest number of pieces, about (with at most 20 levels of bisection); when it is
+        reached the remaining pieces are kept as they are, and ``max_error`` of the table tells
+        how far from ``tolerance`` they are.
 
     Returns
     -------
     MechanismTable
+        The table; its ``theta_cr`` is raised to ``theta_lo`` if the mechanism's lies beyond
+        it, and its ``activation_g`` is computed from the tabulated functions.
+
+    Raises
+    ------
+    ValueError
+        If ``direction`` is not ``"l"`` or ``"r"``, if ``theta_limit + limit_margin`` is not
+        below ``theta_u``, or if ``theta_cr`` is not below ``theta_u``.
+
+    References
+    ----------
+    .. [1] The paper, Sect. 4.2, Eq. (3), and Sect. 4.3, Eqs. (6)-(7).
     """
     theta_u = float(mechanism.theta_u)
     theta_cr = float(mechanism.theta_cr)
@@ -346,12 +438,33 @@ def _table_point(theta, lo, inv_cell, cells, breaks, coefs):
 def pack_pair(table_l: MechanismTable, table_r: MechanismTable):
     """Stack the tables of Mech-l and Mech-r into the tuple the compiled driver takes.
 
-    Returns ``(scalars, cells, breaks, coefficients)``: ``scalars[m] = (theta_u, theta_cr,
-    theta_lo, activation acceleration [m/s^2], cells per radian)`` with the activation
-    acceleration ``-k_l g`` for Mech-l and ``+k_r g`` for Mech-r (for reference: the engine
-    tests activation by the sign of its own ``theta''``, :func:`archquake.engine.rules._activated`);
-    arrays padded to the larger number of pieces and cells (a padded cell row repeats the last
-    piece, never reached). The tables must be of degree :data:`TABLE_DEGREE`.
+    Parameters
+    ----------
+    table_l, table_r : MechanismTable
+        Tables of Mech-l (direction ``"l"``) and Mech-r (direction ``"r"``), of degree
+        :data:`TABLE_DEGREE`.
+
+    Returns
+    -------
+    scalars : ndarray, shape (2, 5)
+        ``scalars[m] = (theta_u [rad], theta_cr [rad], theta_lo [rad], activation acceleration
+        [m/s^2], cells per radian [1/rad])``, ``m`` = :data:`~archquake.engine.codes.MECH_L`,
+        :data:`~archquake.engine.codes.MECH_R`; the activation acceleration is ``-k_l g`` for
+        Mech-l and ``+k_r g`` for Mech-r (for reference: the engine tests activation by the sign
+        of its own ``theta''``, :func:`archquake.engine.rules._activated`).
+    cells : ndarray of int, shape (2, n_cells + 1)
+        ``cells`` of each table (:class:`MechanismTable`), padded to the larger number of cells
+        of the two (a padded entry repeats the last piece, never reached).
+    breaks : ndarray, shape (2, pieces + 1)
+        ``breaks`` of each table [rad], padded with ``theta_u``.
+    coefficients : ndarray, shape (2, pieces, 6, TABLE_DEGREE + 1)
+        ``coefficients`` of each table, padded with zeros to the larger number of pieces.
+
+    Raises
+    ------
+    ValueError
+        If the tables are not (Mech-l, Mech-r) in that order, or not of degree
+        :data:`TABLE_DEGREE`.
     """
     if table_l.direction != "l" or table_r.direction != "r":
         raise ValueError("tables must be given as (Mech-l, Mech-r), with directions 'l' and 'r'")
