@@ -50,10 +50,13 @@ def test_from_arch_reads_the_joints_and_mass_properties(nominal):
 
 
 def test_model_is_independent_of_the_four_link_code():
-    """Importing and running the rigid-block model loads none of the four-link modules."""
+    """Importing and running the rigid-block model (its analyses, failure curves and impact
+    measurement) loads none of the four-link modules."""
     code = ("import sys; from archquake import oppenheim; from archquake.rigid_blocks import "
             "block_outcome; from archquake.rigid_blocks.failure import failure_slice; "
             "block_outcome(oppenheim(), None); "
+            "from archquake.rigid_blocks.impacts import closing_impact; import numpy; "
+            "closing_impact(oppenheim(), numpy.ones((7, 3))); "
             "bad = [m for m in ('mechanism', 'equations_of_motion', 'impact', 'engine', "
             "'time_history') if 'archquake.' + m in sys.modules]; print(bad)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
