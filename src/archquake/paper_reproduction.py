@@ -1126,7 +1126,7 @@ def _comparison_text(summary: dict) -> list[str]:
             if close:
                 worst = max(abs(diff["blocks"][d]) for d in close)
                 blocks = (f" With the c_v measured on the blocks ({c['blocks'][0]:.3f}) the "
-                          f"four-link model comes within {100 * worst:.0f} % of the rigid "
+                          f"four-link model comes within {100 * worst:.1f} % of the rigid "
                           f"blocks at t_p = {', '.join(f'{d:g}' for d in close)} s")
                 missing = [d for d in st["short"] if diff["blocks"][d] is None]
                 blocks += (f", but not at {', '.join(f'{d:g}' for d in missing)} s."
