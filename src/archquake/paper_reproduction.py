@@ -137,8 +137,8 @@ class ReproductionSettings:
     comparison_amplitude_step_g: float = 0.1
     comparison_amplitude_max_g: float = 3.0
     comparison_resolution_g: float = COMPARE_RESOLUTION_G
-    record_count: int = 10
-    record_sample_size: int = 10
+    record_count: int = 8
+    record_sample_size: int = 8
     record_levels_pga: tuple[float, ...] = RECORD_LEVELS["pga"]
     record_levels_pgv: tuple[float, ...] = RECORD_LEVELS["pgv"]
     record_bootstrap: int = 200
