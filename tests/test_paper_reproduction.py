@@ -15,7 +15,7 @@ EXPECTED_FIGURES = (
     "fig12_14_free_vibration_computed", "fig15_pulse_response_paper",
     "fig15_pulse_response_computed", "fig16_failure_domain", "fig17_fragility_tp0.40",
     "fig18_fragility_tp0.50", "fig19_fragility_tp0.60", "fig20_fragility_tp0.70",
-    "fig21_fragility_surface",
+    "fig21_fragility_surface", "record_fragility", "comparison_rigid_blocks",
 )
 
 
@@ -142,6 +142,55 @@ def test_runtime_and_environment_recorded(report):
     assert timings["total"] >= sum(v for k, v in timings.items() if k != "total") - 1e-6
 
 
+def test_comparison_section_comes_from_compare_models(report, nominal):
+    """The section's numbers are those of archquake.comparison.compare_models (the curve of the
+    rigid blocks ran on a second process) at the quick settings; its paragraph and table quote
+    them."""
+    from archquake.comparison import compare_models
+    from archquake.failure_domain import inclusive_range
+
+    out, results = report
+    settings = ReproductionSettings.quick_settings()
+    comparison = compare_models(nominal, settings.comparison_durations,
+                                amplitudes_g=inclusive_range(0.3, 3.0, 0.1),
+                                resolution=settings.comparison_resolution_g)
+    section = results["comparison"]
+    assert section["rows"] == json.loads(json.dumps(comparison.to_list()))
+    assert section["restitution"]["blocks"][0] == pytest.approx(0.7478, abs=1e-4)
+    text = (out / "report.md").read_text()
+    part = text[text.index("## How far to trust the four-link model"):]
+    part = part[:part.index("\n## ", 5)]
+    for row in section["rows"]:
+        assert f"| {row['duration']:.2f} | {row['rigid_block']:.3f} |" in part
+        for value in row["four_link"].values():
+            assert f"{value:.3f}" in part
+    assert "Long pulses agree. From t_p = 0.70 s on" in part
+    assert results["figures"]["comparison_rigid_blocks"]["agrees"] is True
+
+
+def test_record_fragility_section_comes_from_the_study(report):
+    """The section's fits are those of oppenheim_record_fragility at the quick sizes."""
+    from archquake.record_fragility import oppenheim_record_fragility
+
+    out, results = report
+    s = ReproductionSettings.quick_settings()
+    studies = oppenheim_record_fragility(
+        ("pga", "pgv"), records=s.record_count, sample_size=s.record_sample_size,
+        tolerance=s.tolerance, seed=s.seed, suite_seed=s.seed,
+        levels={"pga": s.record_levels_pga, "pgv": s.record_levels_pgv},
+        bootstrap=s.record_bootstrap)
+    text = (out / "report.md").read_text()
+    for im, study in studies.items():
+        entry = results["record_fragility"][im]
+        assert entry["probability"] == study.probability.tolist()
+        assert entry["lognormal"]["median"] == pytest.approx(study.lognormal.median, rel=1e-12)
+        variability = study.variability()
+        for key in ("record_to_record", "geometric", "total"):
+            assert entry[key] == pytest.approx(variability[key], rel=1e-12)
+        assert f"{study.lognormal.median:.3f}" in text
+    assert "## Record-based fragility (PGA, PGV)" in text
+
+
 def test_settings_reject_bad_values():
     with pytest.raises(ValueError, match="restitution"):
         ReproductionSettings(restitution=1.5)
@@ -151,8 +200,16 @@ def test_settings_reject_bad_values():
         ReproductionSettings(tolerance=1.0)
     with pytest.raises(ValueError, match="amplitude"):
         ReproductionSettings(amplitude_min_g=0.5, amplitude_max_g=0.52)
+    with pytest.raises(ValueError, match="record_count"):
+        ReproductionSettings(record_count=1)
+    with pytest.raises(ValueError, match="record_levels_pga"):
+        ReproductionSettings(record_levels_pga=(0.5, 0.4))
+    with pytest.raises(ValueError, match="comparison_durations"):
+        ReproductionSettings(comparison_durations=())
 
 
 def test_cli_reports_bad_restitution(tmp_path, capsys):
     assert main(["reproduce", "--quick", "--restitution", "0", "--out", str(tmp_path)]) == 2
     assert "restitution" in capsys.readouterr().err
+    assert main(["reproduce", "--quick", "--restitution", "bogus", "--out", str(tmp_path)]) == 2
+    assert "--restitution must be one of" in capsys.readouterr().err

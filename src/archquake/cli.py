@@ -20,8 +20,12 @@ import warnings
 
 from . import __version__
 from .defaults import (
+    COMPARE_AMPLITUDES_G,
+    COMPARE_DURATIONS,
+    COMPARE_RESOLUTION_G,
     DEFAULT_EPSILON,
     DEFAULT_EXTEND_TO_G,
+    DEFAULT_FRICTION,
     DEFAULT_LIMIT_METHOD,
     DEFAULT_RESOLUTION_G,
     DEFAULT_RESTITUTION,
@@ -52,7 +56,7 @@ from .geometry import (
     load_arch,
     shaped_arch,
 )
-from .reference_arches import OPPENHEIM
+from .reference_arches import OPPENHEIM, oppenheim
 
 
 def _range_text(values: tuple[float, float, float]) -> str:
@@ -248,14 +252,21 @@ def analysing(args: argparse.Namespace):
         raise ValueError(f"{_drawn(args)}: {exc}") from exc
 
 
+RESTITUTION_HELP = (
+    "'computed' from the momentum balance of the whole arch, 'link' from the paper's link-wise "
+    "rule (Housner's rule for the post-impact springing link), 'blocks' measured on the "
+    "rigid-block model of the arch (the kinetic energy its blocks keep at the impact), "
+    "'nominal' = the nominal arch's computed value (the paper's practice for irregular arches), "
+    "'paper' = 0.875, 'elastic' = 1, or a number in (0, 1]")
+"""The restitution models, as the help of every ``--restitution`` option lists them."""
+
+
 def add_restitution_option(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
-        "--restitution", default=DEFAULT_RESTITUTION, metavar="computed|link|nominal|paper|VALUE",
-        help="coefficient of restitution c_v at impacts: 'computed' from the momentum balance "
-             "of the whole arch, 'link' from the paper's link-wise rule (Housner's rule for "
-             "the post-impact springing link), 'nominal' = the nominal arch's computed value "
-             "(the paper's practice for irregular arches), 'paper' = 0.875, or a number in "
-             "(0, 1] (default: %(default)s)",
+        "--restitution", default=DEFAULT_RESTITUTION,
+        metavar="computed|link|blocks|nominal|paper|elastic|VALUE",
+        help=f"coefficient of restitution c_v at impacts: {RESTITUTION_HELP} "
+             f"(default: %(default)s)",
     )
 
 
@@ -267,6 +278,17 @@ def restitution_model(text: str):
         return check_restitution_model(text)
     except ValueError as exc:
         raise ValueError(f"--{exc}") from None
+
+
+def check_workers(workers: int | None) -> int | None:
+    """The ``--workers`` value, checked: None or 1 (run in this process) -> None."""
+    cpus = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    most = 4 * (cpus or 1)
+    if workers is not None and not 1 <= workers <= most:
+        raise ValueError(f"--workers must be an integer in [1, {most}] (4 per CPU of this "
+                         f"machine: more processes would only share them, each with its own "
+                         f"memory), got {workers}")
+    return None if workers in (None, 1) else workers
 
 
 def dynamics_from_args(args: argparse.Namespace):
@@ -414,20 +436,28 @@ def _pyplot():
     return plt
 
 
-def _save_figure(fig, path, **savefig_options) -> None:
-    """Write ``fig`` to ``path`` (PNG by default) and close it; a bad path is a ValueError."""
+def _check_figure_path(path) -> None:
+    """Refuse a figure path that is a directory or has no image extension (before a long run:
+    :func:`_save_figure` checks the same)."""
     from pathlib import Path
 
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    formats = FigureCanvasBase.get_supported_filetypes()
+    if Path(path).is_dir():
+        raise ValueError(f"cannot write the figure {str(path)!r}: it is a directory")
+    if Path(path).suffix.lstrip(".").lower() not in formats:
+        raise ValueError(f"cannot write the figure {str(path)!r}: give a file name with an "
+                         f"extension among {', '.join('.' + f for f in sorted(formats))}")
+
+
+def _save_figure(fig, path, **savefig_options) -> None:
+    """Write ``fig`` to ``path`` (PNG by default) and close it; a bad path is a ValueError."""
     import matplotlib.pyplot as plt
 
     options = {"dpi": 150, **savefig_options}
-    formats = fig.canvas.get_supported_filetypes()
     try:
-        if Path(path).is_dir():
-            raise ValueError(f"cannot write the figure {str(path)!r}: it is a directory")
-        if Path(path).suffix.lstrip(".").lower() not in formats:
-            raise ValueError(f"cannot write the figure {str(path)!r}: give a file name with an "
-                             f"extension among {', '.join('.' + f for f in sorted(formats))}")
+        _check_figure_path(path)
         fig.savefig(path, **options)
     except OSError as exc:
         raise ValueError(f"cannot write the figure {str(path)!r}: {exc.strerror}") from exc
@@ -605,9 +635,12 @@ def add_reproduce(subparsers) -> None:
                              "steps, 7 failure-domain durations)")
     parser.add_argument("--seed", type=int, default=None,
                         help="root seed of the irregular arches (default: 2024)")
-    parser.add_argument("--restitution", type=float, default=None, metavar="C_V",
-                        help="coefficient of restitution of the paper's results (default: the "
-                             "paper's 0.875; the computed value is always shown beside it)")
+    parser.add_argument("--restitution", default=None,
+                        metavar="computed|link|blocks|nominal|paper|elastic|VALUE",
+                        help=f"coefficient of restitution c_v of the paper's results, one value "
+                             f"for every arch as in the paper: {RESTITUTION_HELP}; a model "
+                             f"gives the value of Oppenheim's arch (default: the paper's 0.875; "
+                             f"the computed value is always shown beside it)")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     parser.set_defaults(func=_run_reproduce)
 
@@ -619,7 +652,12 @@ def _run_reproduce(args: argparse.Namespace) -> int:
     if args.seed is not None:
         changes["seed"] = args.seed
     if args.restitution is not None:
-        changes["restitution"] = args.restitution
+        model = restitution_model(args.restitution)
+        if isinstance(model, str):  # a model: its value for the nominal arch
+            from .dynamics import ArchDynamics
+
+            model = ArchDynamics.from_arch(oppenheim(), model).restitution[0]
+        changes["restitution"] = model
     settings = (ReproductionSettings.quick_settings(**changes) if args.quick
                 else ReproductionSettings(**changes))
     result = reproduce(args.out, settings, progress=not args.no_progress)
@@ -851,19 +889,13 @@ def _run_fragility(args: argparse.Namespace) -> int:
         raise ValueError(f"--seed must be an integer >= 0, got {args.seed}")
     if not 0.0 <= args.tolerance < 1.0:
         raise ValueError(f"--tolerance (epsilon) must be in [0, 1), got {args.tolerance}")
-    cpus = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
-    most = 4 * (cpus or 1)
-    if args.workers is not None and not 1 <= args.workers <= most:
-        raise ValueError(f"--workers must be an integer in [1, {most}] (4 per CPU of this "
-                         f"machine: more processes would only share them, each with its own "
-                         f"memory), got {args.workers}")
+    workers = check_workers(args.workers)
     settings = FragilitySettings(
         nominal=nominal, sample_size=args.samples, tolerance=args.tolerance,
         durations=tuple(_durations(args.durations)),
         amplitudes_g=tuple(_amplitudes(args.amplitudes)), seed=args.seed,
         restitution=restitution_model(args.restitution), limit_sample_size=args.limit_samples,
         limit_method=args.limit_method)
-    workers = None if args.workers in (None, 1) else args.workers  # 1: in this process
     result = run_fragility(settings, args.out, workers=workers, scheduler=args.scheduler,
                            resume=args.resume, progress=not args.no_progress)
     written = []
@@ -1411,6 +1443,12 @@ COMMANDS.append(add_records)
 
 # --- archquake dem: the rigid-block model ------------------------------------------------------
 
+def add_friction_option(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--friction", type=float, default=DEFAULT_FRICTION, metavar="MU",
+                        help="Coulomb friction coefficient of the joints of the rigid-block "
+                             "model, >= 0 (default: %(default)s)")
+
+
 def add_dem(subparsers) -> None:
     """``archquake dem``: the rigid-block (contact dynamics) model of the arch."""
     parser = subparsers.add_parser(
@@ -1428,9 +1466,7 @@ def add_dem(subparsers) -> None:
     )
     add_geometry_options(parser)
     add_motion_options(parser)
-    parser.add_argument("--friction", type=float, default=0.8, metavar="MU",
-                        help="Coulomb friction coefficient of the joints (default: "
-                             "%(default)s)")
+    add_friction_option(parser)
     parser.add_argument("--time-step", type=float, default=1e-3, metavar="H",
                         help="time step [s] (default: %(default)s)")
     parser.add_argument("--t-end", type=float, default=None,
@@ -1543,6 +1579,142 @@ def _plot_dem(history, path) -> None:
 
 
 COMMANDS.append(add_dem)
+
+
+# --- archquake compare: the two models side by side -------------------------------------------
+
+COMPARE_LABELS = {"rigid_block": "rigid blocks", "computed": "computed", "link": "link",
+                  "paper": "paper", "blocks": "blocks"}
+
+
+def add_compare(subparsers) -> None:
+    """``archquake compare``: failure accelerations of the rigid-block and four-link models."""
+    parser = subparsers.add_parser(
+        "compare",
+        help="failure acceleration of the arch per pulse duration in the rigid-block model "
+             "beside the four-link model with each restitution model",
+        description="How far to trust the four-link model: per duration t_p of Oppenheim's "
+                    "pulse (-a for t_p, +a/2 for 2 t_p, then 0), the failure acceleration "
+                    "(lowest collapsing amplitude a) and the recovery bands above it, in the "
+                    "rigid-block model (every voussoir a block, contacts with friction) and in "
+                    "the four-link model with the restitution models computed, link, paper and "
+                    "blocks (c_v measured on the rigid blocks). Both models scan the same "
+                    "amplitudes, bisect every boundary to the same resolution and are not "
+                    "extended beyond the scan. Accelerations in g. The rigid-block analyses "
+                    "are the long part (about a second per duration).",
+    )
+    add_geometry_options(parser)
+    parser.add_argument("--durations", default=",".join(f"{d:g}" for d in COMPARE_DURATIONS),
+                        metavar="LIST",
+                        help="pulse durations t_p [s]: comma list and/or ranges start:stop:step "
+                             "(default: %(default)s)")
+    parser.add_argument("--amplitudes", default=_range_text(COMPARE_AMPLITUDES_G),
+                        metavar="LIST",
+                        help="scan grid of amplitudes a [g] of both models, increasing "
+                             "(default: %(default)s)")
+    parser.add_argument("--resolution", type=float, default=COMPARE_RESOLUTION_G, metavar="G",
+                        help="bisection width of every boundary [g], >= 1e-6 (default: "
+                             "%(default)s)")
+    parser.add_argument("--direction", choices=("l", "r"), default="l",
+                        help="l: the first pulse is -a g (opens Mech-l); r: +a g (Mech-r) "
+                             "(default: %(default)s)")
+    add_friction_option(parser)
+    parser.add_argument("--time-step", type=float, default=1e-3, metavar="H",
+                        help="time step of the rigid-block model [s] (default: %(default)s)")
+    parser.add_argument("--workers", type=int, default=None, metavar="N",
+                        help="local worker processes of the rigid-block analyses, one duration "
+                             "per task, at most 4 per CPU (default: 1, run in this process)")
+    parser.add_argument("--plot", metavar="FILE.png",
+                        help="write the failure curves of both models against t_p")
+    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+    parser.add_argument("--json", action="store_true",
+                        help="machine-readable output: [{duration, rigid_block, four_link: "
+                             "{computed, link, paper, blocks}, recovery_above, scanned_to}]")
+    parser.set_defaults(func=_run_compare)
+
+
+MIN_COMPARE_RESOLUTION_G = 1e-6
+"""Finest bisection width of ``archquake compare`` [g]: a rigid-block boundary is decided by
+time steps of 1 ms, finer widths only cost analyses."""
+
+
+def _run_compare(args: argparse.Namespace) -> int:
+    from .comparison import compare_models
+    from .rigid_blocks import BlockSettings
+
+    durations = _durations(args.durations)
+    amplitudes = _amplitudes(args.amplitudes)
+    if not (math.isfinite(args.resolution) and args.resolution >= MIN_COMPARE_RESOLUTION_G):
+        raise ValueError(f"--resolution must be >= {MIN_COMPARE_RESOLUTION_G:g} g, got "
+                         f"{args.resolution}")
+    if amplitudes[-1] > MAX_ACCELERATION_G:
+        raise ValueError(f"--amplitudes must be at most {MAX_ACCELERATION_G:g} g, got "
+                         f"{amplitudes[-1]:g}")
+    workers = check_workers(args.workers)
+    try:
+        settings = BlockSettings(friction=args.friction, time_step=args.time_step)
+    except ValueError as exc:
+        raise ValueError(f"--{str(exc).replace('_', '-')}") from None
+    if args.plot:
+        _check_figure_path(args.plot)
+    arch = arch_from_args(args)
+    with analysing(args):
+        comparison = compare_models(arch, durations, amplitudes_g=amplitudes,
+                                    resolution=args.resolution, direction=args.direction,
+                                    settings=settings, workers=workers,
+                                    progress=not args.no_progress)
+    if args.plot:
+        plt = _pyplot()
+
+        from .plotting import plot_model_comparison, plot_model_differences
+
+        fig, (left, right) = plt.subplots(1, 2, figsize=(14.5, 5.6), constrained_layout=True,
+                                          width_ratios=(1.2, 1.0))
+        plot_model_comparison(comparison, left)
+        plot_model_differences(comparison, right)
+        _save_figure(fig, args.plot)
+    rows = comparison.to_list()
+    if args.json:
+        print_json(rows)
+        return 0
+    coefficients = ", ".join(f"{name} {pair[0]:.3f}" for name, pair in
+                             comparison.restitution.items())
+    print(f"Failure acceleration [g] under Oppenheim's pulse, first pulse "
+          f"{'-' if args.direction == 'l' else '+'}a g; k = {comparison.load_multiplier:.4f}")
+    print(f"rigid blocks: friction {settings.friction:g}, time step {settings.time_step:g} s; "
+          f"four-link c_v: {coefficients}; scan {amplitudes[0]:g}-{amplitudes[-1]:g} g, "
+          f"boundaries to {args.resolution:g} g; (+x %): four-link vs rigid blocks")
+    names = list(comparison.four_link)
+    print(f"{'t_p [s]':>8} {'rigid blocks':>13}" + "".join(f" {n:>15}" for n in names))
+    for row in rows:
+        top = f"> {row['scanned_to']:.3g}"
+        rigid = row["rigid_block"]
+        cells = [f"{rigid:>13.3f}" if rigid is not None else f"{top:>13}"]
+        for name in names:
+            value = row["four_link"][name]
+            if value is None:
+                cells.append(f"{top:>15}")
+            elif rigid is None:
+                cells.append(f"{value:>15.3f}")
+            else:
+                cells.append(f"{value:>7.3f} ({100 * (value / rigid - 1):+4.0f} %)".rjust(15))
+        print(f"{row['duration']:>8.3f} " + " ".join(cells))
+    bands = []
+    for row in rows:
+        for name, values in (("rigid blocks", row["recovery_above"]["rigid_block"]),
+                             *row["recovery_above"]["four_link"].items()):
+            if values:
+                text = ", ".join(f"{a:.3f}-{b:.3f}" for a, b in values)
+                bands.append(f"  t_p = {row['duration']:g} s, {name}: {text}")
+    if bands:
+        print("recovery above the failure acceleration [g]:")
+        print("\n".join(bands))
+    if args.plot:
+        print(f"figure written to {args.plot}")
+    return 0
+
+
+COMMANDS.append(add_compare)
 
 
 if __name__ == "__main__":  # pragma: no cover

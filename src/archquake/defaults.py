@@ -98,3 +98,28 @@ integrator does not step across, and one analysis is limited to
 
 MAX_BLOCK_STEPS = 5_000_000
 """Most time steps of one rigid-block analysis (some minutes for the paper's arch)."""
+
+# --- the rigid-block model and its comparison with the four-link model
+
+DEFAULT_FRICTION = 0.8
+"""Coulomb friction coefficient of the joints of the rigid-block model [-]."""
+
+COMPARE_DURATIONS = (0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 1.0)
+"""Pulse durations t_p [s] of a comparison of the two models (``archquake compare``)."""
+
+COMPARE_AMPLITUDES_G = (0.3, 3.0, 0.1)
+"""``(start, stop, step)`` [g] of the amplitude scan of a comparison, the same for both models:
+from below the activation of Oppenheim's arch (k = 0.37) to 3 g (its collapse in the first half
+cycle at t_p = 0.2 s is at 3.07 g)."""
+
+COMPARE_RESOLUTION_G = 5e-3
+"""Bisection width of every boundary of a comparison [g], the same for both models (a
+rigid-block analysis costs about 100 four-link ones)."""
+
+COMPARE_RESTITUTIONS = ("computed", "link", "paper", "blocks")
+"""Restitution models of the four-link model in a comparison (names of
+:data:`archquake.impact.RESTITUTION_MODELS`)."""
+
+MAX_BLOCK_GRID_POINTS = 10_000
+"""Most (duration, amplitude) points of a rigid-block failure curve's scan: some tens of minutes
+of analyses on two cores (a point costs 10-100 ms)."""

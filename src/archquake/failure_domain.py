@@ -127,6 +127,16 @@ class DomainSlice:
         return math.nan
 
     @property
+    def recovery_above_g(self) -> list[tuple[float, float]]:
+        """Recovery intervals ``(from, to)`` [g] above the failure acceleration: amplitudes that
+        collapse the arch less easily than a lower one (empty if none, or no collapse)."""
+        failure = self.failure_acceleration_g
+        if math.isnan(failure):
+            return []
+        return [(iv.start, iv.end) for iv in self.intervals
+                if iv.status == "recovery" and iv.start > failure]
+
+    @property
     def scanned_to_g(self) -> float:
         """Largest amplitude of the scan [g]: a boundary reported as nan lies beyond it."""
         return self.intervals[-1].end

@@ -656,3 +656,117 @@ def plot_incremental(result, ax=None, *, arch: int | None = None):
                        Patch(facecolor="white", edgecolor="0.5", label="survives")],
               loc="upper left", fontsize=7.5)
     return ax
+
+
+COMPARISON_COLOURS = {"computed": "tab:blue", "link": "tab:orange", "paper": "tab:green",
+                      "blocks": "tab:red", "nominal": "tab:purple", "elastic": "tab:brown"}
+"""Colour of the four-link model's curve for each restitution model."""
+
+
+def plot_model_comparison(comparison, ax=None):
+    """Failure acceleration against pulse duration in the rigid-block and four-link models.
+
+    Black squares: the rigid-block model; coloured lines: the four-link model with each
+    restitution model; vertical bars at a duration: the recovery bands above a failure
+    acceleration (amplitudes at which the arch survives although a lower one collapses it),
+    grey for the rigid-block model, coloured (slightly offset) for the four-link model; open
+    triangles at the top of the scan: no collapse in the scan; dashed: the limit-analysis k,
+    below which neither model moves.
+
+    Parameters
+    ----------
+    comparison : archquake.comparison.ModelComparison
+        The comparison (:func:`archquake.comparison.compare_models`).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; a new figure when None.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn on.
+    """
+    if ax is None:
+        _, ax = plt.subplots(figsize=(8.0, 5.4), constrained_layout=True)
+    durations = comparison.durations
+    order = np.argsort(durations)
+    x = durations[order]
+    top = float(comparison.amplitudes_g[-1])
+    span = float(np.ptp(x)) if x.size > 1 else 1.0
+    curves = [("rigid_block", "rigid-block model", comparison.rigid_block.slices, "black")]
+    for name, domain in comparison.four_link.items():
+        c_lr, c_rl = domain.restitution
+        c_text = f"{c_lr:.3f}" if abs(c_lr - c_rl) < 5e-4 else f"{c_lr:.3f}/{c_rl:.3f}"
+        curves.append((name, f"four-link, c$_v$ = {c_text} ({name})", domain.slices,
+                       COMPARISON_COLOURS.get(name, None)))
+    for j, (name, label, slices, colour) in enumerate(curves):
+        slices = [slices[i] for i in order]
+        failure = np.array([s.failure_acceleration_g for s in slices])
+        rigid = name == "rigid_block"
+        (line,) = ax.plot(x, failure, "-s" if rigid else "-o", color=colour,
+                          linewidth=2.2 if rigid else 1.2, markersize=6 if rigid else 3.5,
+                          label=label, zorder=4 if rigid else 3)
+        colour = line.get_color()
+        shift = 0.0 if rigid else 0.008 * span * j
+        beyond = np.isnan(failure)
+        if np.any(beyond):
+            ax.plot(x[beyond] + shift, np.full(beyond.sum(), top), "^", color=colour,
+                    markerfacecolor="none", markersize=8, zorder=5)
+        for xi, s in zip(x, slices, strict=True):
+            for lo, hi in s.recovery_above_g:
+                ax.plot([xi + shift, xi + shift], [lo, hi], "-", color="0.55" if rigid else colour,
+                        linewidth=5 if rigid else 2, alpha=0.8, solid_capstyle="butt", zorder=2)
+    k = comparison.load_multiplier
+    ax.axhline(k, color="black", linestyle="--", linewidth=1.0,
+               label=f"limit analysis, k = {k:.3f}")
+    ax.plot([], [], "^", color="0.3", markerfacecolor="none", label="no collapse up to the "
+                                                                      "top of the scan")
+    ax.plot([], [], "-", color="0.55", linewidth=5, label="recovery above the failure "
+                                                          "acceleration")
+    ax.set_yscale("log")
+    ax.set_ylim(float(comparison.amplitudes_g[0]), top * 1.08)
+    ticks = [t for t in (0.3, 0.4, 0.5, 0.7, 1.0, 1.5, 2.0, 3.0, 5.0, 10.0)
+             if comparison.amplitudes_g[0] <= t <= top * 1.08]
+    ax.set_yticks(ticks, [f"{t:g}" for t in ticks])
+    ax.minorticks_off()
+    ax.set_xlabel("pulse duration t$_p$ [s]")
+    ax.set_ylabel("failure acceleration |$\\ddot{x}_g$|/g [-]")
+    friction = comparison.rigid_block.settings.friction
+    ax.set_title(f"Rigid-block and four-link models: failure curves (friction {friction:g})")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="upper right", fontsize=8, framealpha=0.9)
+    return ax
+
+
+def plot_model_differences(comparison, ax=None):
+    """Relative difference of the four-link failure acceleration from the rigid-block one,
+    ``a_four_link / a_rigid_block - 1`` [%], against pulse duration, one line per restitution
+    model; the grey band is +-5 %.
+
+    Parameters
+    ----------
+    comparison : archquake.comparison.ModelComparison
+        The comparison (:func:`archquake.comparison.compare_models`).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; a new figure when None.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn on.
+    """
+    if ax is None:
+        _, ax = plt.subplots(figsize=(7.0, 5.4), constrained_layout=True)
+    order = np.argsort(comparison.durations)
+    x = comparison.durations[order]
+    ax.axhspan(-5.0, 5.0, color="0.88", zorder=0, label="$\\pm$5 %")
+    ax.axhline(0.0, color="black", linewidth=1.0)
+    for name, difference in comparison.relative_differences().items():
+        c_lr = comparison.four_link[name].restitution[0]
+        ax.plot(x, 100.0 * difference[order], "-o", color=COMPARISON_COLOURS.get(name),
+                markersize=3.5, linewidth=1.2, label=f"{name}, c$_v$ = {c_lr:.3f}")
+    ax.set_xlabel("pulse duration t$_p$ [s]")
+    ax.set_ylabel("four-link / rigid-block failure acceleration - 1 [%]")
+    ax.set_title("Difference from the rigid-block model (none: no failure in the scan)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="best", fontsize=8, framealpha=0.9)
+    return ax

@@ -55,7 +55,7 @@ from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
 
-from ..defaults import MAX_BLOCK_STEPS
+from ..defaults import DEFAULT_FRICTION, MAX_BLOCK_STEPS
 from ..geometry import GRAVITY, BlockArch
 from ..ground_motion import GroundMotion
 from . import solver
@@ -101,7 +101,7 @@ class BlockSettings:
         Longest time observed after the end of the excitation [s], > 0.
     """
 
-    friction: float = 0.8
+    friction: float = DEFAULT_FRICTION
     time_step: float = 1e-3
     theta: float = 0.5
     tolerance: float = 1e-6

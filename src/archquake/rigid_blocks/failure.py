@@ -15,11 +15,13 @@ model's Mech-l), ``"r"`` makes it ``+a g``. Amplitudes are given and reported in
 from __future__ import annotations
 
 import math
+import sys
 from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
+from ..defaults import MAX_BLOCK_GRID_POINTS
 from ..failure_domain import DomainSlice, check_direction, domain_slice, inclusive_range
 from ..geometry import GRAVITY
 from ..ground_motion import ANALYTIC_GROUND_MOTIONS, ground_motion
@@ -66,13 +68,7 @@ class FailureCurve:
     def recovery_bands(self) -> list[list[tuple[float, float]]]:
         """Per duration, the recovery intervals ``(from, to)`` [g] above the failure
         acceleration (amplitudes that collapse less easily than a lower one)."""
-        out = []
-        for s in self.slices:
-            failure = s.failure_acceleration_g
-            out.append([(iv.start, iv.end) for iv in s.intervals
-                        if iv.status == "recovery" and not math.isnan(failure)
-                        and iv.start > failure])
-        return out
+        return [s.recovery_above_g for s in self.slices]
 
     def to_list(self) -> list[dict]:
         """JSON-ready list: duration [s], failure acceleration [g] (None: none), recovery
@@ -162,7 +158,7 @@ def warm_up() -> None:
 def failure_curve(structure, durations: Sequence[float], *, direction: str = "l",
                   motion: str = "oppenheim", amplitudes_g=None,
                   resolution: float = DEFAULT_RESOLUTION_G, settings: BlockSettings | None = None,
-                  workers: int | None = None) -> FailureCurve:
+                  workers: int | None = None, progress: bool = False) -> FailureCurve:
     """Failure accelerations of the rigid-block model for several pulse durations.
 
     Parameters
@@ -175,27 +171,52 @@ def failure_curve(structure, durations: Sequence[float], *, direction: str = "l"
         As :func:`failure_slice`.
     workers : int, optional
         Local worker processes, one duration per task (default: run here).
+    progress : bool
+        Show a progress bar over the durations (on stderr).
 
     Returns
     -------
     FailureCurve
+
+    Raises
+    ------
+    ValueError
+        For bad input, or a scan of more than
+        :data:`archquake.defaults.MAX_BLOCK_GRID_POINTS` (duration, amplitude) points.
     """
     d = np.atleast_1d(np.asarray(durations, dtype=float))
     if d.ndim != 1 or d.size == 0 or not np.all(np.isfinite(d)) or np.any(d <= 0):
         raise ValueError(f"durations must be a non-empty sequence of finite numbers > 0 [s], "
                          f"got {np.asarray(durations).tolist()}")
     settings = BlockSettings() if settings is None else settings
+    points = d.size * _grid(amplitudes_g).size
+    if points > MAX_BLOCK_GRID_POINTS:
+        raise ValueError(f"the scan of {d.size} durations x {points // d.size} amplitudes = "
+                         f"{points} rigid-block analyses is too large: at most "
+                         f"{MAX_BLOCK_GRID_POINTS} (MAX_BLOCK_GRID_POINTS, tens of minutes); use "
+                         f"fewer durations or a coarser grid")
     kwargs = {"direction": direction, "motion": motion, "amplitudes_g": amplitudes_g,
               "resolution": resolution, "settings": settings}
     tasks = [(_assembly(structure), float(tp), kwargs) for tp in d]
     if workers is not None and (isinstance(workers, bool) or int(workers) != workers
                                 or workers < 1):
         raise ValueError(f"workers must be an integer >= 1, got {workers!r}")
-    if workers is None or workers == 1 or d.size == 1:
-        slices = [_slice_task(task) for task in tasks]
-    else:
-        from ..execution import process_pool
+    from tqdm.auto import tqdm
 
-        with process_pool(min(int(workers), d.size), warm_up=warm_up) as pool:
-            slices = list(pool.map(_slice_task, tasks))
+    bar = tqdm(total=d.size, desc="rigid blocks", unit="duration", disable=not progress,
+               file=sys.stderr)
+    with bar:
+        if workers is None or workers == 1 or d.size == 1:
+            slices = []
+            for task in tasks:
+                slices.append(_slice_task(task))
+                bar.update()
+        else:
+            from ..execution import process_pool
+
+            with process_pool(min(int(workers), d.size), warm_up=warm_up) as pool:
+                slices = []
+                for s in pool.map(_slice_task, tasks):
+                    slices.append(s)
+                    bar.update()
     return FailureCurve(tuple(slices), direction, motion, settings)
