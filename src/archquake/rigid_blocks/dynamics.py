@@ -25,8 +25,11 @@ Outcome
     After the end of the excitation, every joint is closed (every contact valid with a gap below
     ``closed_gap`` times the thickness) and the kinetic energy is below that of the whole mass
     moving at ``rest_speed`` times ``sqrt(g t)``, continuously for ``rest_window`` seconds.
-    A structure that is closed and still, with no excitation, stays so; a near-critical arch
-    that hovers open is not closed and is watched until it falls back or falls.
+    A structure that is closed and still, with no excitation, stays so. A structure still for
+    ``open_rest_window`` seconds (default 1 s) with a joint open is also a recovery, at rest in
+    a displaced configuration (``closed`` False): blocks that slipped can wedge with a joint
+    open, which the four-link model cannot represent. A near-critical arch that passes slowly
+    near an unstable equilibrium does not stay still that long.
 ``rest``
     As recovery, but no joint ever opened or slipped by more than ``moved_opening`` times the
     thickness during the whole run: the structure moved with the ground.
@@ -97,6 +100,11 @@ class BlockSettings:
         thickness [-], > 0.
     rest_window : float
         Time the structure must stay closed and still to be back at rest [s], > 0.
+    open_rest_window : float
+        Time the structure must stay still with a joint open to be at rest in a displaced
+        configuration (blocks that slipped and wedged) [s], > 0; longer than ``rest_window``
+        so that an arch passing slowly near an unstable equilibrium is not taken for one at
+        rest.
     settle_time : float
         Longest time observed after the end of the excitation [s], > 0.
     """
@@ -112,6 +120,7 @@ class BlockSettings:
     closed_gap: float = 1e-4
     moved_opening: float = 1e-5
     rest_window: float = 0.1
+    open_rest_window: float = 1.0
     settle_time: float = 20.0
 
     def __post_init__(self):
@@ -129,7 +138,8 @@ class BlockSettings:
             raise ValueError(f"max_iterations must be an integer >= 1, got "
                              f"{self.max_iterations!r}")
         for name in ("time_step", "tolerance", "collapse_drop", "energy_margin", "rest_speed",
-                     "closed_gap", "moved_opening", "rest_window", "settle_time"):
+                     "closed_gap", "moved_opening", "rest_window", "open_rest_window",
+                     "settle_time"):
             if getattr(self, name) <= 0:
                 raise ValueError(f"{name} must be > 0, got {getattr(self, name)!r}")
 
@@ -154,6 +164,9 @@ class BlockOutcome:
         Largest gap at a joint end [m].
     decided : bool
         False if the run reached ``settle_time`` after the excitation undecided.
+    closed : bool
+        Every joint closed when the run stopped; False for a recovery at rest in a displaced
+        configuration, or a collapse.
     decision_time : float
         Time at which the outcome was decided [s].
     steps : int
@@ -173,6 +186,7 @@ class BlockOutcome:
     max_slip: float
     max_opening: float
     decided: bool
+    closed: bool
     decision_time: float
     steps: int
     mean_iterations: float
@@ -381,6 +395,7 @@ def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None,
         settings.collapse_drop * thickness,
         0.5 * total_mass * (settings.rest_speed**2) * GRAVITY * thickness,
         settings.closed_gap * thickness, max(1, int(round(settings.rest_window / h))),
+        max(1, int(round(settings.open_rest_window / h))),
         settings.moved_opening * thickness,
         settings.energy_margin * total_mass * GRAVITY * thickness,
         int(record_every), tail_steps,
@@ -394,6 +409,7 @@ def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None,
         status=STATUS_NAMES[status], collapse_time=s["collapse_time"],
         max_rotation=s["max_rotation"], max_crown_drop=s["max_crown_drop"],
         max_slip=s["max_slip"], max_opening=s["max_opening"], decided=bool(s["decided"]),
+        closed=bool(s["closed"]),
         decision_time=s["decision_time"], steps=steps,
         mean_iterations=s["iterations"] / max(steps, 1), fallback_steps=int(s["fallbacks"]),
         unconverged_steps=int(s["unconverged_steps"]),

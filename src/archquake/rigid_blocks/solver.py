@@ -519,7 +519,7 @@ def run(masses, inertias, centroids, ca, cb, ra, rb, normal, tangent, offset, fa
         kind, params, times, values,
         h, theta, mu, tolerance, max_iterations, gravity,
         excitation_end, n_steps, drop_limit, rest_energy, closed_gap, rest_steps,
-        moved_threshold, energy_margin, record_stride, tail_steps):
+        open_rest_steps, moved_threshold, energy_margin, record_stride, tail_steps):
     """Integrate the blocks from ``(q0, v0)`` under the ground motion; decide the outcome.
 
     Parameters are the arrays of :func:`archquake.rigid_blocks.dynamics.contact_arrays`, the
@@ -528,10 +528,11 @@ def run(masses, inertias, centroids, ca, cb, ra, rb, normal, tangent, offset, fa
     Seidel ``tolerance`` [-] and ``max_iterations``, ``gravity`` [m/s^2], ``excitation_end``
     [s], at most ``n_steps`` steps, the collapse ``drop_limit`` [m], the kinetic energy of rest
     ``rest_energy`` [J/m], the gap of a closed joint ``closed_gap`` [m], ``rest_steps`` steps of
-    rest that decide a recovery, the opening and slip ``moved_threshold`` [m] below which the
-    structure never moved, the ``energy_margin`` [J/m] of the energy test of collapse; with
-    ``record_stride > 0`` every ``record_stride``-th state is recorded and the run goes on
-    ``tail_steps`` steps after the outcome is decided (or to ``n_steps`` if ``tail_steps < 0``).
+    rest that decide a recovery (``open_rest_steps`` with a joint still open), the opening and
+    slip ``moved_threshold`` [m] below which the structure never moved, the ``energy_margin``
+    [J/m] of the energy test of collapse; with ``record_stride > 0`` every ``record_stride``-th
+    state is recorded and the run goes on ``tail_steps`` steps after the outcome is decided (or
+    to ``n_steps`` if ``tail_steps < 0``).
 
     Returns
     -------
@@ -644,9 +645,9 @@ def run(masses, inertias, centroids, ca, cb, ra, rb, normal, tangent, offset, fa
             if drop >= drop_limit or (after and kinetic + potential < -energy_margin):
                 status = COLLAPSE
                 collapse_time = t
-            elif after and closed and kinetic <= rest_energy:
+            elif after and kinetic <= rest_energy:
                 rest_count += 1
-                if rest_count >= rest_steps:
+                if rest_count >= (rest_steps if closed else open_rest_steps):
                     moved = max_opening > moved_threshold or max_slip > moved_threshold
                     status = RECOVERY if moved else REST
             else:
