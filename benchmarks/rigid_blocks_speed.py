@@ -218,10 +218,11 @@ def main(argv=None) -> int:
         for values in four_link.values():
             other = values[i]
             ratio = "" if math.isnan(other) or math.isnan(blocks) else (
-                f" ({100 * (blocks / other - 1):+.1f} %)")
+                f" ({100 * (other / blocks - 1):+.1f} %)")
             row += f" {other:>14.3f}{ratio:>10}"
         print(row)
-    print("  (nan: no collapse up to 3 g; the percentage is rigid blocks vs four-link)")
+    print("  (nan: no collapse up to 3 g; the percentage is four-link vs rigid blocks, as "
+          "archquake compare prints it)")
     return 0
 
 
