@@ -30,8 +30,9 @@ def rocking_mode(corner_x: float, height: float) -> np.ndarray:
 @pytest.mark.parametrize("width", [0.4, 1.0, 1.6])
 def test_block_coefficient_is_housners(width):
     """A block rocking on its left corner (turning clockwise back to its base) lands on its
-    right corner: c = r = 1 - 1.5 sin^2(alpha) (Housner 1963: angular momentum about the new
-    corner conserved), to the weight's share of the impact (1e-4)."""
+    right corner: c = 1 - 1.5 sin^2(alpha), the square root of Housner's energy ratio r
+    (Housner 1963: angular momentum about the new corner conserved), to the weight's share of
+    the impact (1e-4)."""
     block = rectangular_block(width, HEIGHT)
     alpha = math.atan2(0.5 * width, 0.5 * HEIGHT)
     housner = 1.0 - 1.5 * math.sin(alpha) ** 2
