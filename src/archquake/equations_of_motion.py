@@ -1,38 +1,79 @@
-"""Equation of motion of the four-link mechanism [paper, Sect. 4.3, eqs. (5)-(7)].
+r"""Equation of motion of the four-link mechanism: Sect. 4.3, Eqs. (5)-(7) in [1]_, after [2]_.
 
-Lagrange's equation ``d/dt(dT/d theta') - dT/d theta + dV/d theta = Q`` for the three rigid blocks
-of a :class:`~archquake.mechanism.FourLinkMechanism`, with the real (irregular) mass, centre of mass
-and moment of inertia of every block, gives (eq. (6) of the paper)::
+Lagrange's equation (Eq. (5) in [1]_)
 
-    M(theta) theta'' + L(theta) theta'^2 + F(theta) g = P(theta) xg''
+.. math::
 
-with, for blocks k = 1, 2, 3 of centre of mass G_k and rotation delta_k::
+    \frac{d}{dt}\frac{\partial T}{\partial \dot\theta} - \frac{\partial T}{\partial \theta}
+    + \frac{\partial V}{\partial \theta} = Q
 
-    M = sum_k m_k |dG_k/d theta|^2 + I_k (d delta_k/d theta)^2     T = 1/2 M theta'^2
-    L = 1/2 dM/d theta
-    F = (1/g) dV/d theta = sum_k m_k dy_Gk/d theta                   (eq. (4) of the paper / g)
-    P = -sum_k m_k dx_Gk/d theta
+for the three rigid blocks of a :class:`~archquake.mechanism.FourLinkMechanism`, with the real
+(irregular) mass, centre of mass and moment of inertia of every block, gives for Mech-l (Eq. (6)
+in [1]_)
 
-P is the generalised force of the inertial forces ``-m xg''`` (x toward +x of the mechanism's
-frame). In closed form, with the pivot inertias ``J_k`` (about A, B, D), the arms ``r_k, psi_k`` of
-eq. (3) and the four-bar rates ``w_bc, w_cd, a_bc, a_cd`` of
-:func:`~archquake.linkage.four_bar_rates`::
+.. math::
 
-    M = J1 + m2 AB^2 + J2 w_bc^2 + J3 w_cd^2 + 2 m2 AB r2 w_bc cos(chi),
-        chi = theta_bc + psi2 - theta
-    L = J2 w_bc a_bc + J3 w_cd a_cd + m2 AB r2 [a_bc cos(chi) - w_bc (w_bc - 1) sin(chi)]
-    F = m1 r1 cos(theta + psi1) + m2 AB cos(theta) + m2 r2 w_bc cos(theta_bc + psi2)
-        + m3 r3 w_cd cos(theta_cd + psi3)
-    P = m1 r1 sin(theta + psi1) + m2 AB sin(theta) + m2 r2 w_bc sin(theta_bc + psi2)
-        + m3 r3 w_cd sin(theta_cd + psi3)
+    M(\theta)\,\ddot\theta + L(\theta)\,\dot\theta^2 + F(\theta)\,g = P(\theta)\,\ddot x_g
+
+with, for blocks k = 1, 2, 3 of mass :math:`m_k`, centre of mass :math:`G_k = (x_{G_k},
+y_{G_k})`, moment of inertia :math:`I_k` about :math:`G_k` and rotation :math:`\delta_k`
+(:mod:`archquake.mechanism`),
+
+.. math::
+
+    T = \tfrac12 M(\theta)\,\dot\theta^2, \qquad
+    M = \sum_k m_k \left|\frac{dG_k}{d\theta}\right|^2
+        + I_k \left(\frac{d\delta_k}{d\theta}\right)^2, \qquad
+    L = \frac12 \frac{dM}{d\theta},
+
+.. math::
+
+    F = \frac1g \frac{dV}{d\theta} = \sum_k m_k \frac{dy_{G_k}}{d\theta}, \qquad
+    P = -\sum_k m_k \frac{dx_{G_k}}{d\theta}.
+
+:math:`F g` is Eq. (4) in [1]_; :math:`P\,\ddot x_g` is the generalised force :math:`Q` of the
+inertial forces :math:`-m_k \ddot x_g` (x toward +x of the mechanism's frame, :math:`\ddot x_g`
+[m/s^2]). In closed form, with the pivot inertias :math:`J_k` (about A, B, D), the arms
+:math:`r_k, \psi_k` of Eq. (3) in [1]_ and the four-bar rates :math:`w_{bc} =
+d\theta_{bc}/d\theta`, :math:`w_{cd} = d\theta_{cd}/d\theta`, :math:`a_{bc} = dw_{bc}/d\theta`,
+:math:`a_{cd} = dw_{cd}/d\theta` of :func:`~archquake.linkage.four_bar_rates`:
+
+.. math::
+
+    M &= J_1 + m_2\,AB^2 + J_2\,w_{bc}^2 + J_3\,w_{cd}^2 + 2\,m_2\,AB\,r_2\,w_{bc} \cos\chi,
+    \qquad \chi = \theta_{bc} + \psi_2 - \theta,
+
+    L &= J_2\,w_{bc}\,a_{bc} + J_3\,w_{cd}\,a_{cd}
+        + m_2\,AB\,r_2 \left[a_{bc} \cos\chi - w_{bc}\,(w_{bc} - 1) \sin\chi\right],
+
+    F &= m_1 r_1 \cos(\theta + \psi_1) + m_2\,AB \cos\theta
+        + m_2 r_2\,w_{bc} \cos(\theta_{bc} + \psi_2) + m_3 r_3\,w_{cd} \cos(\theta_{cd} + \psi_3),
+
+    P &= m_1 r_1 \sin(\theta + \psi_1) + m_2\,AB \sin\theta
+        + m_2 r_2\,w_{bc} \sin(\theta_{bc} + \psi_2) + m_3 r_3\,w_{cd} \sin(\theta_{cd} + \psi_3).
 
 Mech-r lives in the mirrored frame, so the ground acceleration of the original frame enters with
-the opposite sign (eq. (7) of the paper): ``M theta'' + L theta'^2 + F g = -P xg''``.
+the opposite sign (Eq. (7) in [1]_):
+
+.. math::
+
+    M(\theta')\,\ddot\theta' + L(\theta')\,\dot\theta'^2 + F(\theta')\,g
+    = -P(\theta')\,\ddot x_g.
 
 This is the one definition of M, L, F, P: the compiled engine (:mod:`archquake.engine`) does not
 re-derive them, it tabulates these very functions (:func:`archquake.engine.tabulate`), and the
-slope of the potential energy is ``dV/d theta = g F``
-(:meth:`~archquake.mechanism.FourLinkMechanism.potential_energy_derivative`).
+slope of the potential energy is :math:`dV/d\theta = g F`
+(:meth:`~archquake.mechanism.FourLinkMechanism.potential_energy_derivative`). Masses are per
+unit depth of the arch: :math:`m_k` [kg/m], so M and L are in [kg m^2/m] and F and P in
+[kg m/m].
+
+References
+----------
+.. [1] The paper, Sect. 4.2, Eqs. (3)-(4) (potential energy) and Sect. 4.3, Eqs. (5)-(7)
+   (Lagrange's equation, the equations of motion of Mech-l and Mech-r).
+.. [2] Oppenheim, I. J. (1992). The masonry arch as a four-link mechanism under base motion.
+   Earthquake Engineering & Structural Dynamics 21 (the coefficients M, L, F, P, which [1]_
+   takes from it).
 """
 
 from __future__ import annotations
@@ -49,12 +90,35 @@ if TYPE_CHECKING:  # the mechanism builds on this module, not the other way roun
 
 
 def coefficients_from_parameters(theta, parameters):
-    """M, L, F, P at ``theta`` from a mechanism's flat parameter vector (eq. (6) of the paper).
+    r"""M, L, F, P at ``theta`` from a mechanism's flat parameter vector (Eq. (6) in [1]_).
+
+    The closed forms of the module docstring: the four-bar closure and rates at ``theta``
+    (:func:`~archquake.linkage.four_bar_closure`, :func:`~archquake.linkage.four_bar_rates`),
+    then
+
+    .. math::
+
+        M &= J_1 + m_2\,AB^2 + J_2\,w_{bc}^2 + J_3\,w_{cd}^2 + 2\,m_2\,AB\,r_2\,w_{bc} \cos\chi,
+
+        L &= J_2\,w_{bc}\,a_{bc} + J_3\,w_{cd}\,a_{cd}
+            + m_2\,AB\,r_2 \left[a_{bc} \cos\chi - w_{bc}\,(w_{bc} - 1) \sin\chi\right],
+
+        F &= m_1 r_1 \cos(\theta + \psi_1) + m_2\,AB \cos\theta
+            + m_2 r_2\,w_{bc} \cos(\theta_{bc} + \psi_2)
+            + m_3 r_3\,w_{cd} \cos(\theta_{cd} + \psi_3),
+
+        P &= m_1 r_1 \sin(\theta + \psi_1) + m_2\,AB \sin\theta
+            + m_2 r_2\,w_{bc} \sin(\theta_{bc} + \psi_2)
+            + m_3 r_3\,w_{cd} \sin(\theta_{cd} + \psi_3),
+
+    with :math:`\chi = \theta_{bc} + \psi_2 - \theta`. Plain array arithmetic, so the same
+    function serves the mechanism, the tables of the engine and the tests.
 
     Parameters
     ----------
     theta : float or array
         Lagrangian coordinate [rad].
+
     parameters : ndarray, shape (23,)
         :attr:`archquake.mechanism.FourLinkMechanism.parameters` (layout
         :data:`archquake.mechanism.PARAMETER_NAMES`).
@@ -62,13 +126,22 @@ def coefficients_from_parameters(theta, parameters):
     Returns
     -------
     M : float or array
-        Generalised mass [kg m/m = kg m^2 per unit depth].
+        Generalised mass (moment of inertia of the mechanism about its coordinate)
+        [kg m^2/m].
+
     L : float or array
         Coefficient of ``theta'^2``, ``1/2 dM/d theta`` [kg m^2/m].
+
     F : float or array
         Gravity coefficient ``(1/g) dV/d theta`` [kg m/m].
+
     P : float or array
-        Ground-acceleration coefficient [kg m/m].
+        Ground-acceleration coefficient [kg m/m]. All four are NaN where the linkage cannot
+        close.
+
+    References
+    ----------
+    .. [1] The paper, Sect. 4.2, Eq. (4) and Sect. 4.3, Eqs. (5)-(6).
     """
     p = parameters
     ax, ay, dx, dy = p[0], p[1], p[2], p[3]
@@ -95,21 +168,72 @@ def coefficients_from_parameters(theta, parameters):
 
 
 def coefficients(mechanism: FourLinkMechanism, theta):
-    """M, L, F, P of ``mechanism`` at ``theta`` [rad] (eq. (6) of the paper; vectorised).
+    r"""M, L, F, P of ``mechanism`` at ``theta`` (Eq. (6) in [1]_; vectorised).
 
-    See :func:`coefficients_from_parameters` for the units.
+    :func:`coefficients_from_parameters` on ``mechanism.parameters``.
+
+    Parameters
+    ----------
+    mechanism : FourLinkMechanism
+        Mech-l or Mech-r (the coefficients are those of its own frame).
+
+    theta : float or array
+        Lagrangian coordinate [rad].
+
+    Returns
+    -------
+    M, L, F, P : float or array
+        [kg m^2/m], [kg m^2/m], [kg m/m], [kg m/m]; see :func:`coefficients_from_parameters`.
+
+    References
+    ----------
+    .. [1] The paper, Sect. 4.3, Eqs. (6)-(7).
+
+    Examples
+    --------
+    At the undisplaced configuration, :math:`-F/P` is the load multiplier of the same hinges
+    by virtual work: 0.37 for Oppenheim's arch (Table 1 of the paper).
+
+    >>> from archquake import oppenheim
+    >>> from archquake.mechanism import mechanisms
+    >>> mech_l, _ = mechanisms(oppenheim())
+    >>> m, l, f, p = coefficients(mech_l, mech_l.theta_u)
+    >>> round(float(-f / p), 3)
+    0.37
     """
     return coefficients_from_parameters(np.asarray(theta, dtype=float), mechanism.parameters)
 
 
 def ground_sign(mechanism: FourLinkMechanism) -> float:
-    """+1 for Mech-l (eq. (6)), -1 for Mech-r (eq. (7)): the sign with which the ground
-    acceleration of the original frame enters the mechanism's equation."""
+    """The sign with which the ground acceleration of the original frame enters the equation.
+
+    Parameters
+    ----------
+    mechanism : FourLinkMechanism
+        Mech-l or Mech-r.
+
+    Returns
+    -------
+    float
+        +1.0 for Mech-l (Eq. (6) in [1]_), -1.0 for Mech-r (Eq. (7) in [1]_, mirrored frame).
+
+    References
+    ----------
+    .. [1] The paper, Sect. 4.3, Eqs. (6)-(7).
+    """
     return 1.0 if mechanism.direction == "l" else -1.0
 
 
 def angular_acceleration(mechanism: FourLinkMechanism, theta, theta_dot, ground_acceleration):
-    """theta'' from the equation of motion (eqs. (6)-(7) of the paper).
+    r"""Angular acceleration from the equation of motion (Eqs. (6)-(7) in [1]_).
+
+    .. math::
+
+        \ddot\theta = \frac{s\,P(\theta)\,\ddot x_g - L(\theta)\,\dot\theta^2 - F(\theta)\,g}
+                           {M(\theta)},
+
+    with :math:`s` = +1 for Mech-l and -1 for Mech-r (:func:`ground_sign`) and :math:`g` =
+    :data:`~archquake.geometry.GRAVITY`.
 
     Parameters
     ----------
@@ -117,16 +241,36 @@ def angular_acceleration(mechanism: FourLinkMechanism, theta, theta_dot, ground_
         Mech-l or Mech-r.
     theta : float or array
         Lagrangian coordinate [rad].
+
     theta_dot : float or array
         Its rate [rad/s].
+
     ground_acceleration : float or array
         Ground acceleration xg'' toward +x of the original (unmirrored) frame [m/s^2].
 
     Returns
     -------
     float or array
-        ``theta''`` [rad/s^2] = ``(s P xg'' - L theta'^2 - F g) / M`` with ``s`` = +1 for Mech-l
-        and -1 for Mech-r.
+        ``theta''`` [rad/s^2] (broadcast over the three arguments).
+
+    References
+    ----------
+    .. [1] The paper, Sect. 4.3, Eqs. (6)-(7).
+
+    Examples
+    --------
+    Mech-l of Oppenheim's arch at rest in its undisplaced configuration: gravity alone closes it
+    (:math:`\ddot\theta > 0`); a ground acceleration of -0.5 g, beyond the activation
+    multiplier 0.37, opens it (:math:`\ddot\theta < 0`).
+
+    >>> from archquake import oppenheim
+    >>> from archquake.geometry import GRAVITY
+    >>> from archquake.mechanism import mechanisms
+    >>> mech_l, _ = mechanisms(oppenheim())
+    >>> bool(angular_acceleration(mech_l, mech_l.theta_u, 0.0, 0.0) > 0.0)
+    True
+    >>> bool(angular_acceleration(mech_l, mech_l.theta_u, 0.0, -0.5 * GRAVITY) < 0.0)
+    True
     """
     m, l, f, p = coefficients(mechanism, theta)
     return (ground_sign(mechanism) * p * np.asarray(ground_acceleration, dtype=float)
@@ -134,6 +278,33 @@ def angular_acceleration(mechanism: FourLinkMechanism, theta, theta_dot, ground_
 
 
 def kinetic_energy(mechanism: FourLinkMechanism, theta, theta_dot):
-    """Kinetic energy ``T = 1/2 M(theta) theta'^2`` [J/m] (relative to the ground)."""
+    r"""Kinetic energy of the mechanism relative to the ground.
+
+    .. math::
+
+        T = \tfrac12\,M(\theta)\,\dot\theta^2
+
+    (the :math:`T` of Lagrange's equation, Eq. (5) in [1]_).
+
+    Parameters
+    ----------
+    mechanism : FourLinkMechanism
+        Mech-l or Mech-r.
+
+    theta : float or array
+        Lagrangian coordinate [rad].
+
+    theta_dot : float or array
+        Its rate [rad/s].
+
+    Returns
+    -------
+    float or array
+        T [J/m].
+
+    References
+    ----------
+    .. [1] The paper, Sect. 4.3, Eq. (5).
+    """
     m, _, _, _ = coefficients(mechanism, theta)
     return 0.5 * m * np.asarray(theta_dot, dtype=float) ** 2

@@ -1,31 +1,48 @@
-"""Impact between Mech-l and Mech-r: the coefficient of restitution [paper, Sect. 4.4].
+r"""Impact between Mech-l and Mech-r: the coefficient of restitution (Sect. 4.4 in [1]_).
 
 When a mechanism returns to its undisplaced configuration (``theta = theta_u`` with
 ``theta' > 0``) its hinges close and the motion continues in the other mechanism, from that
-mechanism's ``theta_u`` with (paper, Sect. 4.4; De Lorenzis et al. 2007 [2])::
+mechanism's ``theta_u`` with (Sect. 4.4 and Eq. (8) in [1]_, after [2]_)
 
-    theta'_f = -c_v theta'_i
+.. math::
 
-The sign says the arch moves on into the other mechanism (its theta then decreases).
+    \dot\theta'_f = -c_v\,\dot\theta_i.
+
+Eq. (8) in [1]_ defines :math:`c_v = \dot\theta'_f / \dot\theta_i`; here :math:`c_v > 0` and
+the sign is written out: the arch moves on into the other mechanism (its theta then
+decreases). Six models of :math:`c_v` are offered (:data:`RESTITUTION_MODELS`); the three that
+compute it from the arch are described below.
 
 Computed restitution
 --------------------
 Impulses act at the closing joints (the edges opposite to the pre-impact hinges) and at the hinges
-of the post-impact mechanism [1, Sect. 4.4]. Every such impulse acts either at a hinge of the
+of the post-impact mechanism (Sect. 4.4 of [1]_). Every such impulse acts either at a hinge of the
 post-impact mechanism or between two voussoirs of the same post-impact block, so it does no work
 on the velocity field ``u_to`` of the post-impact mechanism. Hence the generalised momentum of the
-post-impact mechanism is conserved through the impact::
+post-impact mechanism is conserved through the impact:
 
-    theta'_f M_to(theta_u') = theta'_i sum_i (m_i v_i . u_i + I_i w_i omega_i)
+.. math::
 
-where ``v_i, w_i`` and ``u_i, omega_i`` are the centroid velocity and angular velocity of voussoir i
-per unit rate in the pre- and post-impact mechanisms (:meth:`FourLinkMechanism.mode_shape`), so
+    \dot\theta'_f\,M_{to}(\theta'_u)
+    = \dot\theta_i \sum_i \left(m_i\,v_i \cdot u_i + I_i\,w_i\,\omega_i\right),
 
-    c_v = -sum_i (m_i v_i . u_i + I_i w_i omega_i) / M_to.
+where :math:`v_i, w_i` and :math:`u_i, \omega_i` are the centroid velocity and angular velocity
+of voussoir i per unit rate in the pre- and post-impact mechanisms
+(:meth:`FourLinkMechanism.mode_shape`), so
+
+.. math::
+
+    c_v = -\frac{\sum_i \left(m_i\,v_i \cdot u_i + I_i\,w_i\,\omega_i\right)}{M_{to}(\theta'_u)}.
 
 This is the impulse-momentum balance of the three post-impact blocks (linear and angular momentum,
-eight hinge impulse components and theta'_f). By the Cauchy-Schwarz inequality the kinetic energy
-ratio ``c_v^2 M_to / M_from`` is at most 1.
+eight hinge impulse components and theta'_f). By the Cauchy-Schwarz inequality (in the inner
+product :math:`\langle v, u\rangle = \sum_i m_i\,v_i \cdot u_i + I_i\,w_i\,\omega_i`, of which
+:math:`M_{from}` and :math:`M_{to}` are the squared norms) the kinetic energy ratio
+
+.. math::
+
+    \frac{T_f}{T_i} = c_v^2\,\frac{M_{to}(\theta'_u)}{M_{from}(\theta_u)}
+    = \frac{\langle v, u\rangle^2}{\langle v, v\rangle\,\langle u, u\rangle} \le 1.
 
 For Oppenheim's arch (hinges at joints 0, 3, 5, 7) this gives ``c_v = 0.6450`` (kinetic energy
 ratio 0.416); with 70 voussoirs and the hinges of the least kinematic multiplier (joints 1, 26, 52,
@@ -34,20 +51,29 @@ ratio 0.416); with 70 voussoirs and the hinges of the least kinematic multiplier
 
 Link-wise restitution (the paper's rule)
 ----------------------------------------
-The paper states its rule link by link, as Housner does for a rocking block [1, Sect. 4.4], [3]:
+The paper states its rule link by link, as Housner does for a rocking block (Sect. 4.4 of [1]_,
+[3]_):
 at the impact the springing hinge A of the pre-impact mechanism jumps to the opposite face of the
 same springing joint, A'; the post-impact link A'B' (the voussoirs between that springing and the
 next hinge of the post-impact mechanism) turns about A' afterwards. Its angular momentum about A'
 is conserved through the impact, the impulse at B' neglected (an impulse at A' has no moment
-about A')::
+about A'):
 
-    omega' sum_i (I_i + m_i |g_i - A'|^2) = sum_i (I_i omega_i + m_i (g_i - A') x v_i)
+.. math::
+
+    \omega' \sum_i \left(I_i + m_i\,|g_i - A'|^2\right)
+    = \sum_i \left(I_i\,\omega_i + m_i\,(g_i - A') \times v_i\right)
 
 over the voussoirs i of A'B', with ``v_i, omega_i`` their pre-impact velocities. Where A'B' lies
-inside the pre-impact link AB, which turns about A at ``theta'``, this is Housner's rule::
+inside the pre-impact link AB, which turns about A at ``theta'``, this is Housner's rule
+([3]_; for a rectangular block whose diagonal makes the angle :math:`\alpha` with the
+vertical it is :math:`1 - \tfrac32 \sin^2\alpha`):
 
-    c_v = omega' / theta'
-        = sum_i (I_i + m_i (g_i - A') . (g_i - A)) / sum_i (I_i + m_i |g_i - A'|^2)
+.. math::
+
+    c_v = \frac{\omega'}{\dot\theta}
+    = \frac{\sum_i \left(I_i + m_i\,(g_i - A') \cdot (g_i - A)\right)}
+           {\sum_i \left(I_i + m_i\,|g_i - A'|^2\right)}
 
 and the paper takes it as the ratio of the post- to the pre-impact Lagrangian rate. For
 Oppenheim's arch (A'B' = voussoirs 0-1, from the post-impact hinge at joint 2) it gives 0.883
@@ -78,9 +104,15 @@ closed in its undisplaced configuration, moves with the velocity field of the pr
 mechanism returning to ``theta_u`` -- the state of every four-link impact --, one time step of
 the rigid-block model resolves the impact (:func:`archquake.rigid_blocks.impacts.closing_impact`),
 and c_v is the coefficient that leaves the four-link model the kinetic energy the blocks keep,
-``c_v = sqrt(T_1/T_0 M_from/M_to)``. It gives Housner's ``r = 1 - 1.5 sin^2(alpha)`` for a
-rectangular block, and does not depend on the time step nor, from mu = 0.5 up (the joints
-stick at the impact), on the friction coefficient.
+
+.. math::
+
+    c_v = \sqrt{\frac{T_1}{T_0}\,\frac{M_{from}(\theta_u)}{M_{to}(\theta'_u)}},
+
+with :math:`T_0, T_1` the kinetic energy of the blocks before and after the impact. It gives
+Housner's :math:`r = 1 - 1.5 \sin^2\alpha` for a rectangular block, and does not depend on
+the time step nor, from mu = 0.5 up (the joints stick at the impact), on the friction
+coefficient.
 
 For Oppenheim's arch it gives ``c_v = 0.7478`` (the blocks keep 55.9 % of the kinetic energy),
 between the computed 0.645 and the paper's 0.875. The blocks do not continue in Mech-r: 85 % of
@@ -96,13 +128,11 @@ cycle the kinetic energy of c_v = 0.75-0.82.
 
 References
 ----------
-[1] The paper, Sect. 4.4.
-
-[2] L. De Lorenzis, M. DeJong, J. Ochsendorf (2007), Failure of masonry arches under impulse base
-    motion, Earthquake Engineering and Structural Dynamics 36, 2119-2136.
-
-[3] G. W. Housner (1963), The behavior of inverted pendulum structures during earthquakes,
-    Bulletin of the Seismological Society of America 53(2), 403-417.
+.. [1] The paper, Sect. 4.4, Eq. (8); Sect. 5.2 (c_v = 0.875 for Oppenheim's arch).
+.. [2] De Lorenzis, L., DeJong, M. and Ochsendorf, J. (2007). Failure of masonry arches under
+   impulse base motion. Earthquake Engineering & Structural Dynamics 36, 2119-2136.
+.. [3] Housner, G. W. (1963). The behavior of inverted pendulum structures during earthquakes.
+   Bulletin of the Seismological Society of America 53(2), 403-417.
 """
 
 from __future__ import annotations
@@ -122,7 +152,18 @@ PAPER_RESTITUTION = float(paper_values()["dynamics"]["NA"]["restitution_paper"])
 
 
 def original_arch(mechanism: FourLinkMechanism) -> BlockArch:
-    """The arch in the original (unmirrored) frame of ``mechanism``."""
+    """The arch in the original (unmirrored) frame of ``mechanism``.
+
+    Parameters
+    ----------
+    mechanism : FourLinkMechanism
+        Mech-l or Mech-r.
+
+    Returns
+    -------
+    BlockArch
+        ``mechanism.arch`` for Mech-l, its mirror image for Mech-r.
+    """
     return mechanism.arch if mechanism.direction == "l" else mechanism.arch.mirrored()
 
 
@@ -140,10 +181,32 @@ def _check_same_arch(mech_from: FourLinkMechanism, mech_to: FourLinkMechanism) -
 
 
 def generalised_momentum(mech_from: FourLinkMechanism, mech_to: FourLinkMechanism) -> float:
-    """``sum_i m_i v_i . u_i + I_i w_i omega_i`` [kg m^2/m] over the voussoirs of the arch.
+    r"""Generalised momentum of ``mech_to`` carried by the motion of ``mech_from`` at unit rate.
 
-    The generalised momentum of ``mech_to`` carried by the motion of ``mech_from`` at unit rate,
-    both at their undisplaced configurations; with ``mech_from = mech_to`` it is ``M(theta_u)``.
+    .. math::
+
+        \langle v, u\rangle = \sum_i \left(m_i\,v_i \cdot u_i + I_i\,w_i\,\omega_i\right)
+
+    over the voussoirs of the arch, with :math:`v_i, w_i` and :math:`u_i, \omega_i` the mode
+    shapes of ``mech_from`` and ``mech_to`` at their undisplaced configurations
+    (:meth:`FourLinkMechanism.mode_shape`, original frame). With ``mech_from = mech_to`` it is
+    :math:`M(\theta_u)` of the equation of motion.
+
+    Parameters
+    ----------
+    mech_from, mech_to : FourLinkMechanism
+        Two mechanisms of the same arch (Mech-r built on its mirrored arch).
+
+    Returns
+    -------
+    float
+        :math:`\langle v, u\rangle` [kg m^2/m].
+
+    Raises
+    ------
+    ValueError
+        If the two mechanisms are not mechanisms of the same arch (voussoir masses and
+        centroids compared in the original frame).
     """
     arch = _check_same_arch(mech_from, mech_to)
     v, w = mech_from.mode_shape()
@@ -152,20 +215,84 @@ def generalised_momentum(mech_from: FourLinkMechanism, mech_to: FourLinkMechanis
 
 
 def computed_restitution(mech_from: FourLinkMechanism, mech_to: FourLinkMechanism) -> float:
-    """Coefficient of restitution c_v of the impact that ends ``mech_from`` and starts ``mech_to``.
+    r"""Coefficient of restitution c_v of the impact that ends ``mech_from`` and starts ``mech_to``.
 
-    ``c_v = -sum_i (m_i v_i . u_i + I_i w_i omega_i) / M_to(theta_u')``: conservation of the
-    generalised momentum of the post-impact mechanism (impulses at its hinges and at the closing
-    joints do no work on its velocity field); see the module docstring.
+    Conservation of the generalised momentum of the post-impact mechanism (impulses at its
+    hinges and at the closing joints do no work on its velocity field; see the module
+    docstring):
+
+    .. math::
+
+        c_v = -\frac{\langle v, u\rangle}{\langle u, u\rangle}
+            = -\frac{\sum_i \left(m_i\,v_i \cdot u_i + I_i\,w_i\,\omega_i\right)}
+                    {M_{to}(\theta'_u)}
+
+    (:func:`generalised_momentum`). It stands for the :math:`c_v` of Eq. (8) in [1]_, whose
+    impulses act at the closing joints as in [2]_; the kinetic energy it leaves is at most the
+    energy before the impact (:func:`kinetic_energy_ratio`).
+
+    Parameters
+    ----------
+    mech_from, mech_to : FourLinkMechanism
+        The pre- and post-impact mechanisms of the same arch.
+
+    Returns
+    -------
+    float
+        c_v [-].
+
+    Raises
+    ------
+    ValueError
+        If the two mechanisms are not mechanisms of the same arch.
+
+    References
+    ----------
+    .. [1] The paper, Sect. 4.4, Eq. (8).
+    .. [2] De Lorenzis, L., DeJong, M. and Ochsendorf, J. (2007). Failure of masonry arches
+       under impulse base motion. Earthquake Engineering & Structural Dynamics 36, 2119-2136.
+
+    Examples
+    --------
+    Oppenheim's arch keeps 41.6 % of its kinetic energy at each impact:
+
+    >>> from archquake import oppenheim
+    >>> from archquake.mechanism import mechanisms
+    >>> mech_l, mech_r = mechanisms(oppenheim())
+    >>> round(computed_restitution(mech_l, mech_r), 4)
+    0.645
+    >>> round(kinetic_energy_ratio(mech_l, mech_r), 3)
+    0.416
     """
     return -generalised_momentum(mech_from, mech_to) / generalised_momentum(mech_to, mech_to)
 
 
 def kinetic_energy_ratio(mech_from: FourLinkMechanism, mech_to: FourLinkMechanism,
                          coefficient: float | None = None) -> float:
-    """Kinetic energy after / before the impact, ``c_v^2 M_to / M_from`` [-].
+    r"""Kinetic energy after / before the impact.
 
-    ``coefficient`` defaults to :func:`computed_restitution`, for which the ratio is <= 1.
+    .. math::
+
+        \frac{T_f}{T_i} = c_v^2\,\frac{M_{to}(\theta'_u)}{M_{from}(\theta_u)}
+
+    Parameters
+    ----------
+    mech_from, mech_to : FourLinkMechanism
+        The pre- and post-impact mechanisms of the same arch.
+
+    coefficient : float, optional
+        c_v [-]; defaults to :func:`computed_restitution`, for which the ratio is <= 1
+        (Cauchy-Schwarz, see the module docstring).
+
+    Returns
+    -------
+    float
+        :math:`T_f/T_i` [-].
+
+    Raises
+    ------
+    ValueError
+        If the two mechanisms are not mechanisms of the same arch.
     """
     if coefficient is None:
         coefficient = computed_restitution(mech_from, mech_to)
@@ -182,7 +309,7 @@ def _original_point(mechanism: FourLinkMechanism, point) -> np.ndarray:
 
 
 def link_restitution(mech_from: FourLinkMechanism, mech_to: FourLinkMechanism) -> float:
-    r"""Coefficient of restitution c_v of the paper's link-wise rule [1, Sect. 4.4].
+    r"""Coefficient of restitution c_v of the paper's link-wise rule (Sect. 4.4 of [1]_).
 
     The post-impact link A'B' -- the link of ``mech_to`` on the springing side of
     ``mech_from``'s hinge A -- turns about its springing hinge A' after the impact (for a
@@ -197,7 +324,8 @@ def link_restitution(mech_from: FourLinkMechanism, mech_to: FourLinkMechanism) -
 
     with ``v_i, omega_i`` the velocities of voussoir i per unit ``theta'`` of ``mech_from``
     (:meth:`FourLinkMechanism.mode_shape`), i.e. Housner's rocking-block rule when A'B' lies in
-    the pre-impact link AB [3]. See the module docstring for why this is not a consistent
+    the pre-impact link AB [2]_. The sign is that of a rotation in the sense of ``mech_from``'s
+    ``theta'`` (mirrored for Mech-r). See the module docstring for why this is not a consistent
     momentum balance of the arch.
 
     Parameters
@@ -208,7 +336,27 @@ def link_restitution(mech_from: FourLinkMechanism, mech_to: FourLinkMechanism) -
     Returns
     -------
     float
-        c_v [-] (0.883 for Oppenheim's arch with annular-sector voussoirs).
+        c_v [-] (0.883 for Oppenheim's arch with annular-sector voussoirs, 0.875 with flat
+        faces).
+
+    Raises
+    ------
+    ValueError
+        If the two mechanisms are not mechanisms of the same arch.
+
+    References
+    ----------
+    .. [1] The paper, Sect. 4.4, Eq. (8); Sect. 5.2 (0.875 for Oppenheim's arch).
+    .. [2] Housner, G. W. (1963). The behavior of inverted pendulum structures during
+       earthquakes. Bulletin of the Seismological Society of America 53(2), 403-417.
+
+    Examples
+    --------
+    >>> from archquake import oppenheim
+    >>> from archquake.mechanism import mechanisms
+    >>> mech_l, mech_r = mechanisms(oppenheim())
+    >>> round(link_restitution(mech_l, mech_r), 3)
+    0.883
     """
     arch = _check_same_arch(mech_from, mech_to)
     n = arch.n_voussoirs
@@ -260,6 +408,11 @@ def blocks_restitution(mech_from: FourLinkMechanism, mech_to: FourLinkMechanism,
     -------
     float
         c_v [-] (0.7478 for Oppenheim's arch).
+
+    Raises
+    ------
+    ValueError
+        If the two mechanisms are not mechanisms of the same arch.
     """
     from .rigid_blocks.impacts import equivalent_restitution  # the second model, on demand
 
@@ -269,7 +422,30 @@ def blocks_restitution(mech_from: FourLinkMechanism, mech_to: FourLinkMechanism,
 
 
 def velocity_after_impact(theta_dot_before, coefficient: float):
-    """``theta'_f = -c_v theta'_i`` [rad/s]: the rate of the post-impact mechanism."""
+    r"""Rate of the post-impact mechanism (Sect. 4.4 and Eq. (8) in [1]_).
+
+    .. math::
+
+        \dot\theta'_f = -c_v\,\dot\theta_i
+
+    Parameters
+    ----------
+    theta_dot_before : float or array
+        :math:`\dot\theta_i`, rate of the pre-impact mechanism at its :math:`\theta_u` [rad/s]
+        (positive: it is closing).
+
+    coefficient : float
+        c_v [-].
+
+    Returns
+    -------
+    float or array
+        :math:`\dot\theta'_f` [rad/s] (negative: the post-impact mechanism opens).
+
+    References
+    ----------
+    .. [1] The paper, Sect. 4.4, Eq. (8).
+    """
     return -coefficient * np.asarray(theta_dot_before, dtype=float)
 
 
@@ -382,6 +558,29 @@ def restitution(model, mech_l: FourLinkMechanism, mech_r: FourLinkMechanism,
     Returns
     -------
     (c_l_to_r, c_r_to_l) : tuple of float
+        c_v of the impacts Mech-l -> Mech-r and Mech-r -> Mech-l [-].
+
+    Raises
+    ------
+    ValueError
+        If ``model`` is neither a name of :data:`RESTITUTION_MODELS` nor a number in (0, 1]
+        (:func:`check_restitution_model`), if ``model="nominal"`` is given without
+        ``nominal``, or if the mechanisms are not mechanisms of one arch.
+
+    References
+    ----------
+    .. [1] The paper, Sect. 4.4 (the nominal arch's c_v for the irregular arches) and
+       Sect. 5.2 (0.875 for Oppenheim's arch).
+
+    Examples
+    --------
+    >>> from archquake import oppenheim
+    >>> from archquake.mechanism import mechanisms
+    >>> mech_l, mech_r = mechanisms(oppenheim())
+    >>> restitution("paper", mech_l, mech_r)
+    (0.875, 0.875)
+    >>> restitution(0.9, mech_l, mech_r)
+    (0.9, 0.9)
     """
     model = check_restitution_model(model)
     if isinstance(model, str):

@@ -1,9 +1,9 @@
-"""The four-link mechanism of an arch [paper, Sects. 4.1-4.2].
+r"""The four-link mechanism of an arch: Sects. 4.1-4.2 and Eqs. (3)-(4) in [1]_, after [2]_.
 
 Once four hinges A, B, C, D have formed (left to right), the arch is a one-degree-of-freedom
 linkage of three rigid blocks: block 1 (voussoirs between hinges A and B) turns about A, block 3
 (between C and D) turns about D, and block 2 (between B and C) is carried by both. Its
-configuration is described by the Lagrangian coordinate ``theta`` [paper, Sect. 4.1].
+configuration is described by the Lagrangian coordinate :math:`\theta` (Sect. 4.1 of [1]_).
 
 Conventions
 -----------
@@ -21,10 +21,72 @@ Conventions
 - The four-bar closure ``|C - B| = BC`` has two assembly branches; the mechanism follows the one
   of the undisplaced configuration.
 
+Geometry of the links
+---------------------
+With :math:`e(a) = (\cos a, \sin a)`, the moving hinges are
+
+.. math::
+
+    B(\theta) = A + AB\,e(\theta), \qquad C(\theta) = B(\theta) + BC\,e(\theta_{bc}(\theta))
+    = D + CD\,e(\theta_{cd}(\theta)),
+
+and block k turns rigidly with its link about its pivot :math:`P_k` = A, B, D: its centre of mass
+is
+
+.. math::
+
+    G_1 = A + r_1\,e(\theta + \psi_1), \qquad G_2 = B(\theta) + r_2\,e(\theta_{bc} + \psi_2),
+    \qquad G_3 = D + r_3\,e(\theta_{cd} + \psi_3),
+
+with :math:`r_k = |G_k - P_k|` [m] and :math:`\psi_k` [rad] the angle from the link (AB, BC, DC)
+to the segment :math:`P_k G_k`, both fixed by the undisplaced configuration (the :math:`r_{AB},
+r_{BC}, r_{CD}` and :math:`\psi, \psi_{BC}, \psi_{CD}` of Eq. (3) in [1]_). A block's mass, centre
+of mass and moment of inertia about its pivot are those of its real voussoirs,
+
+.. math::
+
+    m_k = \sum_{i \in k} m_i, \qquad
+    G_k = \frac{1}{m_k} \sum_{i \in k} m_i\,g_i, \qquad
+    J_k = \sum_{i \in k} \left(I_i + m_i\,|g_i - P_k|^2\right),
+
+with :math:`m_i` [kg/m], :math:`g_i` [m] and :math:`I_i` [kg m] the mass, centroid and moment of
+inertia of voussoir i (per unit depth), so an irregular arch is treated as it is (Sect. 4.3 of
+[1]_).
+
+Potential energy and critical angle
+-----------------------------------
+The potential energy of the three blocks (Eq. (3) in [1]_, heights from A for blocks 1-2 and
+from D for block 3) and its slope (Eq. (4) in [1]_) are
+
+.. math::
+
+    V(\theta) = g\left[m_1 r_1 \sin(\theta + \psi_1) + m_2\,AB \sin\theta
+    + m_2 r_2 \sin(\theta_{bc} + \psi_2) + m_3 r_3 \sin(\theta_{cd} + \psi_3)\right],
+
+.. math::
+
+    \frac{dV}{d\theta} = g\left[m_1 r_1 \cos(\theta + \psi_1) + m_2\,AB \cos\theta
+    + m_2 r_2 \cos(\theta_{bc} + \psi_2)\,\frac{d\theta_{bc}}{d\theta}
+    + m_3 r_3 \cos(\theta_{cd} + \psi_3)\,\frac{d\theta_{cd}}{d\theta}\right] = g\,F(\theta),
+
+with :math:`F` the gravity coefficient of the equation of motion
+(:mod:`archquake.equations_of_motion`). The critical angle :math:`\theta_{cr}` is the first zero
+of :math:`dV/d\theta` below :math:`\theta_u` (Sect. 4.2 of [1]_): released at rest between
+:math:`\theta_{cr}` and :math:`\theta_u` the arch returns, released below :math:`\theta_{cr}` it
+collapses.
+
 The four-bar kinematics (closure in closed form, velocity and acceleration analysis) live in
 :mod:`archquake.linkage`, plain functions of floats and arrays; the flat parameter vector
 :attr:`FourLinkMechanism.parameters` (layout :data:`PARAMETER_NAMES`) carries everything they and
 the equation of motion (:mod:`archquake.equations_of_motion`) need.
+
+References
+----------
+.. [1] The paper, Sect. 4.1 (Lagrangian coordinate), Sect. 4.2, Eqs. (3)-(4) (potential energy,
+   critical angle), Sect. 4.3 (real inertial properties of an irregular arch), Table 2 and
+   Sect. 5.1 (the mechanism and :math:`\theta_{cr}` of Oppenheim's arch).
+.. [2] Oppenheim, I. J. (1992). The masonry arch as a four-link mechanism under base motion.
+   Earthquake Engineering & Structural Dynamics 21.
 """
 
 from __future__ import annotations
@@ -96,53 +158,117 @@ def _block_properties(arch: BlockArch, first: int, last: int, pivot: np.ndarray)
 
 @dataclass(frozen=True, eq=False)
 class FourLinkMechanism:
-    """A four-hinge mechanism of an arch: three rigid blocks and a four-bar linkage.
+    r"""A four-hinge mechanism of an arch: three rigid blocks and a four-bar linkage.
 
-    Build it with :func:`mechanism_from_hinges` (or :func:`mechanisms` from limit analysis).
+    Build it with :func:`mechanism_from_hinges` (or :func:`mechanisms` from limit analysis). The
+    blocks, their masses, centres of mass, arms :math:`r_k, \psi_k` and pivot inertias
+    :math:`J_k` are those of the module docstring (Eq. (3) in [1]_), computed once from the real
+    voussoirs; :attr:`theta_cr` is the first zero of :math:`dV/d\theta` below :math:`\theta_u`
+    (Eq. (4) in [1]_), and the mechanism is activated from rest by a ground acceleration of
+    magnitude
+
+    .. math::
+
+        k = -\frac{F(\theta_u)}{P(\theta_u)}
+
+    [g], with :math:`F, P` the coefficients of the equation of motion
+    (:mod:`archquake.equations_of_motion`): by virtual work, the load multiplier of the same
+    hinges (Sect. 3 of [1]_).
 
     Parameters
     ----------
     arch : BlockArch
         The arch in this mechanism's own frame (the mirrored arch for Mech-r).
+
     hinges : tuple of four Hinge
         Hinges A, B, C, D from left to right in that frame.
+
     direction : str
         ``"l"`` (Mech-l) or ``"r"`` (Mech-r).
 
     Attributes
     ----------
     theta_u, theta_bc_u, theta_cd_u : float
-        Link angles in the undisplaced configuration [rad] (Table 2 of the paper).
+        Link angles in the undisplaced configuration [rad] (Table 2 of [1]_).
+
     ab, bc, cd : float
-        Link lengths ``|AB|``, ``|BC|``, ``|CD|`` [m] (Table 2 of the paper).
+        Link lengths ``|AB|``, ``|BC|``, ``|CD|`` [m] (Table 2 of [1]_).
+
     theta_cr, phi_cr : float
-        Critical angle where ``dV/dtheta = 0`` below ``theta_u`` (eq. (4) of the paper) and
+        Critical angle where ``dV/dtheta = 0`` below ``theta_u`` (Eq. (4) of [1]_) and
         ``theta_u - theta_cr`` [rad]. ``theta_cr = theta_u`` if gravity does not resist the
-        motion at ``theta_u``; ``theta_cr = theta_limit`` if it resists it down to the limit.
+        motion at ``theta_u`` (``dV/dtheta >= 0`` there); ``theta_cr = theta_limit`` if it
+        resists it down to the limit.
+
     theta_limit : float
         Kinematic limit of the linkage [rad]: the largest ``theta < theta_u`` at which either a
         hinge's relative rotation returns to zero (that joint closes again and the blocks would
         interpenetrate: the linkage locks) or the four-bar closure ceases to exist (B, C, D
-        aligned, a dead point where ``d theta_bc/d theta`` diverges). Whichever comes first.
+        aligned, a dead point where ``d theta_bc/d theta`` diverges). Whichever comes first; at
+        most pi below ``theta_u``.
+
     activation_g : float
-        ``-F(theta_u)/P(theta_u)``: ground acceleration [g] that activates this mechanism
-        (opposite to the direction of sway), equal to the load multiplier of the same hinges by
-        virtual work.
+        ``-F(theta_u)/P(theta_u)``: magnitude of the ground acceleration [g] that activates this
+        mechanism (the ground accelerates opposite to the direction of sway), equal to the load
+        multiplier of the same hinges by virtual work.
+
     hinge_points : ndarray, shape (4, 2)
         A, B, C, D in the undisplaced configuration [m].
+
     block_masses : ndarray, shape (3,)
         Masses of blocks AB, BC, CD [kg/m].
+
     block_centroids : ndarray, shape (3, 2)
         Their centres of mass in the undisplaced configuration [m].
+
     block_inertias : ndarray, shape (3,)
         Their moments of inertia about their own centres of mass [kg m].
+
     block_arms, block_arm_angles : ndarray, shape (3,)
-        ``r_k`` [m] and ``psi_k`` [rad] of eq. (3) of the paper: distance from the pivot (A, B, D)
-        to the block's centre of mass, and angle from the link (AB, BC, DC) to that segment.
+        ``r_k`` [m] and ``psi_k`` [rad] of Eq. (3) of [1]_: distance from the pivot (A, B, D)
+        to the block's centre of mass, and angle from the link (AB, BC, DC) to that segment,
+        in [-pi, pi).
+
     block_pivot_inertias : ndarray, shape (3,)
-        Moments of inertia about A, B, D respectively [kg m].
+        Moments of inertia ``J_k`` about A, B, D respectively [kg m].
+
     branch : float
-        Assembly branch of the four-bar closure (+1 or -1), see :func:`four_bar_closure`.
+        Assembly branch of the four-bar closure (+1 or -1), see
+        :func:`~archquake.linkage.four_bar_closure`: +1 when C lies to the left of the directed
+        line B->D in the undisplaced configuration.
+
+    parameters : ndarray, shape (23,)
+        Everything above that the kinematics and the equation of motion need, flat (layout
+        :data:`PARAMETER_NAMES`), read-only; what the compiled engine tabulates from.
+
+    Raises
+    ------
+    ValueError
+        If ``arch`` is not a :class:`~archquake.geometry.BlockArch`, ``direction`` is not
+        ``"l"`` or ``"r"``, or ``hinges`` are not four :class:`~archquake.geometry.Hinge` on
+        joints ``0 <= j <= n`` strictly increasing from left to right.
+
+    References
+    ----------
+    .. [1] The paper, Sect. 3 (activation), Sects. 4.1-4.2, Eqs. (3)-(4), Table 2 and Sect. 5.1
+       (:math:`\theta_{cr} = 0.8281` rad, :math:`\theta_u - \theta_{cr} = 0.0691` rad for
+       Oppenheim's arch).
+
+    Examples
+    --------
+    Mech-l of Oppenheim's arch (hinges at joints 0, 3, 5, 7; Table 2 and Sect. 5.1 of [1]_):
+
+    >>> from archquake import oppenheim
+    >>> from archquake.mechanism import mechanisms
+    >>> mech_l, mech_r = mechanisms(oppenheim())
+    >>> [hinge.joint for hinge in mech_l.hinges]
+    [0, 3, 5, 7]
+    >>> round(mech_l.theta_u, 4), round(mech_l.ab, 2), round(mech_l.bc, 2)
+    (0.8972, 11.18, 7.78)
+    >>> round(mech_l.theta_cr, 4), round(mech_l.phi_cr, 4)
+    (0.8281, 0.0691)
+    >>> round(mech_l.activation_g, 3)
+    0.37
     """
 
     arch: BlockArch
@@ -220,9 +346,31 @@ class FourLinkMechanism:
 
     # ------------------------------------------------------------------ kinematics
     def closure(self, theta):
-        """Angles ``theta_bc(theta)``, ``theta_cd(theta)`` of links BC and DC [rad].
+        r"""Angles ``theta_bc(theta)``, ``theta_cd(theta)`` of links BC and DC [rad].
 
-        Vectorised over ``theta`` [rad]; NaN where the linkage cannot close.
+        The four-bar closure of :func:`~archquake.linkage.four_bar_closure` on this mechanism's
+        assembly branch: C is where the circle of radius BC about :math:`B(\theta)` meets the
+        circle of radius CD about D,
+
+        .. math::
+
+            A + AB\,e(\theta) + BC\,e(\theta_{bc}) = D + CD\,e(\theta_{cd}),
+
+        with the angles taken within pi of their undisplaced values (Sect. 4.1 of [1]_).
+
+        Parameters
+        ----------
+        theta : float or array
+            Lagrangian coordinate [rad].
+
+        Returns
+        -------
+        theta_bc, theta_cd : float or array
+            Angles of B->C and of D->C [rad]; NaN where the linkage cannot close.
+
+        References
+        ----------
+        .. [1] The paper, Sect. 4.1 and Fig. 5.
         """
         ax, ay, dx, dy = self.hinge_points[0, 0], self.hinge_points[0, 1], \
             self.hinge_points[3, 0], self.hinge_points[3, 1]
@@ -232,12 +380,27 @@ class FourLinkMechanism:
         )
 
     def rates(self, theta):
-        """Closure and its derivatives at ``theta`` [rad] (vectorised).
+        r"""Closure and its derivatives with respect to ``theta`` (vectorised).
+
+        The velocity and acceleration analysis of the linkage
+        (:func:`~archquake.linkage.four_bar_rates`): the loop equation of :meth:`closure`
+        differentiated once and twice with respect to :math:`\theta`.
+
+        Parameters
+        ----------
+        theta : float or array
+            Lagrangian coordinate [rad].
 
         Returns
         -------
-        theta_bc, theta_cd, w_bc, w_cd, a_bc, a_cd
-            See :meth:`closure` and :func:`four_bar_rates`.
+        theta_bc, theta_cd : float or array
+            Angles of B->C and D->C [rad] (:meth:`closure`).
+
+        w_bc, w_cd : float or array
+            :math:`d\theta_{bc}/d\theta`, :math:`d\theta_{cd}/d\theta` [-].
+
+        a_bc, a_cd : float or array
+            :math:`d^2\theta_{bc}/d\theta^2`, :math:`d^2\theta_{cd}/d\theta^2` [1/rad].
         """
         theta = np.asarray(theta, dtype=float)
         theta_bc, theta_cd = self.closure(theta)
@@ -245,7 +408,20 @@ class FourLinkMechanism:
                 *four_bar_rates(theta, theta_bc, theta_cd, self.ab, self.bc, self.cd))
 
     def points(self, theta):
-        """Positions of hinges B and C at ``theta`` [rad] -> arrays of shape (..., 2) [m]."""
+        r"""Positions of hinges B and C at ``theta``.
+
+        :math:`B = A + AB\,e(\theta)`, :math:`C = B + BC\,e(\theta_{bc}(\theta))`.
+
+        Parameters
+        ----------
+        theta : float or array
+            Lagrangian coordinate [rad].
+
+        Returns
+        -------
+        b, c : ndarray, shape (..., 2)
+            B and C in this mechanism's frame [m]; NaN where the linkage cannot close.
+        """
         theta = np.asarray(theta, dtype=float)
         theta_bc, _ = self.closure(theta)
         b = self.hinge_points[0] + self.ab * np.stack((np.cos(theta), np.sin(theta)), axis=-1)
@@ -253,12 +429,31 @@ class FourLinkMechanism:
         return b, c
 
     def hinge_rotations(self, theta):
-        """Relative rotation at hinges A, B, C, D [rad], shape (..., 4).
+        r"""Relative rotation at hinges A, B, C, D.
 
         The rotation of the block on the right of each hinge relative to the one on its left
-        (the ground for A and D), counterclockwise positive. For an admissible mechanism each
-        hinge opens the joint on the face opposite to the hinge: intrados hinges turn clockwise
-        (negative) and extrados hinges counterclockwise (positive) as ``theta`` decreases.
+        (the ground for A and D), counterclockwise positive:
+
+        .. math::
+
+            (\delta_1,\; \delta_2 - \delta_1,\; \delta_3 - \delta_2,\; -\delta_3), \qquad
+            \delta_1 = \theta - \theta_u,\;
+            \delta_2 = \theta_{bc} - \theta_{bc,u},\;
+            \delta_3 = \theta_{cd} - \theta_{cd,u}.
+
+        For an admissible mechanism each hinge opens the joint on the face opposite to the
+        hinge: intrados hinges turn clockwise (negative) and extrados hinges counterclockwise
+        (positive) as ``theta`` decreases.
+
+        Parameters
+        ----------
+        theta : float or array
+            Lagrangian coordinate [rad].
+
+        Returns
+        -------
+        ndarray, shape (..., 4)
+            Relative rotations at A, B, C, D [rad].
         """
         theta = np.asarray(theta, dtype=float)
         theta_bc, theta_cd = self.closure(theta)
@@ -270,7 +465,11 @@ class FourLinkMechanism:
     @property
     def is_admissible(self) -> bool:
         """True when every hinge opens its joint on the face opposite to the hinge as ``theta``
-        decreases from ``theta_u`` (no interpenetration at the start of the motion)."""
+        decreases from ``theta_u`` (no interpenetration at the start of the motion).
+
+        Checked on the signs of :meth:`hinge_rotations` a small step (1e-6 of the range to
+        :attr:`theta_limit`, at least 1e-6 rad) below ``theta_u``.
+        """
         step = 1e-6 * max(1.0, self.theta_u - self.theta_limit)
         rot = self.hinge_rotations(self.theta_u - step)
         want = np.array([-1.0 if h.face == "intrados" else 1.0 for h in self.hinges])
@@ -318,14 +517,31 @@ class FourLinkMechanism:
 
     # ------------------------------------------------------------------ energy
     def potential_energy(self, theta):
-        """Potential energy V(theta) of the three blocks [J/m] (eq. (3) of the paper)::
+        r"""Potential energy :math:`V(\theta)` of the three blocks (Eq. (3) in [1]_).
 
-            V = g [m1 r1 sin(theta + psi1) + m2 AB sin(theta) + m2 r2 sin(theta_bc + psi2)
-                   + m3 r3 sin(theta_cd + psi3)]
+        .. math::
 
-        Heights are measured from A for blocks 1 and 2 and from D for block 3, as in the paper;
-        V differs from ``g sum m y_G`` by the constant ``g [(m1 + m2) y_A + m3 y_D]``.
-        Vectorised over ``theta`` [rad].
+            V = g\left[m_1 r_1 \sin(\theta + \psi_1) + m_2\,AB \sin\theta
+            + m_2 r_2 \sin(\theta_{bc} + \psi_2) + m_3 r_3 \sin(\theta_{cd} + \psi_3)\right]
+
+        Heights are measured from A for blocks 1 and 2 and from D for block 3, as in [1]_; V
+        differs from :math:`g \sum_k m_k y_{G_k}` by the constant
+        :math:`g\,[(m_1 + m_2)\,y_A + m_3\,y_D]`.
+
+        Parameters
+        ----------
+        theta : float or array
+            Lagrangian coordinate [rad].
+
+        Returns
+        -------
+        float or array
+            V [J/m] (per unit depth of the arch).
+
+        References
+        ----------
+        .. [1] The paper, Sect. 4.2, Eq. (3) and Fig. 6 (V of Oppenheim's arch against
+           :math:`\varphi = \theta_u - \theta`).
         """
         theta = np.asarray(theta, dtype=float)
         theta_bc, theta_cd = self.closure(theta)
@@ -336,9 +552,30 @@ class FourLinkMechanism:
         )
 
     def potential_energy_derivative(self, theta):
-        """dV/dtheta [J/m/rad] (eq. (4) of the paper): ``g F(theta)``, with ``F`` the gravity
-        coefficient of the equation of motion (:mod:`archquake.equations_of_motion`, the one
-        place it is written). Vectorised over ``theta`` [rad]."""
+        r"""Slope :math:`dV/d\theta` of the potential energy (Eq. (4) in [1]_).
+
+        .. math::
+
+            \frac{dV}{d\theta} = g\,F(\theta),
+
+        with :math:`F` the gravity coefficient of the equation of motion
+        (:func:`archquake.equations_of_motion.coefficients_from_parameters`, the one place it is
+        written; its closed form is Eq. (4) in [1]_ divided by :math:`g`).
+
+        Parameters
+        ----------
+        theta : float or array
+            Lagrangian coordinate [rad].
+
+        Returns
+        -------
+        float or array
+            dV/dtheta [J/m/rad]; it vanishes at :attr:`theta_cr` (Sect. 4.2 of [1]_).
+
+        References
+        ----------
+        .. [1] The paper, Sect. 4.2, Eq. (4).
+        """
         return GRAVITY * self.coefficients(theta)[2]
 
     def _critical_angle(self) -> float:
@@ -358,21 +595,56 @@ class FourLinkMechanism:
 
     # ------------------------------------------------------------------ dynamics
     def coefficients(self, theta):
-        """Coefficients M, L, F, P of the equation of motion at ``theta`` (eq. (6) of the paper).
+        r"""Coefficients M, L, F, P of the equation of motion at ``theta`` (Eq. (6) in [1]_).
 
-        ``M theta'' + L theta'^2 + F g = P xg''`` for Mech-l; see
-        :func:`archquake.equations_of_motion.coefficients`. Vectorised over ``theta`` [rad].
+        .. math::
+
+            M(\theta)\,\ddot\theta + L(\theta)\,\dot\theta^2 + F(\theta)\,g
+            = \pm P(\theta)\,\ddot x_g
+
+        (``+`` for Mech-l, Eq. (6); ``-`` for Mech-r, Eq. (7) in [1]_); see
+        :func:`archquake.equations_of_motion.coefficients`, which this calls.
+
+        Parameters
+        ----------
+        theta : float or array
+            Lagrangian coordinate [rad].
+
+        Returns
+        -------
+        M, L, F, P : float or array
+            [kg m^2/m], [kg m^2/m], [kg m/m], [kg m/m]; see
+            :func:`~archquake.equations_of_motion.coefficients_from_parameters`.
+
+        References
+        ----------
+        .. [1] The paper, Sect. 4.3, Eqs. (6)-(7).
         """
         return _coefficients(self, theta)
 
     def mode_shape(self):
-        """Velocity field of the voussoirs at ``theta_u`` per unit ``theta'`` [m/s, rad/s].
+        r"""Velocity field of the voussoirs at ``theta_u`` per unit rate ``theta'``.
+
+        Voussoir i of block k moves with
+
+        .. math::
+
+            \frac{v_i}{\dot\theta} = \frac{dP_k}{d\theta}
+            + \frac{d\theta_k}{d\theta}\,\hat z \times (g_i - P_k), \qquad
+            \frac{\omega_i}{\dot\theta} = \frac{d\theta_k}{d\theta},
+
+        in this mechanism's frame, with :math:`P_k` = A, B, D, :math:`\theta_k` =
+        :math:`\theta, \theta_{bc}, \theta_{cd}` for k = 1, 2, 3, :math:`\hat z \times (x, y) =
+        (-y, x)` (a quarter turn counterclockwise) and :math:`dB/d\theta = \hat z \times (B -
+        A)` (A and D are fixed). For Mech-r the field is mirrored back to the original frame.
+        The impact models of :mod:`archquake.impact` are written with it.
 
         Returns
         -------
         velocities : ndarray, shape (n, 2)
             Velocity of the centroid of every voussoir of the original (unmirrored) arch, in the
             original frame and voussoir order, per unit ``d theta/dt`` [m/rad].
+
         angular : ndarray, shape (n,)
             Angular velocity of every voussoir, counterclockwise positive in the original
             frame, per unit ``d theta/dt`` [-]. Voussoirs outside the blocks are at rest.
@@ -401,6 +673,8 @@ class FourLinkMechanism:
 def mechanism_from_hinges(arch: BlockArch, hinges, direction: str = "l") -> FourLinkMechanism:
     """The four-link mechanism of ``arch`` with hinges A, B, C, D.
 
+    Equivalent to ``FourLinkMechanism(arch, tuple(hinges), direction)``.
+
     Parameters
     ----------
     arch : BlockArch
@@ -410,6 +684,16 @@ def mechanism_from_hinges(arch: BlockArch, hinges, direction: str = "l") -> Four
         A, B, C, D left to right in that frame (strictly increasing joints).
     direction : str
         ``"l"`` or ``"r"``.
+
+    Returns
+    -------
+    FourLinkMechanism
+        The mechanism, in the frame of ``arch``.
+
+    Raises
+    ------
+    ValueError
+        As :class:`FourLinkMechanism` (bad arch, hinges or direction).
     """
     return FourLinkMechanism(arch, tuple(hinges), direction)
 
@@ -425,6 +709,33 @@ def mechanisms(arch: BlockArch, limit=None) -> tuple[FourLinkMechanism, FourLink
         ``(la_l, la_r)`` as returned by :func:`archquake.limit_analysis.both_directions`; each has
         ``.hinges`` (four Hinge) and ``.arch`` (the arch analysed: mirrored for Mech-r). Computed
         when not given.
+
+    Returns
+    -------
+    mech_l, mech_r : FourLinkMechanism
+        Mech-l in the frame of ``arch``, Mech-r in the mirrored frame.
+
+    Raises
+    ------
+    ValueError
+        If the collapse mechanism of either direction is not a four-hinge mechanism (a joint
+        separates over its whole depth): the four-link model does not apply to that arch.
+
+    References
+    ----------
+    .. [1] The paper, Sect. 3 (the hinges of the collapse mechanism by limit analysis, Table 1)
+       and Sect. 4.1 (Mech-l, Mech-r, Fig. 3).
+
+    Examples
+    --------
+    For a symmetric arch Mech-r is the mirror image of Mech-l (Table 2 of [1]_):
+
+    >>> from archquake import oppenheim
+    >>> mech_l, mech_r = mechanisms(oppenheim())
+    >>> mech_l.direction, mech_r.direction
+    ('l', 'r')
+    >>> abs(mech_r.theta_u - mech_l.theta_u) < 1e-12
+    True
     """
     if limit is None:
         from .limit_analysis import both_directions
