@@ -29,12 +29,12 @@ of angular velocities [1]_,
 
 .. math::
 
-    c = \frac{\dot\theta_f}{\dot\theta_i} = 1 - \tfrac32 \sin^2\alpha, \qquad
+    c = \left|\frac{\dot\theta_f}{\dot\theta_i}\right| = 1 - \tfrac32 \sin^2\alpha, \qquad
     r = c^2 = \frac{T_1}{T_0},
 
-whose square is the ratio ``r`` of kinetic energies that [1]_ calls the coefficient of
-restitution. With no friction the impact law makes ``v_1`` the projection of ``v_0`` in the
-metric of ``M`` on the cone of velocities that drive no closed contact into penetration [2]_,
+whose square is the ratio ``r`` of the kinetic energies after and before the impact in
+[1]_. With no friction the impact law makes ``v_1`` the projection of ``v_0`` in the metric of
+``M`` on the cone of velocities that drive no closed contact into penetration [2]_,
 
 .. math::
 
