@@ -19,7 +19,9 @@ With ``t`` the thickness of the structure (:attr:`Assembly.thickness`) [m], ``M`
 [kg/m], ``g`` the acceleration of gravity, :math:`t_{exc}` the end of the excitation [s],
 :math:`\delta` the largest downward displacement of a block centroid or of the crown point
 [m], ``T`` the kinetic and ``V`` the potential energy relative to the undeformed configuration
-[J/m] (:mod:`archquake.rigid_blocks.solver`), the outcome is tested at every step.
+[J/m] (:mod:`archquake.rigid_blocks.solver`), and :math:`c_{drop}`, :math:`\epsilon_E`,
+:math:`v_r` the settings ``collapse_drop``, ``energy_margin``, ``rest_speed`` of
+:class:`BlockSettings`, the outcome is tested at every step.
 
 ``collapse``
     The drop reaches ``collapse_drop`` times the thickness (default 1.0), at any time; or, once
@@ -156,7 +158,9 @@ class BlockSettings:
         T_{rest} = \tfrac12 M v_r^2\,g t, \qquad g_{closed} = c_{gap}\,t, \qquad
         d_{moved} = c_{moved}\,t,
 
-    and the windows are rounded to whole steps (at least one).
+    with :math:`c_{drop}, \epsilon_E, v_r, c_{gap}, c_{moved}` = ``collapse_drop``,
+    ``energy_margin``, ``rest_speed``, ``closed_gap``, ``moved_opening``; the windows are
+    rounded to whole steps (at least one).
     """
 
     friction: float = DEFAULT_FRICTION
