@@ -121,12 +121,11 @@ previous step's states), solve the linear system in the impulses that the states
 the states that the solution contradicts, repeat (usually 1-2 solves of a system of at most
 2 x 2(n+1) unknowns; the normal rows of the contacts that stick or slide and the tangential
 rows of the sticking ones carry a compliance of :data:`REGULARISATION` times their diagonal,
-which picks the smallest of the statically indeterminate impulses). Should the states cycle (a
-few steps of
-a collapse at large amplitude, where contacts slide and separate together; counted in the
-outcome), projected Gauss-Seidel takes over [2]_ (Ch. 13), :func:`solve_contacts`: sweeps
-forward and backward in turn, each contact's problem solved exactly by :func:`local_coulomb`
-with the others' impulses fixed,
+which picks the smallest of the statically indeterminate impulses). Should the states cycle
+(a few steps of a collapse at large amplitude, where contacts slide and separate together;
+counted in the outcome), projected Gauss-Seidel takes over [2]_ (Ch. 13),
+:func:`solve_contacts`: sweeps forward and backward in turn, each contact's problem solved
+exactly by :func:`local_coulomb` with the others' impulses fixed,
 
 .. math::
 
