@@ -7,8 +7,10 @@ read by :func:`from_arch`) and the ground motions (:mod:`archquake.ground_motion
 four-link equations of motion, so that it can check them.
 
 Modules: :mod:`.assembly` (blocks and joints), :mod:`.solver` (the compiled scheme),
-:mod:`.dynamics` (analyses and their results), :mod:`.failure` (failure accelerations of pulses),
-:mod:`.plotting` (figures and animations; a leaf, imported on demand).
+:mod:`.dynamics` (analyses, their outcome criteria and results), :mod:`.failure` (failure
+accelerations of pulses), :mod:`.impacts` (the impact of a closing structure and its equivalent
+coefficient of restitution), :mod:`.plotting` (figures and animations; a leaf, imported on
+demand).
 """
 
 from .assembly import GROUND, Assembly, from_arch, rectangular_block

@@ -1,4 +1,4 @@
-"""The blocks and joints of a rigid-block model, and the one adapter from an arch.
+r"""The blocks and joints of a rigid-block model, and the one adapter from an arch.
 
 An :class:`Assembly` is a planar set of rigid blocks (per unit depth) and of the joints between
 them, in the undeformed configuration:
@@ -9,13 +9,26 @@ them, in the undeformed configuration:
   :data:`GROUND` for a support moving with the ground), the two end points ``p_j0``, ``p_j1`` of
   the segment along which they touch [m], and the unit normal ``n_j`` of that segment, pointing
   from body ``a_j`` into body ``b_j``. The tangent ``t_j = (p_j1 - p_j0) / |p_j1 - p_j0|`` is
-  ``n_j`` turned by +90 degrees (the Assembly orients the ends so).
+  ``n_j`` turned by +90 degrees (the Assembly orients the ends so):
+
+.. math::
+
+    t_j = \frac{p_{j1} - p_{j0}}{\lVert p_{j1} - p_{j0} \rVert}
+        = \begin{pmatrix} -n_{j,y} \\ n_{j,x} \end{pmatrix}, \qquad
+    \mathbf{M} = \operatorname{diag}(m_1, m_1, I_1, \dots, m_{nb}, m_{nb}, I_{nb})
+
+(the mass matrix of the coordinates ``(x_i, y_i, theta_i)`` of the blocks).
 
 Contacts sit at the two ends of every joint (:mod:`archquake.rigid_blocks.dynamics`). Nothing in
 the dynamics knows what kind of structure the blocks form: :func:`from_arch` is the only place
 that reads an arch (any :class:`archquake.geometry.BlockArch`: its joints are segments and its
 blocks have mass properties, whatever their shape), and :func:`rectangular_block` builds
-Housner's block on a rigid base for checks.
+Housner's block on a rigid base [1]_ for checks.
+
+References
+----------
+.. [1] G. W. Housner, "The behavior of inverted pendulum structures during earthquakes", Bull.
+   Seismol. Soc. Am. 53 (1963) 403-417.
 """
 
 from __future__ import annotations
@@ -28,15 +41,16 @@ import numpy as np
 from ..geometry import BlockArch
 
 GROUND = -1
-"""Body index of the ground (the supports); in the ground frame it does not move."""
+"""Body index of the ground (the supports) [-]; in the frame of the ground it does not move."""
 
 FACE_EXTENSION = 0.1
 """Default extension of the face of body a beyond each end of a joint, as a fraction of the
-joint's length: a corner that slides a little past the end of the opposite face stays in
+joint's length [-]: a corner that slides a little past the end of the opposite face stays in
 contact (the exact contact there, the other corner on this face, differs to second order)."""
 
 
 def _frozen(array, dtype=float) -> np.ndarray:
+    """A contiguous, read-only copy (or view) of ``array`` as ``dtype``."""
     arr = np.ascontiguousarray(array, dtype=dtype)
     arr.setflags(write=False)
     return arr
@@ -44,7 +58,7 @@ def _frozen(array, dtype=float) -> np.ndarray:
 
 @dataclass(frozen=True)
 class Assembly:
-    """Rigid blocks and joints in the undeformed configuration (SI units, per unit depth).
+    r"""Rigid blocks and joints in the undeformed configuration (SI units, per unit depth).
 
     Parameters
     ----------
@@ -72,10 +86,33 @@ class Assembly:
         A block and a point of it [m] whose downward displacement is reported as the "crown
         drop" (for an arch: the top of the extrados).
     thickness : float
-        Length scale of the assembly [m] (for an arch: its mean thickness), to which the
-        collapse and rest thresholds are scaled.
+        Length scale of the assembly [m], > 0 (for an arch: its mean thickness), to which the
+        collapse and rest thresholds of :class:`~archquake.rigid_blocks.dynamics.BlockSettings`
+        are scaled.
     name : str
         Description.
+
+    Raises
+    ------
+    ValueError
+        If a mass or inertia is not finite and > 0, an array has the wrong shape or a
+        non-finite entry, a joint pairs a body with itself or an index outside
+        ``GROUND .. nb - 1``, a joint has length 0, a normal is not perpendicular to its joint
+        (to 1e-9 in the cosine), a face does not contain its joint, the crown block is not a
+        block, or the thickness is not finite and > 0.
+
+    Notes
+    -----
+    The arrays are stored as read-only copies; the normals are normalised to unit length and
+    the ends (and face extents) of a joint are swapped where needed so that
+    ``t_j = (-n_j,y, n_j,x)``. The default face of body ``a_j`` is
+
+    .. math::
+
+        [\,-\epsilon L_j,\; (1 + \epsilon) L_j\,], \qquad
+        L_j = \lVert p_{j1} - p_{j0} \rVert, \quad \epsilon = 0.1
+
+    (:data:`FACE_EXTENSION`).
     """
 
     masses: np.ndarray
@@ -164,12 +201,12 @@ class Assembly:
 
     @property
     def n_blocks(self) -> int:
-        """Number of blocks nb."""
+        """Number of blocks nb [-]."""
         return int(self.masses.size)
 
     @property
     def n_joints(self) -> int:
-        """Number of joints nj (each with two contacts)."""
+        """Number of joints nj [-] (each with two contacts)."""
         return int(self.joint_bodies.shape[0])
 
     @property
@@ -198,11 +235,18 @@ def from_arch(arch: BlockArch) -> Assembly:
     Parameters
     ----------
     arch : BlockArch
-        The arch: any :class:`~archquake.geometry.BlockArch`.
+        The arch: any :class:`~archquake.geometry.BlockArch` of ``n`` voussoirs (masses
+        [kg/m], centroids [m], inertias [kg m], joints [m] and unit normals [-]).
 
     Returns
     -------
     Assembly
+        ``n`` blocks and ``n + 1`` joints, named ``"arch of n voussoirs"``.
+
+    Raises
+    ------
+    ValueError
+        If the arch's data do not make a valid :class:`Assembly`.
     """
     n = arch.n_voussoirs
     bodies = np.column_stack((np.arange(-1, n), np.arange(0, n + 1)))
@@ -218,12 +262,20 @@ def from_arch(arch: BlockArch) -> Assembly:
 
 
 def rectangular_block(width: float, height: float, density: float = 2000.0) -> Assembly:
-    """Housner's rigid block: a ``width`` x ``height`` rectangle standing on a rigid base.
+    r"""Housner's rigid block: a ``width`` x ``height`` rectangle standing on a rigid base.
 
     The block's base ``(-width/2, 0) .. (width/2, 0)`` is one joint against the ground (normal
-    +y), whose face reaches 100 widths beyond the block on either side (so that the block may
-    slide); its centroid is ``(0, height/2)``, its inertia ``m (width^2 + height^2) / 12``; the
-    crown point is the top of its left side, the length scale its width.
+    +y) [1]_, whose face reaches 100 widths beyond the block on either side (so that the block may
+    slide); its centroid is ``(0, height/2)``; the crown point is the top of its left side, the
+    length scale its width. Per unit depth, with :math:`\rho` the density, :math:`b` the width
+    and :math:`h` the height:
+
+    .. math::
+
+        m = \rho\,b\,h, \qquad I = \frac{m\,(b^2 + h^2)}{12}, \qquad
+        \tan\alpha = \frac{b}{h}
+
+    (:math:`\alpha` is the slenderness angle of [1]_).
 
     Parameters
     ----------
@@ -231,6 +283,27 @@ def rectangular_block(width: float, height: float, density: float = 2000.0) -> A
         Size of the block [m], > 0.
     density : float
         Density [kg/m^3], > 0.
+
+    Returns
+    -------
+    Assembly
+        One block [kg/m, m, kg m] and one joint against :data:`GROUND`.
+
+    Raises
+    ------
+    ValueError
+        If ``width``, ``height`` or ``density`` is not a finite number > 0.
+
+    References
+    ----------
+    .. [1] G. W. Housner, "The behavior of inverted pendulum structures during earthquakes",
+       Bull. Seismol. Soc. Am. 53 (1963) 403-417.
+
+    Examples
+    --------
+    >>> block = rectangular_block(0.2, 1.0)
+    >>> block.n_blocks, block.n_joints, round(block.total_mass, 6)
+    (1, 1, 400.0)
     """
     for name, value in (("width", width), ("height", height), ("density", density)):
         if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):

@@ -2,53 +2,84 @@ r"""Rigid-block dynamics of an arch (or any :class:`Assembly`) under a ground mo
 
 :func:`block_outcome` decides what happens (the fast path: no record, stops as soon as the
 outcome is certain); :func:`simulate_blocks` records the time history as well. Both run the one
-compiled driver :func:`archquake.rigid_blocks.solver.run` (Moreau-Jean time stepping with
-unilateral contacts, Coulomb friction and restitution 0; see that module for the scheme, the
-contact detection and the frame of the ground).
+compiled driver :func:`archquake.rigid_blocks.solver.run` (Moreau-Jean time stepping [1]_, [2]_
+with unilateral contacts, Coulomb friction and restitution 0; see that module for the scheme,
+the contact detection and the frame of the ground). A single block
+(:func:`~archquake.rigid_blocks.assembly.rectangular_block`) rocks as Housner's [3]_; an arch is
+a discrete model of the kind against which the four-link model has been checked [4]_.
 
-The structure starts at rest in its undeformed configuration, every joint closed; the contact
-forces that hold it under its weight are found in the first step (the contact problem of a
-step at rest is the static problem), so no settling steps are needed.
+The structure starts at rest in its undeformed configuration, every joint closed (unless an
+``initial`` state is given); the contact forces that hold it under its weight are found in the
+first step (the contact problem of a step at rest is the static problem), so no settling steps
+are needed.
 
 Outcome
 -------
+With ``t`` the thickness of the structure (:attr:`Assembly.thickness`) [m], ``M`` its mass
+[kg/m], ``g`` the acceleration of gravity, :math:`t_{exc}` the end of the excitation [s],
+:math:`\delta` the largest downward displacement of a block centroid or of the crown point
+[m], ``T`` the kinetic and ``V`` the potential energy relative to the undeformed configuration
+[J/m] (:mod:`archquake.rigid_blocks.solver`), and :math:`c_{drop}`, :math:`\epsilon_E`,
+:math:`v_r` the settings ``collapse_drop``, ``energy_margin``, ``rest_speed`` of
+:class:`BlockSettings`, the outcome is tested at every step.
+
 ``collapse``
-    The largest downward displacement of a block centroid or of the crown point reaches
-    ``collapse_drop`` times the thickness of the structure (default 1.0). For Oppenheim's arch
-    the four-link mechanism passes its point of no return (theta_cr) with hinge B lowered by
-    0.50 m = 0.33 t, so a drop of t is well beyond it; or, once the excitation is over, the total
-    mechanical energy (kinetic + potential, relative to the undeformed configuration) falls below
-    ``-energy_margin`` times ``M g t`` (default 0.01): with no input the energy cannot rise
-    again, so the structure can never return to its closed configuration (potential 0).
-    ``collapse_time`` is the time at which either test first holds.
+    The drop reaches ``collapse_drop`` times the thickness (default 1.0), at any time; or, once
+    the excitation is over, the total mechanical energy falls below ``-energy_margin`` times
+    ``M g t`` (default 0.01):
+
+    .. math::
+
+        \delta \ge c_{drop}\,t \quad\text{or}\quad
+        \bigl(t_k \ge t_{exc} \;\text{and}\; T + V < -\epsilon_E\,M g t\bigr).
+
+    For Oppenheim's arch the four-link mechanism passes its point of no return (theta_cr) with
+    hinge B lowered by 0.50 m = 0.33 t, so a drop of t is well beyond it; with no input the
+    energy cannot rise again, so a structure below the energy of its closed configuration
+    (potential 0) can never return to it. ``collapse_time`` is the time at which either test
+    first holds.
 ``recovery``
-    After the end of the excitation, every joint is closed (every contact valid with a gap below
-    ``closed_gap`` times the thickness) and the kinetic energy is below that of the whole mass
-    moving at ``rest_speed`` times ``sqrt(g t)``, continuously for ``rest_window`` seconds.
-    A structure that is closed and still, with no excitation, stays so. A structure still for
-    ``open_rest_window`` seconds (default 1 s) with a joint open is also a recovery, at rest in
-    a displaced configuration (``closed`` False): blocks that slipped can wedge with a joint
-    open, which the four-link model cannot represent. A near-critical arch that passes slowly
-    near an unstable equilibrium does not stay still that long.
+    After the end of the excitation, the kinetic energy stays below that of the whole mass
+    moving at ``rest_speed`` times :math:`\sqrt{g t}` for a window of consecutive steps:
+
+    .. math::
+
+        T \le \tfrac12\,M\,\bigl(v_r \sqrt{g t}\bigr)^2 \quad\text{for}\quad
+        \begin{cases}
+        \text{rest\_window (default 0.1 s)} & \text{every joint closed,} \\
+        \text{open\_rest\_window (default 1 s)} & \text{a joint open,}
+        \end{cases}
+
+    a joint being closed when both its contacts are valid with a gap at most ``closed_gap``
+    times the thickness (the window that applies is that of the current step; a step that is
+    not still starts the count again). A structure that is closed and still, with no
+    excitation, stays so. A structure still with a joint open is a recovery at rest in a
+    displaced configuration (``BlockOutcome.closed`` False): blocks that slipped can wedge
+    with a joint open, which the four-link model cannot represent. The longer window keeps a
+    near-critical arch that passes slowly near an unstable equilibrium from being taken for
+    one at rest.
 ``rest``
-    As recovery, but no joint ever opened or slipped by more than ``moved_opening`` times the
-    thickness during the whole run: the structure moved with the ground.
+    As recovery, but no joint ever opened, and none slipped at its more closed end, by more
+    than ``moved_opening`` times the thickness during the whole run: the structure moved with
+    the ground.
 
 If none is reached within ``settle_time`` seconds after the excitation, the run stops with
-``decided = False`` and the outcome is ``collapse`` when some joint is still open and
-``recovery`` otherwise.
+``decided = False`` and the outcome is ``collapse`` when some joint is open (or a contact has
+slid off its face) at the last step and ``recovery`` otherwise.
 
 References
 ----------
-[1] M. Jean, "The non-smooth contact dynamics method", Comput. Methods Appl. Mech. Engrg. 177
-    (1999) 235-257.
+.. [1] M. Jean, "The non-smooth contact dynamics method", Comput. Methods Appl. Mech. Engrg.
+   177 (1999) 235-257.
 
-[2] V. Acary, B. Brogliato, "Numerical methods for nonsmooth dynamical systems", Springer (2008).
+.. [2] V. Acary, B. Brogliato, "Numerical methods for nonsmooth dynamical systems", Springer
+   (2008).
 
-[3] G. W. Housner, "The behavior of inverted pendulum structures during earthquakes", Bull.
-    Seismol. Soc. Am. 53 (1963) 403-417.
+.. [3] G. W. Housner, "The behavior of inverted pendulum structures during earthquakes", Bull.
+   Seismol. Soc. Am. 53 (1963) 403-417.
 
-[4] M. J. DeJong, "Seismic assessment strategies for masonry structures", PhD thesis, MIT (2009).
+.. [4] M. J. DeJong, "Seismic assessment strategies for masonry structures", PhD thesis, MIT
+   (2009).
 """
 
 from __future__ import annotations
@@ -65,12 +96,12 @@ from . import solver
 from .assembly import GROUND, Assembly, from_arch
 
 STATUS_NAMES = {solver.REST: "rest", solver.RECOVERY: "recovery", solver.COLLAPSE: "collapse"}
-"""Outcome code -> name."""
+"""Outcome code of :func:`archquake.rigid_blocks.solver.run` -> name."""
 
 
 @dataclass(frozen=True)
 class BlockSettings:
-    """Settings of a rigid-block analysis (module docstring for the outcome criteria).
+    r"""Settings of a rigid-block analysis (module docstring for the outcome criteria).
 
     Parameters
     ----------
@@ -85,14 +116,16 @@ class BlockSettings:
         Gauss-Seidel tolerance: largest change of an impulse in the last sweep, as a fraction of
         the impulse ``m_mean g h`` of a mean block's weight over a step [-], > 0.
     max_iterations : int
-        Largest number of Gauss-Seidel sweeps per step.
+        Largest number of Gauss-Seidel sweeps per step [-], >= 1 (the active-set method has
+        its own limit, :data:`archquake.rigid_blocks.solver.ACTIVE_SET_SOLVES`).
     collapse_drop : float
         Drop of a block centroid or of the crown that defines a collapse, as a fraction of the
         thickness [-], > 0.
     energy_margin : float
         Margin of the energy test of collapse, as a fraction of ``M g t`` [-], > 0.
     rest_speed : float
-        Speed of rest as a fraction of ``sqrt(g t)`` [-], > 0.
+        Speed of rest as a fraction of ``sqrt(g t)`` [-], > 0: the structure is still while
+        its kinetic energy is at most ``M (rest_speed sqrt(g t))^2 / 2``.
     closed_gap : float
         Largest gap of a closed joint as a fraction of the thickness [-], > 0.
     moved_opening : float
@@ -107,6 +140,27 @@ class BlockSettings:
         rest.
     settle_time : float
         Longest time observed after the end of the excitation [s], > 0.
+
+    Raises
+    ------
+    ValueError
+        If a field is not a finite number, ``friction < 0``, ``theta`` is outside [0.5, 1],
+        ``max_iterations`` is not an integer >= 1, or another field is not > 0.
+
+    Notes
+    -----
+    The thresholds are scaled to the structure when an analysis starts, with ``t`` its
+    thickness [m], ``M`` its mass [kg/m] and ``g`` [m/s^2] (module docstring):
+
+    .. math::
+
+        \delta_{lim} = c_{drop}\,t, \qquad E_{margin} = \epsilon_E\,M g t, \qquad
+        T_{rest} = \tfrac12 M v_r^2\,g t, \qquad g_{closed} = c_{gap}\,t, \qquad
+        d_{moved} = c_{moved}\,t,
+
+    with :math:`c_{drop}, \epsilon_E, v_r, c_{gap}, c_{moved}` = ``collapse_drop``,
+    ``energy_margin``, ``rest_speed``, ``closed_gap``, ``moved_opening``; the windows are
+    rounded to whole steps (at least one).
     """
 
     friction: float = DEFAULT_FRICTION
@@ -161,22 +215,25 @@ class BlockOutcome:
     max_slip : float
         Largest tangential offset at the more closed end of a joint [m].
     max_opening : float
-        Largest gap at a joint end [m].
+        Largest gap at a joint end whose contact is valid [m].
     decided : bool
-        False if the run reached ``settle_time`` after the excitation undecided.
+        False if the run reached ``settle_time`` after the excitation undecided (or, for
+        :func:`simulate_blocks` with ``t_end``, reached ``t_end``).
     closed : bool
-        Every joint closed when the run stopped; False for a recovery at rest in a displaced
-        configuration, or a collapse.
+        Every joint closed (both contacts valid with a gap at most ``closed_gap`` times the
+        thickness) at the last step measured; False for a recovery at rest in a displaced
+        configuration, and as a rule for a collapse.
     decision_time : float
-        Time at which the outcome was decided [s].
+        Time at which the outcome was decided [s]; nan if undecided.
     steps : int
-        Time steps taken.
+        Time steps taken [-].
     mean_iterations : float
-        Mean number of linear solves (or Gauss-Seidel sweeps) per step.
+        Mean number of linear solves of the active-set method per step [-]; a step left to
+        Gauss-Seidel counts its sweeps instead.
     fallback_steps : int
-        Steps whose contact problem the active-set method left to Gauss-Seidel.
+        Steps whose contact problem the active-set method left to Gauss-Seidel [-].
     unconverged_steps : int
-        Of these, steps that did not meet the tolerance in ``max_iterations`` sweeps.
+        Of these, steps that did not meet the tolerance in ``max_iterations`` sweeps [-].
     """
 
     status: str
@@ -195,10 +252,16 @@ class BlockOutcome:
 
     @property
     def collapsed(self) -> bool:
+        """Whether the structure collapses."""
         return self.status == "collapse"
 
     def to_dict(self) -> dict:
-        """JSON-ready summary (nan as None)."""
+        """JSON-ready summary: every field by name, in the units above (nan as None).
+
+        Returns
+        -------
+        dict
+        """
         out = {}
         for f in fields(self):
             value = getattr(self, f.name)
@@ -217,6 +280,7 @@ class BlockHistory:
     assembly : Assembly
         The blocks and joints.
     outcome : BlockOutcome
+        The outcome of the run.
     times : array (nr,)
         Times [s].
     displacements : array (nr, nb, 2)
@@ -228,11 +292,16 @@ class BlockHistory:
     offsets : array (nr, nj, 2)
         Tangential offset at both ends of every joint [m].
     normal_forces, tangential_forces : array (nr, nj, 2)
-        Mean contact forces over the step that ends at each record [N/m].
+        Mean contact forces over the step that ends at each record, ``P / h`` [N/m] (0 at the
+        first record).
     kinetic_energy, potential_energy, dissipated_energy, input_work : array (nr,)
-        Energies [J/m] (module docstring of :mod:`archquake.rigid_blocks.solver`).
+        Energies ``T``, ``V``, ``D`` and ``W`` [J/m] (module docstring of
+        :mod:`archquake.rigid_blocks.solver`); for ``theta = 1/2``,
+        ``T + V + D - W`` stays at its initial value ``T(0) + V(0)`` to round-off.
     motion_name : str
+        Name of the ground motion.
     settings : BlockSettings
+        The settings of the run.
     """
 
     assembly: Assembly
@@ -264,7 +333,11 @@ class BlockHistory:
 
     @property
     def crown_drop(self) -> np.ndarray:
-        """Downward displacement of the crown point [m], shape (nr,)."""
+        r"""Downward displacement of the crown point [m], shape (nr,).
+
+        With ``r`` the crown point relative to its block's centroid [m],
+        :math:`-\bigl(y + r_x \sin\theta + r_y (\cos\theta - 1)\bigr)`.
+        """
         block, point = self.assembly.crown
         r = point - self.assembly.centroids[block]
         th = self.rotations[:, block]
@@ -277,7 +350,18 @@ class BlockHistory:
         return self.kinetic_energy + self.potential_energy
 
     def outlines(self, record: int) -> list[np.ndarray]:
-        """Outline polygon of every block at record ``record`` [m] (ground frame)."""
+        """Outline polygon of every block at record ``record`` [m] (ground frame).
+
+        Parameters
+        ----------
+        record : int
+            Index of the record.
+
+        Returns
+        -------
+        list of array (k_i, 2)
+            Every outline turned by the block's rotation about its centroid and moved with it.
+        """
         out = []
         for i, outline in enumerate(self.assembly.outlines):
             c0 = self.assembly.centroids[i]
@@ -295,6 +379,17 @@ def contact_arrays(assembly: Assembly) -> dict[str, np.ndarray]:
     ``tangent``: the joint's unit vectors [-]; ``offset``: position of the end along the joint
     (0 or its length) [m]; ``face_lo, face_hi``: the face of body a along the joint [m];
     ``length``: the joint's length [m].
+
+    Parameters
+    ----------
+    assembly : Assembly
+        The blocks and joints.
+
+    Returns
+    -------
+    dict of str to array
+        The arrays above, contiguous, of length ``nc = 2 nj`` (``(nc, 2)`` for points and
+        vectors); computed once and cached on the assembly.
     """
     if "contacts" not in assembly._cache:
         nj = assembly.n_joints
@@ -321,6 +416,7 @@ def contact_arrays(assembly: Assembly) -> dict[str, np.ndarray]:
 
 
 def _assembly(structure) -> Assembly:
+    """The :class:`Assembly` of an arch (converted once, cached on it) or an Assembly itself."""
     if isinstance(structure, Assembly):
         return structure
     if isinstance(structure, BlockArch):
@@ -332,6 +428,7 @@ def _assembly(structure) -> Assembly:
 
 
 def _initial_state(assembly: Assembly, initial) -> tuple[np.ndarray, np.ndarray]:
+    """Checked ``(q0, v0)``, each (nb, 3) [m, m, rad] and [m/s, m/s, rad/s]; zeros for None."""
     nb = assembly.n_blocks
     if initial is None:
         return np.zeros((nb, 3)), np.zeros((nb, 3))
@@ -351,6 +448,11 @@ def _initial_state(assembly: Assembly, initial) -> tuple[np.ndarray, np.ndarray]
 def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None, *,
          initial=None, record_every: int = 0, t_end: float | None = None,
          tail: float = 0.5):
+    """Check the input, scale the thresholds to the structure and run the compiled driver.
+
+    Returns ``(assembly, settings, motion, outcome, records)`` (records as
+    :func:`archquake.rigid_blocks.solver.run` returns them).
+    """
     assembly = _assembly(structure)
     settings = BlockSettings() if settings is None else settings
     if not isinstance(settings, BlockSettings):
@@ -428,6 +530,7 @@ def block_outcome(structure, motion: GroundMotion | None, settings: BlockSetting
     motion : GroundMotion or None
         Horizontal ground acceleration [m/s^2]; None for a still ground.
     settings : BlockSettings, optional
+        Settings of the analysis (default :class:`BlockSettings`).
     initial : (array (nb, 3), array (nb, 3)), optional
         Initial displacements ``(x, y, theta)`` [m, m, rad] and velocities [m/s, m/s, rad/s]
         of the blocks; default: at rest, undeformed.
@@ -435,6 +538,25 @@ def block_outcome(structure, motion: GroundMotion | None, settings: BlockSetting
     Returns
     -------
     BlockOutcome
+        The outcome (module docstring), decided within ``settle_time`` after the end of the
+        motion or reported undecided.
+
+    Raises
+    ------
+    ValueError
+        If ``structure``, ``motion`` or ``settings`` has the wrong type, ``initial`` is not
+        two finite arrays of shape (nb, 3), or the analysis would take more than
+        :data:`archquake.defaults.MAX_BLOCK_STEPS` time steps.
+
+    Examples
+    --------
+    A block 0.2 m x 1 m on a still ground stays at rest:
+
+    >>> from archquake.rigid_blocks import rectangular_block
+    >>> outcome = block_outcome(rectangular_block(0.2, 1.0), None,
+    ...                         BlockSettings(time_step=0.01, settle_time=0.5))
+    >>> outcome.status, outcome.decided
+    ('rest', True)
     """
     return _run(structure, motion, settings, initial=initial)[3]
 
@@ -452,6 +574,7 @@ def simulate_blocks(structure, motion: GroundMotion | None,
     motion : GroundMotion or None
         Horizontal ground acceleration [m/s^2]; None for a still ground.
     settings : BlockSettings, optional
+        Settings of the analysis (default :class:`BlockSettings`).
     initial : (array (nb, 3), array (nb, 3)), optional
         Initial displacements and velocities (see :func:`block_outcome`).
     record_every : int
@@ -465,6 +588,13 @@ def simulate_blocks(structure, motion: GroundMotion | None,
     Returns
     -------
     BlockHistory
+        The records (the first at t = 0) and the outcome.
+
+    Raises
+    ------
+    ValueError
+        As :func:`block_outcome`; also if ``record_every`` is not an integer >= 1, ``tail`` is
+        not a finite time >= 0 or ``t_end`` not a finite time > 0.
     """
     if isinstance(record_every, bool) or int(record_every) != record_every or record_every < 1:
         raise ValueError(f"record_every must be an integer >= 1, got {record_every!r}")
@@ -487,7 +617,26 @@ def simulate_blocks(structure, motion: GroundMotion | None,
 
 
 def with_settings(settings: BlockSettings | None, **changes) -> BlockSettings:
-    """``settings`` (default :class:`BlockSettings`) with some fields replaced."""
+    """``settings`` (default :class:`BlockSettings`) with some fields replaced.
+
+    Parameters
+    ----------
+    settings : BlockSettings or None
+        The settings to start from.
+    **changes
+        Fields of :class:`BlockSettings` and their new values (units as there).
+
+    Returns
+    -------
+    BlockSettings
+
+    Raises
+    ------
+    ValueError
+        If a new value is out of its range (:class:`BlockSettings`).
+    TypeError
+        If a name is not a field of :class:`BlockSettings`.
+    """
     return replace(BlockSettings() if settings is None else settings, **changes)
 
 

@@ -1,15 +1,31 @@
-"""Failure accelerations of the rigid-block model under pulses (the failure curve of an arch).
+r"""Failure accelerations of the rigid-block model under pulses (the failure curve of an arch).
 
 For a pulse duration t_p the amplitude axis is scanned on a grid and every change of outcome
 (rest, recovery, collapse) is bisected to a resolution
 (:func:`archquake.failure_domain.domain_slice`, the search shared with the four-link failure
-domains; the outcome here is the rigid-block model's,
-:func:`archquake.rigid_blocks.dynamics.block_outcome`). The failure
-acceleration is the lowest collapsing amplitude; the outcome need not be monotone in the
-amplitude, so the recovery bands above it are reported too.
+domains of the paper's Sect. 5.3 [1]_; the outcome here is the rigid-block model's,
+:func:`archquake.rigid_blocks.dynamics.block_outcome`). The failure acceleration is the lowest
+collapsing amplitude [g],
+
+.. math::
+
+    a_f(t_p) = \min \{\, a \in [a_{lo}, a_{hi}] : \text{the pulse } \mp a\,g
+    \text{ of duration } t_p \text{ collapses the structure} \,\}
+
+(to the resolution of the bisection, within the scanned range); the outcome need not be
+monotone in the amplitude, so the recovery bands above it are reported too. The curve
+:math:`a_f(t_p)` is the rigid-block counterpart of the four-link model's, as in the comparisons
+of analytical and discrete models of arches under pulses [2]_.
 
 Direction: ``"l"`` makes the first pulse ``-a g`` (the arch sways toward +x, the four-link
 model's Mech-l), ``"r"`` makes it ``+a g``. Amplitudes are given and reported in g, positive.
+
+References
+----------
+.. [1] The paper, Sect. 5.3 (pulses and failure domains).
+
+.. [2] M. J. DeJong, "Seismic assessment strategies for masonry structures", PhD thesis, MIT
+   (2009).
 """
 
 from __future__ import annotations
@@ -48,6 +64,7 @@ class FailureCurve:
     motion : str
         Pulse shape (a name of :data:`archquake.ground_motion.GROUND_MOTIONS`).
     settings : BlockSettings
+        Settings of the rigid-block analyses.
     """
 
     slices: tuple[DomainSlice, ...]
@@ -67,12 +84,25 @@ class FailureCurve:
 
     def recovery_bands(self) -> list[list[tuple[float, float]]]:
         """Per duration, the recovery intervals ``(from, to)`` [g] above the failure
-        acceleration (amplitudes that collapse less easily than a lower one)."""
+        acceleration (amplitudes that collapse less easily than a lower one).
+
+        Returns
+        -------
+        list of list of (float, float)
+            One list per duration, in the order of :attr:`durations` [g].
+        """
         return [s.recovery_above_g for s in self.slices]
 
     def to_list(self) -> list[dict]:
         """JSON-ready list: duration [s], failure acceleration [g] (None: none), recovery
-        bands above it [g] and the intervals."""
+        bands above it [g] and the intervals.
+
+        Returns
+        -------
+        list of dict
+            One per duration, with keys ``duration``, ``failure_acceleration``,
+            ``recovery_above`` and ``intervals``.
+        """
         out = []
         for s, bands in zip(self.slices, self.recovery_bands(), strict=True):
             failure = s.failure_acceleration_g
@@ -84,6 +114,8 @@ class FailureCurve:
 
 
 def _grid(amplitudes_g) -> np.ndarray:
+    """The checked scan grid [g]: increasing, >= 0, at least two values (default
+    :data:`DEFAULT_AMPLITUDES_G`)."""
     if amplitudes_g is None:
         return inclusive_range(*DEFAULT_AMPLITUDES_G)
     a = np.atleast_1d(np.asarray(amplitudes_g, dtype=float))
@@ -118,11 +150,20 @@ def failure_slice(structure, duration: float, *, direction: str = "l",
     resolution : float
         Bisection width of every boundary [g], > 0.
     settings : BlockSettings, optional
+        Settings of every analysis (default :class:`BlockSettings`).
 
     Returns
     -------
     DomainSlice
-        Its ``failure_acceleration_g`` is the lowest collapsing amplitude [g].
+        Its ``failure_acceleration_g`` is the lowest collapsing amplitude [g]; amplitude 0 is
+        rest without an analysis.
+
+    Raises
+    ------
+    ValueError
+        If ``direction`` is not ``"l"`` or ``"r"``, ``motion`` is not an analytic pulse,
+        ``duration`` is not a finite number > 0, ``resolution <= 0`` or the grid is not an
+        increasing sequence of at least two finite values >= 0 [g].
     """
     sign = -1.0 if check_direction(direction) == "l" else 1.0
     if motion not in ANALYTIC_GROUND_MOTIONS:
@@ -144,12 +185,14 @@ def failure_slice(structure, duration: float, *, direction: str = "l",
 
 
 def _slice_task(args) -> DomainSlice:
+    """:func:`failure_slice` of one ``(structure, duration, kwargs)`` task (a worker's job)."""
     structure, duration, kwargs = args
     return failure_slice(structure, duration, **kwargs)
 
 
 def warm_up() -> None:
-    """Load the compiled rigid-block solver (a worker's start-up)."""
+    """Load the compiled rigid-block solver (a worker's start-up): one short analysis of
+    Oppenheim's arch under a 0.5 g pulse of 0.05 s."""
     from ..reference_arches import oppenheim
 
     block_outcome(oppenheim(), ground_motion("oppenheim", -0.5 * GRAVITY, 0.05))
@@ -181,7 +224,8 @@ def failure_curve(structure, durations: Sequence[float], *, direction: str = "l"
     Raises
     ------
     ValueError
-        For bad input, or a scan of more than
+        For bad input (as :func:`failure_slice`; ``durations`` not a non-empty sequence of
+        finite numbers > 0 [s], ``workers`` not an integer >= 1), or a scan of more than
         :data:`archquake.defaults.MAX_BLOCK_GRID_POINTS` (duration, amplitude) points.
     """
     d = np.atleast_1d(np.asarray(durations, dtype=float))

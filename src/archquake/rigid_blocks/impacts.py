@@ -24,11 +24,26 @@ blocks. The blocks need not continue in ``u_to``: the share of ``T_1`` in that m
 reported as well (:attr:`ClosingImpact.mode_share`).
 
 For a rectangular block of slenderness ``alpha`` rocking on a rigid base the blocks keep
-rotating about the new corner with the angular momentum about it, so ``c`` is Housner's
-``r = 1 - 1.5 sin^2(alpha)`` [1]. With no friction the impact law makes ``v_1`` the projection
-of ``v_0`` in the metric of ``M`` on the cone of velocities that open no contact into another
-[2]; with enough friction the joints stick at the impact and the result no longer depends on
-``mu`` (for Oppenheim's arch from about ``mu = 0.5`` up).
+rotating about the new corner with the angular momentum about it, so ``c`` is Housner's ratio
+of angular velocities [1]_,
+
+.. math::
+
+    c = \left|\frac{\dot\theta_f}{\dot\theta_i}\right| = 1 - \tfrac32 \sin^2\alpha, \qquad
+    r = c^2 = \frac{T_1}{T_0},
+
+whose square is the ratio ``r`` of the kinetic energies after and before the impact in
+[1]_. With no friction the impact law makes ``v_1`` the projection of ``v_0`` in the metric of
+``M`` on the cone of velocities that drive no closed contact into penetration [2]_,
+
+.. math::
+
+    v_1 = \mathop{\mathrm{arg\,min}}_{v \,:\, H_n v \ge 0}\;
+    \tfrac12 (v - v_0)^T \mathbf{M} (v - v_0)
+
+(``H_n`` the normal Jacobian rows of the closed contacts,
+:mod:`archquake.rigid_blocks.solver`); with enough friction the joints stick at the impact and
+the result no longer depends on ``mu`` (for Oppenheim's arch from about ``mu = 0.5`` up).
 
 The measurement is independent of the rate ``theta'_i`` because the impact law is positively
 homogeneous in the velocities once the weight's impulse over the step is negligible: the
@@ -38,11 +53,11 @@ result does not depend on the time step.
 
 References
 ----------
-[1] G. W. Housner, "The behavior of inverted pendulum structures during earthquakes", Bull.
-    Seismol. Soc. Am. 53 (1963) 403-417.
+.. [1] G. W. Housner, "The behavior of inverted pendulum structures during earthquakes", Bull.
+   Seismol. Soc. Am. 53 (1963) 403-417.
 
-[2] J. J. Moreau, "Unilateral contact and dry friction in finite freedom dynamics", in
-    Nonsmooth Mechanics and Applications, CISM Courses and Lectures 302, Springer (1988) 1-82.
+.. [2] J. J. Moreau, "Unilateral contact and dry friction in finite freedom dynamics", in
+   Nonsmooth Mechanics and Applications, CISM Courses and Lectures 302, Springer (1988) 1-82.
 """
 
 from __future__ import annotations
@@ -66,6 +81,8 @@ def _mass_diagonal(assembly) -> np.ndarray:
 
 
 def _check_mode(assembly, mode, name: str) -> np.ndarray:
+    """``mode`` as a finite (nb, 3) array [m/s, m/s, rad/s] that moves some centroid; a
+    ``ValueError`` naming ``name`` otherwise."""
     nb = assembly.n_blocks
     try:
         u = np.array(mode, dtype=float)
@@ -103,18 +120,42 @@ class ClosingImpact:
 
     @property
     def energy_ratio(self) -> float:
-        """``T_1 / T_0``: the share of the kinetic energy the impact leaves [-]."""
+        """``T_1 / T_0``: the share of the kinetic energy the impact leaves [-], in [0, 1]."""
         return self.kinetic_energy_after / self.kinetic_energy_before
 
     def mode_rate(self, mode) -> float:
-        """Rate of ``mode`` in the velocities after the impact: the projection
-        ``v_1^T M u / u^T M u`` [1/s per unit of the field]."""
+        r"""Rate of ``mode`` in the velocities after the impact: the projection
+        ``v_1^T M u / u^T M u`` [1/s per unit of the field].
+
+        Parameters
+        ----------
+        mode : array_like, shape (nb, 3)
+            Block velocities per unit rate of the coordinate, ``u`` [m, m, rad per rad].
+
+        Returns
+        -------
+        float
+            :math:`\dot\theta_f = v_1^T \mathbf{M} u \,/\, u^T \mathbf{M} u`, in the scale of
+            the velocities given to :func:`closing_impact`.
+        """
         u = np.asarray(mode, dtype=float)
         return float(np.sum(self.mass_matrix * self.velocities_after * u)
                      / np.sum(self.mass_matrix * u * u))
 
     def mode_share(self, mode) -> float:
-        """Share of the kinetic energy after the impact that moves in ``mode`` [-]."""
+        r"""Share of the kinetic energy after the impact that moves in ``mode`` [-].
+
+        Parameters
+        ----------
+        mode : array_like, shape (nb, 3)
+            Block velocities per unit rate of the coordinate, ``u`` [m, m, rad per rad].
+
+        Returns
+        -------
+        float
+            :math:`\tfrac12 \dot\theta_f^2\, u^T \mathbf{M} u \,/\, T_1`, in [0, 1]
+            (:meth:`mode_rate`).
+        """
         u = np.asarray(mode, dtype=float)
         rate = self.mode_rate(u)
         return float(0.5 * rate**2 * np.sum(self.mass_matrix * u * u)
@@ -123,8 +164,16 @@ class ClosingImpact:
 
 def closing_impact(structure, velocities, settings: BlockSettings | None = None
                    ) -> ClosingImpact:
-    """One Moreau-Jean step of ``structure`` closed in its undeformed configuration and moving
+    r"""One Moreau-Jean step of ``structure`` closed in its undeformed configuration and moving
     with ``velocities``: the rigid-block model's impact (module docstring).
+
+    The field is scaled by :math:`s = N g h / \max_i \max(|u_i|, |w_i|)`
+    (N = :data:`IMPACT_SPEED`), one step is run from :math:`q_0 = 0`, and the velocities after
+    it are recovered from the step's position update and scaled back:
+
+    .. math::
+
+        v_1 = \frac{1}{s}\,\frac{q_1 / h - (1 - \theta)\, s\, v_0}{\theta}.
 
     Parameters
     ----------
@@ -140,6 +189,12 @@ def closing_impact(structure, velocities, settings: BlockSettings | None = None
     -------
     ClosingImpact
         With the velocities in the scale of ``velocities``.
+
+    Raises
+    ------
+    ValueError
+        If ``velocities`` is not a finite array of shape (nb, 3) that moves some centroid, or
+        ``structure`` is not an arch or an :class:`~archquake.rigid_blocks.assembly.Assembly`.
     """
     assembly = _assembly(structure)
     settings = BlockSettings() if settings is None else settings
@@ -179,11 +234,34 @@ def equivalent_restitution(structure, mode_from, mode_to,
         Block velocities per unit rate of the coordinate before and after the impact
         [m, m, rad per rad]; ``mode_from`` is the field that closes the structure.
     settings : BlockSettings, optional
+        Friction and time step of the model (default :class:`BlockSettings`).
 
     Returns
     -------
     float
         c [-], in [0, 1] when ``mode_from`` and ``mode_to`` have the same generalised mass.
+
+    Raises
+    ------
+    ValueError
+        If a mode is not a finite array of shape (nb, 3) that moves some centroid.
+
+    Examples
+    --------
+    Housner's block 0.2 m x 1 m, rocking from one corner onto the other (with enough friction
+    to stick), keeps :math:`1 - 1.5 \sin^2\alpha` of its angular velocity:
+
+    >>> import numpy as np
+    >>> from archquake.rigid_blocks import rectangular_block
+    >>> from archquake.rigid_blocks.dynamics import BlockSettings
+    >>> b, h = 0.2, 1.0
+    >>> def rocking(x_pivot):  # block velocities per unit counterclockwise rate about a corner
+    ...     return np.array([[-(0.5 * h), 0.0 - x_pivot, 1.0]])
+    >>> c = equivalent_restitution(rectangular_block(b, h), rocking(b / 2), rocking(-b / 2),
+    ...                            BlockSettings(friction=1.0))
+    >>> alpha = np.arctan(b / h)
+    >>> bool(abs(c - (1 - 1.5 * np.sin(alpha) ** 2)) < 1e-3)
+    True
     """
     assembly = _assembly(structure)
     u_from = _check_mode(assembly, mode_from, "mode_from")

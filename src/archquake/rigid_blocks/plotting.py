@@ -18,12 +18,14 @@ from .dynamics import BlockHistory
 
 
 def _axes(ax, size=(7.0, 4.5)):
+    """``ax``, or the axes of a new figure of ``size`` [in] when None."""
     if ax is None:
         _, ax = plt.subplots(figsize=size)
     return ax
 
 
 def _record(history: BlockHistory, time: float | None) -> int:
+    """Index of the record nearest to ``time`` [s] (the last for None)."""
     if history.times.size == 0:
         raise ValueError("the history holds no records")
     if time is None:
@@ -32,6 +34,7 @@ def _record(history: BlockHistory, time: float | None) -> int:
 
 
 def _limits(history: BlockHistory) -> tuple[tuple[float, float], tuple[float, float]]:
+    """x and y limits [m] around the undeformed outlines, with margins (more below)."""
     points = np.vstack(history.assembly.outlines)
     span = np.ptp(points, axis=0)
     lo = points.min(axis=0) - 0.08 * span
@@ -59,10 +62,21 @@ def plot_blocks(history: BlockHistory, time: float | None = None, ax=None, *,
     time : float, optional
         Time [s].
     ax : matplotlib Axes, optional
+        Axes to draw in (default: a new figure).
     undeformed : bool
         Also draw the undeformed outlines (thin grey).
     color : color
         Face colour of the blocks.
+
+    Returns
+    -------
+    matplotlib Axes
+        The axes, in the frame of the ground [m], equal aspect.
+
+    Raises
+    ------
+    ValueError
+        If the history holds no records.
     """
     ax = _axes(ax)
     k = _record(history, time)
@@ -85,7 +99,20 @@ def plot_blocks(history: BlockHistory, time: float | None = None, ax=None, *,
 
 def plot_block_history(history: BlockHistory, ax=None):
     """Crown drop, largest joint opening and largest slip [m] against time [s], with the
-    largest block rotation [rad] on a second axis and the decision time marked."""
+    largest block rotation [rad] on a second axis and the decision time marked.
+
+    Parameters
+    ----------
+    history : BlockHistory
+        A recorded analysis.
+    ax : matplotlib Axes, optional
+        Axes to draw in (default: a new figure).
+
+    Returns
+    -------
+    matplotlib Axes
+        The axes of the displacements (the rotation is on their twin).
+    """
     ax = _axes(ax)
     t = history.times
     ax.plot(t, history.crown_drop, label="crown drop [m]", color="tab:blue")
@@ -108,7 +135,20 @@ def plot_block_history(history: BlockHistory, ax=None):
 
 
 def plot_block_energy(history: BlockHistory, ax=None):
-    """Kinetic, potential and dissipated energy and the input work [J/m] against time [s]."""
+    """Kinetic, potential and dissipated energy and the input work [J/m] against time [s].
+
+    Parameters
+    ----------
+    history : BlockHistory
+        A recorded analysis (energies: module docstring of
+        :mod:`archquake.rigid_blocks.solver`).
+    ax : matplotlib Axes, optional
+        Axes to draw in (default: a new figure).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
     ax = _axes(ax)
     t = history.times
     for values, label in ((history.kinetic_energy, "kinetic"),
@@ -133,16 +173,23 @@ def animate_blocks(history: BlockHistory, path, *, fps: int = 20, speed: float =
     path : str or Path
         The GIF file.
     fps : int
-        Frames per second of the animation (1 .. 60).
+        Frames per second of the animation [1/s] (1 .. 60).
     speed : float
-        Simulated seconds per second of animation (> 0).
+        Simulated seconds per second of animation [-] (> 0); the frames are the records
+        nearest to every ``speed / fps`` seconds.
     dpi : int
-        Resolution of the frames.
+        Resolution of the frames [dots per inch].
 
     Returns
     -------
     Path
         The file written.
+
+    Raises
+    ------
+    ValueError
+        If ``fps`` or ``speed`` is out of range, the history holds no records, or the file
+        cannot be written.
     """
     from matplotlib.animation import FuncAnimation, PillowWriter
 

@@ -13,92 +13,165 @@ frame does not turn). So the ground displacement is never needed (a record's int
 displacement drifts), contacts are detected against fixed supports, and every displacement is
 relative to the ground. Block ``i`` has the coordinates ``q_i = (x_i, y_i, theta_i)`` (centroid
 displacement [m] and rotation [rad], counterclockwise) and the velocities ``v_i = (u_i, w_i,
-omega_i)``; the mass matrix is ``diag(m_i, m_i, I_i)``.
+omega_i)`` [m/s, m/s, rad/s]; the mass matrix and the external forces are
+
+.. math::
+
+    \mathbf{M} = \operatorname{diag}(m_i, m_i, I_i), \qquad
+    f_i(t) = \bigl(-m_i\,\ddot x_g(t),\; -m_i\,g,\; 0\bigr)
+
+[kg/m, kg/m, kg m] and [N/m, N/m, N] per unit depth.
 
 Contacts and their detection
 ----------------------------
 Each joint ``j`` between bodies ``a`` and ``b`` has a contact at each of its two ends
-``k = 0, 1``. The contact follows two material points, one of each body, that coincide with
-the end of the joint in the undeformed configuration: ``p_a`` (on body ``a``) and ``p_b``
-(on body ``b``). The face of body ``a`` is the joint segment carried by ``a``, with normal
-``n_a = R(theta_a) n_j`` and tangent ``t_a = R(theta_a) t_j``. The gap and the tangential
-offset of the contact are
+``k = 0, 1`` (contact ``2 j + k``). The contact follows two material points, one of each body,
+that coincide with the end of the joint in the undeformed configuration: ``p_a`` (on body ``a``)
+and ``p_b`` (on body ``b``). The face of body ``a`` is the joint segment carried by ``a``, with
+normal ``n_a`` and tangent ``t_a``. With ``c`` a centroid in the deformed configuration, ``r``
+the undeformed offset of the contact point from it and ``R`` the rotation matrix (the ground
+has ``theta = 0`` and ``c = 0``), the gap and the tangential offset of the contact are
 
 .. math::
 
+    p_a = c_a + R(\theta_a)\,r_a, \quad p_b = c_b + R(\theta_b)\,r_b, \quad
+    n_a = R(\theta_a)\,n_j, \quad t_a = R(\theta_a)\,t_j,
+
     g = (p_b - p_a) \cdot n_a, \qquad s = (p_b - p_a) \cdot t_a
 
-exactly, for any rotation (nothing is linearised). This is the corner-to-face contact of two
-convex polygons that touch along a common flat face: while the two faces are in contact or
+[m] exactly, for any rotation (nothing is linearised). This is the corner-to-face contact of
+two convex polygons that touch along a common flat face: while the two faces are in contact or
 turn about one end (a hinge), that end is a material point of both blocks, so the pair of
 points stays exact at large rotations; the other end lifts off (``g > 0``) and lands again.
-Only sliding moves ``p_b`` along the face; the contact holds while the projection of ``p_b``
-on the face lies on the face of body ``a`` (:attr:`Assembly.face_extents`: by default the joint
-extended by 10 % of its length at each end, since beyond its end the exact contact would be the
-corner of ``a`` on the face of ``b``, which differs to second order only, slip times relative
-rotation). Contacts of other faces (an extrados on a neighbouring block) are not detected:
-they cannot occur before an arch collapses.
+Only sliding moves ``p_b`` along the face; the contact holds (is *valid*) while the projection
+of ``p_b`` on the face lies on the face of body ``a``,
+
+.. math::
+
+    \ell_{lo} \le o_k + s \le \ell_{hi}
+
+with :math:`o_k` the position of the end along the joint (0 or its length) [m] and
+:math:`[\ell_{lo}, \ell_{hi}]` the face (:attr:`Assembly.face_extents`: by default the joint
+extended by 10 % of its length at each end, since beyond its end the exact contact would be
+the corner of ``a`` on the face of ``b``, which differs to second order only, slip times
+relative rotation).
+Contacts of other faces (an extrados on a neighbouring block) are not detected: they cannot
+occur before an arch collapses.
+
+The normal and tangential relative velocities are the exact time derivatives of ``g`` and
+``s``, ``u_n = H_n v`` and ``u_t = H_t v``, whose rows (the Jacobian ``H``) are, with the planar
+cross product :math:`r \times n = r_x n_y - r_y n_x`,
+
+.. math::
+
+    H_{n,a} = -\bigl(n_a^T,\; (p_b - c_a) \times n_a\bigr), \qquad
+    H_{n,b} = \bigl(n_a^T,\; (p_b - c_b) \times n_a\bigr)
+
+and the same with ``t_a`` for ``H_t``: the turning of the face of ``a`` moves the lever arm of
+body ``a`` from ``p_a`` to ``p_b`` (:func:`contact_geometry`).
 
 Time stepping (Moreau-Jean, theta-method)
 -----------------------------------------
 On each step ``[t_k, t_k + h]``, with the contact geometry and the Jacobians evaluated at
-``q_k`` [Jean 1999, Acary & Brogliato 2008, Sect. 10.1]:
+``q_k`` [1]_, [2]_ (Ch. 10):
 
 .. math::
 
-    M (v_{k+1} - v_k) = \int_{t_k}^{t_{k+1}} f\,dt + H^T P, \qquad
+    \mathbf{M} (v_{k+1} - v_k) = \int_{t_k}^{t_{k+1}} f\,dt + H_k^T P_{k+1}, \qquad
     q_{k+1} = q_k + h\,[(1 - \theta) v_k + \theta v_{k+1}]
 
 where the impulse of the external forces is exact (weight, and the ground acceleration
 integrated over the step by :func:`mean_acceleration`, so a jump of a pulse inside a step costs
-no accuracy). The contacts whose predicted gap ``g_k + theta h u_n(v_k)`` is below
-:data:`ACTIVATION_GAP` times the joint's length (zero but for round-off) form the active set;
-for them the impulses ``P = (P_n, P_t)`` satisfy Newton's impact law with restitution 0 at
-the velocity level and Coulomb's law (friction coefficient mu):
+no accuracy): :math:`\int f_i\,dt = -h\,m_i\,(\bar a_g, g, 0)` with :math:`\bar a_g` the mean
+ground acceleration over the step. The valid contacts whose predicted gap is below
+:data:`ACTIVATION_GAP` times the joint's length ``L`` (zero but for round-off) form the active
+set
 
 .. math::
 
-    0 \le u_n(v_{k+1}) \perp P_n \ge 0, \qquad |P_t| \le \mu P_n, \qquad
-    P_t u_t(v_{k+1}) \le 0, \quad u_t \ne 0 \Rightarrow |P_t| = \mu P_n
+    \mathcal{I}_k = \{\, c \text{ valid} : g_c(q_k) + \theta\,h\,u_{n,c}(v_k)
+    \le \epsilon_a L_c \,\}, \qquad \epsilon_a = 10^{-9};
 
+for them the impulses ``P = (P_n, P_t)`` [N s/m] satisfy Newton's impact law with restitution 0
+at the velocity level [3]_ and Coulomb's law (friction coefficient mu) as complementarity
+conditions on the velocities ``u = H_k v_{k+1}`` at the end of the step:
+
+.. math::
+
+    0 \le u_n \perp P_n \ge 0, \qquad |P_t| \le \mu P_n, \qquad
+    u_t \ne 0 \Rightarrow P_t = -\mu P_n \operatorname{sign}(u_t)
+
+(the impulse lies in Coulomb's cone and opposes the slip); the other contacts carry no impulse.
 A closing contact penetrates by at most ``theta h |u_n|`` (0.25 mm for 0.5 m/s at h = 1 ms,
 theta = 1/2) and never drifts at rest.
 
-The contact problem of a step is solved exactly (to round-off) by a primal-dual active-set
-method, :func:`solve_active_set`: guess the state of every contact (open, stick, slide either
-way; the previous step's states), solve the linear system in the impulses that the states
-define, switch the states that the solution contradicts, repeat (usually 1-2 solves of a system
-of at most 2 x 2(n+1) unknowns; the sticking rows carry a compliance of
-:data:`REGULARISATION` times their diagonal, which picks the smallest of the statically
-indeterminate impulses). Should the states cycle (a few steps of a collapse at large amplitude,
-where contacts slide and separate together; counted in the outcome), projected
-Gauss-Seidel takes over [2, Sect. 13.4], :func:`solve_contacts`: sweeps forward and backward in
-turn, each local problem solved exactly by :func:`local_coulomb`, stopping when no impulse
-changes by more than ``tolerance * m_mean g h`` (the impulse of a mean block's weight over a
-step, scaled) or after ``max_iterations`` sweeps (counted as unconverged). Gauss-Seidel alone
-converges slowly on an arch (the thrust runs through a chain of blocks and the friction split
-between the two ends of a joint is indeterminate), and its residual velocities make a still
-arch creep; hence the direct method.
+Contact problem
+---------------
+With the free velocity :math:`v^f = v_k + \mathbf{M}^{-1} \int f\,dt` (the step without contact
+impulses), the local velocities of the active contacts are affine in their impulses, through
+the Delassus matrix:
+
+.. math::
+
+    u = u^f + W P, \qquad u^f = H_k v^f, \qquad W = H_k \mathbf{M}^{-1} H_k^T.
+
+It is solved exactly (to round-off) by a primal-dual active-set method,
+:func:`solve_active_set`: guess the state of every contact (open, stick, slide either way; the
+previous step's states), solve the linear system in the impulses that the states define, switch
+the states that the solution contradicts, repeat (usually 1-2 solves of a system of at most
+2 x 2(n+1) unknowns; the normal rows of the contacts that stick or slide and the tangential
+rows of the sticking ones carry a compliance of :data:`REGULARISATION` times their diagonal,
+which picks the smallest of the statically indeterminate impulses). Should the states cycle
+(a few steps of a collapse at large amplitude, where contacts slide and separate together;
+counted in the outcome), projected Gauss-Seidel takes over [2]_ (Ch. 13),
+:func:`solve_contacts`: sweeps forward and backward in turn, each contact's problem solved
+exactly by :func:`local_coulomb` with the others' impulses fixed,
+
+.. math::
+
+    P_c \leftarrow \operatorname{local}\bigl(u_c - W_{cc} P_c,\; W_{cc},\; \mu\bigr), \qquad
+    v \leftarrow v + \mathbf{M}^{-1} H_c^T \Delta P_c,
+
+stopping when :math:`\max_c (|\Delta P_{n,c}| + |\Delta P_{t,c}|) \le \mathrm{tol}\;\bar m g h`
+(the impulse of a mean block's weight over a step, scaled) or after ``max_iterations`` sweeps
+(counted as unconverged). Gauss-Seidel alone converges slowly on an arch (the thrust runs
+through a chain of blocks and the friction split between the two ends of a joint is
+indeterminate), and its residual velocities make a still arch creep; hence the direct method.
 
 Energy
 ------
 Kinetic energy in the ground frame, potential energy of the weights (zero in the undeformed
 configuration), work of the inertial forces ``-m xg''`` (the input) and work of the contact
-impulses, ``sum P . (u_k + u_{k+1}) / 2`` (its opposite is the dissipated energy). For
-``theta = 1/2`` and these linear forces, ``E_{k+1} - E_k = W_input + W_contact`` holds exactly
-per step, so the bookkeeping closes to round-off. The scheme is not exactly dissipative: the
-contact Jacobians are those of ``q_k``, in which a persistent pivot's velocity ``v_k`` (made
-zero in the configuration of the previous step) is not exactly zero, so the contact work can
-be positive by O(h^2) per step; for a rocking block this is 0.15 % of its energy over 3 s at
+impulses (its opposite is the dissipated energy), all [J/m]:
+
+.. math::
+
+    T = \tfrac12 \sum_i \bigl(m_i (u_i^2 + w_i^2) + I_i \omega_i^2\bigr), \qquad
+    V = \sum_i m_i\,g\,y_i,
+
+    W_{k+1} - W_k = -h\,\bar a_g \sum_i m_i\,\frac{u_{i,k} + u_{i,k+1}}{2}, \qquad
+    D_{k+1} - D_k = -\sum_{c \in \mathcal{I}_k} P_c \cdot
+    \frac{H_c v_k + H_c v_{k+1}}{2}.
+
+For ``theta = 1/2`` and these linear forces,
+:math:`(T + V)_{k+1} - (T + V)_k = (W_{k+1} - W_k) - (D_{k+1} - D_k)` holds exactly per step,
+so the bookkeeping closes to round-off. The scheme is not exactly dissipative: the contact
+Jacobians are those of ``q_k``, in which a persistent pivot's velocity ``v_k`` (made zero in
+the configuration of the previous step) is not exactly zero, so the contact work can be
+positive by O(h^2) per step; for a rocking block this is 0.15 % of its energy over 3 s at
 h = 1 ms, halving with h (tested).
 
 References
 ----------
-[1] M. Jean, "The non-smooth contact dynamics method", Comput. Methods Appl. Mech. Engrg. 177
-    (1999) 235-257.
+.. [1] M. Jean, "The non-smooth contact dynamics method", Comput. Methods Appl. Mech. Engrg. 177
+   (1999) 235-257.
 
-[2] V. Acary, B. Brogliato, "Numerical methods for nonsmooth dynamical systems", Springer (2008),
-    Ch. 10 (Moreau-Jean time stepping) and Ch. 12-13 (Gauss-Seidel for the contact problem).
+.. [2] V. Acary, B. Brogliato, "Numerical methods for nonsmooth dynamical systems", Springer
+   (2008), Ch. 10 (Moreau-Jean time stepping) and Ch. 12-13 (Gauss-Seidel for the contact
+   problem).
+
+.. [3] J. J. Moreau, "Unilateral contact and dry friction in finite freedom dynamics", in
+   Nonsmooth Mechanics and Applications, CISM Courses and Lectures 302, Springer (1988) 1-82.
 """
 
 from __future__ import annotations
@@ -111,13 +184,16 @@ import numpy as np
 from ..ground_motion import HARMONIC, STEP
 
 REGULARISATION = 1e-9
-"""Compliance of the sticking rows of the contact problem, relative to their diagonal [-]."""
+"""Compliance of the rows of the contact problem that hold a velocity to zero (the normal row of a
+contact that sticks or slides, the tangential row of one that sticks), relative to their
+diagonal [-]."""
 
 ACTIVE_SET_SOLVES = 60
-"""Largest number of linear solves of the active-set method before Gauss-Seidel takes over."""
+"""Largest number of linear solves of the active-set method in a step before Gauss-Seidel
+takes over [-]."""
 
 SINGLE_SWITCH_AFTER = 10
-"""After this many solves the active-set method switches one contradicted state per solve (the
+"""After this many solves [-] the active-set method switches one contradicted state per solve (the
 first one, in the manner of Murty's least-index rule) instead of all, which ends cycles."""
 
 ACTIVATION_GAP = 1e-9
@@ -125,24 +201,51 @@ ACTIVATION_GAP = 1e-9
 closed joint's round-off gap (1e-16 m) must not drop it from the contact problem."""
 
 REST, RECOVERY, COLLAPSE = 0, 1, 2
-"""Outcome codes of :func:`run`."""
+"""Outcome codes of :func:`run` [-] (-1 while undecided)."""
 
 SUMMARY_FIELDS = (
     "status", "decided", "collapse_time", "decision_time", "max_rotation", "max_crown_drop",
     "max_slip", "max_opening", "max_drop", "steps", "iterations", "max_iterations_used",
     "unconverged_steps", "final_time", "closed", "fallbacks",
 )
-"""Layout of the summary vector returned by :func:`run`."""
+"""Layout of the summary vector returned by :func:`run`: outcome code; 1 if decided; collapse and
+decision times [s] (nan if none); largest block rotation [rad], crown drop, slip, opening and
+drop [m]; steps, linear solves or sweeps in all, most in one step, unconverged steps [-]; final
+time [s]; 1 if every joint was closed at the end; steps left to Gauss-Seidel [-]."""
 
 _N_SUMMARY = 16
 
 
 @numba.njit(cache=True)
 def mean_acceleration(t0, t1, kind, params, times, values):
-    """Mean ground acceleration [m/s^2] over ``[t0, t1]`` [s]: its exact integral / (t1 - t0).
+    r"""Mean ground acceleration [m/s^2] over ``[t0, t1]`` [s]: its exact integral / (t1 - t0).
 
     For the compiled representation of :mod:`archquake.ground_motion` (STEP, LINEAR, HARMONIC);
-    the same function as :func:`archquake.ground_motion.evaluate`, integrated in closed form.
+    the same function as :func:`archquake.ground_motion.evaluate`, integrated in closed form:
+
+    .. math::
+
+        \bar a_g = \frac{1}{t_1 - t_0} \int_{t_0}^{t_1} a_g(t)\,dt, \qquad
+        \int_a^b A \sin(\omega t)\,dt = \frac{A}{\omega}\,(\cos\omega a - \cos\omega b)
+
+    for a harmonic motion (clipped to ``[0, cycles * period]``), the exact sum of rectangles
+    (STEP) or trapezoids (LINEAR) of the pieces of a tabulated one (0 outside its times).
+
+    Parameters
+    ----------
+    t0, t1 : float
+        Interval [s], ``t1 > t0``.
+    kind : int
+        ``STEP``, ``LINEAR`` or ``HARMONIC`` (codes of :mod:`archquake.ground_motion`).
+    params : array of float
+        For HARMONIC: amplitude [m/s^2], period [s], number of cycles [-].
+    times, values : array of float
+        For STEP and LINEAR: increasing times [s] and accelerations [m/s^2].
+
+    Returns
+    -------
+    float
+        The mean acceleration [m/s^2].
     """
     total = 0.0
     if kind == HARMONIC:
@@ -174,13 +277,42 @@ def mean_acceleration(t0, t1, kind, params, times, values):
 
 @numba.njit(cache=True)
 def local_coulomb(ufn, uft, wnn, wnt, wtt, mu):
-    """Exact solution of one contact's problem: impulses ``(P_n, P_t)`` [N s/m].
+    r"""Exact solution of one contact's problem: impulses ``(P_n, P_t)`` [N s/m].
 
     The local velocity is ``u = uf + W P`` (``uf`` without this contact's impulse, ``W`` its
     2 x 2 Delassus block); the law is ``0 <= u_n perp P_n >= 0`` with Coulomb friction. The cases
-    are tried in turn: separation (``uf_n >= 0``: no impulse), sticking (``u = 0`` with ``P`` in
-    the cone), sliding in either direction (``u_n = 0``, ``P_t = -+ mu P_n``, ``u_t`` of the
-    opposite sign).
+    are tried in turn:
+
+    .. math::
+
+        \text{separation:}\quad P = 0 \quad \text{if } u^f_n \ge 0,
+
+        \text{stick:}\quad P = -W^{-1} u^f \quad \text{if } P_n \ge 0,\;
+        |P_t| \le \mu P_n \quad (u = 0),
+
+        \text{slide:}\quad P_t = \sigma \mu P_n, \quad
+        P_n = \frac{-u^f_n}{W_{nn} + \sigma \mu W_{nt}} \quad
+        \text{if } \sigma u_t \le 0 \quad (u_n = 0,\; \sigma = +1 \text{ then } -1),
+
+    with :math:`u_t = u^f_t + (W_{nt} + \sigma \mu W_{tt}) P_n`; a sliding case whose
+    denominator is not positive is skipped. Should none hold (not reached for a positive
+    definite ``W`` and a moderate mu), a frictionless push :math:`P = (-u^f_n / W_{nn}, 0)` is
+    returned.
+
+    Parameters
+    ----------
+    ufn, uft : float
+        Normal and tangential velocity without this contact's impulse [m/s].
+    wnn, wnt, wtt : float
+        Entries of the symmetric 2 x 2 Delassus block [m/kg], i.e. (m/s) per
+        (N s/m).
+    mu : float
+        Friction coefficient [-], >= 0.
+
+    Returns
+    -------
+    pn, pt : float
+        Normal and tangential impulse [N s/m].
     """
     if ufn >= 0.0:
         return 0.0, 0.0
@@ -203,20 +335,52 @@ def local_coulomb(ufn, uft, wnn, wnt, wtt, mu):
 
 @numba.njit(cache=True)
 def _rotate(c, s, x, y):
+    """``(x, y)`` turned by the angle whose cosine and sine are ``c, s`` [-] (same units)."""
     return c * x - s * y, s * x + c * y
 
 
 @numba.njit(cache=True)
 def contact_geometry(q, centroids, ca, cb, ra, rb, normal, tangent, offset, face_lo, face_hi,
                      gap, slip, valid, jac):
-    """Gap [m], tangential offset [m], validity and Jacobian rows of every contact at ``q``.
+    r"""Gap [m], tangential offset [m], validity and Jacobian rows of every contact at ``q``.
 
-    A contact is valid while the projection of its point of body b on the face of body a,
-    ``offset + slip`` along the face from the joint's first end [m], lies in
-    ``[face_lo, face_hi]`` [m].
+    Evaluates, for every contact ``c`` (module docstring, "Contacts and their detection"),
 
-    ``jac[c]`` holds ``(Gn_a, Gt_a, Gn_b, Gt_b)``, each a row of 3 so that the normal and
-    tangential relative velocities are ``u_n = Gn_a . v_a + Gn_b . v_b`` (same for ``t``).
+    .. math::
+
+        g = (p_b - p_a) \cdot n_a, \qquad s = (p_b - p_a) \cdot t_a, \qquad
+        \text{valid} \iff \ell_{lo} \le o + s \le \ell_{hi},
+
+        H_{n,a} = -\bigl(n_a^T,\; (p_b - c_a) \times n_a\bigr), \quad
+        H_{n,b} = \bigl(n_a^T,\; (p_b - c_b) \times n_a\bigr),
+
+    and the same with ``t_a`` for ``H_t``: a contact is valid while the projection of its
+    point of body b on the face of body a, ``offset + slip`` along the face from the joint's
+    first end [m], lies in ``[face_lo, face_hi]`` [m]. ``jac[c]`` holds ``(Gn_a, Gt_a, Gn_b,
+    Gt_b)``, each a row of 3 so that the normal and tangential relative velocities are
+    ``u_n = Gn_a . v_a + Gn_b . v_b`` (same for ``t``) [m/s]; the rows of the ground are 0.
+
+    Parameters
+    ----------
+    q : array (nb, 3)
+        Displacements ``(x, y, theta)`` of the blocks [m, m, rad].
+    centroids : array (nb, 2)
+        Undeformed centroids [m].
+    ca, cb : array of int (nc,)
+        Bodies a and b of every contact (-1 for the ground).
+    ra, rb : array (nc, 2)
+        Undeformed contact point relative to the centroid of a and b (absolute for the
+        ground) [m].
+    normal, tangent : array (nc, 2)
+        Undeformed unit normal and tangent of the joint [-].
+    offset, face_lo, face_hi : array (nc,)
+        Position of the contact along its joint and the face of body a [m].
+    gap, slip : array (nc,)
+        Output: ``g`` and ``s`` [m].
+    valid : array of bool (nc,)
+        Output: whether the contact holds.
+    jac : array (nc, 12)
+        Output: Jacobian rows [-, -, m] per body and direction.
     """
     for c in range(ca.size):
         a, b = ca[c], cb[c]
@@ -270,6 +434,9 @@ def contact_geometry(q, centroids, ca, cb, ra, rb, normal, tangent, offset, face
 
 @numba.njit(cache=True)
 def _relative_velocity(v, a, b, jac, c):
+    """Normal and tangential relative velocity ``(u_n, u_t)`` [m/s] of contact ``c`` between
+    bodies ``a`` and ``b`` (-1: the ground) for block velocities ``v`` (nb, 3) [m/s, m/s,
+    rad/s], through its Jacobian rows ``jac[c]`` (:func:`contact_geometry`)."""
     un = 0.0
     ut = 0.0
     if a >= 0:
@@ -283,6 +450,9 @@ def _relative_velocity(v, a, b, jac, c):
 
 @numba.njit(cache=True)
 def _apply_impulse(v, inv_mass, inv_inertia, a, b, jac, c, pn, pt):
+    """Add to the velocities ``v`` (nb, 3) [m/s, m/s, rad/s], in place, the change
+    ``M^-1 H_c^T (pn, pt)`` that the impulses ``pn, pt`` [N s/m] of contact ``c`` give bodies
+    ``a`` and ``b``; ``inv_mass`` [m/kg], ``inv_inertia`` [1/(kg m)] per block."""
     if a >= 0:
         v[a, 0] += inv_mass[a] * (jac[c, 0] * pn + jac[c, 3] * pt)
         v[a, 1] += inv_mass[a] * (jac[c, 1] * pn + jac[c, 4] * pt)
@@ -295,6 +465,9 @@ def _apply_impulse(v, inv_mass, inv_inertia, a, b, jac, c, pn, pt):
 
 @numba.njit(cache=True)
 def _delassus(inv_mass, inv_inertia, a, b, jac, c, w):
+    """Write the 2 x 2 Delassus block ``H_c M^-1 H_c^T`` of contact ``c`` (bodies ``a``, ``b``)
+    into ``w[c] = (W_nn, W_nt, W_tt)`` [m/kg], from the inverse masses [m/kg] and
+    inertias [1/(kg m)] and the Jacobian rows ``jac[c]``."""
     wnn = wnt = wtt = 0.0
     for body, k in ((a, 0), (b, 6)):
         if body >= 0:
@@ -311,11 +484,56 @@ def _delassus(inv_mass, inv_inertia, a, b, jac, c, w):
 @numba.njit(cache=True)
 def solve_contacts(v, inv_mass, inv_inertia, ca, cb, jac, w, active, impulse, mu, tol_impulse,
                    max_iterations):
-    """Projected Gauss-Seidel on the active contacts; ``v`` enters free and leaves corrected
-    (``w`` holds the 2 x 2 Delassus blocks of the active contacts).
+    r"""Projected Gauss-Seidel on the active contacts; ``v`` enters free and leaves corrected.
 
-    ``impulse`` holds the warm start and receives the solution. Returns the number of sweeps
-    and whether the tolerance was met.
+    The warm start ``impulse`` of the active contacts is applied first (the others are set to
+    0); then every sweep visits the active contacts, forward on even sweeps and backward on odd
+    ones, and replaces each one's impulse by the exact solution of its own problem with the
+    others fixed [1]_:
+
+    .. math::
+
+        u^f_c = u_c(v) - W_{cc} P_c, \qquad
+        P_c^{new} = \operatorname{local\_coulomb}(u^f_c, W_{cc}, \mu), \qquad
+        v \leftarrow v + \mathbf{M}^{-1} H_c^T (P_c^{new} - P_c).
+
+    It stops after the first sweep in which no impulse changed by more than ``tol_impulse``
+    (measured as :math:`|\Delta P_n| + |\Delta P_t|`), or after ``max_iterations`` sweeps.
+
+    Parameters
+    ----------
+    v : array (nb, 3)
+        In: the free velocities; out: the velocities at the end of the step [m/s, m/s, rad/s].
+    inv_mass, inv_inertia : array (nb,)
+        Inverse masses [m/kg] and inertias [1/(kg m)].
+    ca, cb : array of int (nc,)
+        Bodies of every contact (-1: the ground).
+    jac : array (nc, 12)
+        Jacobian rows (:func:`contact_geometry`).
+    w : array (nc, 3)
+        Delassus blocks ``(W_nn, W_nt, W_tt)`` of the active contacts [m/kg].
+    active : array of bool (nc,)
+        The active set.
+    impulse : array (nc, 2)
+        In: the warm start; out: the impulses ``(P_n, P_t)`` [N s/m].
+    mu : float
+        Friction coefficient [-].
+    tol_impulse : float
+        Largest change of an impulse in the last sweep [N s/m].
+    max_iterations : int
+        Largest number of sweeps.
+
+    Returns
+    -------
+    sweeps : int
+        Sweeps made.
+    converged : bool
+        Whether the tolerance was met.
+
+    References
+    ----------
+    .. [1] V. Acary, B. Brogliato, "Numerical methods for nonsmooth dynamical systems",
+       Springer (2008), Ch. 13.
     """
     nc = ca.size
     for c in range(nc):
@@ -352,7 +570,9 @@ def solve_contacts(v, inv_mass, inv_inertia, ca, cb, jac, w, active, impulse, mu
 
 @numba.njit(cache=True)
 def _gauss_solve(a, b, m):
-    """Solve ``a[:m, :m] x = b[:m]`` in place (partial pivoting); ``b`` receives x."""
+    """Solve ``a[:m, :m] x = b[:m]`` in place by Gaussian elimination with partial pivoting:
+    ``a`` (any units) is overwritten by its triangular factor and ``b`` receives ``x`` (in the
+    units of ``b`` over those of ``a``); no check for a singular matrix."""
     for k in range(m):
         p = k
         big = abs(a[k, k])
@@ -380,7 +600,11 @@ def _gauss_solve(a, b, m):
 
 @numba.njit(cache=True)
 def _coupling(inv_mass, inv_inertia, jac, c, side_c, d, side_d, body, out, i, k):
-    """Add body ``body``'s part of the Delassus block of contacts c, d to ``out[2i:, 2k:]``."""
+    """Add body ``body``'s part of the Delassus block of contacts c, d,
+    ``H_c,body M_body^-1 H_d,body^T`` [m/kg], to the 2 x 2 block ``out[2i:2i+2, 2k:2k+2]``;
+    ``side_c``, ``side_d`` (0 or 6) say whether the body is a or b of each contact (the column
+    of its rows in ``jac``), ``inv_mass`` [m/kg] and ``inv_inertia`` [1/(kg m)] are per
+    block."""
     im, ii = inv_mass[body], inv_inertia[body]
     for alpha in range(2):
         gc = side_c + 3 * alpha
@@ -394,19 +618,79 @@ def _coupling(inv_mass, inv_inertia, jac, c, side_c, d, side_d, body, out, i, k)
 @numba.njit(cache=True)
 def solve_active_set(v, inv_mass, inv_inertia, ca, cb, jac, active, impulse, state, mu,
                      p_tol, u_tol, regularisation, max_iterations, idx, wmat, amat, rhs, uf):
-    """Contact problem of a step by a primal-dual active-set method; ``v`` enters free.
+    r"""Contact problem of a step by a primal-dual active-set method; ``v`` enters free.
 
     Every active contact has a state (-1 for an inactive one): 0 open (``P = 0``), 1 stick
     (``u = 0``), 2 slide with ``P_t = +mu P_n`` and 3 slide with ``P_t = -mu P_n``
-    (``u_n = 0``). For the current states
-    the impulses solve one linear system in the Delassus matrix ``W = H M^-1 H^T``; the states
-    that the solution contradicts (``P_n < 0``; ``u_n < 0`` on an open contact; ``|P_t| >
-    mu P_n`` when sticking; ``u_t`` along the friction when sliding) are switched and the
-    system is solved again, until none is. The sticking rows carry a compliance of
-    ``regularisation`` times their diagonal, which picks the smallest impulses among the
-    statically indeterminate ones (the split of the friction force between the two ends of a
-    joint). The states start from the previous step's. Returns the number of solves and
-    whether the states converged (if not, the caller falls back to Gauss-Seidel).
+    (``u_n = 0``). For the current states the impulses solve one linear system in the
+    Delassus matrix ``W = H M^-1 H^T`` (assembled once), with
+    ``u = u^f + W P`` and :math:`\rho` = ``regularisation``:
+
+    .. math::
+
+        \text{open:}\quad P_n = 0,\; P_t = 0,
+
+        \text{stick:}\quad (W P)_n + \rho W_{nn} P_n = -u^f_n, \quad
+        (W P)_t + \rho W_{tt} P_t = -u^f_t,
+
+        \text{slide } (\sigma = \pm 1):\quad (W P)_n + \rho W_{nn} P_n = -u^f_n, \quad
+        P_t = \sigma \mu P_n.
+
+    The states that the solution contradicts are switched and the system is solved again,
+    until none is:
+
+    .. math::
+
+        \text{open} \to \text{stick if } u_n < -\epsilon_u; \qquad
+        \text{stick or slide} \to \text{open if } P_n < -\epsilon_P;
+
+        \text{stick} \to \text{slide } \operatorname{sign}(P_t) \text{ if }
+        |P_t| > \mu P_n + \epsilon_P; \qquad
+        \text{slide } \sigma \to \text{stick if } \sigma u_t > \epsilon_u
+
+    (``u`` evaluated without the compliance). After :data:`SINGLE_SWITCH_AFTER` solves only the
+    first contradicted state is switched per solve. The compliance picks the smallest impulses
+    among the statically indeterminate ones (the split of the friction force between the two
+    ends of a joint). The states start from the previous step's; a newly active contact starts
+    sticking. On convergence the impulses are written to ``impulse`` and applied to ``v``;
+    otherwise ``v`` and ``impulse`` keep their input values (the impulses of the previous step,
+    0 for an inactive contact) and the caller falls back to Gauss-Seidel.
+
+    Parameters
+    ----------
+    v : array (nb, 3)
+        In: the free velocities; out (if converged): the velocities at the end of the step
+        [m/s, m/s, rad/s].
+    inv_mass, inv_inertia : array (nb,)
+        Inverse masses [m/kg] and inertias [1/(kg m)].
+    ca, cb : array of int (nc,)
+        Bodies of every contact (-1: the ground).
+    jac : array (nc, 12)
+        Jacobian rows (:func:`contact_geometry`).
+    active : array of bool (nc,)
+        The active set.
+    impulse : array (nc, 2)
+        Out: the impulses ``(P_n, P_t)`` [N s/m] (0 for inactive contacts).
+    state : array of int (nc,)
+        In: the previous step's states; out: the new ones.
+    mu : float
+        Friction coefficient [-].
+    p_tol, u_tol : float
+        Tolerances :math:`\epsilon_P` [N s/m] and :math:`\epsilon_u` [m/s] of the switching
+        tests.
+    regularisation : float
+        Compliance :math:`\rho` relative to the diagonal [-].
+    max_iterations : int
+        Largest number of linear solves.
+    idx, wmat, amat, rhs, uf : arrays
+        Work space: (nc,) int, (2 nc, 2 nc), (2 nc, 2 nc), (2 nc,), (2 nc,).
+
+    Returns
+    -------
+    solves : int
+        Linear solves made (0 if no contact is active).
+    converged : bool
+        Whether a consistent set of states was found.
     """
     nc = ca.size
     m = 0
@@ -520,26 +804,92 @@ def run(masses, inertias, centroids, ca, cb, ra, rb, normal, tangent, offset, fa
         h, theta, mu, tolerance, max_iterations, gravity,
         excitation_end, n_steps, drop_limit, rest_energy, closed_gap, rest_steps,
         open_rest_steps, moved_threshold, energy_margin, record_stride, tail_steps):
-    """Integrate the blocks from ``(q0, v0)`` under the ground motion; decide the outcome.
+    r"""Integrate the blocks from ``(q0, v0)`` under the ground motion; decide the outcome.
 
-    Parameters are the arrays of :func:`archquake.rigid_blocks.dynamics.contact_arrays`, the
-    initial state, the compiled ground motion, and the settings (SI units; thresholds already
-    scaled to the structure): time step ``h`` [s], ``theta`` [-], friction ``mu`` [-], Gauss-
-    Seidel ``tolerance`` [-] and ``max_iterations``, ``gravity`` [m/s^2], ``excitation_end``
-    [s], at most ``n_steps`` steps, the collapse ``drop_limit`` [m], the kinetic energy of rest
-    ``rest_energy`` [J/m], the gap of a closed joint ``closed_gap`` [m], ``rest_steps`` steps of
-    rest that decide a recovery (``open_rest_steps`` with a joint still open), the opening and
-    slip ``moved_threshold`` [m] below which the structure never moved, the ``energy_margin``
-    [J/m] of the energy test of collapse; with ``record_stride > 0`` every ``record_stride``-th
-    state is recorded and the run goes on ``tail_steps`` steps after the outcome is decided (or
-    to ``n_steps`` if ``tail_steps < 0``).
+    Every step first measures the state at :math:`t_k` (records it, if recording) and tests
+    the outcome, then makes one Moreau-Jean step (module docstring): free velocities, active
+    set, contact problem (:func:`solve_active_set`, else :func:`solve_contacts`), energy
+    bookkeeping, positions. With :math:`\delta` the largest downward displacement of a block
+    centroid or of the crown point [m], ``T`` and ``V`` the kinetic and potential energy
+    [J/m], the outcome is
+
+    .. math::
+
+        \text{collapse} \iff \delta \ge \delta_{lim} \;\text{ or }\;
+        \bigl(t \ge t_{exc} \text{ and } T + V < -E_{margin}\bigr),
+
+        \text{recovery or rest} \iff t \ge t_{exc} \text{ and } T \le T_{rest}
+        \text{ for } N \text{ consecutive steps}, \quad
+        N = \begin{cases} \text{rest\_steps} & \text{every joint closed} \\
+        \text{open\_rest\_steps} & \text{otherwise} \end{cases}
+
+    (a joint is closed when both its contacts are valid with gap <= ``closed_gap``; the count
+    restarts at every step that is not still); rest if no valid contact ever opened, and no
+    joint ever slipped at its more closed end, by more than ``moved_threshold``, recovery
+    otherwise. A run that reaches ``n_steps`` undecided returns status -1.
+
+    Parameters
+    ----------
+    masses, inertias : array (nb,)
+        Masses [kg/m] and polar moments of inertia [kg m].
+    centroids : array (nb, 2)
+        Undeformed centroids [m].
+    ca, cb, ra, rb, normal, tangent, offset, face_lo, face_hi, length : arrays
+        The contacts, from :func:`archquake.rigid_blocks.dynamics.contact_arrays` [m, -].
+    crown_block : int
+        Block that carries the crown point.
+    crown_point : array (2,)
+        Crown point relative to that block's centroid [m].
+    q0, v0 : array (nb, 3)
+        Initial displacements [m, m, rad] and velocities [m/s, m/s, rad/s].
+    kind, params, times, values
+        The compiled ground motion (``GroundMotion.compiled()``;
+        accelerations [m/s^2], times [s]).
+    h : float
+        Time step [s].
+    theta : float
+        Parameter of the theta-method [-].
+    mu : float
+        Friction coefficient [-].
+    tolerance : float
+        Gauss-Seidel tolerance as a fraction of ``m_mean g h`` [-].
+    max_iterations : int
+        Largest number of Gauss-Seidel sweeps per step.
+    gravity : float
+        Acceleration of gravity g [m/s^2].
+    excitation_end : float
+        End of the excitation :math:`t_{exc}` [s].
+    n_steps : int
+        Largest number of steps.
+    drop_limit : float
+        Drop of collapse :math:`\delta_{lim}` [m].
+    rest_energy : float
+        Kinetic energy of rest :math:`T_{rest}` [J/m].
+    closed_gap : float
+        Largest gap of a closed contact [m].
+    rest_steps, open_rest_steps : int
+        Steps of rest that decide a recovery with every joint closed, and with a joint open.
+    moved_threshold : float
+        Opening and slip [m] at or below which the structure never moved.
+    energy_margin : float
+        :math:`E_{margin}` of the energy test of collapse [J/m].
+    record_stride : int
+        With ``record_stride > 0``, every ``record_stride``-th state is recorded and the run
+        goes on ``tail_steps`` steps after the outcome is decided (or to ``n_steps`` if
+        ``tail_steps < 0``); with 0 it stops at the decision.
+    tail_steps : int
+        Steps run after the decision when recording.
 
     Returns
     -------
     summary : array (len(SUMMARY_FIELDS),)
+        The fields of :data:`SUMMARY_FIELDS`, as floats.
     records : tuple of arrays
-        ``(t, q, gap, slip, impulse / h, energy)`` with energy columns kinetic, potential,
-        dissipated, input [J/m]; empty when not recording.
+        ``(t, q, gap, slip, impulse / h, energy)``: times [s] (nr,), displacements
+        [m, m, rad] (nr, nb, 3), gaps and tangential offsets [m] (nr, nc), mean contact forces
+        ``(normal, tangential)`` over the step that ends at each record [N/m] (nr, nc, 2), and
+        energy columns kinetic, potential, dissipated, input [J/m] (nr, 4); empty when not
+        recording.
     """
     nb = masses.size
     nc = ca.size
