@@ -110,7 +110,8 @@ and c_v is the coefficient that leaves the four-link model the kinetic energy th
     c_v = \sqrt{\frac{T_1}{T_0}\,\frac{M_{from}(\theta_u)}{M_{to}(\theta'_u)}},
 
 with :math:`T_0, T_1` the kinetic energy of the blocks before and after the impact. It gives
-Housner's :math:`r = 1 - 1.5 \sin^2\alpha` for a rectangular block, and does not depend on
+Housner's ratio of angular velocities :math:`1 - 1.5 \sin^2\alpha` for a rectangular block
+(his energy ratio :math:`r` is its square), and does not depend on
 the time step nor, from mu = 0.5 up (the joints stick at the impact), on the friction
 coefficient.
 
