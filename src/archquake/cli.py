@@ -951,18 +951,25 @@ def _run_fragility(args: argparse.Namespace) -> int:
     return 0
 
 
-def _plot_fragility(result, plot_dir) -> list[str]:
+def _plot_directory(plot_dir):
+    """``--plot-dir`` as a Path, created if missing (a ValueError naming the option if not)."""
     from pathlib import Path
-
-    _pyplot()
-
-    from .plotting import plot_fragility_curve, plot_fragility_surface
 
     directory = Path(plot_dir)
     try:
         directory.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
         raise ValueError(f"cannot create --plot-dir {plot_dir!r}: {exc.strerror}") from exc
+    return directory
+
+
+def _plot_fragility(result, plot_dir) -> list[str]:
+
+    _pyplot()
+
+    from .plotting import plot_fragility_curve, plot_fragility_surface
+
+    directory = _plot_directory(plot_dir)
     written = []
     for tp in result.durations:
         path = directory / f"fragility_tp{tp:.3f}.png"
@@ -1126,17 +1133,12 @@ def _print_record_fragility(result, summary: dict) -> None:
 
 def _plot_record_fragility(result, plot_dir) -> list[str]:
     import re
-    from pathlib import Path
 
     _pyplot()
 
     from .plotting import plot_incremental, plot_record_fragility
 
-    directory = Path(plot_dir)
-    try:
-        directory.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise ValueError(f"cannot create --plot-dir {plot_dir!r}: {exc.strerror}") from exc
+    directory = _plot_directory(plot_dir)
     tag = re.sub(r"[^\w.-]", "_", result.settings.im)
     written = []
     for name, plot in (("fragility", plot_record_fragility), ("incremental", plot_incremental)):

@@ -49,6 +49,7 @@ from .blocks import (
     MAX_VOUSSOIRS,
     MIN_VOUSSOIRS,
     BlockArch,
+    float_array,
     is_json_number,
     json_text,
     read_json_file,
@@ -62,18 +63,6 @@ from a millimetre to ten kilometres."""
 def _check_voussoir_count(n: int) -> None:
     if n > MAX_VOUSSOIRS:
         raise ValueError(f"voussoirs must be at most {MAX_VOUSSOIRS} (MAX_VOUSSOIRS), got {n}")
-
-
-def _as_float_array(name: str, values) -> np.ndarray:
-    try:
-        arr = np.asarray(values, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be a sequence of numbers, got {values!r}") from exc
-    if arr.ndim != 1:
-        raise ValueError(f"{name} must be a one-dimensional sequence, got shape {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must contain only finite numbers, got {arr.tolist()}")
-    return arr
 
 
 def _check_positive(name: str, value: float, unit: str) -> float:
@@ -129,9 +118,9 @@ class Arch(BlockArch):
     _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False, hash=False)
 
     def __post_init__(self):
-        angles = _as_float_array("angles", self.angles)
-        thicknesses = _as_float_array("thicknesses", self.thicknesses)
-        radii = _as_float_array("radii", self.radii)
+        angles = float_array("angles", self.angles)
+        thicknesses = float_array("thicknesses", self.thicknesses)
+        radii = float_array("radii", self.radii)
         n = angles.size
         if thicknesses.size != n or radii.size != n:
             raise ValueError(
@@ -215,7 +204,7 @@ class Arch(BlockArch):
         -------
         Arch
         """
-        angles_arr = _as_float_array("angles", angles)
+        angles_arr = float_array("angles", angles)
         if start_angle is None:
             start_angle = (math.pi - float(angles_arr.sum())) / 2.0
         return cls(angles_arr, thicknesses, radii, start_angle, density)

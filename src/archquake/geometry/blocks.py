@@ -158,6 +158,19 @@ def read_json_file(path: str | Path, expected: str):
         raise ValueError(f"{where} is not valid JSON: {exc.msg} (line {exc.lineno})") from exc
 
 
+def float_array(name: str, values) -> np.ndarray:
+    """``values`` as a one-dimensional float array (a copy), or a ValueError naming ``name``."""
+    try:
+        arr = np.array(values, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{name} must be a sequence of numbers, got {values!r}") from exc
+    if arr.ndim != 1:
+        raise ValueError(f"{name} must be a one-dimensional sequence, got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} must contain only finite numbers, got {arr.tolist()}")
+    return arr
+
+
 def frozen_array(array) -> np.ndarray:
     """A read-only, contiguous float copy of ``array``."""
     arr = np.array(array, dtype=float, order="C")

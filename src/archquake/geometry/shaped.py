@@ -50,6 +50,7 @@ from .blocks import (
     BlockArch,
     check_json_numbers,
     check_voussoir_count,
+    float_array,
     frozen_array,
 )
 from .centrelines import SHAPES, ArcPart, Centreline, centreline
@@ -66,18 +67,6 @@ def _reversed(piece):
     if isinstance(piece, Arc):
         return Arc(piece.centre, piece.radius, piece.end_angle, piece.start_angle)
     return Curve(piece.path, piece.velocity, piece.end_parameter, piece.start_parameter)
-
-
-def _array(name: str, values) -> np.ndarray:
-    try:
-        arr = np.array(values, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be a sequence of numbers, got {values!r}") from exc
-    if arr.ndim != 1:
-        raise ValueError(f"{name} must be a one-dimensional sequence, got shape {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must contain only finite numbers, got {arr.tolist()}")
-    return arr
 
 
 @value_equality
@@ -118,9 +107,9 @@ class ShapedArch(BlockArch):
         if not isinstance(self.centreline, Centreline):
             raise ValueError(f"centreline must be a Centreline, got "
                              f"{type(self.centreline).__name__}")
-        lengths = _array("lengths", self.lengths)
-        thicknesses = _array("thicknesses", self.thicknesses)
-        offsets = _array("offsets", self.offsets)
+        lengths = float_array("lengths", self.lengths)
+        thicknesses = float_array("thicknesses", self.thicknesses)
+        offsets = float_array("offsets", self.offsets)
         n = lengths.size
         if thicknesses.size != n or offsets.size != n:
             raise ValueError("lengths, thicknesses and offsets must have the same length (one "
