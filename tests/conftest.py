@@ -21,3 +21,11 @@ def nominal():
 
 
 DEG = math.pi / 180.0
+
+
+@pytest.fixture(scope="session")
+def data_dir():
+    """The folder of the tests' data files (records, regression fixtures)."""
+    from pathlib import Path
+
+    return Path(__file__).parent / "data"
