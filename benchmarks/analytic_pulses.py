@@ -22,9 +22,9 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 
 from archquake import ArchDynamics, oppenheim  # noqa: E402
+from archquake.fourlink.time_history import simulate  # noqa: E402
 from archquake.geometry import GRAVITY  # noqa: E402
 from archquake.ground_motion import ground_motion  # noqa: E402
-from archquake.time_history import simulate  # noqa: E402
 
 PULSES = ("ricker", "ricker-antisymmetric", "cycloidal-b", "mavroeidis-papageorgiou")
 SAMPLES_PER_PERIOD = (256, 1024, 4096)

@@ -5,11 +5,12 @@ Each measurement runs in a fresh process that imports ``archquake`` from one tre
 ``--rounds`` rounds, so that both see the same load of a shared, noisy machine; the CPU time of
 the process (``time.process_time``) is measured, and the medians are compared:
 
-- grid path: :func:`archquake.engine.outcomes_grid` on ``--grid`` Oppenheim pulses around the
+- grid path: :func:`archquake.fourlink.engine.outcomes_grid` on ``--grid`` Oppenheim pulses around
+the
   failure curve of Oppenheim's arch (outcome only: the path of failure domains and fragility
   studies), and on a quarter as many one-cycle sine pulses at least 9 % above the activation (a
   ground acceleration evaluated at every stage of a step);
-- recording path: :func:`archquake.time_history.simulate` with its record (the time history
+- recording path: :func:`archquake.fourlink.time_history.simulate` with its record (the time history
   of a pulse response, followed after the decision) on ``--records`` pulses.
 
 Run:  python benchmarks/engine_ab.py --baseline /path/to/other/tree/src [--rounds 7]
@@ -32,11 +33,12 @@ ROOT = Path(__file__).resolve().parents[1]
 MEASURE = r"""
 import json, sys, time
 import numpy as np
-from archquake import engine, oppenheim
+from archquake import oppenheim
+from archquake.fourlink import engine
 from archquake.geometry import GRAVITY
 from archquake.ground_motion import oppenheim_pulse
-from archquake.mechanism import mechanisms
-from archquake.time_history import simulate
+from archquake.fourlink.mechanism import mechanisms
+from archquake.fourlink.time_history import simulate
 
 n_grid, n_records = int(sys.argv[1]), int(sys.argv[2])
 tables = [engine.tabulate(m) for m in mechanisms(oppenheim())]

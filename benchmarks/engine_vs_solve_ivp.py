@@ -4,8 +4,8 @@ The baseline is what a user would write: ``solve_ivp(method="DOP853", rtol=1e-9)
 right-hand side calling the mechanism's exact ``coefficients`` at every evaluation, terminal
 events for the impact and the kinematic limit, one ``solve_ivp`` call per interval of the
 piecewise-constant pulse (or of the piecewise-linear record, between two samples), and the
-decision rules of :mod:`archquake.engine` (energy test once the excitation is over). It is an
-independent second implementation, used by the tests on a few cases and by
+decision rules of :mod:`archquake.fourlink.engine` (energy test once the excitation is over). It is
+an independent second implementation, used by the tests on a few cases and by
 ``benchmarks/record_vs_solve_ivp.py`` on records.
 
 Run:  python benchmarks/engine_vs_solve_ivp.py [--analyses 600] [--block]
@@ -25,7 +25,7 @@ from scipy.integrate import solve_ivp
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
-from archquake import engine  # noqa: E402
+from archquake.fourlink import engine  # noqa: E402
 from archquake.geometry import GRAVITY  # noqa: E402
 from archquake.ground_motion import LINEAR, STEP, oppenheim_pulse  # noqa: E402
 

@@ -26,15 +26,16 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 
-from archquake import ArchDynamics, engine, oppenheim  # noqa: E402
-from archquake.engine.driver import _run  # noqa: E402
+from archquake import ArchDynamics, oppenheim  # noqa: E402
 from archquake.execution import process_pool  # noqa: E402
-from archquake.failure_domain import inclusive_range  # noqa: E402
-from archquake.fragility import FragilitySettings, run_fragility, warm_up  # noqa: E402
+from archquake.fourlink import engine  # noqa: E402
+from archquake.fourlink.engine.driver import integrate  # noqa: E402
+from archquake.fourlink.mechanism import mechanisms  # noqa: E402
 from archquake.geometry import GRAVITY, irregular_sample  # noqa: E402
 from archquake.ground_motion import oppenheim_pulse  # noqa: E402
 from archquake.limit_analysis import both_directions, limit_sample  # noqa: E402
-from archquake.mechanism import mechanisms  # noqa: E402
+from archquake.studies.failure_domain import inclusive_range  # noqa: E402
+from archquake.studies.fragility import FragilitySettings, run_fragility, warm_up  # noqa: E402
 
 
 def _grid_seconds(repeat: int = 3) -> float:
@@ -75,7 +76,7 @@ def breakdown(settings: FragilitySettings) -> None:
         limit = both_directions(arch)
         t1 = time.perf_counter()
         pair = mechanisms(arch, limit=limit)
-        from archquake.impact import restitution
+        from archquake.fourlink.impact import restitution
 
         c = restitution("nominal", *pair, nominal=nominal_pair)
         t2 = time.perf_counter()
@@ -102,7 +103,7 @@ def breakdown(settings: FragilitySettings) -> None:
     for tp in settings.durations:
         for amp in settings.amplitudes_g[::5]:
             motion = engine.compiled_motion(oppenheim_pulse(-amp * GRAVITY, tp))
-            out, *_ = _run(tab, c_lr, c_rl, *motion, 0.0, np.inf, engine.REST_STATE, 0.0, 0.0,
+            out, *_ = integrate(tab, c_lr, c_rl, *motion, 0.0, np.inf, engine.REST_STATE, 0.0, 0.0,
                            engine.DEFAULT_RTOL, engine.DEFAULT_ATOL,
                            engine.DEFAULT_REST_VELOCITY, engine.DEFAULT_MAX_STEP,
                            engine.DEFAULT_MAX_STEPS, False, 1.0, 0.0)

@@ -30,10 +30,11 @@ from archquake import (
     GRAVITY,  # noqa: E402
     ArchDynamics,  # noqa: E402
 )
-from archquake.engine import outcomes_grid  # noqa: E402
 from archquake.execution import process_pool  # noqa: E402
+from archquake.fourlink.engine import outcomes_grid  # noqa: E402
+from archquake.fourlink.time_history import simulate  # noqa: E402
 from archquake.geometry import irregular_sample  # noqa: E402
-from archquake.record_fragility import (  # noqa: E402
+from archquake.studies.record_fragility import (  # noqa: E402
     STOCHASTIC_SUITE,
     RecordFragilitySettings,
     RecordSuite,
@@ -42,7 +43,6 @@ from archquake.record_fragility import (  # noqa: E402
     scale_factors,
     warm_up,
 )
-from archquake.time_history import simulate  # noqa: E402
 
 SUITE = STOCHASTIC_SUITE
 

@@ -7,9 +7,9 @@ The same analyses (default 3 arches x 5 records x 10 PGA levels x 2 polarities =
 synthetic records sampled at 0.01 s (the suite of ``benchmarks/record_fragility.py``) are run by
 
 - the engine: one compiled call per arch and record over all its levels and polarities
-  (:func:`archquake.engine.outcomes_grid`, every analysis integrated; and, as the study runs it,
-  :func:`archquake.record_fragility.record_outcomes`, which does not integrate analyses whose
-  record never reaches the activation acceleration);
+  (:func:`archquake.fourlink.engine.outcomes_grid`, every analysis integrated; and, as the study
+  runs it, :func:`archquake.studies.record_fragility.record_outcomes`, which does not integrate
+  analyses whose record never reaches the activation acceleration);
 - the baseline of ``benchmarks/engine_vs_solve_ivp.py``: ``solve_ivp(method="DOP853")`` with a
   Python right-hand side from the mechanism's exact coefficients, one call per interval between
   two samples of the record, the same decision rules once the record is over. The baseline runs
@@ -46,10 +46,10 @@ from archquake import (  # noqa: E402
     ArchDynamics,  # noqa: E402
     oppenheim,
 )
-from archquake.engine import outcomes_grid  # noqa: E402
+from archquake.fourlink.engine import outcomes_grid  # noqa: E402
 from archquake.geometry import irregular_sample  # noqa: E402
 from archquake.ground_motion import stochastic_suite  # noqa: E402
-from archquake.record_fragility import (  # noqa: E402
+from archquake.studies.record_fragility import (  # noqa: E402
     STOCHASTIC_SUITE,
     record_outcomes,
     warm_up,

@@ -39,7 +39,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 
 from archquake import oppenheim  # noqa: E402
-from archquake.geometry import GRAVITY, Arch  # noqa: E402
+from archquake.geometry import GRAVITY, CircularArch  # noqa: E402
 from archquake.ground_motion import oppenheim_pulse  # noqa: E402
 from archquake.rigid_blocks import block_outcome, simulate_blocks  # noqa: E402
 from archquake.rigid_blocks.failure import failure_curve  # noqa: E402
@@ -101,12 +101,12 @@ def _ccw(quad) -> list[list[float]]:
     return (q if area > 0 else q[::-1]).tolist()
 
 
-def lmgc90_spec(arch: Arch, amplitude: float, duration: float) -> dict:
+def lmgc90_spec(arch: CircularArch, amplitude: float, duration: float) -> dict:
     """The analysis for LMGC90: voussoirs between their joint corners, support blocks behind
     the springing joints, both supports driven with the ground velocity [SI units]."""
     inner, outer = arch.joint_extents()
     beta = arch.joint_angles
-    p_in, p_out = Arch.point(inner, beta), Arch.point(outer, beta)
+    p_in, p_out = CircularArch.point(inner, beta), CircularArch.point(outer, beta)
     blocks = [_ccw([p_in[i + 1], p_in[i], p_out[i], p_out[i + 1]])
               for i in range(arch.n_voussoirs)]
     supports = []
@@ -202,7 +202,7 @@ def main(argv=None) -> int:
     four_link = {}
     if not args.no_four_link:
         from archquake import ArchDynamics
-        from archquake.failure_domain import inclusive_range
+        from archquake.studies.failure_domain import inclusive_range
 
         for restitution in ("computed", "paper"):
             domain = ArchDynamics.from_arch(arch, restitution).failure_domain(

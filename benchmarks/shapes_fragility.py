@@ -26,10 +26,10 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 
 from archquake import circular_arch, oppenheim  # noqa: E402
-from archquake.fragility import FragilitySettings, run_fragility, warm_up  # noqa: E402
 from archquake.geometry import irregular_sample, shaped_arch  # noqa: E402
 from archquake.limit_analysis import limit_sample  # noqa: E402
 from archquake.reference_arches import OPPENHEIM  # noqa: E402
+from archquake.studies.fragility import FragilitySettings, run_fragility, warm_up  # noqa: E402
 
 
 def pointed_arch():

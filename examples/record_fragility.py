@@ -27,7 +27,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from archquake.plotting import plot_incremental, plot_record_fragility  # noqa: E402
-from archquake.record_fragility import DEFAULT_LEVELS, oppenheim_record_fragility  # noqa: E402
+from archquake.studies.record_fragility import DEFAULT_LEVELS, oppenheim_record_fragility  # noqa: E402
 
 
 def main(argv=None):

@@ -1,9 +1,9 @@
 """Independent kinematics of a four-hinge mechanism, for tests.
 
-A second code path, voussoir by voussoir, that shares nothing with archquake.mechanism except the
-arch geometry and the hinge points: instantaneous centres for velocities at the undisplaced
-configuration, a Newton solution of the loop equation for displaced configurations, and rigid
-motions of every voussoir.
+A second code path, voussoir by voussoir, that shares nothing with archquake.fourlink.mechanism
+except the arch geometry and the hinge points: instantaneous centres for velocities at the
+undisplaced configuration, a Newton solution of the loop equation for displaced configurations, and
+rigid motions of every voussoir.
 """
 
 import numpy as np

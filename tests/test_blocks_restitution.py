@@ -13,7 +13,7 @@ from scipy.optimize import nnls
 
 from archquake import ArchDynamics, irregular_arch, oppenheim
 from archquake.cli import main
-from archquake.impact import RESTITUTION_MODELS, restitution
+from archquake.fourlink.impact import RESTITUTION_MODELS, restitution
 from archquake.rigid_blocks import GROUND, BlockSettings, from_arch, rectangular_block
 from archquake.rigid_blocks.impacts import closing_impact, equivalent_restitution
 
@@ -130,7 +130,7 @@ def test_irregular_arch_blocks_restitution_mirrors():
 
 
 def test_impact_module_loads_the_rigid_blocks_only_on_demand():
-    code = ("import sys; import archquake.impact, archquake.dynamics; "
+    code = ("import sys; import archquake.fourlink.impact, archquake.fourlink.dynamics; "
             "print([m for m in sys.modules if m.startswith('archquake.rigid_blocks')])")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True)

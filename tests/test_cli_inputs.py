@@ -8,7 +8,7 @@ import time
 import pytest
 
 from archquake.cli import main
-from archquake.failure_domain import domain_slice
+from archquake.studies.failure_domain import domain_slice
 
 
 def run_error(capsys, argv, tmp_path=None):
@@ -192,10 +192,10 @@ def test_ground_motion_options_out_of_range(capsys, tmp_path, argv, message):
 
 def test_a_motion_too_long_for_the_step_budget_is_a_clear_error():
     from archquake import oppenheim
-    from archquake.impact import restitution
-    from archquake.mechanism import mechanisms
+    from archquake.fourlink.impact import restitution
+    from archquake.fourlink.mechanism import mechanisms
+    from archquake.fourlink.time_history import simulate
     from archquake.status import Status
-    from archquake.time_history import simulate
 
     pair = mechanisms(oppenheim())
     c = restitution("elastic", *pair)  # rocks for ever: no outcome ends the record early

@@ -103,9 +103,9 @@ def test_reverse_of_a_record_is_the_record_with_its_sign_flipped(capsys, tmp_pat
 def test_simulate_offers_the_new_pulses(capsys, argv):
     from archquake import oppenheim
     from archquake.cli import build_parser, motion_from_args
-    from archquake.impact import restitution
-    from archquake.mechanism import mechanisms
-    from archquake.time_history import simulate
+    from archquake.fourlink.impact import restitution
+    from archquake.fourlink.mechanism import mechanisms
+    from archquake.fourlink.time_history import simulate
 
     out = run_json(capsys, "simulate", *argv)
     motion = motion_from_args(build_parser().parse_args(["simulate", *argv]))

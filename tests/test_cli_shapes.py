@@ -7,10 +7,10 @@ import math
 import pytest
 
 from archquake.cli import main
+from archquake.fourlink.impact import restitution
+from archquake.fourlink.mechanism import mechanisms
 from archquake.geometry import SHAPES, shaped_arch, surveyed_arch
-from archquake.impact import restitution
 from archquake.limit_analysis import both_directions, shaped_min_thickness
-from archquake.mechanism import mechanisms
 
 RISES = {"circular": 3.5, "pointed": 7.5, "elliptical": 4.0, "parabolic": 4.5, "catenary": 4.5,
          "three-centred": 3.0}

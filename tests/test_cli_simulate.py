@@ -88,11 +88,11 @@ def test_output_csv_reads_back_as_the_numbers_of_the_history(tmp_path):
     import pandas as pd
 
     from archquake import oppenheim
+    from archquake.fourlink.impact import restitution
+    from archquake.fourlink.mechanism import mechanisms
+    from archquake.fourlink.time_history import simulate
     from archquake.geometry import GRAVITY
     from archquake.ground_motion import oppenheim_pulse
-    from archquake.impact import restitution
-    from archquake.mechanism import mechanisms
-    from archquake.time_history import simulate
 
     path = tmp_path / "h.csv"
     assert main(["simulate", "--restitution", "paper", "--output", str(path)]) == 0

@@ -1,5 +1,5 @@
-"""``archquake compare`` and :func:`archquake.comparison.compare_models`: the two models' own
-failure curves side by side (the agreement for long pulses is checked in
+"""``archquake compare`` and :func:`archquake.studies.comparison.compare_models`: the two models'
+own failure curves side by side (the agreement for long pulses is checked in
 test_rigid_blocks_arch.py::test_long_pulse_failure_agrees_with_four_link_model)."""
 
 import json
@@ -14,10 +14,10 @@ import pytest  # noqa: E402
 
 from archquake import ArchDynamics  # noqa: E402
 from archquake.cli import main  # noqa: E402
-from archquake.comparison import compare_models  # noqa: E402
 from archquake.plotting import plot_model_comparison, plot_model_differences  # noqa: E402
 from archquake.rigid_blocks import BlockSettings  # noqa: E402
 from archquake.rigid_blocks.failure import failure_curve  # noqa: E402
+from archquake.studies.comparison import compare_models  # noqa: E402
 
 DURATIONS = (0.3, 0.6)
 GRID = np.round(np.arange(0.3, 1.71, 0.1), 10)
@@ -105,7 +105,7 @@ def test_blocks_restitution_follows_the_friction_of_the_comparison(nominal):
     settings = BlockSettings(friction=0.1)
     c = compare_models(nominal, (0.7,), amplitudes_g=(0.3, 0.5), resolution=0.05,
                        restitutions=("blocks",), settings=settings)
-    from archquake.impact import blocks_restitution
+    from archquake.fourlink.impact import blocks_restitution
 
     mech_l, mech_r = ArchDynamics.from_arch(nominal).mechanisms
     assert c.restitution["blocks"][0] == pytest.approx(

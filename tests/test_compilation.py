@@ -1,7 +1,7 @@
 """What a first run compiles: every engine function once, whatever path calls it.
 
-The functions of every module of :mod:`archquake.engine` (and the ground motion's ``evaluate``)
-are counted by name; the names are distinct across the modules.
+The functions of every module of :mod:`archquake.fourlink.engine` (and the ground motion's
+``evaluate``) are counted by name; the names are distinct across the modules.
 
 A function compiled for two argument types (read-only and writable arrays, a literal constant
 and an int64) is compiled twice on a fresh clone: seconds each. The paths of the report --
@@ -22,11 +22,12 @@ SCRIPT = """
 import json
 import numba
 import numpy as np
-from archquake import engine, oppenheim
+from archquake import oppenheim
+from archquake.fourlink import engine
 from archquake import ArchDynamics
 from archquake.ground_motion import oppenheim_pulse, read_record
-from archquake.mechanism import mechanisms
-from archquake.time_history import free_vibration, simulate
+from archquake.fourlink.mechanism import mechanisms
+from archquake.fourlink.time_history import free_vibration, simulate
 
 arch = oppenheim()
 pair = mechanisms(arch)
@@ -38,7 +39,7 @@ ArchDynamics.from_arch(arch).failure_domain([0.3, 0.4], np.linspace(0.3, 1.0, 8)
                                             extend_to_g=None)
 tables = [engine.tabulate(m) for m in pair]
 tables[0].functions(np.linspace(tables[0].theta_lo, tables[0].theta_u, 5))
-from archquake.engine import driver, rules, stepper, tables
+from archquake.fourlink.engine import driver, rules, stepper, tables
 import archquake.ground_motion as gm
 counts = {{}}
 for module in (driver, rules, stepper, tables, gm):
@@ -62,9 +63,9 @@ def compiled_signatures(cache_dir=None) -> dict:
 
 def test_every_engine_entry_point_is_compiled_once():
     """With the on-disk cache, the entry points called from Python are loaded once per
-    signature: two signatures of _run would be two compilations on a fresh clone."""
+    signature: two signatures of integrate would be two compilations on a fresh clone."""
     counts = compiled_signatures()
-    assert counts.get("_run") == 1 and counts.get("_grid") == 1
+    assert counts.get("integrate") == 1 and counts.get("_grid") == 1
     twice = {name: n for name, n in counts.items() if n > 1}
     assert not twice, f"compiled more than once: {twice}"
 
@@ -73,6 +74,6 @@ def test_every_engine_entry_point_is_compiled_once():
 def test_every_engine_function_is_compiled_once_on_a_fresh_cache(tmp_path):
     """Everything compiled from scratch (about 30 s): the helpers too."""
     counts = compiled_signatures(tmp_path)
-    assert counts.get("_step") == 1 and counts.get("_dense") == 1
+    assert counts.get("dop853_step") == 1 and counts.get("dense_coefficients") == 1
     twice = {name: n for name, n in counts.items() if n > 1}
     assert not twice, f"compiled more than once: {twice}"

@@ -9,8 +9,11 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from archquake import engine, oppenheim
-from archquake.engine import stepper, tables
+from archquake import oppenheim
+from archquake.fourlink import engine
+from archquake.fourlink.engine import stepper, tables
+from archquake.fourlink.mechanism import mechanisms
+from archquake.fourlink.time_history import free_vibration, simulate
 from archquake.geometry import GRAVITY
 from archquake.ground_motion import (
     LINEAR,
@@ -18,9 +21,7 @@ from archquake.ground_motion import (
     oppenheim_pulse,
     rectangular_pulse,
 )
-from archquake.mechanism import mechanisms
 from archquake.status import Status
-from archquake.time_history import free_vibration, simulate
 from rocking_block import RockingBlock, block_pair
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -110,7 +111,7 @@ def test_table_ratios_and_piece_lookup(nominal_mechanisms):
         approx = table.functions(theta)[:3]
         scale = np.max(np.abs(exact), axis=1)
         assert np.all(np.max(np.abs(approx - exact), axis=1) / scale < 1e-11)
-        rhs = np.array([tables._table_rhs(x, table.theta_lo, inv_cell, table.cells,
+        rhs = np.array([tables.table_rhs(x, table.theta_lo, inv_cell, table.cells,
                                           table.breaks, table.coefficients) for x in theta]).T
         assert np.allclose(rhs, approx, rtol=1e-13, atol=1e-13 * scale[:, None])
 
@@ -118,7 +119,7 @@ def test_table_ratios_and_piece_lookup(nominal_mechanisms):
 def test_written_out_step_is_the_tableau(nominal_tables):
     """The engine's step and dense output hold the text generated from the DOP853 tableau, and
     that text computes what loops over the tableau compute."""
-    from archquake.engine import _dop853 as dop
+    from archquake.fourlink.engine import _dop853 as dop
 
     source = Path(stepper.__file__).read_text()
     begin = source.index(dop.GENERATED_BEGIN)
@@ -130,7 +131,8 @@ def test_written_out_step_is_the_tableau(nominal_tables):
     none = np.zeros(1)
 
     def rhs(th, thd):
-        return float(stepper._rhs(0.0, th, thd, 0, tab, xg, np.inf, np.inf, 0, none, none, none))
+        return float(stepper.motion_rhs(0.0, th, thd, 0, tab, xg, np.inf, np.inf, 0, none, none,
+                                        none))
 
     y0, y1, h = nominal_tables[0].theta_u - 0.05, -0.4, 0.02
     K = np.zeros((16, 2))
@@ -145,7 +147,7 @@ def test_written_out_step_is_the_tableau(nominal_tables):
             n0, n1 = y0 + h * (dop.B @ K[:12, 0]), y1 + h * (dop.B @ K[:12, 1])
             K[12] = n1, rhs(n0, n1)
     got = np.zeros((16, 2))
-    out = stepper._step(0.0, y0, y1, K[0, 0], K[0, 1], h, 0, tab, xg, np.inf, np.inf, 0, none,
+    out = stepper.dop853_step(0.0, y0, y1, K[0, 0], K[0, 1], h, 0, tab, xg, np.inf, np.inf, 0, none,
                        none, none, 1e-11, 1e-13, got)
     assert out[0] == pytest.approx(n0, rel=1e-14) and out[1] == pytest.approx(n1, rel=1e-14)
     assert np.allclose(got[:13], K[:13], rtol=1e-13, atol=0)
@@ -154,8 +156,8 @@ def test_written_out_step_is_the_tableau(nominal_tables):
     err = h * (e5 @ e5) / math.sqrt((e5 @ e5 + 0.01 * (e3 @ e3)) * 2.0)
     assert out[3] == pytest.approx(err, rel=1e-3)  # a difference of near-equal sums
     Fd = np.zeros((7, 2))
-    stepper._dense(0.0, y0, y1, n0, n1, h, 0, tab, xg, np.inf, np.inf, 0, none, none, none,
-                  got, Fd)
+    stepper.dense_coefficients(0.0, y0, y1, n0, n1, h, 0, tab, xg, np.inf, np.inf, 0, none, none,
+                               none, got, Fd)
     dy = np.array([n0 - y0, n1 - y1])
     expected = np.vstack([dy, h * K[0] - dy, 2.0 * dy - h * (K[12] + K[0]),
                           h * (dop.D @ K)])

@@ -1,8 +1,8 @@
 """The outcome decided when the excitation ends agrees with the motion that follows it.
 
 The engine decides recovery or collapse from the energy of the state at the end of the
-excitation (archquake.engine.rules), without integrating further. Followed on, the motion must
-agree: a recovery never passes theta_cr away from theta_u nor reaches the kinematic limit, and
+excitation (archquake.fourlink.engine.rules), without integrating further. Followed on, the motion
+must agree: a recovery never passes theta_cr away from theta_u nor reaches the kinematic limit, and
 never rotates more than the decided largest rotation; a collapse has exactly the impacts decided
 before it reaches the kinematic limit and never comes to rest. The engine checks this itself when
 it follows the motion (outcomes_grid(continuation=...), and every recorded time history), and
@@ -15,13 +15,14 @@ import math
 import numpy as np
 import pytest
 
-from archquake import engine, irregular_arch, oppenheim
+from archquake import irregular_arch, oppenheim
+from archquake.fourlink import engine
+from archquake.fourlink.impact import restitution
+from archquake.fourlink.mechanism import mechanisms
+from archquake.fourlink.time_history import simulate
 from archquake.geometry import GRAVITY
 from archquake.ground_motion import ground_motion, harmonic, oppenheim_pulse
-from archquake.impact import restitution
-from archquake.mechanism import mechanisms
 from archquake.status import Status
-from archquake.time_history import simulate
 
 SHAPES = {
     "oppenheim": "oppenheim",

@@ -4,20 +4,20 @@ import math
 
 import pytest
 
-from archquake import engine
-from archquake.engine import rules
-from archquake.engine import tables as compiled_tables
+from archquake.fourlink import engine
+from archquake.fourlink.engine import rules
+from archquake.fourlink.engine import tables as compiled_tables
+from archquake.fourlink.mechanism import mechanisms
 from archquake.geometry import irregular_arch
-from archquake.mechanism import mechanisms
 
 
 def _state_returning_with(kinetic_at_theta_u, table, scal_row, pack, m):
     """(theta, theta') just below theta_u, moving back, with the given kinetic energy there."""
     scal = pack[0]
     th = scal[m, 0] - 1e-9
-    mass = compiled_tables._table_function(th, compiled_tables._ROW_M, m, pack)
-    v = compiled_tables._table_function(th, compiled_tables._ROW_V, m, pack)
-    v_u = compiled_tables._table_function(scal[m, 0], compiled_tables._ROW_V, m, pack)
+    mass = compiled_tables.table_function(th, compiled_tables.ROW_M, m, pack)
+    v = compiled_tables.table_function(th, compiled_tables.ROW_V, m, pack)
+    v_u = compiled_tables.table_function(scal[m, 0], compiled_tables.ROW_V, m, pack)
     return th, math.sqrt(2.0 * (kinetic_at_theta_u + v_u - v) / mass)
 
 
@@ -32,8 +32,8 @@ def test_collapse_on_second_arrival_is_not_called_recovery(nominal, seed):
     scal = pack[0]
 
     def barrier_and_mass(m):
-        v = lambda th: compiled_tables._table_function(th, compiled_tables._ROW_V, m, pack)  # noqa: E731
-        mass = compiled_tables._table_function(scal[m, 0], compiled_tables._ROW_M, m, pack)
+        v = lambda th: compiled_tables.table_function(th, compiled_tables.ROW_V, m, pack)  # noqa: E731
+        mass = compiled_tables.table_function(scal[m, 0], compiled_tables.ROW_M, m, pack)
         return v(scal[m, 1]) - v(scal[m, 0]), mass
 
     (b0, m0), (b1, m1) = barrier_and_mass(0), barrier_and_mass(1)
@@ -43,9 +43,9 @@ def test_collapse_on_second_arrival_is_not_called_recovery(nominal, seed):
     kinetic = 1.0001 * b                      # above its own barrier
     assert kinetic * m_other / mm < b_other   # ... but survives the other mechanism
     th, thd = _state_returning_with(kinetic, tables, scal, pack, m)
-    status, extra, _, _ = rules._decide(m, th, thd, pack, 1.0, 1.0)
+    status, extra, _, _ = rules.decide_outcome(m, th, thd, pack, 1.0, 1.0)
     assert status == engine.STATUS_COLLAPSE and extra == 2
     # and just below its own barrier it recovers
     th, thd = _state_returning_with(0.999 * b, tables, scal, pack, m)
-    status, _, _, _ = rules._decide(m, th, thd, pack, 1.0, 1.0)
+    status, _, _, _ = rules.decide_outcome(m, th, thd, pack, 1.0, 1.0)
     assert status == engine.STATUS_RECOVERY

@@ -2,16 +2,17 @@
 
 ``engine.outcomes_grid`` takes a template GroundMotion (a record) with ``durations = 1`` and the
 scale factors as ``amplitudes``; every outcome must be that of the single analysis of the scaled
-record, :func:`archquake.time_history.simulate` of ``record.scaled(f)`` (and of
+record, :func:`archquake.fourlink.time_history.simulate` of ``record.scaled(f)`` (and of
 ``record.reversed().scaled(f)`` for a negative factor).
 """
 
 import numpy as np
 import pytest
 
-from archquake import ArchDynamics, engine
+from archquake import ArchDynamics
+from archquake.fourlink import engine
+from archquake.fourlink.time_history import simulate
 from archquake.ground_motion import stochastic_motion
-from archquake.time_history import simulate
 
 
 @pytest.fixture(scope="module")

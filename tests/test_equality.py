@@ -3,12 +3,13 @@
 import numpy as np
 import pytest
 
-from archquake import engine, irregular_arch, oppenheim
-from archquake.geometry import Arch
+from archquake import irregular_arch, oppenheim
+from archquake.fourlink import engine
+from archquake.fourlink.mechanism import mechanisms
+from archquake.fourlink.time_history import simulate
+from archquake.geometry import CircularArch
 from archquake.ground_motion import GroundMotion, harmonic, oppenheim_pulse
 from archquake.limit_analysis import both_directions, limit_sample
-from archquake.mechanism import mechanisms
-from archquake.time_history import simulate
 
 
 def test_arches_equal_by_value_and_hash_alike():
@@ -17,7 +18,7 @@ def test_arches_equal_by_value_and_hash_alike():
     assert len({a, b}) == 1
     irregular = irregular_arch(a, 0.1, rng=3)
     assert irregular != a and irregular == irregular_arch(a, 0.1, rng=3)
-    assert a != Arch(a.angles, a.thicknesses, a.radii, a.start_angle, 2 * a.density)
+    assert a != CircularArch(a.angles, a.thicknesses, a.radii, a.start_angle, 2 * a.density)
     assert a != "an arch"
 
 
@@ -62,4 +63,4 @@ def test_an_arch_round_trips_through_its_dict():
     """to_dict is complete: start angle and density included (an asymmetric irregular arch and
     a denser arch come back equal)."""
     for arch in (irregular_arch(oppenheim(), 0.1, rng=7), oppenheim(density=2400.0)):
-        assert Arch.from_dict(arch.to_dict()) == arch
+        assert CircularArch.from_dict(arch.to_dict()) == arch

@@ -3,13 +3,13 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from archquake import irregular_arch
-from archquake.equations_of_motion import (
+from archquake.fourlink.equations_of_motion import (
     angular_acceleration,
     coefficients,
     kinetic_energy,
 )
+from archquake.fourlink.mechanism import mechanism_from_hinges
 from archquake.geometry import GRAVITY, Hinge
-from archquake.mechanism import mechanism_from_hinges
 from kinematics_reference import Configurations, nominal_hinges, virtual_work_multiplier
 
 SEEDS = [1, 2, 3, 4]

@@ -6,14 +6,14 @@ import pytest
 
 from archquake import ArchDynamics
 from archquake.cli import main
-from archquake.engine import check_restitution
-from archquake.failure_domain import domain_slice, inclusive_range
+from archquake.fourlink.engine import check_restitution
+from archquake.fourlink.impact import restitution
+from archquake.fourlink.mechanism import mechanisms
+from archquake.fourlink.time_history import simulate
 from archquake.geometry import GRAVITY, irregular_sample
 from archquake.ground_motion import oppenheim_pulse
-from archquake.impact import restitution
-from archquake.mechanism import mechanisms
 from archquake.reference_arches import oppenheim as oppenheim_arch
-from archquake.time_history import simulate
+from archquake.studies.failure_domain import domain_slice, inclusive_range
 
 
 def make_classifier(edges):

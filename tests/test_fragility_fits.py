@@ -2,7 +2,8 @@ import numpy as np
 import pytest
 from scipy import stats
 
-from archquake.fragility import (
+from archquake.limit_analysis import empirical_cdf
+from archquake.studies.fragility import (
     LognormalFragility,
     evaluate_polynomial_fit,
     fit_lognormal,
@@ -10,7 +11,6 @@ from archquake.fragility import (
     probability_of_failure,
     rising_part,
 )
-from archquake.limit_analysis import empirical_cdf
 
 
 def test_probability_of_failure_is_fraction_of_failed_arches():

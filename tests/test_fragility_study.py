@@ -8,8 +8,15 @@ import pytest
 
 from archquake.cli import main
 from archquake.execution import StudyPlan, process_pool
-from archquake.failure_domain import inclusive_range
-from archquake.fragility import (
+from archquake.fourlink.impact import restitution
+from archquake.fourlink.mechanism import mechanisms
+from archquake.fourlink.time_history import simulate
+from archquake.geometry import GRAVITY, irregular_sample
+from archquake.ground_motion import oppenheim_pulse
+from archquake.limit_analysis import limit_sample, load_multipliers
+from archquake.results_io import load_study
+from archquake.studies.failure_domain import inclusive_range
+from archquake.studies.fragility import (
     FragilitySettings,
     chunk_arches,
     fit_lognormal,
@@ -19,13 +26,6 @@ from archquake.fragility import (
     run_fragility,
     warm_up,
 )
-from archquake.geometry import GRAVITY, irregular_sample
-from archquake.ground_motion import oppenheim_pulse
-from archquake.impact import restitution
-from archquake.limit_analysis import limit_sample, load_multipliers
-from archquake.mechanism import mechanisms
-from archquake.results_io import load_study
-from archquake.time_history import simulate
 
 TINY = {"sample_size": 3, "durations": (0.4,),
         "amplitudes_g": tuple(inclusive_range(0.3, 0.9, 0.1)), "limit_sample_size": 6, "seed": 11}
@@ -367,8 +367,8 @@ def test_cli_fragility_reports_excluded_arches(capsys, tmp_path):
 
 
 def test_an_unexpected_error_names_the_arch_that_raised_it(monkeypatch):
-    from archquake import fragility
     from archquake.errors import StudyError
+    from archquake.studies import fragility
 
     real = fragility.arch_outcomes
     calls = []

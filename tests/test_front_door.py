@@ -10,9 +10,9 @@ import pytest
 
 from archquake import GRAVITY, ArchDynamics, Status, oppenheim, oppenheim_pulse
 from archquake.cli import main
-from archquake.impact import restitution
+from archquake.fourlink.impact import restitution
+from archquake.fourlink.mechanism import mechanisms
 from archquake.limit_analysis import both_directions
-from archquake.mechanism import mechanisms
 
 
 def test_quick_start_reproduces_the_paper(paper):
@@ -47,7 +47,7 @@ def test_nominal_restitution_takes_the_nominal_arch(nominal):
                 == nominal_dynamics.restitution)
     with pytest.raises(ValueError, match="restitution must be one of"):
         ArchDynamics.from_arch(nominal, "bouncy")
-    with pytest.raises(ValueError, match="arch must be an Arch"):
+    with pytest.raises(ValueError, match="arch must be a CircularArch"):
         ArchDynamics.from_arch("Oppenheim")
 
 
@@ -67,8 +67,8 @@ def test_simulate_command_and_python_agree_with_their_defaults(capsys):
 
 
 def test_fragility_command_defaults_are_the_settings_defaults(monkeypatch, tmp_path):
-    from archquake import fragility
     from archquake.execution import default_backend
+    from archquake.studies import fragility
 
     seen = {}
 

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from archquake.geometry import Arch, circular_arch, irregular_arch
+from archquake.geometry import CircularArch, circular_arch, irregular_arch
 
 
 def test_oppenheim_arch_springings_and_joints(nominal, paper):
@@ -51,7 +51,7 @@ def test_nominal_arch_is_symmetric(nominal):
 
 
 def test_joint_contact_is_overlap_of_radial_extents():
-    arch = Arch.from_voussoirs([0.5] * 4, [1.0, 1.2, 1.0, 1.0], [10.0, 10.3, 10.0, 10.0])
+    arch = CircularArch.from_voussoirs([0.5] * 4, [1.0, 1.2, 1.0, 1.0], [10.0, 10.3, 10.0, 10.0])
     inner, outer = arch.joint_extents()
     assert inner.tolist() == pytest.approx([9.5, 9.7, 9.7, 9.5, 9.5])
     assert outer.tolist() == pytest.approx([10.5, 10.5, 10.5, 10.5, 10.5])
@@ -92,7 +92,7 @@ def test_json_round_trip(tmp_path, nominal):
     arch = irregular_arch(nominal, 0.1, rng=7)
     path = tmp_path / "arch.json"
     path.write_text(json.dumps(arch.to_dict()))
-    back = Arch.from_json(path)
+    back = CircularArch.from_json(path)
     assert back.joint_angles == pytest.approx(arch.joint_angles, abs=1e-14)
     assert back.masses == pytest.approx(arch.masses, rel=1e-14)
 
@@ -123,7 +123,7 @@ def test_bad_tolerance(nominal, eps):
 
 def test_non_touching_voussoirs_rejected():
     with pytest.raises(ValueError, match="joint 2"):
-        Arch.from_voussoirs([0.4] * 4, [1, 1, 1, 1], [10, 10, 12, 12])
+        CircularArch.from_voussoirs([0.4] * 4, [1, 1, 1, 1], [10, 10, 12, 12])
 
 
 @pytest.mark.parametrize(
@@ -147,9 +147,9 @@ def test_bad_json_geometry(tmp_path, content, message):
     path = tmp_path / "g.json"
     path.write_text(content)
     with pytest.raises(ValueError, match=message):
-        Arch.from_json(path)
+        CircularArch.from_json(path)
 
 
 def test_missing_json_file(tmp_path):
     with pytest.raises(ValueError, match="cannot read"):
-        Arch.from_json(tmp_path / "nope.json")
+        CircularArch.from_json(tmp_path / "nope.json")

@@ -5,8 +5,7 @@ import numpy as np
 import pytest
 
 from archquake import circular_arch, irregular_arch, oppenheim
-from archquake.geometry import Hinge
-from archquake.impact import (
+from archquake.fourlink.impact import (
     RESTITUTION_MODELS,
     computed_restitution,
     generalised_momentum,
@@ -14,7 +13,8 @@ from archquake.impact import (
     restitution,
     velocity_after_impact,
 )
-from archquake.mechanism import mechanism_from_hinges, mechanisms
+from archquake.fourlink.mechanism import mechanism_from_hinges, mechanisms
+from archquake.geometry import Hinge
 from kinematics_reference import (
     instantaneous_velocities,
     mirrored_hinges,

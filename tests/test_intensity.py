@@ -21,10 +21,10 @@ from archquake.ground_motion import (
 )
 from archquake.ground_motion.intensity import (
     INTENSITY_MEASURES,
-    _nigam_jennings,
     arias_intensity,
     intensity_measure,
     intensity_measures,
+    nigam_jennings,
     parse_intensity_measures,
     peak_ground_displacement,
     peak_ground_velocity,
@@ -116,7 +116,7 @@ def test_step_coefficients_equal_the_matrix_exponential(zeta):
             e = expm(m * h)
             expected = [e[0, 0], e[0, 1], e[0, 2] - e[0, 3] / h, e[0, 3] / h,
                         e[1, 0], e[1, 1], e[1, 2] - e[1, 3] / h, e[1, 3] / h]
-            assert np.array(_nigam_jennings(h, w, zeta)) == pytest.approx(
+            assert np.array(nigam_jennings(h, w, zeta)) == pytest.approx(
                 expected, rel=1e-10, abs=1e-14 * max(1.0, 1 / w ** 2)), (period, h)
 
 

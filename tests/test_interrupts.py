@@ -12,9 +12,9 @@ import pandas as pd
 import pytest
 
 from archquake.cli import main
-from archquake.failure_domain import inclusive_range
-from archquake.fragility import FragilitySettings, run_fragility
 from archquake.results_io import load_study
+from archquake.studies.failure_domain import inclusive_range
+from archquake.studies.fragility import FragilitySettings, run_fragility
 
 pytestmark = pytest.mark.skipif(not Path("/proc/self/stat").exists(),
                                 reason="lists processes through /proc (Linux)")

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from archquake import irregular_arch
+from archquake.fourlink.mechanism import FourLinkMechanism, mechanism_from_hinges
 from archquake.geometry import GRAVITY, Hinge
-from archquake.mechanism import FourLinkMechanism, mechanism_from_hinges
 from kinematics_reference import (
     Configurations,
     instantaneous_velocities,
@@ -187,5 +187,5 @@ def test_invalid_mechanisms_raise(nominal, paper):
         mechanism_from_hinges(nominal, (*hinges[:3], Hinge(8, "extrados")))
     with pytest.raises(ValueError, match="four Hinge"):
         mechanism_from_hinges(nominal, hinges[:3])
-    with pytest.raises(ValueError, match="Arch"):
+    with pytest.raises(ValueError, match="CircularArch"):
         FourLinkMechanism("arch", hinges)

@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 
 from archquake.cli import main
+from archquake.fourlink.impact import restitution
+from archquake.fourlink.mechanism import mechanisms
 from archquake.geometry import irregular_arch
-from archquake.impact import restitution
 from archquake.limit_analysis import both_directions
-from archquake.mechanism import mechanisms
 
 
 @pytest.mark.parametrize("seed", range(12))
@@ -36,7 +36,7 @@ def test_computed_restitution_never_creates_energy(nominal, seed):
     # c_v is a ratio of rates of two different coordinates, so it may exceed 1 when the two
     # mechanisms differ; the kinetic energy may not grow, and over a full cycle (l -> r -> l)
     # the rate ratio c_lr c_rl = <u_l, u_r>^2 / (|u_l|^2 |u_r|^2) <= 1 (Cauchy-Schwarz).
-    from archquake.impact import kinetic_energy_ratio
+    from archquake.fourlink.impact import kinetic_energy_ratio
 
     mech_l, mech_r = mechanisms(irregular_arch(nominal, 0.1, rng=seed))
     c_lr, c_rl = restitution("computed", mech_l, mech_r)

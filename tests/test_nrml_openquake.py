@@ -16,9 +16,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from archquake.fragility import LognormalFragility
-from archquake.record_fragility import RecordFragilitySettings, RecordSuite, run_record_fragility
 from archquake.results_io import lognormal_moments, openquake_imt, write_fragility_nrml
+from archquake.studies.fragility import LognormalFragility
+from archquake.studies.record_fragility import (
+    RecordFragilitySettings,
+    RecordSuite,
+    run_record_fragility,
+)
 
 ROOT = Path(__file__).resolve().parents[1]
 

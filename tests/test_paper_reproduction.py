@@ -90,7 +90,8 @@ def test_pulse_outcomes_and_point_q_match_the_paper(report, paper):
         assert row["NA"]["agrees"]
     q = results["failure_domain"]["q_tp040"]["paper"]
     assert q == pytest.approx(paper["dynamics"]["NA"]["failure_acceleration_tp040"], abs=0.01)
-    # the computed coefficient of restitution is the one of archquake.impact, not the paper's
+    # the computed coefficient of restitution is the one of archquake.fourlink.impact, not the
+    # paper's
     assert results["restitution"]["computed"][0] == pytest.approx(0.645, abs=1e-3)
     # the report names the three models and the number each gives (link: tests/test_impact.py)
     assert results["restitution"]["link"][0] == pytest.approx(0.883, abs=1e-3)
@@ -143,11 +144,12 @@ def test_runtime_and_environment_recorded(report):
 
 
 def test_comparison_section_comes_from_compare_models(report, nominal):
-    """The section's numbers are those of archquake.comparison.compare_models (the curve of the
+    """The section's numbers are those of archquake.studies.comparison.compare_models (the curve of
+    the
     rigid blocks ran on a second process) at the quick settings; its paragraph and table quote
     them."""
-    from archquake.comparison import compare_models
-    from archquake.failure_domain import inclusive_range
+    from archquake.studies.comparison import compare_models
+    from archquake.studies.failure_domain import inclusive_range
 
     out, results = report
     settings = ReproductionSettings.quick_settings()
@@ -170,7 +172,7 @@ def test_comparison_section_comes_from_compare_models(report, nominal):
 
 def test_record_fragility_section_comes_from_the_study(report):
     """The section's fits are those of oppenheim_record_fragility at the quick sizes."""
-    from archquake.record_fragility import oppenheim_record_fragility
+    from archquake.studies.record_fragility import oppenheim_record_fragility
 
     out, results = report
     s = ReproductionSettings.quick_settings()

@@ -25,6 +25,8 @@ def test_run_all_finds_every_benchmark():
     assert found == expected
 
 
+from import_graph import package_imports  # noqa: E402
+
 HEAVY = {"scipy.optimize", "scipy.stats", "scipy.integrate", "pandas", "matplotlib", "pyarrow",
          "distributed", "dask", "tqdm"}
 
@@ -43,50 +45,12 @@ def test_command_line_help_imports_no_heavy_module():
     assert not HEAVY & set(loaded.split())
 
 
-def _package_imports() -> dict[str, set[str]]:
-    """Modules of the package each module imports (at module level or inside a function; not
-    under ``if TYPE_CHECKING``), from the source."""
-    import ast
-
-    src = ROOT / "src"
-    files = sorted((src / "archquake").glob("**/*.py"))
-    modules = {}
-    for path in files:
-        parts = list(path.relative_to(src).with_suffix("").parts)
-        is_package = parts[-1] == "__init__"
-        if is_package:
-            parts = parts[:-1]
-        modules[".".join(parts)] = (path, is_package)
-    graph = {}
-    for name, (path, is_package) in modules.items():
-        package = name.split(".") if is_package else name.split(".")[:-1]
-        found = set()
-        stack = list(ast.parse(path.read_text()).body)
-        while stack:
-            node = stack.pop()
-            if (isinstance(node, ast.If) and isinstance(node.test, ast.Name)
-                    and node.test.id == "TYPE_CHECKING"):
-                stack.extend(node.orelse)
-                continue
-            if isinstance(node, ast.ImportFrom) and node.level:
-                base = package[: len(package) - node.level + 1]
-                target = ".".join(base + ([node.module] if node.module else []))
-                candidates = ([target] if node.module else [])
-                candidates += [f"{target}.{a.name}" for a in node.names]
-                found |= {c for c in candidates if c in modules}
-            elif isinstance(node, ast.Import):
-                found |= {a.name for a in node.names if a.name in modules}
-            stack.extend(ast.iter_child_nodes(node))
-        graph[name] = found - {name}
-    return graph
-
-
 def test_package_has_no_import_cycle():
     """No module of the package imports, directly or through others, a module that imports it
     (lazy imports inside functions count: they hide a cycle, they do not remove it)."""
-    graph = _package_imports()
-    assert "archquake.linkage" in graph and not graph["archquake.linkage"]
-    assert "archquake.mechanism" not in graph["archquake.equations_of_motion"]
+    graph = package_imports()
+    assert "archquake.fourlink.linkage" in graph and not graph["archquake.fourlink.linkage"]
+    assert "archquake.fourlink.mechanism" not in graph["archquake.fourlink.equations_of_motion"]
     state = {}
 
     def visit(node, path):

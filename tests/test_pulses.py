@@ -8,7 +8,10 @@ import pytest
 from numpy.polynomial import hermite_e
 from scipy import integrate
 
-from archquake import engine, oppenheim
+from archquake import oppenheim
+from archquake.fourlink import engine
+from archquake.fourlink.mechanism import mechanisms
+from archquake.fourlink.time_history import simulate
 from archquake.geometry import GRAVITY
 from archquake.ground_motion import (
     ANALYTIC_GROUND_MOTIONS,
@@ -24,8 +27,6 @@ from archquake.ground_motion import (
     ricker_wavelet,
     sine_pulse,
 )
-from archquake.mechanism import mechanisms
-from archquake.time_history import simulate
 
 
 def integrals(motion, t):

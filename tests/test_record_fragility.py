@@ -11,11 +11,12 @@ from scipy import special, stats
 
 from archquake import oppenheim
 from archquake.cli import main
-from archquake.fragility import LognormalFragility, fit_lognormal
+from archquake.fourlink.impact import restitution
+from archquake.fourlink.mechanism import mechanisms
+from archquake.fourlink.time_history import simulate
 from archquake.ground_motion import read_suite, scale_to_im, stochastic_suite
-from archquake.impact import restitution
-from archquake.mechanism import mechanisms
-from archquake.record_fragility import (
+from archquake.studies.fragility import LognormalFragility, fit_lognormal
+from archquake.studies.record_fragility import (
     NOMINAL_ARCH,
     RecordFragilitySettings,
     RecordSuite,
@@ -28,7 +29,6 @@ from archquake.record_fragility import (
     run_record_fragility,
     separated,
 )
-from archquake.time_history import simulate
 
 LEVELS = "0.3:1.9:0.2"  # pga [g]: below activation (k = 0.37) up to most records collapsing
 SUITE = {"significant_duration": 4.0, "midpoint_time": 3.0, "filter_frequency": 1.0,
@@ -102,7 +102,7 @@ def test_analyses_below_activation_are_exact_rests():
     """Skipped analyses (no sample reaches the activation acceleration) are what the engine
     decides when it integrates them, including factors a hair either side of the threshold."""
     from archquake import ArchDynamics, oppenheim
-    from archquake.engine import outcomes_grid
+    from archquake.fourlink.engine import outcomes_grid
 
     dynamics = ArchDynamics.from_arch(oppenheim(), "computed")
     tables, c = dynamics.tables, dynamics.restitution
@@ -428,7 +428,7 @@ def test_lognormal_fragility_of_the_study_maximises_its_likelihood(small_study):
 
 
 def test_report_function_runs_each_measure_on_the_synthetic_suite():
-    from archquake.record_fragility import STOCHASTIC_SUITE, oppenheim_record_fragility
+    from archquake.studies.record_fragility import STOCHASTIC_SUITE, oppenheim_record_fragility
 
     results = oppenheim_record_fragility(("pgv",), records=2, sample_size=1,
                                          levels={"pgv": (1.0, 2.0)}, bootstrap=10,

@@ -184,7 +184,7 @@ def test_block_below_friction_limit_sticks():
     squat = rectangular_block(2.0, 0.5)
     out = block_outcome(squat, rectangular_pulse(0.25 * GRAVITY, 1.0),
                         BlockSettings(friction=0.3))
-    assert out.status == "rest"
+    assert out.status.label == "rest"
     assert out.max_slip < 1e-9
 
 

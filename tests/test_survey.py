@@ -129,11 +129,11 @@ def test_springing_that_cannot_be_found_asks_for_it():
 def test_load_arch_reads_the_three_kinds(tmp_path, nominal):
     import json
 
-    from archquake.geometry import Arch, ShapedArch, load_arch, shaped_arch
+    from archquake.geometry import CircularArch, ShapedArch, load_arch, shaped_arch
 
     circle = tmp_path / "circle.json"
     circle.write_text(json.dumps(nominal.to_dict()))
-    assert load_arch(circle) == Arch.from_json(circle) == nominal
+    assert load_arch(circle) == CircularArch.from_json(circle) == nominal
     survey = surveyed_arch(polygons(nominal, 12))
     blocks = tmp_path / "blocks.json"
     blocks.write_text(json.dumps({"blocks": [b.tolist() for b in polygons(nominal, 12)]}))

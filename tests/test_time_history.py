@@ -8,17 +8,17 @@ import pytest
 
 matplotlib.use("Agg")
 
-from archquake import engine  # noqa: E402
-from archquake.geometry import GRAVITY  # noqa: E402
-from archquake.ground_motion import oppenheim_pulse, rectangular_pulse  # noqa: E402
-from archquake.status import Status  # noqa: E402
-from archquake.time_history import (  # noqa: E402
+from archquake.fourlink import engine  # noqa: E402
+from archquake.fourlink.time_history import (  # noqa: E402
     DEFAULT_EXTRA_TIME,
     Outcome,
     TimeHistory,
     free_vibration,
     simulate,
 )
+from archquake.geometry import GRAVITY  # noqa: E402
+from archquake.ground_motion import oppenheim_pulse, rectangular_pulse  # noqa: E402
+from archquake.status import Status  # noqa: E402
 from rocking_block import RockingBlock, block_pair  # noqa: E402
 
 

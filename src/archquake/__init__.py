@@ -2,47 +2,60 @@
 
 The chain of the paper "Dynamic response of masonry arch with geometrical irregularities
 subjected to a pulse-type ground motion": geometry -> limit analysis -> four-link mechanism ->
-impacts -> time histories -> failure domains and fragility. The front door is
-:class:`ArchDynamics`: an arch's limit analyses, mechanisms, restitution and compiled tables,
-with its time histories, outcomes and failure domain::
+impacts -> time histories -> failure domains and fragility, and a second model of the same
+structure, every block rigid with Coulomb friction (:mod:`archquake.rigid_blocks`). Both models
+satisfy one protocol (:mod:`archquake.models`); :func:`model_for` builds either by name::
 
-    from archquake import GRAVITY, ArchDynamics, oppenheim, oppenheim_pulse
+    from archquake import GRAVITY, model_for, oppenheim, oppenheim_pulse
 
-    dynamics = ArchDynamics.from_arch(oppenheim(), restitution="paper")
-    history = dynamics.simulate(oppenheim_pulse(-GRAVITY, 0.27))   # the paper's Fig. 15
+    four_link = model_for(oppenheim(), "four-link", restitution="paper")
+    history = four_link.simulate(oppenheim_pulse(-GRAVITY, 0.27))   # the paper's Fig. 15
+    blocks = model_for(oppenheim(), "rigid-blocks")
+    outcome = blocks.outcome(oppenheim_pulse(-GRAVITY, 0.27))
+
+The names below are imported on first use (PEP 562), so that ``import archquake`` stays cheap.
 """
 
-from importlib.metadata import PackageNotFoundError, version
+from ._version import __version__
+from .constants import GRAVITY
 
-from .dynamics import ArchDynamics
-from .geometry import (
-    GRAVITY,
-    Arch,
-    circular_arch,
-    irregular_arch,
-    load_arch,
-    shaped_arch,
-    surveyed_arch,
-)
-from .reference_arches import oppenheim
-from .status import Status
-
-try:
-    __version__ = version("archquake")
-except PackageNotFoundError:  # running from a source tree
-    __version__ = "0.1.0"
+# name -> module that defines it (imported on first use)
+_LAZY = {
+    "ArchDynamics": "fourlink.dynamics",
+    "FourLinkModel": "fourlink.dynamics",
+    "RigidBlockModel": "rigid_blocks.model",
+    "StructuralModel": "models",
+    "MODELS": "models",
+    "model_for": "models",
+    "BlockArch": "geometry",
+    "CircularArch": "geometry",
+    "circular_arch": "geometry",
+    "irregular_arch": "geometry",
+    "load_arch": "geometry",
+    "shaped_arch": "geometry",
+    "surveyed_arch": "geometry",
+    "oppenheim": "reference_arches",
+    "oppenheim_pulse": "ground_motion",
+    "Status": "status",
+}
 
 
 def __getattr__(name: str):
-    # oppenheim_pulse on first use: the ground-motion package loads the compiler (numba), which
-    # "import archquake" (the command line's --help, a worker process starting) does not need
-    if name == "oppenheim_pulse":
-        from .ground_motion import oppenheim_pulse
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'archquake' has no attribute {name!r}")
+    from importlib import import_module
 
-        return oppenheim_pulse
-    raise AttributeError(f"module 'archquake' has no attribute {name!r}")
+    value = getattr(import_module(f".{module}", __name__), name)
+    globals()[name] = value
+    return value
 
 
-__all__ = ["GRAVITY", "Arch", "ArchDynamics", "Status", "circular_arch", "irregular_arch",
-           "load_arch", "oppenheim", "oppenheim_pulse", "shaped_arch", "surveyed_arch",
-           "__version__"]
+def __dir__():
+    return sorted([*globals(), *_LAZY])
+
+
+__all__ = ["GRAVITY", "MODELS", "ArchDynamics", "BlockArch", "CircularArch",
+           "FourLinkModel", "RigidBlockModel", "Status", "StructuralModel", "circular_arch",
+           "irregular_arch", "load_arch", "model_for", "oppenheim", "oppenheim_pulse",
+           "shaped_arch", "surveyed_arch", "__version__"]

@@ -3,7 +3,7 @@
 A frozen dataclass compares and hashes the tuple of its fields, which fails for arrays
 (``bool(array == array)`` is ambiguous, arrays are unhashable). archquake decides per class:
 
-- *values* that describe an input (an :class:`~archquake.geometry.Arch`, a
+- *values* that describe an input (an :class:`~archquake.geometry.CircularArch`, a
   :class:`~archquake.ground_motion.GroundMotion`) compare equal when every field is equal, arrays
   element by element, and hash accordingly (their arrays are read-only), so they can key a cache
   or a dict;

@@ -18,7 +18,7 @@ import signal
 import sys
 import warnings
 
-from . import __version__
+from ._version import __version__
 from .defaults import (
     COMPARE_AMPLITUDES_G,
     COMPARE_DURATIONS,
@@ -271,8 +271,9 @@ def add_restitution_option(parser: argparse.ArgumentParser) -> None:
 
 
 def restitution_model(text: str):
-    """The --restitution value, checked (:func:`archquake.impact.check_restitution_model`)."""
-    from .impact import check_restitution_model
+    """The --restitution value, checked
+    (:func:`archquake.fourlink.impact.check_restitution_model`)."""
+    from .fourlink.impact import check_restitution_model
 
     try:
         return check_restitution_model(text)
@@ -292,8 +293,8 @@ def check_workers(workers: int | None) -> int | None:
 
 
 def dynamics_from_args(args: argparse.Namespace):
-    """The :class:`~archquake.dynamics.ArchDynamics` of the arch of the geometry options."""
-    from .dynamics import ArchDynamics
+    """The :class:`~archquake.fourlink.FourLinkModel` of the arch of the geometry options."""
+    from .fourlink.dynamics import ArchDynamics
 
     nominal, arch = arches_from_args(args)
     model = restitution_model(args.restitution)
@@ -654,7 +655,7 @@ def _run_reproduce(args: argparse.Namespace) -> int:
     if args.restitution is not None:
         model = restitution_model(args.restitution)
         if isinstance(model, str):  # a model: its value for the nominal arch
-            from .dynamics import ArchDynamics
+            from .fourlink.dynamics import ArchDynamics
 
             model = ArchDynamics.from_arch(oppenheim(), model).restitution[0]
         changes["restitution"] = model
@@ -674,10 +675,10 @@ def parse_values(text: str, name: str) -> list[float]:
     """Values of a list option: comma-separated numbers and ranges ``start:stop:step``.
 
     A range includes ``stop`` when a step lands within ``step/2`` of it
-    (:func:`archquake.failure_domain.inclusive_range`); ``"0.4,0.5"`` and ``"0.2:1.0:0.01"``
+    (:func:`archquake.studies.failure_domain.inclusive_range`); ``"0.4,0.5"`` and ``"0.2:1.0:0.01"``
     and ``"0.1:0.3:0.1,0.5"`` are valid.
     """
-    from .failure_domain import inclusive_range
+    from .studies.failure_domain import inclusive_range
 
     values: list[float] = []
     for part in (p.strip() for p in str(text).split(",")):
@@ -877,7 +878,7 @@ def add_fragility(subparsers) -> None:
 def _run_fragility(args: argparse.Namespace) -> int:
     if args.records or args.im or args.levels or args.export_nrml:
         return _run_record_fragility(args)
-    from .fragility import CURVES_CSV, LIMIT_DIRECTORY, FragilitySettings, run_fragility
+    from .studies.fragility import CURVES_CSV, LIMIT_DIRECTORY, FragilitySettings, run_fragility
 
     nominal, _ = arches_from_args(argparse.Namespace(**{**vars(args), "tolerance": None,
                                                         "seed": None}))
@@ -985,7 +986,7 @@ def _plot_fragility(result, plot_dir) -> list[str]:
 
 def add_record_fragility_options(parser: argparse.ArgumentParser) -> None:
     """The options of ``archquake fragility --records``: a multiple-stripe study of a record
-    suite (:mod:`archquake.record_fragility`)."""
+    suite (:mod:`archquake.studies.record_fragility`)."""
     parser.set_defaults(pulse_defaults={name: parser.get_default(name) for name in
                                         ("durations", "amplitudes", "limit_samples",
                                          "limit_method")})
@@ -1014,7 +1015,7 @@ def add_record_fragility_options(parser: argparse.ArgumentParser) -> None:
 
 
 def _run_record_fragility(args: argparse.Namespace) -> int:
-    from .record_fragility import (
+    from .studies.record_fragility import (
         CURVES_CSV,
         INCREMENTAL_CSV,
         RecordFragilitySettings,
@@ -1526,7 +1527,8 @@ def _run_dem(args: argparse.Namespace) -> int:
             "collapse": f"the arch collapses (certain at t = {outcome.collapse_time:.3f} s)"}
     print(f"Rigid-block model, {motion.name}; friction {settings.friction:g}, time step "
           f"{settings.time_step:g} s")
-    print(f"{text[outcome.status]}{'' if outcome.decided else ' (not decided: still moving)'}")
+    undecided = "" if outcome.decided else " (not decided: still moving)"
+    print(f"{text[outcome.status.label]}{undecided}")
     print(f"largest rotation {outcome.max_rotation:.4f} rad, crown drop "
           f"{outcome.max_crown_drop:.4f} m, slip {outcome.max_slip:.2e} m, joint opening "
           f"{outcome.max_opening:.4f} m; {outcome.steps} steps")
@@ -1571,7 +1573,7 @@ def _plot_dem(history, path) -> None:
     from .rigid_blocks.plotting import plot_block_history, plot_blocks
 
     fig, (left, right) = plt.subplots(1, 2, figsize=(13, 4.5), constrained_layout=True)
-    if history.outcome.status == "collapse":  # when the collapse became certain
+    if history.outcome.collapsed:  # when the collapse became certain
         moment = history.outcome.collapse_time
     else:  # the most open state
         moment = float(history.times[int(np.argmax(history.openings.max(axis=1)))])
@@ -1641,8 +1643,8 @@ time steps of 1 ms, finer widths only cost analyses."""
 
 
 def _run_compare(args: argparse.Namespace) -> int:
-    from .comparison import compare_models
     from .rigid_blocks import BlockSettings
+    from .studies.comparison import compare_models
 
     durations = _durations(args.durations)
     amplitudes = _amplitudes(args.amplitudes)

@@ -19,7 +19,8 @@ DEFAULT_SAMPLE_LIMIT_METHOD = "kinematic"
 
 DEFAULT_RESTITUTION = "computed"
 """Restitution model of every analysis unless one is chosen: the coefficients computed from the
-momentum balance of the impact of this arch (:func:`archquake.impact.computed_restitution`)."""
+momentum balance of the impact of this arch
+(:func:`archquake.fourlink.impact.computed_restitution`)."""
 
 DEFAULT_SEED = 0
 """Root seed of irregular arches and samples."""
@@ -89,12 +90,12 @@ integrator underflow."""
 
 MAX_CYCLES = 10_000
 """Most cycles of a harmonic ground motion: each costs the integrator some tens of steps, and
-one analysis is limited to :data:`archquake.engine.DEFAULT_MAX_STEPS` steps."""
+one analysis is limited to :data:`archquake.fourlink.engine.DEFAULT_MAX_STEPS` steps."""
 
 MAX_RECORD_SAMPLES = 1_000_000
 """Most samples of a generated (stochastic) ground motion: every sample is a breakpoint the
 integrator does not step across, and one analysis is limited to
-:data:`archquake.engine.DEFAULT_MAX_STEPS` steps."""
+:data:`archquake.fourlink.engine.DEFAULT_MAX_STEPS` steps."""
 
 MAX_BLOCK_STEPS = 5_000_000
 """Most time steps of one rigid-block analysis (some minutes for the paper's arch)."""
@@ -118,7 +119,7 @@ rigid-block analysis costs about 100 four-link ones)."""
 
 COMPARE_RESTITUTIONS = ("computed", "link", "paper", "blocks")
 """Restitution models of the four-link model in a comparison (names of
-:data:`archquake.impact.RESTITUTION_MODELS`)."""
+:data:`archquake.fourlink.impact.RESTITUTION_MODELS`)."""
 
 MAX_BLOCK_GRID_POINTS = 10_000
 """Most (duration, amplitude) points of a rigid-block failure curve's scan: some tens of minutes

@@ -77,7 +77,7 @@ import numpy as np
 import pandas as pd
 from tqdm.auto import tqdm
 
-from . import __version__
+from ._version import __version__
 from .defaults import DEFAULT_BACKEND
 from .errors import StudyError, StudyWarning
 from .results_io import atomic_path, read_json, save_study, to_json_text, write_json
@@ -421,7 +421,7 @@ def process_pool(workers: int | None = None, *,
         Number of processes (default ``os.cpu_count()``).
     warm_up : callable, optional
         Picklable function run once in every worker as it starts (e.g.
-        :func:`archquake.fragility.warm_up`, which loads the compiled engine), so that the
+        :func:`archquake.studies.fragility.warm_up`, which loads the compiled engine), so that the
         first chunks of a study do not pay for it.
 
     Returns

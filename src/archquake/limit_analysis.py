@@ -123,8 +123,8 @@ class ThrustLine:
         ``[0, length of the joint]``; nan at a joint that transmits no normal force (a
         separating joint, whose force, if any, lies along the joint).
     radii : array of float, shape (n+1,), or None
-        For a circular :class:`~archquake.geometry.Arch` (radial joints): the radius of every
-        pressure point [m] (nan where ``offsets`` is); None for other arches.
+        For a circular :class:`~archquake.geometry.CircularArch` (radial joints): the radius of
+        every pressure point [m] (nan where ``offsets`` is); None for other arches.
     points : array of float, shape (n+1, 2)
         Pressure points (x, y) [m].
     forces : array of float, shape (n+1, 2)
@@ -842,7 +842,7 @@ def limit_analysis(arch: BlockArch, direction: str = "l",
     [(0, 'intrados'), (3, 'extrados'), (5, 'intrados'), (7, 'extrados')]
     """
     if not isinstance(arch, BlockArch):
-        raise ValueError(f"arch must be an Arch, a ShapedArch or a SurveyedArch, got "
+        raise ValueError(f"arch must be a CircularArch, a ShapedArch or a SurveyedArch, got "
                          f"{type(arch).__name__}")
     method = _check_method(method)
     return METHODS[method](_oriented(arch, direction), direction)
@@ -936,7 +936,7 @@ def limit_sample(
 
     Parameters
     ----------
-    nominal : Arch or ShapedArch
+    nominal : CircularArch or ShapedArch
         The nominal arch.
     tolerance : float
         The paper's epsilon [-], in [0, 1).

@@ -37,10 +37,10 @@ from pathlib import Path
 
 import numpy as np
 
-from . import __version__
+from ._version import __version__
 from .defaults import COMPARE_DURATIONS, COMPARE_RESOLUTION_G
+from .fourlink.impact import PAPER_RESTITUTION, restitution
 from .geometry import GRAVITY, irregular_sample
-from .impact import PAPER_RESTITUTION, restitution
 from .reference_arches import oppenheim, paper_values
 
 ARCH_NAMES = ("NA", "RA-1", "RA-2")
@@ -52,7 +52,8 @@ ARCH_COLOURS = {"NA": "tab:blue", "RA-1": "tab:red", "RA-2": "tab:green"}
 RECORD_LEVELS = {"pga": (0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6, 1.8, 2.0),
                  "pgv": (0.8, 1.2, 1.6, 2.0, 2.4, 2.8, 3.2, 3.6, 4.0)}
 """Stripes of the report's record-based fragility: every other level of
-:data:`archquake.record_fragility.DEFAULT_LEVELS` from just above the activation of the arch."""
+:data:`archquake.studies.record_fragility.DEFAULT_LEVELS` from just above the activation of the
+arch."""
 
 AGREEMENT_BAND = 0.05
 """Relative difference [-] called agreement of the two models' failure accelerations."""
@@ -237,7 +238,7 @@ def _outcome_text(status: str, half_cycle: int) -> str:
 
 @dataclass
 class _Arches:
-    """The three arches with their dynamics (:class:`~archquake.dynamics.ArchDynamics`: limit
+    """The three arches with their dynamics (:class:`~archquake.fourlink.FourLinkModel`: limit
     analyses, mechanisms, tables) and views of their parts."""
 
     arches: dict
@@ -262,7 +263,7 @@ def _label(case: str, pair) -> str:
 
 # ------------------------------------------------------------------------------ parts
 def _part_limit(settings: ReproductionSettings, paper: dict) -> tuple[_Arches, dict]:
-    from .dynamics import ArchDynamics
+    from .fourlink.dynamics import ArchDynamics
 
     nominal = oppenheim()
     ra = irregular_sample(nominal, settings.tolerance, 2, settings.seed)
@@ -344,7 +345,7 @@ def _half_cycle_peaks(history) -> list[tuple[str, float]]:
 
 def _part_free_vibrations(settings: ReproductionSettings, state: _Arches, paper: dict,
                           cases: dict) -> tuple[dict, dict]:
-    from .time_history import free_vibration
+    from .fourlink.time_history import free_vibration
 
     phi0 = paper["dynamics"]["NA"]["free_vibration_phi0"]
     histories, summary = {}, {}
@@ -370,8 +371,8 @@ def _part_free_vibrations(settings: ReproductionSettings, state: _Arches, paper:
 
 def _part_pulses(settings: ReproductionSettings, state: _Arches, paper: dict,
                  cases: dict) -> tuple[dict, dict]:
+    from .fourlink.time_history import simulate
     from .ground_motion import oppenheim_pulse
-    from .time_history import simulate
 
     expected = {"NA": paper["dynamics"]["NA"]["pulse_cases"],
                 "RA-1": paper["dynamics"]["RA"]["ra1_pulse_cases"],
@@ -397,14 +398,14 @@ def _part_pulses(settings: ReproductionSettings, state: _Arches, paper: dict,
 
 def _domain_grid(settings: ReproductionSettings) -> np.ndarray:
     """Amplitudes [g] scanned by the failure domain: from below k (no motion) to the top."""
-    from .failure_domain import inclusive_range
+    from .studies.failure_domain import inclusive_range
 
     return inclusive_range(0.30, settings.domain_amplitude_max_g, settings.domain_amplitude_step_g)
 
 
 def _part_failure_domain(settings: ReproductionSettings, state: _Arches, cases: dict) -> dict:
     """Failure domain of the nominal arch over (t_p, xg''/g) [paper, Fig. 16] and point Q."""
-    from .dynamics import ArchDynamics
+    from .fourlink.dynamics import ArchDynamics
 
     nominal = state.arches["NA"]
     pair = cases["paper"]
@@ -424,8 +425,8 @@ def _part_failure_domain(settings: ReproductionSettings, state: _Arches, cases: 
 def _part_fragility(settings: ReproductionSettings, cases: dict, progress: bool) -> dict:
     """Fragility curves, surface and the k~ sample [paper, eq. (9), Figs. 17-21]."""
     from .execution import default_backend
-    from .failure_domain import inclusive_range
-    from .fragility import FragilitySettings, run_fragility
+    from .studies.failure_domain import inclusive_range
+    from .studies.fragility import FragilitySettings, run_fragility
 
     study = FragilitySettings(
         sample_size=settings.fragility_sample_size, tolerance=settings.tolerance,
@@ -440,7 +441,7 @@ def _part_fragility(settings: ReproductionSettings, cases: dict, progress: bool)
 
 def _comparison_grid(settings: ReproductionSettings) -> np.ndarray:
     """Amplitudes [g] scanned by both models in the comparison: from below k to the top."""
-    from .failure_domain import inclusive_range
+    from .studies.failure_domain import inclusive_range
 
     return inclusive_range(0.30, settings.comparison_amplitude_max_g,
                            settings.comparison_amplitude_step_g)
@@ -448,7 +449,7 @@ def _comparison_grid(settings: ReproductionSettings) -> np.ndarray:
 
 def _rigid_block_curve(arch, durations, grid, resolution) -> tuple:
     """The rigid-block failure curve of the comparison and its run time [s] (a worker's task;
-    the same call :func:`archquake.comparison.compare_models` makes)."""
+    the same call :func:`archquake.studies.comparison.compare_models` makes)."""
     from .rigid_blocks.failure import failure_curve
 
     t0 = time.perf_counter()
@@ -458,8 +459,8 @@ def _rigid_block_curve(arch, durations, grid, resolution) -> tuple:
 
 def _record_studies(settings: ReproductionSettings) -> tuple:
     """The record-based fragility studies of the report and their run time [s] (a worker's
-    task): :func:`archquake.record_fragility.oppenheim_record_fragility` in PGA and PGV."""
-    from .record_fragility import oppenheim_record_fragility
+    task): :func:`archquake.studies.record_fragility.oppenheim_record_fragility` in PGA and PGV."""
+    from .studies.record_fragility import oppenheim_record_fragility
 
     t0 = time.perf_counter()
     results = oppenheim_record_fragility(
@@ -515,7 +516,7 @@ def _submit_records(settings: ReproductionSettings, background: dict) -> None:
 
 def _part_comparison(settings: ReproductionSettings, state: _Arches, background: dict) -> dict:
     """The rigid-block model beside the four-link model (:func:`compare_models`)."""
-    from .comparison import compare_models
+    from .studies.comparison import compare_models
 
     curve, seconds, wall, backend = _collect(
         background.get("comparison"), _rigid_block_curve, state.arches["NA"],
@@ -525,7 +526,8 @@ def _part_comparison(settings: ReproductionSettings, state: _Arches, background:
                                 amplitudes_g=_comparison_grid(settings),
                                 resolution=settings.comparison_resolution_g,
                                 dynamics=state.dynamics["NA"], rigid_block=curve)
-    # how the blocks move on after the closing impact of Mech-l (archquake.impact, "blocks")
+    # how the blocks move on after the closing impact of Mech-l (archquake.fourlink.impact,
+    # "blocks")
     from .rigid_blocks.impacts import closing_impact
 
     mech_l, mech_r = state.dynamics["NA"].mechanisms
@@ -1018,7 +1020,8 @@ def _notes(results: dict) -> list[str]:
         "rise of every curve); the seed of the irregular arches; an irregular arch 'fails' "
         "when it collapses under the pulse in either direction (the paper analyses both and "
         "counts arches, h_f <= h); the collapse test ('ever-increasing phi') is the energy "
-        "criterion of archquake.engine: after the excitation an arch moving away from theta_u "
+        "criterion of archquake.fourlink.engine: after the excitation an arch moving away from "
+        "theta_u "
         "with more energy than V(theta_cr), or beyond theta_cr and not returning, collapses; "
         "during the excitation, reaching the kinematic limit of the linkage is collapse.",
     ]
@@ -1150,7 +1153,7 @@ def _comparison_text(summary: dict) -> list[str]:
               f"of Mech-l they keep {100 * impact['energy_ratio']:.0f} % of the kinetic "
               f"energy, of which {100 * (1 - impact['mech_r_share']):.0f} % moves outside "
               f"Mech-r, with hinges at joints {', '.join(map(str, impact['hinges']))} "
-              f"(archquake.impact, model 'blocks'), so no single c_v reproduces them."
+              f"(archquake.fourlink.impact, model 'blocks'), so no single c_v reproduces them."
             + blocks)
     bands_fl = sorted({r["duration"] for r in rows for v in r["recovery_above"]["four_link"]
                        .values() if v})
@@ -1206,7 +1209,8 @@ def _record_text(record: dict, settings: dict) -> str:
         f"Oppenheim's arch and of {pga['sample_size']} irregular arches (epsilon = "
         f"{settings['tolerance']:.2f}, seed {settings['seed']}, arches 0-"
         f"{pga['sample_size'] - 1} of the fragility sample) against {pga['records']} synthetic "
-        f"ground motions (archquake.record_fragility.STOCHASTIC_SUITE, a modulated, filtered "
+        f"ground motions (archquake.studies.record_fragility.STOCHASTIC_SUITE, a modulated, "
+        f"filtered "
         f"white noise, seed {settings['seed']}), each scaled to {len(pga['levels'])} levels of "
         f"PGA ({pga['levels'][0]:g}-{pga['levels'][-1]:g} g) and of PGV "
         f"({pgv['levels'][0]:g}-{pgv['levels'][-1]:g} m/s) and applied in both polarities "

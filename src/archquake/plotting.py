@@ -189,8 +189,8 @@ def plot_failure_domain(domain, ax=None):
 
     Parameters
     ----------
-    domain : archquake.failure_domain.FailureDomain
-        The domain (:meth:`archquake.dynamics.ArchDynamics.failure_domain`).
+    domain : archquake.studies.failure_domain.FailureDomain
+        The domain (:meth:`archquake.fourlink.dynamics.ArchDynamics.failure_domain`).
     ax : matplotlib.axes.Axes, optional
         Axes to draw on; a new figure when None.
 
@@ -254,7 +254,7 @@ def plot_fragility_curve(result, duration: float, ax=None):
 
     Parameters
     ----------
-    result : archquake.fragility.FragilityResult
+    result : archquake.studies.fragility.FragilityResult
     duration : float
         Pulse duration t_p [s], one of the study's.
     ax : matplotlib.axes.Axes, optional
@@ -265,7 +265,7 @@ def plot_fragility_curve(result, duration: float, ax=None):
     matplotlib.axes.Axes
         The axes drawn on.
     """
-    from .fragility import evaluate_polynomial_fit
+    from .studies.fragility import evaluate_polynomial_fit
 
     if ax is None:
         _, ax = plt.subplots(figsize=(7.5, 6.2), constrained_layout=True)
@@ -319,7 +319,7 @@ def plot_fragility_surface(result, ax=None):
 
     Parameters
     ----------
-    result : archquake.fragility.FragilityResult
+    result : archquake.studies.fragility.FragilityResult
     ax : matplotlib 3-D Axes, optional
         Created with ``projection="3d"`` when None.
 
@@ -372,7 +372,7 @@ def plot_rotation_history(history, ax=None, *, label: str | None = None, mark_im
 
     Parameters
     ----------
-    history : archquake.time_history.TimeHistory
+    history : archquake.fourlink.time_history.TimeHistory
         A recorded time history.
     ax : matplotlib axes, optional
     label : str, optional
@@ -552,7 +552,7 @@ def plot_ground_motion(motion, ax=None, *, t_end: float | None = None, label: st
 
 def plot_record_fragility(result, ax=None, *, nominal: bool = True):
     """Record-based fragility curve in the intensity measure: the stripes' fractions, the
-    lognormal fit and its bootstrap band (:mod:`archquake.record_fragility`).
+    lognormal fit and its bootstrap band (:mod:`archquake.studies.record_fragility`).
 
     Black dots: P(collapse | IM = x) of the irregular arch-record pairs at each stripe; black
     line: the total lognormal fit (all pairs pooled) with its bootstrap band (grey); blue squares
@@ -561,7 +561,7 @@ def plot_record_fragility(result, ax=None, *, nominal: bool = True):
 
     Parameters
     ----------
-    result : archquake.record_fragility.RecordFragilityResult
+    result : archquake.studies.record_fragility.RecordFragilityResult
     ax : matplotlib Axes, optional
     nominal : bool
         Draw the nominal arch too.
@@ -615,7 +615,7 @@ def plot_incremental(result, ax=None, *, arch: int | None = None):
 
     Parameters
     ----------
-    result : archquake.record_fragility.RecordFragilityResult
+    result : archquake.studies.record_fragility.RecordFragilityResult
     ax : matplotlib Axes, optional
     arch : int, optional
         Only this arch (-1: the nominal arch); default every irregular arch.
@@ -675,8 +675,8 @@ def plot_model_comparison(comparison, ax=None):
 
     Parameters
     ----------
-    comparison : archquake.comparison.ModelComparison
-        The comparison (:func:`archquake.comparison.compare_models`).
+    comparison : archquake.studies.comparison.ModelComparison
+        The comparison (:func:`archquake.studies.comparison.compare_models`).
     ax : matplotlib.axes.Axes, optional
         Axes to draw on; a new figure when None.
 
@@ -744,8 +744,8 @@ def plot_model_differences(comparison, ax=None):
 
     Parameters
     ----------
-    comparison : archquake.comparison.ModelComparison
-        The comparison (:func:`archquake.comparison.compare_models`).
+    comparison : archquake.studies.comparison.ModelComparison
+        The comparison (:func:`archquake.studies.comparison.compare_models`).
     ax : matplotlib.axes.Axes, optional
         Axes to draw on; a new figure when None.
 

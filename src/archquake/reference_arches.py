@@ -6,7 +6,7 @@ import math
 import tomllib
 from importlib import resources
 
-from .geometry import DEFAULT_DENSITY, Arch, circular_arch
+from .geometry import DEFAULT_DENSITY, CircularArch, circular_arch
 
 
 def paper_values() -> dict:
@@ -38,7 +38,7 @@ paper's values, ``[oppenheim]``), as the keyword arguments of
 :func:`archquake.geometry.circular_arch` (m, rad)."""
 
 
-def oppenheim(density: float = DEFAULT_DENSITY) -> Arch:
+def oppenheim(density: float = DEFAULT_DENSITY) -> CircularArch:
     """Oppenheim's arch, the paper's nominal arch "NA" (R = 10 m, 157.5 deg, t = 1.5 m, n = 7).
 
     Parameters
@@ -48,7 +48,7 @@ def oppenheim(density: float = DEFAULT_DENSITY) -> Arch:
 
     Returns
     -------
-    Arch
+    CircularArch
         Seven equal voussoirs with radial joints, symmetric about the vertical axis.
 
     References

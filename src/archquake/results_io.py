@@ -30,7 +30,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from . import __version__
+from ._version import __version__
 
 RESULTS_PARQUET = "results.parquet"
 """File name of the tidy table in Parquet, in a study directory (the file to load)."""

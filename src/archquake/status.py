@@ -1,10 +1,10 @@
 """Outcome classes of a dynamic analysis, shared by the compiled engine, results and tables.
 
-The compiled engine (:mod:`archquake.engine`) returns these codes as integers, a time history's
-:class:`~archquake.time_history.Outcome` carries them as :class:`Status`, and the tables of
-:mod:`archquake.fragility` store them as integers in their ``status`` column. Outputs meant for
-people and JSON use the lower-case name, :attr:`Status.label` (``"rest"``, ``"recovery"``,
-``"collapse"``).
+The compiled engine (:mod:`archquake.fourlink.engine`) returns these codes as integers, a time
+history's :class:`~archquake.fourlink.time_history.Outcome` carries them as :class:`Status`, and the
+tables of :mod:`archquake.studies.fragility` store them as integers in their ``status`` column.
+Outputs meant for people and JSON use the lower-case name, :attr:`Status.label` (``"rest"``,
+``"recovery"``, ``"collapse"``).
 
 This module imports nothing heavy: the command line and result readers use it without the
 compiler.

@@ -22,7 +22,8 @@ sequence of ``n + 1`` joints (:class:`BlockArch`):
 
 Three kinds of arch keep the contract:
 
-- :class:`Arch` (:mod:`.arch`): the paper's circular arch, voussoirs that are annular sectors
+- :class:`CircularArch` (:mod:`.arch`): the paper's circular arch, voussoirs that are annular
+sectors
   with radial joints, each with its own angle, thickness and mean radius [1]_; in the frame of
   the circle's centre O at the origin (the springings of a symmetric arch at
   :math:`y = R\cos\beta_0`). :func:`circular_arch` builds the nominal arch, as in the paper.
@@ -36,9 +37,9 @@ Three kinds of arch keep the contract:
   neighbours touch; :func:`surveyed_arch` builds it.
 
 Irregular arches (:func:`irregular_arch`, :func:`irregular_sample`, :mod:`.irregular`) follow the
-paper's eq. (1) on a circular :class:`Arch` and its generalisation on any :class:`ShapedArch`.
-:func:`load_arch` reads a JSON file of any of the three kinds, and :func:`arch_from_dict` the
-same description as a dict.
+paper's eq. (1) on a circular :class:`CircularArch` and its generalisation on any
+:class:`ShapedArch`. :func:`load_arch` reads a JSON file of any of the three kinds, and
+:func:`arch_from_dict` the same description as a dict.
 
 References
 ----------
@@ -61,11 +62,10 @@ Oppenheim's arch and a pointed arch of the same span and rise:
 (8, (9, 2, 2), True)
 """
 
-from .arch import RADIUS_RANGE, Arch, circular_arch
+from ..constants import DEFAULT_DENSITY, GRAVITY
+from .arch import RADIUS_RANGE, CircularArch, circular_arch
 from .blocks import (
-    DEFAULT_DENSITY,
     FACES,
-    GRAVITY,
     LENGTH_RANGE,
     MAX_GEOMETRY_FILE_BYTES,
     MAX_VOUSSOIRS,
@@ -82,7 +82,8 @@ from .survey import SurveyedArch, surveyed_arch
 __all__ = [
     "CENTRELINES", "DEFAULT_DENSITY", "FACES", "GRAVITY", "LENGTH_RANGE",
     "MAX_GEOMETRY_FILE_BYTES", "MAX_VOUSSOIRS", "MIN_VOUSSOIRS", "RADIUS_RANGE", "SHAPES",
-    "VOUSSOIR_FACES", "Arch", "BlockArch", "Centreline", "Hinge", "ShapedArch", "SurveyedArch",
+    "VOUSSOIR_FACES", "BlockArch", "Centreline", "CircularArch", "Hinge", "ShapedArch",
+    "SurveyedArch",
     "arch_from_dict", "centreline", "circular_arch", "irregular_arch", "irregular_sample",
     "load_arch", "shaped_arch", "surveyed_arch",
 ]

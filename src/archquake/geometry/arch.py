@@ -1,12 +1,13 @@
 r"""The paper's circular arch: annular-sector voussoirs with radial joints [paper, Sect. 2].
 
-An :class:`Arch` is a sequence of voussoirs with radial joints, each an annular sector with its
-own angle, thickness and mean radius: one kind of :class:`~archquake.geometry.BlockArch` (the
+An :class:`CircularArch` is a sequence of voussoirs with radial joints, each an annular sector with
+its own angle, thickness and mean radius: one kind of :class:`~archquake.geometry.BlockArch` (the
 contract of the package, :mod:`archquake.geometry`), with closed forms for its joints and mass
 properties. :func:`circular_arch` builds the nominal arch of equal voussoirs;
 :func:`~archquake.geometry.irregular_arch` and :func:`~archquake.geometry.irregular_sample` draw
-random irregular arches around it (the paper's eq. (1), :meth:`Arch.perturbed`);
-:meth:`Arch.from_voussoirs` / :meth:`Arch.from_json` take an arch given voussoir by voussoir.
+random irregular arches around it (the paper's eq. (1), :meth:`CircularArch.perturbed`);
+:meth:`CircularArch.from_voussoirs` / :meth:`CircularArch.from_json` take an arch given voussoir by
+voussoir.
 
 Notes
 -----
@@ -43,8 +44,8 @@ from pathlib import Path
 import numpy as np
 
 from .._equality import value_equality
+from ..constants import DEFAULT_DENSITY
 from .blocks import (
-    DEFAULT_DENSITY,
     LENGTH_RANGE,
     MAX_VOUSSOIRS,
     MIN_VOUSSOIRS,
@@ -77,13 +78,14 @@ def _check_positive(name: str, value: float, unit: str) -> float:
 
 @value_equality
 @dataclass(frozen=True)
-class Arch(BlockArch):
+class CircularArch(BlockArch):
     r"""An arch made of ``n`` voussoirs with radial joints (annular sectors), centre at O.
 
-    Build arches with :func:`circular_arch`, :func:`irregular_arch`, :meth:`Arch.from_voussoirs`
-    or :meth:`Arch.from_json`. Every constructor checks its input and raises a ``ValueError``
-    that names the parameter and its valid range. An arch is immutable; two arches are equal (and
-    hash equal) when every field is equal, arrays element by element.
+    Build arches with :func:`circular_arch`, :func:`irregular_arch`,
+    :meth:`CircularArch.from_voussoirs` or :meth:`CircularArch.from_json`. Every constructor checks
+    its input and raises a ``ValueError`` that names the parameter and its valid range. An arch is
+    immutable; two arches are equal (and hash equal) when every field is equal, arrays element by
+    element.
 
     Parameters
     ----------
@@ -182,7 +184,7 @@ class Arch(BlockArch):
     def from_voussoirs(
         cls, angles, thicknesses, radii, *, start_angle: float | None = None,
         density: float = DEFAULT_DENSITY,
-    ) -> Arch:
+    ) -> CircularArch:
         """Arch from per-voussoir arrays, placed symmetric by default.
 
         Parameters
@@ -202,7 +204,7 @@ class Arch(BlockArch):
 
         Returns
         -------
-        Arch
+        CircularArch
         """
         angles_arr = float_array("angles", angles)
         if start_angle is None:
@@ -210,7 +212,7 @@ class Arch(BlockArch):
         return cls(angles_arr, thicknesses, radii, start_angle, density)
 
     @classmethod
-    def from_dict(cls, data: dict, *, density: float = DEFAULT_DENSITY) -> Arch:
+    def from_dict(cls, data: dict, *, density: float = DEFAULT_DENSITY) -> CircularArch:
         """Arch from a mapping with keys ``angles`` [rad], ``thicknesses`` [m], ``radii`` [m].
 
         Parameters
@@ -224,7 +226,7 @@ class Arch(BlockArch):
 
         Returns
         -------
-        Arch
+        CircularArch
 
         Raises
         ------
@@ -266,7 +268,7 @@ class Arch(BlockArch):
         )
 
     @classmethod
-    def from_json(cls, path: str | Path, *, density: float = DEFAULT_DENSITY) -> Arch:
+    def from_json(cls, path: str | Path, *, density: float = DEFAULT_DENSITY) -> CircularArch:
         """Arch from a JSON file ``{"angles": [...], "thicknesses": [...], "radii": [...]}``.
 
         The file is UTF-8 JSON (at most
@@ -284,7 +286,7 @@ class Arch(BlockArch):
 
         Returns
         -------
-        Arch
+        CircularArch
 
         Raises
         ------
@@ -302,7 +304,7 @@ class Arch(BlockArch):
 
     def to_dict(self) -> dict:
         """The complete description of this arch, as read by :meth:`from_dict`:
-        ``Arch.from_dict(arch.to_dict()) == arch``.
+        ``CircularArch.from_dict(arch.to_dict()) == arch``.
 
         Returns
         -------
@@ -376,13 +378,13 @@ class Arch(BlockArch):
             and abs(self.start_angle - m.start_angle) <= atol
         )
 
-    def mirrored(self) -> Arch:
+    def mirrored(self) -> CircularArch:
         """The arch mirrored about the vertical axis x = 0.
 
         Voussoir i of the mirror is voussoir n-1-i of this arch; the mirror's left springing is
         at ``beta_0' = pi - beta_n``.
         """
-        return Arch(
+        return CircularArch(
             self.angles[::-1].copy(), self.thicknesses[::-1].copy(), self.radii[::-1].copy(),
             math.pi - float(self.joint_angles[-1]), self.density,
         )
@@ -455,7 +457,7 @@ class Arch(BlockArch):
         block = int(np.clip(np.searchsorted(beta, top, side="right") - 1, 0, n - 1))
         return block, self.point(self.outer_radii[block], top)
 
-    def perturbed(self, tolerance: float, draws: np.ndarray) -> Arch:
+    def perturbed(self, tolerance: float, draws: np.ndarray) -> CircularArch:
         r"""The irregular arch of eq. (1) of [1]_ for given uniform draws.
 
         For every voussoir :math:`i`:
@@ -483,7 +485,7 @@ class Arch(BlockArch):
 
         Returns
         -------
-        Arch
+        CircularArch
 
         References
         ----------
@@ -495,7 +497,7 @@ class Arch(BlockArch):
         thicknesses = self.thicknesses * (1.0 + eps * p[1])
         chi = eps * self.thicknesses / self.radii
         radii = self.radii * (1.0 + chi * p[2])
-        return Arch(angles, thicknesses, radii, self.start_angle, self.density)
+        return CircularArch(angles, thicknesses, radii, self.start_angle, self.density)
 
     def outline(self, i: int, points: int = 24) -> np.ndarray:
         """Closed polygon of voussoir ``i``'s outline, for drawing.
@@ -522,7 +524,7 @@ class Arch(BlockArch):
 def circular_arch(
     radius: float, embrace: float, thickness: float, voussoirs: int,
     *, density: float = DEFAULT_DENSITY,
-) -> Arch:
+) -> CircularArch:
     r"""Nominal circular arch with equal voussoirs and radial joints, symmetric about x = 0.
 
     Every voussoir has the angle :math:`\alpha / n`, the thickness :math:`t` and the mean radius
@@ -543,7 +545,7 @@ def circular_arch(
 
     Returns
     -------
-    Arch
+    CircularArch
 
     Raises
     ------
@@ -586,7 +588,7 @@ def circular_arch(
             f"voussoirs must be >= {MIN_VOUSSOIRS} for a four-hinge mechanism, got {n}"
         )
     _check_voussoir_count(n)
-    return Arch(
+    return CircularArch(
         np.full(n, embrace / n), np.full(n, thickness), np.full(n, radius),
         (math.pi - embrace) / 2.0, density,
     )

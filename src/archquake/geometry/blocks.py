@@ -22,7 +22,7 @@ right support, and joint ``j`` in between is the contact of voussoirs ``j-1`` an
   (polar angle :math:`\pi - \beta`). For the radial joints of a circle it is the paper's
   progressive angle of the joint.
 
-The classes that keep this contract: :class:`~archquake.geometry.Arch` (the paper's circular
+The classes that keep this contract: :class:`~archquake.geometry.CircularArch` (the paper's circular
 arch of annular sectors with radial joints), :class:`~archquake.geometry.ShapedArch` (any shape
 by its centreline) and :class:`~archquake.geometry.SurveyedArch` (block polygons).
 """
@@ -36,12 +36,6 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-
-DEFAULT_DENSITY = 2000.0
-"""Default masonry density [kg/m^3]. It cancels from every result of the paper."""
-
-GRAVITY = 9.81
-"""Acceleration of gravity g [m/s^2] (the paper does not state it; 9.81 is used throughout)."""
 
 MIN_VOUSSOIRS = 4
 """Fewest voussoirs of an arch [-]: a four-hinge mechanism needs at least three blocks plus one
@@ -373,18 +367,18 @@ class Hinge:
 
     def radius(self, arch) -> float:
         """Distance of the hinge point from the centre of a circular
-        :class:`~archquake.geometry.Arch` [m]: the edge of the joint's contact on this face.
+        :class:`~archquake.geometry.CircularArch` [m]: the edge of the joint's contact on this face.
 
         Raises
         ------
         ValueError
-            For an arch without a centre (not an :class:`~archquake.geometry.Arch`); use
+            For an arch without a centre (not an :class:`~archquake.geometry.CircularArch`); use
             :meth:`point`.
         """
         extents = getattr(arch, "joint_extents", None)
         if extents is None:
             raise ValueError(f"a hinge radius is defined for circular arches with radial joints "
-                             f"(Arch), not for a {type(arch).__name__}; use Hinge.point")
+                             f"(CircularArch), not for a {type(arch).__name__}; use Hinge.point")
         inner, outer = extents()
         return float(inner[self.joint] if self.face == "intrados" else outer[self.joint])
 

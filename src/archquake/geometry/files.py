@@ -4,8 +4,8 @@ Three JSON objects describe an arch (every length in m, angle in rad, density in
 value a JSON number):
 
 - the paper's circular arch voussoir by voussoir, ``{"angles": [...], "thicknesses": [...],
-  "radii": [...]}`` (:meth:`Arch.from_dict <archquake.geometry.Arch.from_dict>`, placed
-  symmetric);
+  "radii": [...]}`` (:meth:`CircularArch.from_dict <archquake.geometry.CircularArch.from_dict>`,
+  placed symmetric);
 - a surveyed arch, ``{"blocks": [[[x, y], ...], ...], "springings": ...}``
   (:mod:`archquake.geometry.survey`);
 - an arch of a shape voussoir by voussoir, ``{"shape": ..., "span": ..., "rise": ...,
@@ -19,12 +19,13 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .arch import Arch
-from .blocks import DEFAULT_DENSITY, BlockArch, read_json_file
+from ..constants import DEFAULT_DENSITY
+from .arch import CircularArch
+from .blocks import BlockArch, read_json_file
 from .shaped import ShapedArch
 from .survey import SurveyedArch
 
-KINDS = {"angles": Arch, "blocks": SurveyedArch, "shape": ShapedArch}
+KINDS = {"angles": CircularArch, "blocks": SurveyedArch, "shape": ShapedArch}
 """The key that tells each kind of description."""
 
 
@@ -40,7 +41,7 @@ def arch_from_dict(data, *, density: float = DEFAULT_DENSITY) -> BlockArch:
 
     Returns
     -------
-    Arch, SurveyedArch or ShapedArch
+    CircularArch, SurveyedArch or ShapedArch
 
     Raises
     ------
@@ -79,7 +80,7 @@ def load_arch(path: str | Path, *, density: float = DEFAULT_DENSITY) -> BlockArc
 
     Returns
     -------
-    Arch, SurveyedArch or ShapedArch
+    CircularArch, SurveyedArch or ShapedArch
 
     Raises
     ------

@@ -3,7 +3,7 @@ r"""Irregular arches: the paper's eq. (1) [1]_, on the circle and on any centrel
 For every voussoir :math:`i`, independently, with :math:`\tilde p` drawn from the uniform
 distribution on [-1, 1] and the tolerance :math:`\varepsilon`:
 
-- on the paper's circular :class:`~archquake.geometry.Arch` (eq. (1) of [1]_):
+- on the paper's circular :class:`~archquake.geometry.CircularArch` (eq. (1) of [1]_):
 
   .. math::
 
@@ -27,8 +27,8 @@ distribution on [-1, 1] and the tolerance :math:`\varepsilon`:
 
   On a circle :math:`\ell_i = R\alpha_i` and the shifted centreline is the circle of radius
   :math:`R + \varepsilon t \tilde p = R(1 + \chi \tilde p)`: the same thing, draw for draw (a
-  circular :class:`~archquake.geometry.ShapedArch` and the :class:`~archquake.geometry.Arch` of
-  the same circle give the same irregular arches for the same seed, to round-off).
+  circular :class:`~archquake.geometry.ShapedArch` and the :class:`~archquake.geometry.CircularArch`
+  of the same circle give the same irregular arches for the same seed, to round-off).
 
 The nominal values are the nominal arch's per-voussoir values (so an irregular or explicit arch
 can be perturbed again). The total stays deterministic: the drawn angles (lengths) are rescaled
@@ -56,7 +56,7 @@ def irregular_arch(nominal: BlockArch, tolerance: float,
 
     Parameters
     ----------
-    nominal : Arch or ShapedArch
+    nominal : CircularArch or ShapedArch
         The nominal arch.
     tolerance : float
         :math:`\varepsilon` [-], in [0, 1); the paper's study uses 0.10 (:math:`\chi = 0.015`
@@ -68,9 +68,9 @@ def irregular_arch(nominal: BlockArch, tolerance: float,
 
     Returns
     -------
-    Arch or ShapedArch
+    CircularArch or ShapedArch
         The irregular arch, of the nominal arch's kind and density
-        (:meth:`Arch.perturbed <archquake.geometry.Arch.perturbed>`,
+        (:meth:`CircularArch.perturbed <archquake.geometry.CircularArch.perturbed>`,
         :meth:`ShapedArch.perturbed <archquake.geometry.ShapedArch.perturbed>`).
 
     Raises
@@ -95,7 +95,8 @@ def irregular_arch(nominal: BlockArch, tolerance: float,
     perturbed = getattr(nominal, "perturbed", None)
     if not isinstance(nominal, BlockArch) or perturbed is None:
         raise ValueError(
-            "irregular arches are drawn around an arch with a centreline (Arch or ShapedArch), "
+            "irregular arches are drawn around an arch with a centreline (CircularArch or "
+            "ShapedArch), "
             f"got {type(nominal).__name__}")
     rng = np.random.default_rng(rng)
     p = rng.uniform(-1.0, 1.0, size=(3, nominal.n_voussoirs))
@@ -116,7 +117,7 @@ def irregular_sample(nominal: BlockArch, tolerance: float, sample_size: int,
 
     Parameters
     ----------
-    nominal : Arch or ShapedArch
+    nominal : CircularArch or ShapedArch
         The nominal arch.
     tolerance : float
         The paper's :math:`\varepsilon` [-], in [0, 1).
@@ -128,7 +129,7 @@ def irregular_sample(nominal: BlockArch, tolerance: float, sample_size: int,
 
     Returns
     -------
-    list of Arch or ShapedArch
+    list of CircularArch or ShapedArch
         ``sample_size`` irregular arches.
 
     References

@@ -45,8 +45,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._equality import value_equality
+from ..constants import DEFAULT_DENSITY
 from .blocks import (
-    DEFAULT_DENSITY,
     BlockArch,
     check_json_numbers,
     check_voussoir_count,

@@ -35,8 +35,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._equality import value_equality
+from ..constants import DEFAULT_DENSITY
 from .blocks import (
-    DEFAULT_DENSITY,
     MAX_VOUSSOIRS,
     MIN_VOUSSOIRS,
     BlockArch,

@@ -41,8 +41,8 @@ import numba
 import numpy as np
 
 from .._equality import value_equality
+from ..constants import GRAVITY
 from ..defaults import MAX_ACCELERATION_G
-from ..geometry import GRAVITY
 
 #: Kinds of the compiled representation ``(kind, params, times, values)``: ``STEP`` (0),
 #: ``LINEAR`` (1), ``HARMONIC`` (2), ``RICKER`` (3), ``MAVROEIDIS_PAPAGEORGIOU`` (4); see the

@@ -57,7 +57,7 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 
-from ..geometry import GRAVITY
+from ..constants import GRAVITY
 from .core import STEP, GroundMotion, check_number
 
 SAMPLES_PER_TIME_SCALE = 4096
@@ -203,7 +203,7 @@ def significant_duration(motion: GroundMotion, start: float = 0.05, end: float =
 # --- spectral acceleration -------------------------------------------------------------------
 
 @numba.njit(cache=True)
-def _nigam_jennings(h, omega, zeta):
+def nigam_jennings(h, omega, zeta):
     """Coefficients of the exact step of ``u'' + 2 zeta omega u' + omega^2 u = p(t)`` over
     ``h`` with ``p`` linear from ``p_i`` to ``p_{i+1}`` (Nigam & Jennings 1969): ``u_{i+1} =
     A u_i + B v_i + C p_i + D p_{i+1}``, ``v_{i+1} = A' u_i + B' v_i + C' p_i + D' p_{i+1}``.
@@ -235,7 +235,7 @@ def _nigam_jennings(h, omega, zeta):
 
 @numba.njit(cache=True)
 def _nigam_jennings_series(h, omega, zeta):
-    """:func:`_nigam_jennings` by the series of ``exp(M h)``, ``M`` the matrix of
+    """:func:`nigam_jennings` by the series of ``exp(M h)``, ``M`` the matrix of
     ``(u, u', p, p')' = (u', -omega^2 u - 2 zeta omega u' + p, p', 0)``: 30 terms of the
     series reach round-off for ``(1 + zeta) omega h < 0.5``; a longer step is halved ``s``
     times and the exponential squared back (``exp(M h) = exp(M h / 2^s)^(2^s)``)."""
@@ -318,7 +318,7 @@ def _oscillator_peak(t, a0, a1, omega, zeta, max_step):
         # steps of a uniformly sampled record differ in the last bits of t[i+1] - t[i]: the
         # coefficients are reused while h stays within 1e-10 of the step they were made for
         if abs(h - h_prev) > 1e-10 * h:
-            a, b, cc, d, a2, b2, c2, d2 = _nigam_jennings(h, omega, zeta)
+            a, b, cc, d, a2, b2, c2, d2 = nigam_jennings(h, omega, zeta)
             h_prev = h
         for q in range(m):
             p0 = p_start + (p_end - p_start) * q / m

@@ -3,8 +3,9 @@ wavelets, Makris' cycloidal pulses and the Mavroeidis-Papageorgiou pulse.
 
 Every factory takes the signed ``amplitude`` [m/s^2] and a time scale [s] (a pulse duration or a
 period) first, and returns a :class:`~.core.GroundMotion` whose acceleration is
-``amplitude * shape(t / time_scale)``; that is how a pulse study (:mod:`archquake.engine`) scans
-amplitudes and durations with one template. Every pulse starts at ``t = 0`` from a ground at rest.
+``amplitude * shape(t / time_scale)``; that is how a pulse study (:mod:`archquake.fourlink.engine`)
+scans amplitudes and durations with one template. Every pulse starts at ``t = 0`` from a ground at
+rest.
 
 The smooth pulses are evaluated exactly by the compiled engine (kinds ``HARMONIC``, ``RICKER``,
 ``MAVROEIDIS_PAPAGEORGIOU`` of :func:`~.core.evaluate`), with breakpoints only at their start and

@@ -38,8 +38,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..constants import GRAVITY
 from ..defaults import MAX_ACCELERATION_G
-from ..geometry import GRAVITY
 from .core import LINEAR, GroundMotion, check_number, check_peak
 
 
@@ -454,7 +454,7 @@ def record(path: str | Path, scale_to: float | None = None) -> GroundMotion:
     return read_record(path, scale_to=scale_to)
 
 
-def _suite_files(paths) -> list[tuple[Path, str | None]]:
+def suite_files(paths) -> list[tuple[Path, str | None]]:
     """``(file, format or None)`` of every record of a folder or list of paths."""
     if isinstance(paths, (str, Path)):
         paths = [paths]
@@ -516,7 +516,7 @@ def read_suite(paths: str | Path | Iterable[str | Path], *,
         file name (their results could not be told apart), or any bad file (the message of
         :func:`read_record`, naming the file and the line).
     """
-    files = _suite_files(paths)
+    files = suite_files(paths)
     names: dict[str, Path] = {}
     for path, _ in files:
         if path.name in names and names[path.name].resolve() != path.resolve():

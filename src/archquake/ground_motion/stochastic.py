@@ -46,10 +46,10 @@ import math
 import numba
 import numpy as np
 
+from ..constants import GRAVITY
 from ..defaults import MAX_RECORD_SAMPLES
-from ..geometry import GRAVITY
 from .core import LINEAR, GroundMotion, check_number
-from .intensity import _nigam_jennings
+from .intensity import nigam_jennings
 
 DEFAULT_PARAMETERS = {
     "arias_intensity": 0.5,
@@ -182,7 +182,7 @@ def _filtered_noise(u, omega, zeta, dt, window):
 
 @numba.njit(cache=True)
 def _high_pass_run(x, dt, corner):
-    a, b, c, d, a2, b2, c2, d2 = _nigam_jennings(dt, corner, 1.0)
+    a, b, c, d, a2, b2, c2, d2 = nigam_jennings(dt, corner, 1.0)
     u = 0.0
     v = 0.0
     out = np.empty(x.size)

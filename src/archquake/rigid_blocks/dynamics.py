@@ -92,10 +92,12 @@ import numpy as np
 from ..defaults import DEFAULT_FRICTION, MAX_BLOCK_STEPS
 from ..geometry import GRAVITY, BlockArch
 from ..ground_motion import GroundMotion
+from ..status import Status
 from . import solver
 from .assembly import GROUND, Assembly, from_arch
 
-STATUS_NAMES = {solver.REST: "rest", solver.RECOVERY: "recovery", solver.COLLAPSE: "collapse"}
+STATUS_NAMES = {solver.REST: Status.REST, solver.RECOVERY: Status.RECOVERY,
+                solver.COLLAPSE: Status.COLLAPSE}
 """Outcome code of :func:`archquake.rigid_blocks.solver.run` -> name."""
 
 
@@ -204,8 +206,9 @@ class BlockOutcome:
 
     Attributes
     ----------
-    status : str
-        ``"rest"``, ``"recovery"`` or ``"collapse"`` (module docstring).
+    status : Status
+        ``Status.REST``, ``Status.RECOVERY`` or ``Status.COLLAPSE`` (module docstring;
+        :class:`archquake.status.Status`, as the four-link model's outcomes carry it).
     collapse_time : float
         Time at which the collapse became certain [s]; nan without collapse.
     max_rotation : float
@@ -236,7 +239,7 @@ class BlockOutcome:
         Of these, steps that did not meet the tolerance in ``max_iterations`` sweeps [-].
     """
 
-    status: str
+    status: Status
     collapse_time: float
     max_rotation: float
     max_crown_drop: float
@@ -253,10 +256,11 @@ class BlockOutcome:
     @property
     def collapsed(self) -> bool:
         """Whether the structure collapses."""
-        return self.status == "collapse"
+        return self.status is Status.COLLAPSE
 
     def to_dict(self) -> dict:
-        """JSON-ready summary: every field by name, in the units above (nan as None).
+        """JSON-ready summary: every field by name, in the units above (nan as None, the status
+        by its label).
 
         Returns
         -------
@@ -265,7 +269,9 @@ class BlockOutcome:
         out = {}
         for f in fields(self):
             value = getattr(self, f.name)
-            if isinstance(value, float) and math.isnan(value):
+            if isinstance(value, Status):
+                value = value.label
+            elif isinstance(value, float) and math.isnan(value):
                 value = None
             out[f.name] = value
         return out
@@ -415,7 +421,7 @@ def contact_arrays(assembly: Assembly) -> dict[str, np.ndarray]:
     return assembly._cache["contacts"]
 
 
-def _assembly(structure) -> Assembly:
+def structure_assembly(structure) -> Assembly:
     """The :class:`Assembly` of an arch (converted once, cached on it) or an Assembly itself."""
     if isinstance(structure, Assembly):
         return structure
@@ -453,7 +459,7 @@ def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None,
     Returns ``(assembly, settings, motion, outcome, records)`` (records as
     :func:`archquake.rigid_blocks.solver.run` returns them).
     """
-    assembly = _assembly(structure)
+    assembly = structure_assembly(structure)
     settings = BlockSettings() if settings is None else settings
     if not isinstance(settings, BlockSettings):
         raise ValueError(f"settings must be a BlockSettings, got {type(settings).__name__}")
@@ -555,7 +561,7 @@ def block_outcome(structure, motion: GroundMotion | None, settings: BlockSetting
     >>> from archquake.rigid_blocks import rectangular_block
     >>> outcome = block_outcome(rectangular_block(0.2, 1.0), None,
     ...                         BlockSettings(time_step=0.01, settle_time=0.5))
-    >>> outcome.status, outcome.decided
+    >>> outcome.status.label, outcome.decided
     ('rest', True)
     """
     return _run(structure, motion, settings, initial=initial)[3]

@@ -2,7 +2,7 @@ r"""Failure accelerations of the rigid-block model under pulses (the failure cur
 
 For a pulse duration t_p the amplitude axis is scanned on a grid and every change of outcome
 (rest, recovery, collapse) is bisected to a resolution
-(:func:`archquake.failure_domain.domain_slice`, the search shared with the four-link failure
+(:func:`archquake.studies.failure_domain.domain_slice`, the search shared with the four-link failure
 domains of the paper's Sect. 5.3 [1]_; the outcome here is the rigid-block model's,
 :func:`archquake.rigid_blocks.dynamics.block_outcome`). The failure acceleration is the lowest
 collapsing amplitude [g],
@@ -37,11 +37,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..constants import GRAVITY
 from ..defaults import MAX_BLOCK_GRID_POINTS
-from ..failure_domain import DomainSlice, check_direction, domain_slice, inclusive_range
-from ..geometry import GRAVITY
 from ..ground_motion import ANALYTIC_GROUND_MOTIONS, ground_motion
-from .dynamics import BlockSettings, _assembly, block_outcome
+from ..status import Status
+from ..studies.failure_domain import DomainSlice, check_direction, domain_slice, inclusive_range
+from .dynamics import BlockSettings, block_outcome, structure_assembly
 
 DEFAULT_AMPLITUDES_G = (0.1, 3.0, 0.05)
 """Default scan of amplitudes ``(start, stop, step)`` [g]."""
@@ -173,11 +174,11 @@ def failure_slice(structure, duration: float, *, direction: str = "l",
     if not (isinstance(resolution, (int, float)) and resolution > 0):
         raise ValueError(f"resolution must be > 0 [g], got {resolution!r}")
     grid = _grid(amplitudes_g)
-    assembly = _assembly(structure)
+    assembly = structure_assembly(structure)
 
     def classify(amplitude_g: float) -> tuple[str, int]:
         if amplitude_g == 0.0:
-            return "rest", 0
+            return Status.REST, 0
         pulse = ground_motion(motion, sign * amplitude_g * GRAVITY, float(duration))
         return block_outcome(assembly, pulse, settings).status, 0
 
@@ -241,7 +242,7 @@ def failure_curve(structure, durations: Sequence[float], *, direction: str = "l"
                          f"fewer durations or a coarser grid")
     kwargs = {"direction": direction, "motion": motion, "amplitudes_g": amplitudes_g,
               "resolution": resolution, "settings": settings}
-    tasks = [(_assembly(structure), float(tp), kwargs) for tp in d]
+    tasks = [(structure_assembly(structure), float(tp), kwargs) for tp in d]
     if workers is not None and (isinstance(workers, bool) or int(workers) != workers
                                 or workers < 1):
         raise ValueError(f"workers must be an integer >= 1, got {workers!r}")

@@ -67,8 +67,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..geometry import GRAVITY
-from .dynamics import BlockSettings, _assembly, simulate_blocks
+from ..constants import GRAVITY
+from .dynamics import BlockSettings, simulate_blocks, structure_assembly
 
 IMPACT_SPEED = 1e4
 """Speed of the fastest centroid before the impact, in units of ``g h`` (the velocity the
@@ -196,7 +196,7 @@ def closing_impact(structure, velocities, settings: BlockSettings | None = None
         If ``velocities`` is not a finite array of shape (nb, 3) that moves some centroid, or
         ``structure`` is not an arch or an :class:`~archquake.rigid_blocks.assembly.Assembly`.
     """
-    assembly = _assembly(structure)
+    assembly = structure_assembly(structure)
     settings = BlockSettings() if settings is None else settings
     v0 = _check_mode(assembly, velocities, "velocities")
     h = float(settings.time_step)
@@ -263,7 +263,7 @@ def equivalent_restitution(structure, mode_from, mode_to,
     >>> bool(abs(c - (1 - 1.5 * np.sin(alpha) ** 2)) < 1e-3)
     True
     """
-    assembly = _assembly(structure)
+    assembly = structure_assembly(structure)
     u_from = _check_mode(assembly, mode_from, "mode_from")
     u_to = _check_mode(assembly, mode_to, "mode_to")
     impact = closing_impact(assembly, u_from, settings)

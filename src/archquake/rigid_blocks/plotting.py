@@ -130,7 +130,7 @@ def plot_block_history(history: BlockHistory, ax=None):
         ax.axvline(outcome.decision_time, color="black", linewidth=0.8, linestyle=":")
     lines = ax.get_lines()[:3] + twin.get_lines()
     ax.legend(lines, [line.get_label() for line in lines], loc="upper left", fontsize=8)
-    ax.set_title(f"{history.motion_name}: {outcome.status}")
+    ax.set_title(f"{history.motion_name}: {outcome.status.label}")
     return ax
 
 

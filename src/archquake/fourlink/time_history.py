@@ -8,8 +8,8 @@ The arch moves in Mech-l or Mech-r by Eqs. (6) and (7) in [1]_,
 
 (``+`` Mech-l, ``-`` Mech-r), solved alternately, with an impact at every return to
 :math:`\theta_u` (Sect. 4.4 of [1]_: :math:`\dot\theta^+ = -c\,\dot\theta^-`, Eq. (8) in [1]_).
-Both functions run the compiled engine of :mod:`archquake.engine` (one physics for plots and
-studies): the outcome comes from its outcome-only path, the record from its recording path.
+Both functions run the compiled engine of :mod:`archquake.fourlink.engine` (one physics for plots
+and studies): the outcome comes from its outcome-only path, the record from its recording path.
 
 Sign convention of the convenience array ``TimeHistory.phi``: :math:`+\varphi` while Mech-l
 moves, :math:`-\varphi` while Mech-r moves, 0 at rest, with :math:`\varphi = \theta_u - \theta`
@@ -28,11 +28,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..ground_motion import GroundMotion
+from ..ground_motion import free_vibration as still_ground
+from ..status import Status
 from . import engine
-from .engine.driver import _run
-from .ground_motion import GroundMotion
-from .ground_motion import free_vibration as still_ground
-from .status import Status
 
 MECHANISM_NAMES = {"l": engine.MECH_L, "r": engine.MECH_R}
 DEFAULT_EXTRA_TIME = 4.0
@@ -61,7 +60,7 @@ class Outcome:
     max_phi : float
         Largest rotation ``phi = theta_u - theta`` [rad] of the mechanisms: reached during the
         excitation or, for a recovery, still to come after it (from the conserved energy,
-        :mod:`archquake.engine.rules`); for a collapse, ``theta_u - theta_lo`` of the
+        :mod:`archquake.fourlink.engine.rules`); for a collapse, ``theta_u - theta_lo`` of the
         collapsing mechanism (its kinematic limit).
     steps : int
         Integration steps of the analysis [-] (attempted steps, rejected ones included, and
@@ -231,14 +230,14 @@ def simulate(mechanisms, ground_motion: GroundMotion | None = None, restitution=
     a mechanism starts from rest when the ground opens it (Eq. (2) in [1]_:
     :math:`\ddot x_g/g < -k_l` or :math:`> k_r`), and at every return to :math:`\theta_u` the
     other one takes over with :math:`\dot\theta'^{+} = -c\,\dot\theta^{-}` (Sect. 4.4 of [1]_).
-    The outcome is decided as in :mod:`archquake.engine.rules`; the record follows the motion
-    up to ``t_end`` and checks the decision against it.
+    The outcome is decided as in :mod:`archquake.fourlink.engine.rules`; the record follows the
+    motion up to ``t_end`` and checks the decision against it.
 
     Parameters
     ----------
     mechanisms : tuple
-        ``(Mech-l, Mech-r)``: :class:`~archquake.mechanism.FourLinkMechanism` (tabulated here)
-        or :class:`~archquake.engine.MechanismTable`.
+        ``(Mech-l, Mech-r)``: :class:`~archquake.fourlink.mechanism.FourLinkMechanism` (tabulated
+        here) or :class:`~archquake.fourlink.engine.MechanismTable`.
     ground_motion : GroundMotion, optional
         Horizontal ground acceleration [m/s^2]; ``None`` for a still ground.
     restitution : tuple of float, or float
@@ -278,7 +277,7 @@ def simulate(mechanisms, ground_motion: GroundMotion | None = None, restitution=
         more than ``max_steps`` steps.
     RuntimeError
         If the motion recorded after the decision contradicts the decided outcome (a check of
-        the engine, :mod:`archquake.engine.driver`).
+        the engine, :mod:`archquake.fourlink.engine.driver`).
 
     References
     ----------
@@ -305,7 +304,7 @@ def simulate(mechanisms, ground_motion: GroundMotion | None = None, restitution=
     opts = (rtol, atol, rest_velocity, max_step, max_steps)
     case = (f"{motion.name or 'ground motion'}, restitution ({c_lr!r}, {c_rl!r}), "
             f"initial {initial!r}")
-    out, *_ = _run(*args, 0.0, np.inf, mech0, theta0, thetadot0, *opts, False, 1.0, 0.0)
+    out, *_ = engine.integrate(*args, 0.0, np.inf, mech0, theta0, thetadot0, *opts, False, 1.0, 0.0)
     if out[engine.OUT_TRUNCATED]:
         raise ValueError(f"the analysis needs more than {max_steps} steps to decide its outcome "
                          f"(the ground motion lasts {motion.duration:g} s): use a shorter "
@@ -317,8 +316,8 @@ def simulate(mechanisms, ground_motion: GroundMotion | None = None, restitution=
         t_end = max(out[engine.OUT_DECISION_TIME], motion.duration) + DEFAULT_EXTRA_TIME
     # the recording path follows the motion after the decision up to t_end and checks the
     # decision against it (a contradiction raises RuntimeError)
-    out, rec, imp, crs = _run(*args, 0.0, float(t_end), mech0, theta0, thetadot0, *opts, True,
-                              float(record_dt), np.inf)
+    out, rec, imp, crs = engine.integrate(*args, 0.0, float(t_end), mech0, theta0, thetadot0,
+                                          *opts, True, float(record_dt), np.inf)
     if out[engine.OUT_TRUNCATED]:
         reached = float(rec[-1, 0]) if rec.shape[0] else 0.0
         raise ValueError(f"the record to t_end = {t_end:g} s needs more than {max_steps} steps "

@@ -144,9 +144,9 @@ import numbers
 
 import numpy as np
 
-from .geometry import BlockArch
+from ..geometry import BlockArch
+from ..reference_arches import paper_values
 from .mechanism import FourLinkMechanism
-from .reference_arches import paper_values
 
 PAPER_RESTITUTION = float(paper_values()["dynamics"]["NA"]["restitution_paper"])
 """Coefficient of restitution the paper uses for Oppenheim's arch [paper, Sect. 5.2]."""
@@ -258,7 +258,7 @@ def computed_restitution(mech_from: FourLinkMechanism, mech_to: FourLinkMechanis
     Oppenheim's arch keeps 41.6 % of its kinetic energy at each impact:
 
     >>> from archquake import oppenheim
-    >>> from archquake.mechanism import mechanisms
+    >>> from archquake.fourlink.mechanism import mechanisms
     >>> mech_l, mech_r = mechanisms(oppenheim())
     >>> round(computed_restitution(mech_l, mech_r), 4)
     0.645
@@ -354,7 +354,7 @@ def link_restitution(mech_from: FourLinkMechanism, mech_to: FourLinkMechanism) -
     Examples
     --------
     >>> from archquake import oppenheim
-    >>> from archquake.mechanism import mechanisms
+    >>> from archquake.fourlink.mechanism import mechanisms
     >>> mech_l, mech_r = mechanisms(oppenheim())
     >>> round(link_restitution(mech_l, mech_r), 3)
     0.883
@@ -415,7 +415,7 @@ def blocks_restitution(mech_from: FourLinkMechanism, mech_to: FourLinkMechanism,
     ValueError
         If the two mechanisms are not mechanisms of the same arch.
     """
-    from .rigid_blocks.impacts import equivalent_restitution  # the second model, on demand
+    from ..rigid_blocks.impacts import equivalent_restitution  # the second model, on demand
 
     arch = _check_same_arch(mech_from, mech_to)
     modes = [np.column_stack(m.mode_shape()) for m in (mech_from, mech_to)]
@@ -576,7 +576,7 @@ def restitution(model, mech_l: FourLinkMechanism, mech_r: FourLinkMechanism,
     Examples
     --------
     >>> from archquake import oppenheim
-    >>> from archquake.mechanism import mechanisms
+    >>> from archquake.fourlink.mechanism import mechanisms
     >>> mech_l, mech_r = mechanisms(oppenheim())
     >>> restitution("paper", mech_l, mech_r)
     (0.875, 0.875)

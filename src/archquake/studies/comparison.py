@@ -2,9 +2,10 @@ r"""The four-link model beside the rigid-block model: how far to trust the four-
 
 The same arch under the same pulses, in the package's two models:
 
-- the four-link model [paper, Sects. 4-5] (:class:`archquake.dynamics.ArchDynamics`): one degree
+- the four-link model [paper, Sects. 4-5] (:class:`archquake.fourlink.dynamics.ArchDynamics`): one
+degree
   of freedom, the hinges of the limit analysis, impacts by a coefficient of restitution chosen by
-  a rule (:data:`archquake.impact.RESTITUTION_MODELS`);
+  a rule (:data:`archquake.fourlink.impact.RESTITUTION_MODELS`);
 - the rigid-block model (:mod:`archquake.rigid_blocks`): every voussoir a block, unilateral
   contacts with Coulomb friction at both ends of every joint, Newton impacts with restitution 0;
   any mechanism may form and change, blocks may slide.
@@ -12,16 +13,16 @@ The same arch under the same pulses, in the package's two models:
 :func:`compare_models` computes, per pulse duration t_p, the failure acceleration (the lowest
 collapsing amplitude, and the recovery bands above it) of the rigid-block model
 (:func:`archquake.rigid_blocks.failure.failure_curve`) and of the four-link model with each
-restitution model (:meth:`archquake.dynamics.ArchDynamics.failure_domain`), on the same amplitude
-scan bisected to the same resolution, and with no extension of the scan (a failure acceleration
-above the scan is reported as none, for either model).
+restitution model (:meth:`archquake.fourlink.dynamics.ArchDynamics.failure_domain`), on the same
+amplitude scan bisected to the same resolution, and with no extension of the scan (a failure
+acceleration above the scan is reported as none, for either model).
 
 For Oppenheim's arch under Oppenheim's pulse (``archquake compare``; the numbers are in the
 README and the report) the two models agree for long pulses, where the arch falls in its first
 swing, and differ for short ones, where it collapses only after impacts and the energy an impact
 leaves decides: there the four-link answer depends strongly on its coefficient of restitution,
 and the rigid blocks do not move on in a four-link mechanism after an impact
-(:mod:`archquake.impact`, model ``"blocks"``).
+(:mod:`archquake.fourlink.impact`, model ``"blocks"``).
 """
 
 from __future__ import annotations
@@ -32,13 +33,13 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .defaults import (
+from ..defaults import (
     COMPARE_AMPLITUDES_G,
     COMPARE_DURATIONS,
     COMPARE_RESOLUTION_G,
     COMPARE_RESTITUTIONS,
 )
-from .geometry import BlockArch
+from ..geometry import BlockArch
 
 
 @dataclass(frozen=True, eq=False)
@@ -121,20 +122,20 @@ def _json(x: float):
 
 
 def _scan(amplitudes_g) -> np.ndarray:
-    from .failure_domain import _check_amplitudes, inclusive_range
+    from .failure_domain import check_amplitudes, inclusive_range
 
     if amplitudes_g is None:
         return inclusive_range(*COMPARE_AMPLITUDES_G)
-    return _check_amplitudes(amplitudes_g)
+    return check_amplitudes(amplitudes_g)
 
 
 def _four_link(dynamics, model: str, settings):
     """``dynamics`` with restitution ``model``; ``"blocks"`` measured with the rigid-block
     model's ``settings`` (its friction and time step) when they are not the defaults."""
-    from .rigid_blocks import BlockSettings
+    from ..rigid_blocks import BlockSettings
 
     if model == "blocks" and settings is not None and settings != BlockSettings():
-        from .impact import blocks_restitution
+        from ..fourlink.impact import blocks_restitution
 
         mech_l, mech_r = dynamics.mechanisms
         pair = (blocks_restitution(mech_l, mech_r, settings),
@@ -144,8 +145,8 @@ def _four_link(dynamics, model: str, settings):
 
 
 def _check_curve(curve, durations, direction, motion, settings, resolution, grid) -> None:
-    from .rigid_blocks import BlockSettings
-    from .rigid_blocks.failure import FailureCurve
+    from ..rigid_blocks import BlockSettings
+    from ..rigid_blocks.failure import FailureCurve
 
     if not isinstance(curve, FailureCurve):
         raise ValueError(f"rigid_block must be a FailureCurve, got {type(curve).__name__}")
@@ -202,14 +203,14 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
     -------
     ModelComparison
     """
-    from .dynamics import ArchDynamics
-    from .failure_domain import _check_durations, check_direction
-    from .impact import check_restitution_model
-    from .rigid_blocks.failure import failure_curve
+    from ..fourlink.dynamics import ArchDynamics
+    from ..fourlink.impact import check_restitution_model
+    from ..rigid_blocks.failure import failure_curve
+    from .failure_domain import check_direction, check_durations
 
     if not isinstance(arch, BlockArch):
         raise ValueError(f"arch must be a BlockArch, got {type(arch).__name__}")
-    d = _check_durations(COMPARE_DURATIONS if durations is None else durations)
+    d = check_durations(COMPARE_DURATIONS if durations is None else durations)
     grid = _scan(amplitudes_g)
     check_direction(direction)
     if not (isinstance(resolution, (int, float)) and math.isfinite(resolution)

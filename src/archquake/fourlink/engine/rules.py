@@ -32,7 +32,7 @@ Decision after the excitation
     (Eq. (6) in [1]_ times :math:`\dot\theta`, with :math:`L = \tfrac12\, dM/d\theta` and
     :math:`dV/d\theta = g F`, Eq. (4) in [1]_), and :math:`V` has its maximum on
     :math:`[\theta_{lo}, \theta_u]` at :math:`\theta_{cr}` (Sect. 4.2 of [1]_). From the state
-    :math:`(\theta, \dot\theta)` of the moving mechanism (:func:`_decide`):
+    :math:`(\theta, \dot\theta)` of the moving mechanism (:func:`decide_outcome`):
 
     1. *this half cycle*: the arch collapses if it is beyond :math:`\theta_{cr}`
        (:math:`\theta \le \theta_{cr}`) and moving away from :math:`\theta_u`
@@ -54,9 +54,9 @@ Decision after the excitation
        above it): collapse after two more impacts if it passes;
     4. surviving both arrivals is recovery: two successive impacts multiply the kinetic energy
        at :math:`\theta_u` by :math:`(c_{lr}^2 M_r/M_l)(c_{rl}^2 M_l/M_r) = (c_{lr}
-       c_{rl})^2 \le 1` (:func:`archquake.engine.check_restitution` refuses a larger product),
-       so every later arrival into either mechanism has no more energy than the first checked
-       one, which did not pass the barrier.
+       c_{rl})^2 \le 1` (:func:`archquake.fourlink.engine.check_restitution` refuses a larger
+       product), so every later arrival into either mechanism has no more energy than the first
+       checked one, which did not pass the barrier.
 
     The largest :math:`\varphi = \theta_u - \theta` still to come is the root of
     :math:`V(\theta) = E` (or of its counterpart after an impact) below :math:`\theta_u`.
@@ -72,20 +72,20 @@ import math
 import numba
 import numpy as np
 
-from ..ground_motion import HARMONIC, LINEAR, STEP, evaluate
+from ...ground_motion import HARMONIC, LINEAR, STEP, evaluate
 from .codes import MECH_L, MECH_R, REST_STATE, STATUS_COLLAPSE, STATUS_RECOVERY
-from .tables import _ROW_M, _ROW_V, _root_function, _table_function, _table_rhs
+from .tables import ROW_M, ROW_V, root_function, table_function, table_rhs
 
 
 @numba.njit(cache=True, inline="always")
-def _rest_coefficients(tab):
+def rest_coefficients(tab):
     """``(P/M, gF/M, L/M)`` of Mech-l and Mech-r at ``theta_u``, shape (2, 3): the coefficients of
     ``theta''`` of a mechanism that starts from rest (:func:`_activated`). Inlined into the
     driver, so that they are the very values its right-hand side computes there."""
     scal, cells, breaks, coefs = tab
     out = np.empty((2, 3))
     for m in range(2):
-        a, b, c = _table_rhs(scal[m, 0], scal[m, 2], scal[m, 4], cells[m], breaks[m], coefs[m])
+        a, b, c = table_rhs(scal[m, 0], scal[m, 2], scal[m, 4], cells[m], breaks[m], coefs[m])
         out[m, 0] = a
         out[m, 1] = b
         out[m, 2] = c
@@ -97,7 +97,7 @@ def _activated(xg, rest):
     """Mechanism activated by the ground acceleration ``xg`` [m/s^2] at rest, or -1: the one
     whose ``theta''`` at ``theta_u`` from rest is negative, ``P xg'' - F g < 0`` for Mech-l and
     ``-P xg'' - F g < 0`` for Mech-r [eq. (2) of the paper; ``xg''/g < -k_l`` and
-    ``xg''/g > k_r``]; ``rest`` from :func:`_rest_coefficients`.
+    ``xg''/g > k_r``]; ``rest`` from :func:`rest_coefficients`.
 
     The same arithmetic as the first ``theta''`` of the motion that starts (the driver's
     right-hand side at ``theta_u`` with ``theta' = 0``): a comparison with the tabulated
@@ -129,9 +129,9 @@ def _quiet_segments(i, t_stop, rest, times, values, bps):
 
     Between two samples the acceleration is linear, so its extremes on a segment are the two
     samples: a segment whose samples both lie inside the activation accelerations of Mech-l
-    and Mech-r (``-k_l g < xg'' < k_r g``, from ``rest`` of :func:`_rest_coefficients`) by the
+    and Mech-r (``-k_l g < xg'' < k_r g``, from ``rest`` of :func:`rest_coefficients`) by the
     relative :data:`ACTIVATION_MARGIN` cannot activate either mechanism, and is passed over
-    without evaluating the motion (the sample scan of :func:`_activation` would find nothing on
+    without evaluating the motion (the sample scan of :func:`find_activation` would find nothing on
     it). ``bps`` are ``times``, possibly with ``0`` before them (where the ground is still).
     """
     nb = bps.size
@@ -157,7 +157,7 @@ def _quiet_segments(i, t_stop, rest, times, values, bps):
 
 
 @numba.njit(cache=True)
-def _activation(t, t_stop, rest, kind, params, times, values, bps):
+def find_activation(t, t_stop, rest, kind, params, times, values, bps):
     """First instant in ``[t, t_stop)`` [s] at which the ground activates a mechanism from rest.
 
     Returns ``(time, mechanism)``, ``(t_stop, -1)`` if none. Piecewise-constant motions are
@@ -211,7 +211,7 @@ def _activation(t, t_stop, rest, kind, params, times, values, bps):
 
 
 @numba.njit(cache=True)
-def _decide(m, th, thd, tab, c_lr, c_rl):
+def decide_outcome(m, th, thd, tab, c_lr, c_rl):
     """Outcome after the end of the excitation, from the state ``(theta [rad], theta' [rad/s])``
     of mechanism ``m`` (see the module docstring).
 
@@ -224,10 +224,10 @@ def _decide(m, th, thd, tab, c_lr, c_rl):
     scal = tab[0]
     other = 1 - m
     th_u, th_cr = scal[m, 0], scal[m, 1]
-    mm = _table_function(th, _ROW_M, m, tab)
-    v = _table_function(th, _ROW_V, m, tab)
-    v_cr = _table_function(th_cr, _ROW_V, m, tab)
-    v_u = _table_function(th_u, _ROW_V, m, tab)
+    mm = table_function(th, ROW_M, m, tab)
+    v = table_function(th, ROW_V, m, tab)
+    v_cr = table_function(th_cr, ROW_V, m, tab)
+    v_u = table_function(th_u, ROW_V, m, tab)
     energy = 0.5 * mm * thd * thd + v
     peak = 0.0
     if th <= th_cr:
@@ -236,18 +236,18 @@ def _decide(m, th, thd, tab, c_lr, c_rl):
     elif thd < 0.0:
         if energy > v_cr:
             return STATUS_COLLAPSE, 0, peak, False
-        peak = th_u - _root_function(_ROW_V, energy, th_cr, th, m, tab)
+        peak = th_u - root_function(ROW_V, energy, th_cr, th, m, tab)
     # returns to theta_u, impacts into the other mechanism
     kinetic = max(energy - v_u, 0.0)
     c = c_lr if m == MECH_L else c_rl
-    m_u = _table_function(th_u, _ROW_M, m, tab)
-    m_new = _table_function(scal[other, 0], _ROW_M, other, tab)
+    m_u = table_function(th_u, ROW_M, m, tab)
+    m_new = table_function(scal[other, 0], ROW_M, other, tab)
     kinetic_new = c * c * m_new / m_u * kinetic
-    v_u_new = _table_function(scal[other, 0], _ROW_V, other, tab)
-    barrier = _table_function(scal[other, 1], _ROW_V, other, tab) - v_u_new
+    v_u_new = table_function(scal[other, 0], ROW_V, other, tab)
+    barrier = table_function(scal[other, 1], ROW_V, other, tab) - v_u_new
     if kinetic_new > barrier:
         return STATUS_COLLAPSE, 1, peak, False
-    th_peak = _root_function(_ROW_V, v_u_new + kinetic_new, scal[other, 1], scal[other, 0],
+    th_peak = root_function(ROW_V, v_u_new + kinetic_new, scal[other, 1], scal[other, 0],
                              other, tab)
     peak = max(peak, scal[other, 0] - th_peak)
     # back into this mechanism after the second impact: its own barrier has not been checked
@@ -257,13 +257,13 @@ def _decide(m, th, thd, tab, c_lr, c_rl):
     kinetic_back = c_back * c_back * m_u / m_new * kinetic_new
     if kinetic_back > v_cr - v_u:
         return STATUS_COLLAPSE, 2, peak, False
-    th_peak = _root_function(_ROW_V, v_u + kinetic_back, th_cr, th_u, m, tab)
+    th_peak = root_function(ROW_V, v_u + kinetic_back, th_cr, th_u, m, tab)
     peak = max(peak, th_u - th_peak)
     return STATUS_RECOVERY, 0, peak, True
 
 
 @numba.njit(cache=True, inline="always")
-def _impact(m, thd, t, c_lr, c_rl, rest_velocity, scal, rest, kind, params, times, values):
+def impact_rule(m, thd, t, c_lr, c_rl, rest_velocity, scal, rest, kind, params, times, values):
     """The impact of mechanism ``m`` arriving at ``theta_u`` with ``theta' = thd`` [rad/s] at
     time ``t`` [s]: the other mechanism takes over with ``theta' = -c thd`` [paper, Sect. 4.4]
     (``c = c_lr`` from Mech-l, ``c_rl`` from Mech-r), or the arch comes to rest if that speed is

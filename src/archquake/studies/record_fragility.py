@@ -4,7 +4,7 @@ Every record of a suite is scaled to each level :math:`x_j` of an intensity meas
 PGA [g]) and applied in both polarities (as recorded, and with its sign flipped) to every arch of
 the irregular sample drawn around a nominal arch [paper, eq. (1)], and to the nominal arch
 itself. An arch-record pair *fails* at :math:`x_j` if the arch collapses in either polarity (the
-conservative reading, as in the pulse study of :mod:`archquake.fragility`); the per-polarity
+conservative reading, as in the pulse study of :mod:`archquake.studies.fragility`); the per-polarity
 outcomes are kept in the table. With :math:`y_{a r j} \in \{0, 1\}` the failure of arch
 :math:`a` under record :math:`r` at level :math:`x_j` (:math:`h` arches, :math:`R` records), the
 stripe of :math:`x_j` has :math:`n_j = h R` trials and
@@ -26,7 +26,7 @@ likelihood on the binomial counts per stripe (Eq. (11) in [1]_):
     \{\hat\theta, \hat\beta\} = \arg\max_{\theta, \beta} \sum_j \Bigl[z_j \ln P(x_j)
     + (n_j - z_j) \ln\bigl(1 - P(x_j)\bigr)\Bigr]
 
-(:func:`archquake.fragility.fit_lognormal`; none exists for separated counts,
+(:func:`archquake.studies.fragility.fit_lognormal`; none exists for separated counts,
 :func:`separated`). Three dispersions are reported:
 
 record-to-record, :math:`\beta_{RTR}`
@@ -80,8 +80,8 @@ the same paths on every worker); the settings hold each file's name and SHA-256 
 refuses a file whose content changed, and a resume with changed files is refused.
 
 For each arch and record, all levels and both polarities are one compiled call
-(:func:`archquake.engine.outcomes_grid` with the record as template). An analysis whose scaled
-record never reaches the arch's activation acceleration (eq. (2): ``xg'' < -k_l g`` or
+(:func:`archquake.fourlink.engine.outcomes_grid` with the record as template). An analysis whose
+scaled record never reaches the arch's activation acceleration (eq. (2): ``xg'' < -k_l g`` or
 ``xg'' > k_r g``) is not integrated: the arch stays at rest, exactly as the engine would decide
 (the record is piecewise linear, so its extremes are samples; a relative margin of
 :data:`REST_MARGIN` keeps round-off out of it). Levels above an arch's collapse level are *not*
@@ -109,17 +109,17 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .defaults import DEFAULT_RESTITUTION
-from .dynamics import ArchDynamics
+from ..defaults import DEFAULT_RESTITUTION
+from ..fourlink.dynamics import ArchDynamics
+from ..geometry import GRAVITY, BlockArch, irregular_arch
 from .fragility import (
     LognormalFragility,
-    _default_nominal,
-    _nominal_dict,
-    _nominal_from_dict,
-    _positive_int,
+    default_nominal,
+    nominal_dict,
+    nominal_from_dict,
+    positive_int,
     fit_lognormal,
 )
-from .geometry import GRAVITY, BlockArch, irregular_arch
 
 NOMINAL_ARCH = -1
 """Value of the ``arch`` column for the nominal arch (the irregular arches are 0 .. h-1)."""
@@ -240,12 +240,12 @@ class RecordSuite:
         ValueError
             If a file cannot be read as a record (the message names it), or there is none.
         """
-        from .ground_motion import read_suite
-        from .ground_motion.records import _suite_files, record_format
+        from ..ground_motion import read_suite
+        from ..ground_motion.records import suite_files, record_format
 
         motions = read_suite(paths)  # validates every file; names and order of the suite
         found = {}
-        for path, fmt in _suite_files(paths):
+        for path, fmt in suite_files(paths):
             found.setdefault(path.name, (path, fmt))
         files = []
         for motion in motions:
@@ -278,10 +278,10 @@ class RecordSuite:
         ValueError
             For an invalid count, seed or parameter.
         """
-        from .ground_motion import stochastic_suite
+        from ..ground_motion import stochastic_suite
 
-        _positive_int("count", count)
-        _positive_int("seed", seed, minimum=0)
+        positive_int("count", count)
+        positive_int("seed", seed, minimum=0)
         spec = {"count": int(count), "seed": int(seed),
                 "parameters": json.loads(json.dumps(parameters))}
         stochastic_suite(1, seed=spec["seed"], **spec["parameters"])  # check the parameters now
@@ -317,7 +317,7 @@ class RecordSuite:
         ValueError
             If a file is missing or its content no longer has the recorded digest.
         """
-        from .ground_motion import read_record, stochastic_suite
+        from ..ground_motion import read_record, stochastic_suite
 
         if self.stochastic is not None:
             spec = self.stochastic
@@ -396,7 +396,7 @@ def stripe_measure(name: str):
         For an unknown name, or a measure that does not change when a record is scaled
         (``d5-95``); the message names ``im``.
     """
-    from .ground_motion import intensity_measure
+    from ..ground_motion import intensity_measure
 
     try:
         im = intensity_measure(name)
@@ -426,7 +426,7 @@ class RecordFragilitySettings:
         sa(T), m/s for pgv and arias, m for pgd].
     im : str
         Intensity measure of the stripes (:func:`stripe_measure`).
-    nominal : Arch or ShapedArch
+    nominal : CircularArch or ShapedArch
         Nominal arch (default: Oppenheim's arch).
     sample_size : int
         Number h of irregular arches (default 40).
@@ -436,9 +436,9 @@ class RecordFragilitySettings:
     seed : int
         Root seed (>= 0) of the arches and of the bootstrap.
     restitution : str or float
-        Restitution model (:func:`archquake.impact.check_restitution_model`; default
+        Restitution model (:func:`archquake.fourlink.impact.check_restitution_model`; default
         ``"computed"``, :data:`archquake.defaults.DEFAULT_RESTITUTION`, as in
-        :class:`archquake.fragility.FragilitySettings`).
+        :class:`archquake.studies.fragility.FragilitySettings`).
     bootstrap : int
         Number of bootstrap resamples of the confidence bands (>= 10).
     confidence : float
@@ -453,7 +453,7 @@ class RecordFragilitySettings:
     suite: RecordSuite
     levels: tuple[float, ...]
     im: str = "pga"
-    nominal: BlockArch = field(default_factory=_default_nominal)
+    nominal: BlockArch = field(default_factory=default_nominal)
     sample_size: int = 40
     tolerance: float = 0.10
     seed: int = 0
@@ -479,7 +479,7 @@ class RecordFragilitySettings:
                              f"be scaled to 0), got {bad}")
         if np.any(np.diff(x) <= 0):
             raise ValueError(f"levels must increase strictly, got {x.tolist()}")
-        _positive_int("bootstrap", self.bootstrap, minimum=10)
+        positive_int("bootstrap", self.bootstrap, minimum=10)
         if not (isinstance(self.confidence, int | float) and 0.0 < self.confidence < 1.0):
             raise ValueError(f"confidence must be in (0, 1), got {self.confidence!r}")
         # the arch, sample and restitution rules of the pulse study
@@ -508,14 +508,14 @@ class RecordFragilitySettings:
         -------
         dict
             Every field (the suite by :meth:`RecordSuite.to_dict`, the nominal arch by
-            :meth:`archquake.geometry.Arch.to_dict`) and ``im_unit``.
+            :meth:`archquake.geometry.CircularArch.to_dict`) and ``im_unit``.
         """
         return {
             "suite": self.suite.to_dict(),
             "im": self.im,
             "im_unit": self.unit,
             "levels": list(self.levels),
-            "nominal": _nominal_dict(self.nominal),
+            "nominal": nominal_dict(self.nominal),
             "sample_size": self.sample_size,
             "tolerance": self.tolerance,
             "seed": self.seed,
@@ -538,7 +538,7 @@ class RecordFragilitySettings:
         RecordFragilitySettings
         """
         return cls(suite=RecordSuite.from_dict(data["suite"]), levels=tuple(data["levels"]),
-                   im=data["im"], nominal=_nominal_from_dict(data["nominal"]),
+                   im=data["im"], nominal=nominal_from_dict(data["nominal"]),
                    sample_size=data["sample_size"], tolerance=data["tolerance"],
                    seed=data["seed"],
                    restitution=data["restitution"], bootstrap=data["bootstrap"],
@@ -605,7 +605,7 @@ def record_outcomes(dynamics, motion, factors) -> dict[str, np.ndarray]:
     Parameters
     ----------
     dynamics : ArchDynamics
-        The arch's :class:`~archquake.dynamics.ArchDynamics`.
+        The arch's :class:`~archquake.fourlink.dynamics.ArchDynamics`.
     motion : GroundMotion
         A ``LINEAR`` record [m/s^2].
     factors : array_like of float
@@ -622,12 +622,12 @@ def record_outcomes(dynamics, motion, factors) -> dict[str, np.ndarray]:
     ------
     ValueError
         If ``motion`` is not piecewise linear, or as
-        :func:`archquake.engine.outcomes_grid`.
+        :func:`archquake.fourlink.engine.outcomes_grid`.
     RuntimeError
-        As :func:`archquake.engine.outcomes_grid`.
+        As :func:`archquake.fourlink.engine.outcomes_grid`.
     """
-    from .engine import outcomes_grid
-    from .ground_motion import LINEAR
+    from ..fourlink.engine import outcomes_grid
+    from ..ground_motion import LINEAR
 
     if motion.kind != LINEAR:
         raise ValueError(f"record_outcomes takes a piecewise-linear record, got kind "
@@ -799,8 +799,8 @@ def lognormal_fit(levels, trials, failures) -> LognormalFragility | None:
     Returns
     -------
     LognormalFragility or None
-        :func:`archquake.fragility.fit_lognormal`; None for fewer than two levels or separated
-        counts (:func:`separated`).
+        :func:`archquake.studies.fragility.fit_lognormal`; None for fewer than two levels or
+        separated counts (:func:`separated`).
     """
     if np.asarray(levels).size < 2 or separated(levels, trials, failures):
         return None
@@ -837,7 +837,7 @@ def probit_newton(log_levels, trials, failures, *, slope=None, start=(0.0, 1.0),
     :math:`\partial\ell/\partial\eta_j = z_j \lambda(\eta_j) - (n_j - z_j) \lambda(-\eta_j)`,
     :math:`\lambda = \varphi/\Phi` the inverse Mills ratio. Used where many fits are needed at
     once (bootstrap resamples, the records of :func:`common_dispersion_fit`); a single fit is
-    :func:`archquake.fragility.fit_lognormal`.
+    :func:`archquake.studies.fragility.fit_lognormal`.
 
     Parameters
     ----------
@@ -1365,8 +1365,8 @@ class RecordFragilityResult:
         ValueError
             If neither fit exists, or the IM has no OpenQuake counterpart.
         """
-        from . import __version__
-        from .results_io import write_fragility_nrml
+        from .._version import __version__
+        from ..results_io import write_fragility_nrml
 
         functions = []
         if self.lognormal is not None:
@@ -1434,7 +1434,7 @@ class RecordFragilityResult:
 
 def _study_arrays(table: pd.DataFrame, settings: RecordFragilitySettings):
     """``collapsed[arch, record, level, polarity]`` (irregular arches, then the nominal one)."""
-    from .engine import STATUS_COLLAPSE
+    from ..fourlink.engine import STATUS_COLLAPSE
 
     h, r, n_levels = settings.sample_size, len(settings.suite), len(settings.levels)
     shape = (h + 1, r, n_levels, len(POLARITIES))
@@ -1514,17 +1514,17 @@ def record_fragility_result(settings: RecordFragilitySettings, table: pd.DataFra
 def warm_up() -> None:
     """Load the compiled engine in this process (a pool's ``warm_up``): one arch, one short
     record, two levels."""
-    from .ground_motion import stochastic_motion
+    from ..ground_motion import stochastic_motion
 
     motion = stochastic_motion(0.5, 2.0, 1.0, 2.0, 0.0, 0.2, duration=2.0, rng=0)
-    dynamics = ArchDynamics.from_arch(_default_nominal(), "nominal", _default_nominal())
+    dynamics = ArchDynamics.from_arch(default_nominal(), "nominal", default_nominal())
     record_outcomes(dynamics, motion, [0.5, -3.0])
 
 
 def _check_resume(out: Path, settings: RecordFragilitySettings) -> None:
     """Refuse to resume a study whose record files differ from the stored ones, naming them."""
-    from .execution import STUDY_JSON
-    from .results_io import read_json
+    from ..execution import STUDY_JSON
+    from ..results_io import read_json
 
     study = out / STUDY_JSON
     if not study.is_file():
@@ -1610,8 +1610,8 @@ def run_record_fragility(
         If the Dask cluster can no longer finish the study
         (:func:`archquake.execution.run_study`).
     """
-    from .execution import StudyPlan, run_study
-    from .results_io import atomic_path, save_study
+    from ..execution import StudyPlan, run_study
+    from ..results_io import atomic_path, save_study
 
     if not isinstance(settings, RecordFragilitySettings):
         raise ValueError(f"settings must be RecordFragilitySettings, got "
@@ -1623,7 +1623,7 @@ def run_record_fragility(
     if resume and out is not None:
         _check_resume(out, settings)
     plan = StudyPlan(settings.to_dict(), settings.seed, settings.sample_size + 1,
-                     _positive_int("chunk_size", chunk_size))
+                     positive_int("chunk_size", chunk_size))
     table = run_study(record_fragility_task, plan, out, backend=backend, workers=workers,
                       scheduler=scheduler, pool=pool, resume=resume, progress=progress)
     metadata = dict(table.attrs.get("study", {}))
@@ -1655,7 +1655,7 @@ def load_record_fragility(out_dir: str | os.PathLike) -> RecordFragilityResult:
     ValueError
         If the directory holds no complete study, or not a record fragility study.
     """
-    from .results_io import load_study
+    from ..results_io import load_study
 
     out = Path(out_dir)
     stored = load_study(out)
@@ -1730,7 +1730,7 @@ def oppenheim_record_fragility(ims=("pga", "pgv"), *, records: int = 20, sample_
     ValueError
         For an invalid setting, or an IM without default levels and none given.
     """
-    from .execution import process_pool
+    from ..execution import process_pool
 
     suite = RecordSuite.from_stochastic(records, seed=suite_seed,
                                         **(suite_parameters or STOCHASTIC_SUITE))

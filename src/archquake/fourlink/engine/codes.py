@@ -6,7 +6,7 @@ values of :class:`archquake.status.Status`.
 
 from __future__ import annotations
 
-from ..status import Status
+from ...status import Status
 
 # --- state of the arch while integrating
 REST_STATE = -1
@@ -59,7 +59,7 @@ OUT_COLLAPSE_TIME = 3
 """Last crossing of ``theta_cr`` away from ``theta_u`` before the collapse [s], else nan."""
 OUT_MAX_PHI = 4
 """Largest ``phi = theta_u - theta`` [rad], reached before the decision or, for a recovery, still
-to come after it (from the energy, :mod:`~archquake.engine.rules`); for a collapse
+to come after it (from the energy, :mod:`~archquake.fourlink.engine.rules`); for a collapse
 ``theta_u - theta_lo`` of the collapsing mechanism (its kinematic limit)."""
 OUT_DECISION_TIME = 5
 """Time [s] at which the outcome was decided: the kinematic limit reached during the excitation,

@@ -1,11 +1,11 @@
 """The event-driven driver: one analysis, from rest (or a given state) to its outcome.
 
-The driver loop of :func:`_run` follows scipy's ``solve_ivp``: take a step with error control
+The driver loop of :func:`integrate` follows scipy's ``solve_ivp``: take a step with error control
 (Sect. II.4 of [1]_), look for events inside it on its dense output (Sect. II.6 of [1]_), locate
 them [2]_, handle them (the rules of Sects. 4.4 and 5.3 of [3]_), record. Its parts are
-the small compiled helpers of this module and of :mod:`~archquake.engine.stepper` (the step),
-:mod:`~archquake.engine.rules` (activation, impact, decision) and
-:mod:`~archquake.engine.tables`. How each is compiled was chosen by measurement:
+the small compiled helpers of this module and of :mod:`~archquake.fourlink.engine.stepper` (the
+step), :mod:`~archquake.fourlink.engine.rules` (activation, impact, decision) and
+:mod:`~archquake.fourlink.engine.tables`. How each is compiled was chosen by measurement:
 
 - helpers called at one place are inlined into the driver (``inline="always"``: numba copies
   their code there, so a call costs nothing at run time and compiles about as the code would);
@@ -52,7 +52,7 @@ import math
 import numba
 import numpy as np
 
-from ..ground_motion import (
+from ...ground_motion import (
     ANALYTIC_KINDS,
     HARMONIC,
     LINEAR,
@@ -89,8 +89,15 @@ from .codes import (
     STATUS_REST,
     UNDECIDED,
 )
-from .rules import _activation, _decide, _impact, _rest_coefficients
-from .stepper import _dense, _dense_root, _dense_value, _initial_step, _rhs, _step
+from .rules import decide_outcome, find_activation, impact_rule, rest_coefficients
+from .stepper import (
+    dense_coefficients,
+    dense_root,
+    dense_value,
+    dop853_step,
+    initial_step,
+    motion_rhs,
+)
 from .tables import MechanismTable, pack_pair
 
 EVENT_NONE, EVENT_IMPACT, EVENT_LIMIT = 0, 1, 2
@@ -108,8 +115,9 @@ _SIG_PUSH = F8_2D(F8_2D, I8, F8, F8, F8, F8, F8)
 def _push(buf, n, v0, v1, v2, v3, v4):
     """Write row ``n`` of a record buffer (its first ``buf.shape[1]`` values), growing it.
 
-    Every argument is given, and the signature is declared (see :mod:`~archquake.engine._types`);
-    the rows are copied by a loop: a slice assignment brings numba's shape-mismatch error
+    Every argument is given, and the signature is declared (see
+    :mod:`~archquake.fourlink.engine._types`); the rows are copied by a loop: a slice assignment
+    brings numba's shape-mismatch error
     formatting, seconds of compilation."""
     if n >= buf.shape[0]:
         new = np.empty((2 * buf.shape[0], buf.shape[1]))
@@ -131,8 +139,8 @@ def _record_samples(rec, nrec, next_sample, t_until, t, hh, th, thd, m, seg, rec
     Returns ``(rec, nrec, next_sample)``."""
     while next_sample < t_until:
         xq = (next_sample - t) / hh
-        rec = _push(rec, nrec, next_sample, _dense_value(xq, 0, th, Fd),
-                    _dense_value(xq, 1, thd, Fd), m, seg)
+        rec = _push(rec, nrec, next_sample, dense_value(xq, 0, th, Fd),
+                    dense_value(xq, 1, thd, Fd), m, seg)
         nrec += 1
         next_sample += record_dt
     return rec, nrec, next_sample
@@ -155,7 +163,7 @@ def _next_breakpoint(bps, ib, t):
 def _decision_after_excitation(m, th, thd, activated, impacts, last_out, max_phi, tab, c_lr,
                                c_rl):
     """The outcome decided when the excitation is over, from the state of the arch: at rest
-    (recovery if it ever moved, else rest) or moving (:func:`~.rules._decide`).
+    (recovery if it ever moved, else rest) or moving (:func:`~.rules.decide_outcome`).
 
     Returns ``(status, half_cycle, decided_impacts, collapse_time, max_phi, pending)``:
     ``pending`` when a collapse is decided but its point of no return (the crossing of
@@ -165,7 +173,7 @@ def _decision_after_excitation(m, th, thd, activated, impacts, last_out, max_phi
     if m == REST_STATE:
         status = STATUS_RECOVERY if activated else STATUS_REST
         return status, 0, impacts, np.nan, max_phi, False
-    status, extra, peak, known = _decide(m, th, thd, tab, c_lr, c_rl)
+    status, extra, peak, known = decide_outcome(m, th, thd, tab, c_lr, c_rl)
     if status != STATUS_COLLAPSE:
         return status, 0, impacts, np.nan, max(max_phi, peak), False
     half_cycle = impacts + 1 + extra  # the collapse comes after `extra` more impacts
@@ -182,7 +190,7 @@ def _wait_at_rest(t, duration, t_end, rest, kind, params, times, values, bps):
     and which one (``REST_STATE`` if none before the end of the excitation: the ground is
     then still for ever, and the arch rests until ``t_end``)."""
     if t < duration:
-        return _activation(t, min(duration, t_end), rest, kind, params, times, values, bps)
+        return find_activation(t, min(duration, t_end), rest, kind, params, times, values, bps)
     return t_end, REST_STATE
 
 
@@ -246,7 +254,7 @@ def _turning_point(thd, f1, n1, Fd):
         x0 = 1e-9
         s0 = f1
     if s0 != 0.0 and n1 != 0.0 and (s0 > 0.0) != (n1 > 0.0):
-        return _dense_root(x0, 1.0, 1, thd, Fd, 0.0)
+        return dense_root(x0, 1.0, 1, thd, Fd, 0.0)
     return 2.0
 
 
@@ -255,7 +263,7 @@ def _crossing(xa, xb, ga, gb, level, th, Fd):
     """Fraction of the step [-] in ``[xa, xb]``, on which theta goes monotonically from ``ga``
     to ``gb`` [rad], at which it crosses ``level`` [rad]; -1.0 if it does not."""
     if (ga - level) * (gb - level) < 0.0 or (gb == level and ga != level):
-        return _dense_root(xa, xb, 0, th, Fd, level)
+        return dense_root(xa, xb, 0, th, Fd, level)
     return -1.0
 
 
@@ -267,9 +275,9 @@ def _terminal_event(xa, xb, ga, gb, th_u, th_lo, th, Fd):
 
     Returns ``(event, fraction of the step)``, ``(EVENT_NONE, 1.0)`` if none."""
     if gb > th_u and ga <= th_u:
-        return EVENT_IMPACT, _dense_root(xa, xb, 0, th, Fd, th_u)
+        return EVENT_IMPACT, dense_root(xa, xb, 0, th, Fd, th_u)
     if gb < th_lo and ga >= th_lo:
-        return EVENT_LIMIT, _dense_root(xa, xb, 0, th, Fd, th_lo)
+        return EVENT_LIMIT, dense_root(xa, xb, 0, th, Fd, th_lo)
     return EVENT_NONE, 1.0
 
 
@@ -284,9 +292,9 @@ def _locate_event(t, th, thd, f0, f1, x_event, xa, xb, hh, level, m, tab, xg_ste
 
     Returns ``(h_event, theta'_event)``: the time from ``t`` [s] and ``theta'`` [rad/s]."""
     h_ev = x_event * hh
-    thd_ev = _dense_value(x_event, 1, thd, Fd)
+    thd_ev = dense_value(x_event, 1, thd, Fd)
     for _ in range(4):
-        p0, p1, _nf, _err = _step(t, th, thd, f0, f1, h_ev, m, tab, xg_step, tcap, tcap_left,
+        p0, p1, _nf, _err = dop853_step(t, th, thd, f0, f1, h_ev, m, tab, xg_step, tcap, tcap_left,
                                   kind, params, times, values, rtol, atol, K)
         thd_ev = p1
         if p1 == 0.0 or abs(p0 - level) <= 4e-16 * max(1.0, abs(level)):
@@ -301,7 +309,7 @@ def _locate_event(t, th, thd, f0, f1, x_event, xa, xb, hh, level, m, tab, xg_ste
 @numba.njit(cache=True, inline="always")
 def _outcome_vector(status, half_cycle, decided_impacts, collapse_time, max_phi, decision_time,
                     steps, truncated, contradiction, contradiction_time):
-    """The outcome vector (indices ``OUT_*`` of :mod:`~archquake.engine.codes`)."""
+    """The outcome vector (indices ``OUT_*`` of :mod:`~archquake.fourlink.engine.codes`)."""
     out = np.full(OUT_SIZE, np.nan)
     collapse = status == STATUS_COLLAPSE
     out[OUT_STATUS] = status
@@ -323,11 +331,11 @@ def _outcome_vector(status, half_cycle, decided_impacts, collapse_time, max_phi,
 
 
 @numba.njit(cache=True)
-def _run(tab, c_lr, c_rl, kind, params, times, values, bps, duration, t_start, t_end, mech0,
+def integrate(tab, c_lr, c_rl, kind, params, times, values, bps, duration, t_start, t_end, mech0,
          theta0, thetadot0, rtol, atol, rest_velocity, max_step, max_steps, record, record_dt,
          follow):
     """Integrate one analysis; see the module docstring for the loop and
-    :mod:`~archquake.engine.rules` for the rules.
+    :mod:`~archquake.fourlink.engine.rules` for the rules.
 
     ``(kind, params, times, values)`` is the ground motion (:func:`compiled_motion`), ``bps``
     its breakpoints and ``duration`` [s] its end; the arch starts at ``t_start`` [s] in state
@@ -342,7 +350,7 @@ def _run(tab, c_lr, c_rl, kind, params, times, values, bps, duration, t_start, t
     else empty arrays.
     """
     scal = tab[0]
-    rest = _rest_coefficients(tab)  # theta'' from rest at theta_u: the activation test
+    rest = rest_coefficients(tab)  # theta'' from rest at theta_u: the activation test
     K = np.empty((16, 2))  # stages of the last step
     Fd = np.empty((7, 2))  # its dense output
     cap = 256 if record else 1
@@ -415,15 +423,16 @@ def _run(tab, c_lr, c_rl, kind, params, times, values, bps, duration, t_start, t
         xg_step = evaluate(t, kind, params, times, values) if kind == STEP else np.nan
         f0 = thd
         if not fsal:
-            f1 = _rhs(t, th, thd, m, tab, xg_step, np.inf, np.inf, kind, params, times, values)
+            f1 = motion_rhs(t, th, thd, m, tab, xg_step, np.inf, np.inf, kind, params, times,
+                            values)
         if fresh:
-            h = _initial_step(t, th, thd, f1, m, tab, xg_step, kind, params, times, values, rtol,
+            h = initial_step(t, th, thd, f1, m, tab, xg_step, kind, params, times, values, rtol,
                               atol, max_step)
             fresh = False
         rejected = False
         while True:  # attempts, until the local error is accepted
             hh, landing, tcap, tcap_left = _step_size(t, h, t_stop, bnext, max_step)
-            n0, n1, nf, err = _step(t, th, thd, f0, f1, hh, m, tab, xg_step, tcap, tcap_left,
+            n0, n1, nf, err = dop853_step(t, th, thd, f0, f1, hh, m, tab, xg_step, tcap, tcap_left,
                                     kind, params, times, values, rtol, atol, K)
             steps += 1
             accepted, h = _error_control(err, hh, h, landing, rejected)
@@ -435,15 +444,15 @@ def _run(tab, c_lr, c_rl, kind, params, times, values, bps, duration, t_start, t
         event, x_event = EVENT_NONE, 1.0
         xa, xb = 0.0, 1.0  # the part of the step that holds the event
         if record or _may_hold_event(th, n0, thd, n1, th_u, th_cr, th_lo):
-            _dense(t, th, thd, n0, n1, hh, m, tab, xg_step, tcap, tcap_left, kind, params,
-                   times, values, K, Fd)
+            dense_coefficients(t, th, thd, n0, n1, hh, m, tab, xg_step, tcap, tcap_left, kind,
+                               params, times, values, K, Fd)
             x_turn = _turning_point(thd, f1, n1, Fd)
             for part in range(2):  # theta is monotonic on [0, x_turn] and on [x_turn, 1]
                 if part == 1 and x_turn >= 1.0:
                     break
                 xa, xb = (0.0, min(x_turn, 1.0)) if part == 0 else (x_turn, 1.0)
-                ga = th if xa == 0.0 else _dense_value(xa, 0, th, Fd)
-                gb = n0 if xb == 1.0 else _dense_value(xb, 0, th, Fd)
+                ga = th if xa == 0.0 else dense_value(xa, 0, th, Fd)
+                gb = n0 if xb == 1.0 else dense_value(xb, 0, th, Fd)
                 if part == 0 and x_turn < 1.0 and status == UNDECIDED:
                     max_phi = max(max_phi, th_u - gb)  # phi at a local extremum
                 # a crossing of theta_cr precedes an impact or the limit on the same part
@@ -509,7 +518,7 @@ def _run(tab, c_lr, c_rl, kind, params, times, values, bps, duration, t_start, t
         # arch arrives with theta' >= 0 (a turning point just before it may leave -0 or so)
         thd_ev = max(thd_ev, 0.0)
         m_before = m
-        m, th, thd, thd_after = _impact(m, thd_ev, t, c_lr, c_rl, rest_velocity, scal, rest,
+        m, th, thd, thd_after = impact_rule(m, thd_ev, t, c_lr, c_rl, rest_velocity, scal, rest,
                                         kind, params, times, values)
         impacts += 1
         seg += 1
@@ -534,7 +543,8 @@ def _grid(tab, c_lr, c_rl, kind, params0, times0, values0, amplitudes, durations
     """Outcomes of a scaled template motion for many (amplitude, duration) pairs.
 
     ``rest_state`` (:data:`~.codes.REST_STATE`) and ``record`` (False) are arguments, not
-    constants written here: numba would compile ``_run`` (and every function it calls) once more
+    constants written here: numba would compile ``integrate`` (and every function it calls) once
+    more
     for the literal values of constants, beside the compilation for the calls from Python."""
     n = amplitudes.size
     status = np.empty(n, dtype=np.int8)
@@ -558,7 +568,7 @@ def _grid(tab, c_lr, c_rl, kind, params0, times0, values0, amplitudes, durations
         else:
             duration = times[times.size - 1]
             bps = times
-        out, _, _, _ = _run(tab, c_lr, c_rl, kind, params, times, values, bps, duration, 0.0,
+        out, _, _, _ = integrate(tab, c_lr, c_rl, kind, params, times, values, bps, duration, 0.0,
                             np.inf, rest_state, 0.0, 0.0, rtol, atol, rest_velocity, max_step,
                             max_steps, record, 1.0, follow)
         status[q] = int(out[OUT_STATUS])
@@ -583,8 +593,8 @@ def check_restitution(c_lr, c_rl) -> tuple[float, float]:
     in [1]_) is a ratio of the rates of two different coordinates (:math:`\theta` of Mech-l and
     :math:`\theta'` of Mech-r), not of one speed. What an impact may not do is create energy.
     The kinetic energy ratio of one impact, :math:`c^2 M_{to}(\theta_u) / M_{from}(\theta_u)`,
-    is at most 1 for the computed coefficients (Cauchy-Schwarz, see :mod:`archquake.impact`),
-    and over a pair of impacts (l -> r -> l) the masses cancel,
+    is at most 1 for the computed coefficients (Cauchy-Schwarz, see
+    :mod:`archquake.fourlink.impact`), and over a pair of impacts (l -> r -> l) the masses cancel,
 
     .. math::
 
@@ -592,7 +602,7 @@ def check_restitution(c_lr, c_rl) -> tuple[float, float]:
         = (c_{lr} c_{rl})^2 \le 1:
 
     the outcome decision after the excitation relies on that product being at most 1
-    (:mod:`archquake.engine.rules`).
+    (:mod:`archquake.fourlink.engine.rules`).
 
     Parameters
     ----------
@@ -669,7 +679,7 @@ def contradiction_message(code: int) -> str:
     Parameters
     ----------
     code : int
-        A code of :data:`~archquake.engine.codes.CONTRADICTIONS`.
+        A code of :data:`~archquake.fourlink.engine.codes.CONTRADICTIONS`.
 
     Returns
     -------
@@ -689,12 +699,13 @@ def outcomes_grid(table_l: MechanismTable, table_r: MechanismTable, c_lr: float,
 
     Every case ``q`` is the template motion scaled to ``amplitudes[q]`` and ``durations[q]``,
     applied to the arch at rest from ``t = 0``, and integrated until its outcome is decided
-    (:mod:`~archquake.engine.driver`; the rules of :mod:`~archquake.engine.rules`).
+    (:mod:`~archquake.fourlink.engine.driver`; the rules of
+    :mod:`~archquake.fourlink.engine.rules`).
 
     Parameters
     ----------
     table_l, table_r : MechanismTable
-        Tables of Mech-l and Mech-r of the arch (:func:`~archquake.engine.tabulate`).
+        Tables of Mech-l and Mech-r of the arch (:func:`~archquake.fourlink.engine.tabulate`).
     c_lr, c_rl : float
         Coefficients of restitution of the impacts Mech-l -> Mech-r and Mech-r -> Mech-l [-].
     durations : array_like
@@ -736,7 +747,7 @@ def outcomes_grid(table_l: MechanismTable, table_r: MechanismTable, c_lr: float,
         If an analysis stops before its outcome is decided (the safety limit on the number of
         steps), or if ``continuation > 0`` and the motion after a decision contradicts it.
     """
-    from ..ground_motion import GroundMotion, ground_motion
+    from ...ground_motion import GroundMotion, ground_motion
 
     c_lr, c_rl = check_restitution(c_lr, c_rl)
     durations, amplitudes = np.broadcast_arrays(np.asarray(durations, dtype=float),

@@ -13,5 +13,5 @@ F8_1D, I8_1D = numba.float64[::1], numba.int64[::1]
 F8_2D, I8_2D = numba.float64[:, ::1], numba.int64[:, ::1]
 F8_3D, F8_4D = numba.float64[:, :, ::1], numba.float64[:, :, :, ::1]
 PACKED_PAIR = numba.types.Tuple((F8_2D, I8_2D, F8_2D, F8_4D))
-"""Type of :func:`archquake.engine.tables.pack_pair`'s ``(scalars, cells, breaks,
+"""Type of :func:`archquake.fourlink.engine.tables.pack_pair`'s ``(scalars, cells, breaks,
 coefficients)``."""

@@ -11,8 +11,8 @@ equation is
     \qquad e(a) = (\cos a, \sin a).
 
 Plain functions of floats and arrays, with no physics (masses, gravity) and no imports from the
-package: the mechanism (:mod:`archquake.mechanism`) and the equation of motion
-(:mod:`archquake.equations_of_motion`) both build on them.
+package: the mechanism (:mod:`archquake.fourlink.mechanism`) and the equation of motion
+(:mod:`archquake.fourlink.equations_of_motion`) both build on them.
 
 References
 ----------

@@ -1,16 +1,16 @@
-"""The front door: :class:`ArchDynamics`, everything the dynamics of one arch needs, built once.
+"""The front door: :class:`FourLinkModel`, everything the dynamics of one arch needs, built once.
 
 The paper's chain from an arch to its dynamics -- limit analysis in both directions [paper,
 Sect. 3], the two four-link mechanisms built on its hinges [Sects. 4.1-4.2], the coefficients of
 restitution of the impacts between them [Sect. 4.4] and the compiled tables of their equations of
-motion [eqs. (6)-(7)] -- is one value, built by :meth:`ArchDynamics.from_arch`. Every analysis of
-the arch runs from it: a time history (:meth:`~ArchDynamics.simulate`), an outcome
-(:meth:`~ArchDynamics.outcome`), a grid of pulses in one compiled call
-(:meth:`~ArchDynamics.outcomes`) and the failure domain (:meth:`~ArchDynamics.failure_domain`).
+motion [eqs. (6)-(7)] -- is one value, built by :meth:`FourLinkModel.from_arch`. Every analysis of
+the arch runs from it: a time history (:meth:`~FourLinkModel.simulate`), an outcome
+(:meth:`~FourLinkModel.outcome`), a grid of pulses in one compiled call
+(:meth:`~FourLinkModel.outcomes`) and the failure domain (:meth:`~FourLinkModel.failure_domain`).
 
->>> from archquake import ArchDynamics, GRAVITY, oppenheim
+>>> from archquake import FourLinkModel, GRAVITY, oppenheim
 >>> from archquake.ground_motion import oppenheim_pulse
->>> dynamics = ArchDynamics.from_arch(oppenheim(), restitution="paper")
+>>> dynamics = FourLinkModel.from_arch(oppenheim(), restitution="paper")
 >>> dynamics.simulate(oppenheim_pulse(-GRAVITY, 0.27)).outcome.status.label
 'collapse'
 """
@@ -18,25 +18,29 @@ the arch runs from it: a time history (:meth:`~ArchDynamics.simulate`), an outco
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import ClassVar
 
 import numpy as np
 
-from .defaults import (
+from ..defaults import (
     DEFAULT_EXTEND_TO_G,
     DEFAULT_LIMIT_METHOD,
     DEFAULT_RESOLUTION_G,
     DEFAULT_RESTITUTION,
 )
-from .geometry import GRAVITY, BlockArch
+from ..geometry import GRAVITY, BlockArch
 
 
 @dataclass(frozen=True, eq=False)
-class ArchDynamics:
-    """One arch with its limit analyses, mechanisms, restitution and compiled tables.
+class FourLinkModel:
+    """The four-link model of one arch: its limit analyses, mechanisms, restitution and compiled
+    tables.
 
-    Build it with :meth:`from_arch`. It is immutable and compared by identity; building it costs
-    two limit analyses and the tabulation of two mechanisms (a few tens of milliseconds), after
-    which every analysis is a call of the compiled engine.
+    Build it with :meth:`from_arch` (or :func:`archquake.models.model_for` with
+    ``model="four-link"``); ``ArchDynamics`` is the same class under its former name. It
+    satisfies :class:`archquake.models.StructuralModel`. It is immutable and compared by identity;
+    building it costs two limit analyses and the tabulation of two mechanisms (a few tens of
+    milliseconds), after which every analysis is a call of the compiled engine.
 
     Attributes
     ----------
@@ -51,11 +55,11 @@ class ArchDynamics:
         Coefficients of restitution ``(c_lr, c_rl)`` of the impacts Mech-l -> Mech-r and
         Mech-r -> Mech-l [-] (eq. (8) of the paper: ``theta'`` after = ``-c`` times before).
     restitution_model : str or float
-        The model they come from (a name of :data:`archquake.impact.RESTITUTION_MODELS` or an
-        imposed value).
+        The model they come from (a name of :data:`archquake.fourlink.impact.RESTITUTION_MODELS` or
+        an imposed value).
     tables : (MechanismTable, MechanismTable)
         Compiled tables of the equations of motion of Mech-l and Mech-r (eqs. (6)-(7) of the
-        paper; :func:`archquake.engine.tabulate`).
+        paper; :func:`archquake.fourlink.engine.tabulate`).
     """
 
     arch: BlockArch
@@ -65,10 +69,41 @@ class ArchDynamics:
     restitution_model: str | float
     tables: tuple
 
+    name: ClassVar[str] = "four-link"
+    """The model's name (:data:`archquake.models.MODELS`)."""
+
+    @property
+    def structure(self) -> BlockArch:
+        """The structure the model describes (the arch)."""
+        return self.arch
+
+    @property
+    def settings(self) -> dict:
+        """The model's settings: the restitution model and the coefficients it gives.
+
+        Returns
+        -------
+        dict
+            ``restitution`` (the model's name or the imposed value) and
+            ``restitution_coefficients`` ``[c_lr, c_rl]`` [-].
+        """
+        return {"restitution": self.restitution_model,
+                "restitution_coefficients": [float(c) for c in self.restitution]}
+
+    def describe(self) -> dict:
+        """JSON-ready name and settings of the model (what results record of it).
+
+        Returns
+        -------
+        dict
+            ``model`` (``"four-link"``) and the :attr:`settings`.
+        """
+        return {"model": self.name, **self.settings}
+
     @classmethod
     def from_arch(cls, arch: BlockArch, restitution=DEFAULT_RESTITUTION,
-                  nominal: BlockArch | ArchDynamics | None = None, *,
-                  limit_method: str = DEFAULT_LIMIT_METHOD) -> ArchDynamics:
+                  nominal: BlockArch | FourLinkModel | None = None, *,
+                  limit_method: str = DEFAULT_LIMIT_METHOD) -> FourLinkModel:
         """Limit analyses, mechanisms, restitution and tables of ``arch``.
 
         Parameters
@@ -76,34 +111,34 @@ class ArchDynamics:
         arch : BlockArch
             The arch: circular, of any shape or surveyed.
         restitution : str or float
-            Restitution model (:func:`archquake.impact.check_restitution_model`): ``"computed"``
-            (default), ``"link"``, ``"nominal"``, ``"paper"``, ``"elastic"`` or an imposed c_v in
-            (0, 1].
-        nominal : BlockArch or ArchDynamics, optional
+            Restitution model (:func:`archquake.fourlink.impact.check_restitution_model`):
+            ``"computed"`` (default), ``"link"``, ``"nominal"``, ``"paper"``, ``"elastic"`` or an
+            imposed c_v in (0, 1].
+        nominal : BlockArch or FourLinkModel, optional
             The nominal arch, for ``restitution="nominal"`` (default: ``arch`` itself).
         limit_method : {"static", "kinematic"}
             Limit-analysis method (the same hinges and multipliers).
 
         Returns
         -------
-        ArchDynamics
+        FourLinkModel
 
         Raises
         ------
         ValueError
-            If ``arch`` is not an :class:`~archquake.geometry.Arch`, the restitution model is
-            unknown, ``limit_method`` is unknown, or the arch cannot be analysed:
+            If ``arch`` is not an :class:`~archquake.geometry.CircularArch`, the restitution model
+            is unknown, ``limit_method`` is unknown, or the arch cannot be analysed:
             :class:`~archquake.errors.CannotStandError` (it cannot stand under its own weight),
             :class:`~archquake.errors.NeverCollapsesError` (no load multiplier sets it in
             motion), or a collapse mechanism that is not a four-link mechanism.
         """
+        from ..limit_analysis import both_directions
         from .engine import tabulate
         from .impact import check_restitution_model
-        from .limit_analysis import both_directions
         from .mechanism import mechanisms
 
         if not isinstance(arch, BlockArch):
-            raise ValueError(f"arch must be an Arch, a ShapedArch or a SurveyedArch, got "
+            raise ValueError(f"arch must be a CircularArch, a ShapedArch or a SurveyedArch, got "
                              f"{type(arch).__name__}")
         check_restitution_model(restitution)  # before any work
         limit = both_directions(arch, method=limit_method)
@@ -112,8 +147,8 @@ class ArchDynamics:
         unset = cls(arch, tuple(limit), tuple(pair), (1.0, 1.0), "elastic", tables)
         return unset.with_restitution(restitution, nominal)
 
-    def with_restitution(self, restitution, nominal: BlockArch | ArchDynamics | None = None
-                         ) -> ArchDynamics:
+    def with_restitution(self, restitution, nominal: BlockArch | FourLinkModel | None = None
+                         ) -> FourLinkModel:
         """The same arch with another restitution model (the limit analyses, mechanisms and
         tables are shared, not rebuilt).
 
@@ -121,12 +156,12 @@ class ArchDynamics:
         ----------
         restitution : str or float
             Restitution model, as in :meth:`from_arch`.
-        nominal : Arch or ArchDynamics, optional
+        nominal : BlockArch or FourLinkModel, optional
             The nominal arch, for ``restitution="nominal"`` (default: this arch).
 
         Returns
         -------
-        ArchDynamics
+        FourLinkModel
 
         Raises
         ------
@@ -146,7 +181,7 @@ class ArchDynamics:
     def _nominal_mechanisms(self, nominal):
         from .mechanism import mechanisms
 
-        if isinstance(nominal, ArchDynamics):
+        if isinstance(nominal, FourLinkModel):
             return nominal.mechanisms
         if isinstance(nominal, BlockArch):
             return mechanisms(nominal)
@@ -179,14 +214,14 @@ class ArchDynamics:
             with ``initial``).
         t_end : float, optional
             End of the record [s] (default: the end of the excitation or the decision, whichever
-            is later, plus :data:`archquake.time_history.DEFAULT_EXTRA_TIME`).
+            is later, plus :data:`archquake.fourlink.time_history.DEFAULT_EXTRA_TIME`).
         initial : tuple, optional
             ``(mechanism, phi0 [rad], phidot0 [rad/s])``; default: at rest.
         record_dt : float
             Spacing of the recorded samples [s].
         **options
-            Integrator options of :func:`archquake.time_history.simulate` (``rtol``, ``atol``,
-            ``rest_velocity``, ``max_step``, ``max_steps``).
+            Integrator options of :func:`archquake.fourlink.time_history.simulate` (``rtol``,
+            ``atol``, ``rest_velocity``, ``max_step``, ``max_steps``).
 
         Returns
         -------
@@ -195,7 +230,7 @@ class ArchDynamics:
         Raises
         ------
         ValueError, RuntimeError
-            As :func:`archquake.time_history.simulate`.
+            As :func:`archquake.fourlink.time_history.simulate`.
         """
         from .time_history import simulate
 
@@ -232,7 +267,7 @@ class ArchDynamics:
         ground_motion : GroundMotion
             Horizontal ground acceleration [m/s^2].
         **options
-            Integrator options of :func:`archquake.time_history.simulate`.
+            Integrator options of :func:`archquake.fourlink.time_history.simulate`.
 
         Returns
         -------
@@ -241,7 +276,7 @@ class ArchDynamics:
         Raises
         ------
         ValueError
-            As :func:`archquake.time_history.simulate`.
+            As :func:`archquake.fourlink.time_history.simulate`.
         """
         from .time_history import simulate
 
@@ -270,7 +305,7 @@ class ArchDynamics:
         Raises
         ------
         ValueError, RuntimeError
-            As :func:`archquake.engine.outcomes_grid`.
+            As :func:`archquake.fourlink.engine.outcomes_grid`.
         """
         from .engine import outcomes_grid
 
@@ -285,7 +320,7 @@ class ArchDynamics:
                        motion: str = "oppenheim"):
         """Failure domain over (pulse duration, amplitude) [paper, Sect. 5.3.3, Fig. 16].
 
-        What :func:`archquake.failure_domain.domain_of` computes for this arch, with its
+        What :func:`archquake.studies.failure_domain.domain_of` computes for this arch, with its
         defaults (those of ``archquake domain``).
 
         Parameters
@@ -312,9 +347,13 @@ class ArchDynamics:
         Raises
         ------
         ValueError
-            As :func:`archquake.failure_domain.domain_of`.
+            As :func:`archquake.studies.failure_domain.domain_of`.
         """
-        from .failure_domain import domain_of
+        from ..studies.failure_domain import domain_of
 
         return domain_of(self, durations, amplitudes_g, direction=direction,
                          resolution=resolution, extend_to_g=extend_to_g, motion=motion)
+
+
+ArchDynamics = FourLinkModel
+"""The former name of :class:`FourLinkModel` (the same class)."""

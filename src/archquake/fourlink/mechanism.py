@@ -70,15 +70,15 @@ from D for block 3) and its slope (Eq. (4) in [1]_) are
     + m_3 r_3 \cos(\theta_{cd} + \psi_3)\,\frac{d\theta_{cd}}{d\theta}\right] = g\,F(\theta),
 
 with :math:`F` the gravity coefficient of the equation of motion
-(:mod:`archquake.equations_of_motion`). The critical angle :math:`\theta_{cr}` is the first zero
-of :math:`dV/d\theta` below :math:`\theta_u` (Sect. 4.2 of [1]_): released at rest between
+(:mod:`archquake.fourlink.equations_of_motion`). The critical angle :math:`\theta_{cr}` is the first
+zero of :math:`dV/d\theta` below :math:`\theta_u` (Sect. 4.2 of [1]_): released at rest between
 :math:`\theta_{cr}` and :math:`\theta_u` the arch returns, released below :math:`\theta_{cr}` it
 collapses.
 
 The four-bar kinematics (closure in closed form, velocity and acceleration analysis) live in
-:mod:`archquake.linkage`, plain functions of floats and arrays; the flat parameter vector
+:mod:`archquake.fourlink.linkage`, plain functions of floats and arrays; the flat parameter vector
 :attr:`FourLinkMechanism.parameters` (layout :data:`PARAMETER_NAMES`) carries everything they and
-the equation of motion (:mod:`archquake.equations_of_motion`) need.
+the equation of motion (:mod:`archquake.fourlink.equations_of_motion`) need.
 
 References
 ----------
@@ -97,8 +97,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import brentq
 
+from ..geometry import GRAVITY, BlockArch, Hinge
 from .equations_of_motion import coefficients as _coefficients
-from .geometry import GRAVITY, BlockArch, Hinge
 from .linkage import four_bar_closure, four_bar_rates, wrap_angle
 
 DIRECTIONS = ("l", "r")
@@ -172,8 +172,8 @@ class FourLinkMechanism:
         k = -\frac{F(\theta_u)}{P(\theta_u)}
 
     [g], with :math:`F, P` the coefficients of the equation of motion
-    (:mod:`archquake.equations_of_motion`): by virtual work, the load multiplier of the same
-    hinges (Sect. 3 of [1]_).
+    (:mod:`archquake.fourlink.equations_of_motion`): by virtual work, the load multiplier of the
+    same hinges (Sect. 3 of [1]_).
 
     Parameters
     ----------
@@ -234,8 +234,8 @@ class FourLinkMechanism:
 
     branch : float
         Assembly branch of the four-bar closure (+1 or -1), see
-        :func:`~archquake.linkage.four_bar_closure`: +1 when C lies to the left of the directed
-        line B->D in the undisplaced configuration.
+        :func:`~archquake.fourlink.linkage.four_bar_closure`: +1 when C lies to the left of the
+        directed line B->D in the undisplaced configuration.
 
     parameters : ndarray, shape (23,)
         Everything above that the kinematics and the equation of motion need, flat (layout
@@ -259,7 +259,7 @@ class FourLinkMechanism:
     Mech-l of Oppenheim's arch (hinges at joints 0, 3, 5, 7; Table 2 and Sect. 5.1 of [1]_):
 
     >>> from archquake import oppenheim
-    >>> from archquake.mechanism import mechanisms
+    >>> from archquake.fourlink.mechanism import mechanisms
     >>> mech_l, mech_r = mechanisms(oppenheim())
     >>> [hinge.joint for hinge in mech_l.hinges]
     [0, 3, 5, 7]
@@ -296,7 +296,7 @@ class FourLinkMechanism:
 
     def __post_init__(self):
         if not isinstance(self.arch, BlockArch):
-            raise ValueError(f"arch must be an Arch, a ShapedArch or a SurveyedArch, got "
+            raise ValueError(f"arch must be a CircularArch, a ShapedArch or a SurveyedArch, got "
                              f"{type(self.arch).__name__}")
         if self.direction not in DIRECTIONS:
             raise ValueError(f"direction must be one of {DIRECTIONS}, got {self.direction!r}")
@@ -348,9 +348,9 @@ class FourLinkMechanism:
     def closure(self, theta):
         r"""Angles ``theta_bc(theta)``, ``theta_cd(theta)`` of links BC and DC [rad].
 
-        The four-bar closure of :func:`~archquake.linkage.four_bar_closure` on this mechanism's
-        assembly branch: C is where the circle of radius BC about :math:`B(\theta)` meets the
-        circle of radius CD about D,
+        The four-bar closure of :func:`~archquake.fourlink.linkage.four_bar_closure` on this
+        mechanism's assembly branch: C is where the circle of radius BC about :math:`B(\theta)`
+        meets the circle of radius CD about D,
 
         .. math::
 
@@ -383,7 +383,7 @@ class FourLinkMechanism:
         r"""Closure and its derivatives with respect to ``theta`` (vectorised).
 
         The velocity and acceleration analysis of the linkage
-        (:func:`~archquake.linkage.four_bar_rates`): the loop equation of :meth:`closure`
+        (:func:`~archquake.fourlink.linkage.four_bar_rates`): the loop equation of :meth:`closure`
         differentiated once and twice with respect to :math:`\theta`.
 
         Parameters
@@ -559,8 +559,8 @@ class FourLinkMechanism:
             \frac{dV}{d\theta} = g\,F(\theta),
 
         with :math:`F` the gravity coefficient of the equation of motion
-        (:func:`archquake.equations_of_motion.coefficients_from_parameters`, the one place it is
-        written; its closed form is Eq. (4) in [1]_ divided by :math:`g`).
+        (:func:`archquake.fourlink.equations_of_motion.coefficients_from_parameters`, the one place
+        it is written; its closed form is Eq. (4) in [1]_ divided by :math:`g`).
 
         Parameters
         ----------
@@ -603,7 +603,7 @@ class FourLinkMechanism:
             = \pm P(\theta)\,\ddot x_g
 
         (``+`` for Mech-l, Eq. (6); ``-`` for Mech-r, Eq. (7) in [1]_); see
-        :func:`archquake.equations_of_motion.coefficients`, which this calls.
+        :func:`archquake.fourlink.equations_of_motion.coefficients`, which this calls.
 
         Parameters
         ----------
@@ -614,7 +614,7 @@ class FourLinkMechanism:
         -------
         M, L, F, P : float or array
             [kg m^2/m], [kg m^2/m], [kg m/m], [kg m/m]; see
-            :func:`~archquake.equations_of_motion.coefficients_from_parameters`.
+            :func:`~archquake.fourlink.equations_of_motion.coefficients_from_parameters`.
 
         References
         ----------
@@ -637,7 +637,7 @@ class FourLinkMechanism:
         :math:`\theta, \theta_{bc}, \theta_{cd}` for k = 1, 2, 3, :math:`\hat z \times (x, y) =
         (-y, x)` (a quarter turn counterclockwise) and :math:`dB/d\theta = \hat z \times (B -
         A)` (A and D are fixed). For Mech-r the field is mirrored back to the original frame.
-        The impact models of :mod:`archquake.impact` are written with it.
+        The impact models of :mod:`archquake.fourlink.impact` are written with it.
 
         Returns
         -------
@@ -738,7 +738,7 @@ def mechanisms(arch: BlockArch, limit=None) -> tuple[FourLinkMechanism, FourLink
     True
     """
     if limit is None:
-        from .limit_analysis import both_directions
+        from ..limit_analysis import both_directions
 
         limit = both_directions(arch)
     la_l, la_r = limit

@@ -84,7 +84,7 @@ import numpy as np
 import pandas as pd
 from scipy import optimize, stats
 
-from .defaults import (
+from ..defaults import (
     DEFAULT_EPSILON,
     DEFAULT_RESTITUTION,
     DEFAULT_SAMPLE_LIMIT_METHOD,
@@ -100,12 +100,12 @@ from .defaults import (
     STUDY_DURATIONS,
     STUDY_SAMPLE_SIZE,
 )
+from ..geometry import BlockArch, arch_from_dict, irregular_arch
 from .failure_domain import (
     PULSE_SIGNS,
     FailureDomain,
     inclusive_range,
 )
-from .geometry import BlockArch, arch_from_dict, irregular_arch
 
 
 def probability_of_failure(failed: np.ndarray) -> np.ndarray:
@@ -162,7 +162,7 @@ class LognormalFragility:
     ----------
     median : float
         :math:`\theta`: the amplitude with 50 % probability of failure [g] (or the unit of the
-        intensity measure it was fitted to, :mod:`archquake.record_fragility`).
+        intensity measure it was fitted to, :mod:`archquake.studies.record_fragility`).
     dispersion : float
         :math:`\beta`: the logarithmic standard deviation [-].
 
@@ -198,7 +198,7 @@ def fit_lognormal(amplitudes, trials, failures) -> LognormalFragility:
     50 % failures and :math:`\beta = 0.3`. Separated data (every survival at an amplitude no
     higher than every failure) have no maximum: the fit then tends to a step, and its
     dispersion is only as small as the optimizer's tolerances leave it
-    (:func:`archquake.record_fragility.separated` tells such data).
+    (:func:`archquake.studies.record_fragility.separated` tells such data).
 
     Parameters
     ----------
@@ -222,7 +222,7 @@ def fit_lognormal(amplitudes, trials, failures) -> LognormalFragility:
 
     See Also
     --------
-    archquake.record_fragility.lognormal_fit : the same fit, None where no maximum exists.
+    archquake.studies.record_fragility.lognormal_fit : the same fit, None where no maximum exists.
 
     References
     ----------
@@ -360,21 +360,21 @@ POLYNOMIAL_DEGREE = 5
 """Degree of the paper's polynomial fit of a fragility curve."""
 
 
-def _nominal_dict(arch: BlockArch) -> dict:
+def nominal_dict(arch: BlockArch) -> dict:
     return arch.to_dict()
 
 
-def _nominal_from_dict(data: dict) -> BlockArch:
+def nominal_from_dict(data: dict) -> BlockArch:
     return arch_from_dict(data)
 
 
-def _default_nominal() -> BlockArch:
-    from .reference_arches import oppenheim
+def default_nominal() -> BlockArch:
+    from ..reference_arches import oppenheim
 
     return oppenheim()
 
 
-def _positive_int(name: str, value: Any, minimum: int = 1, maximum: int | None = None) -> int:
+def positive_int(name: str, value: Any, minimum: int = 1, maximum: int | None = None) -> int:
     if (isinstance(value, bool) or not isinstance(value, int | np.integer) or value < minimum
             or (maximum is not None and value > maximum)):
         accepted = f">= {minimum}" if maximum is None else f"in [{minimum}, {maximum}]"
@@ -388,7 +388,7 @@ class FragilitySettings:
 
     Parameters
     ----------
-    nominal : Arch or ShapedArch
+    nominal : CircularArch or ShapedArch
         Nominal arch (default: Oppenheim's arch); any arch with a centreline, around which the
         irregular arches are drawn (eq. (1) and its generalisation,
         :func:`~archquake.geometry.irregular_arch`).
@@ -406,7 +406,7 @@ class FragilitySettings:
     seed : int
         Root seed (>= 0); arch i uses ``SeedSequence(seed, spawn_key=(i,))``.
     restitution : str or float
-        Restitution model (:func:`archquake.impact.check_restitution_model`; default
+        Restitution model (:func:`archquake.fourlink.impact.check_restitution_model`; default
         ``"computed"``, each arch its own; ``"nominal"`` is the paper's practice, see the module
         docstring).
     limit_sample_size : int
@@ -426,7 +426,7 @@ class FragilitySettings:
         :data:`~archquake.defaults.MAX_STUDY_ANALYSES` analyses.
     """
 
-    nominal: BlockArch = field(default_factory=_default_nominal)
+    nominal: BlockArch = field(default_factory=default_nominal)
     sample_size: int = STUDY_SAMPLE_SIZE
     tolerance: float = DEFAULT_EPSILON
     durations: tuple[float, ...] = DEFAULT_DURATIONS
@@ -438,19 +438,19 @@ class FragilitySettings:
     motion: str = "oppenheim"
 
     def __post_init__(self) -> None:
-        from .ground_motion import ANALYTIC_GROUND_MOTIONS
-        from .impact import check_restitution_model
+        from ..fourlink.impact import check_restitution_model
+        from ..ground_motion import ANALYTIC_GROUND_MOTIONS
 
         if not isinstance(self.nominal, BlockArch):
-            raise ValueError(f"nominal must be an arch (Arch or ShapedArch), got "
+            raise ValueError(f"nominal must be an arch (CircularArch or ShapedArch), got "
                              f"{type(self.nominal).__name__}")
         if not hasattr(self.nominal, "perturbed"):
             raise ValueError(f"nominal must be an arch with a centreline to draw irregular "
-                             f"arches around (Arch or ShapedArch), got "
+                             f"arches around (CircularArch or ShapedArch), got "
                              f"{type(self.nominal).__name__}")
-        _positive_int("sample_size", self.sample_size, maximum=MAX_SAMPLES)
-        _positive_int("limit_sample_size", self.limit_sample_size, maximum=MAX_LIMIT_SAMPLES)
-        _positive_int("seed", self.seed, minimum=0)
+        positive_int("sample_size", self.sample_size, maximum=MAX_SAMPLES)
+        positive_int("limit_sample_size", self.limit_sample_size, maximum=MAX_LIMIT_SAMPLES)
+        positive_int("seed", self.seed, minimum=0)
         try:
             eps = float(self.tolerance)
         except (TypeError, ValueError):
@@ -502,10 +502,10 @@ class FragilitySettings:
         Returns
         -------
         dict
-            Every field, the nominal arch as :meth:`archquake.geometry.Arch.to_dict`.
+            Every field, the nominal arch as :meth:`archquake.geometry.CircularArch.to_dict`.
         """
         return {
-            "nominal": _nominal_dict(self.nominal),
+            "nominal": nominal_dict(self.nominal),
             "sample_size": self.sample_size,
             "tolerance": self.tolerance,
             "durations": list(self.durations),
@@ -530,7 +530,7 @@ class FragilitySettings:
         -------
         FragilitySettings
         """
-        return cls(nominal=_nominal_from_dict(data["nominal"]), sample_size=data["sample_size"],
+        return cls(nominal=nominal_from_dict(data["nominal"]), sample_size=data["sample_size"],
                    tolerance=data["tolerance"], durations=tuple(data["durations"]),
                    amplitudes_g=tuple(data["amplitudes_g"]), seed=data["seed"],
                    restitution=data["restitution"], limit_sample_size=data["limit_sample_size"],
@@ -555,14 +555,14 @@ def chunk_arches(chunk, nominal: BlockArch, tolerance: float) -> list[BlockArch]
     ----------
     chunk : archquake.execution.Chunk
         The items (arch indices) and the root seed.
-    nominal : Arch
+    nominal : CircularArch
         The nominal arch.
     tolerance : float
         epsilon of eq. (1) [-], in [0, 1).
 
     Returns
     -------
-    list of Arch
+    list of CircularArch
         One arch per item, in item order.
     """
     return [irregular_arch(nominal, tolerance, rng) for rng in chunk.generators()]
@@ -572,8 +572,8 @@ def arch_outcomes(arch: BlockArch, durations, amplitudes_g, *, restitution=DEFAU
                   nominal=None, motion: str = "oppenheim") -> dict[str, np.ndarray]:
     """Outcomes of one arch over the (duration x amplitude) grid, for both pulse directions.
 
-    The arch's :class:`~archquake.dynamics.ArchDynamics`, then one compiled call
-    (:meth:`~archquake.dynamics.ArchDynamics.outcomes`) per direction. Rows are ordered by
+    The arch's :class:`~archquake.fourlink.dynamics.ArchDynamics`, then one compiled call
+    (:meth:`~archquake.fourlink.dynamics.ArchDynamics.outcomes`) per direction. Rows are ordered by
     direction (``"l"`` then ``"r"``), duration, amplitude.
 
     Parameters
@@ -585,7 +585,7 @@ def arch_outcomes(arch: BlockArch, durations, amplitudes_g, *, restitution=DEFAU
     amplitudes_g : sequence of float
         Pulse amplitudes a > 0 [g]; direction ``"l"`` applies ``-a g`` first, ``"r"`` ``+a g``.
     restitution : str or float
-        Restitution model (:func:`archquake.impact.check_restitution_model`).
+        Restitution model (:func:`archquake.fourlink.impact.check_restitution_model`).
     nominal : BlockArch or ArchDynamics, optional
         The nominal arch, for ``restitution="nominal"``.
     motion : str
@@ -602,9 +602,9 @@ def arch_outcomes(arch: BlockArch, durations, amplitudes_g, *, restitution=DEFAU
     Raises
     ------
     ValueError
-        If the arch cannot be analysed (:meth:`archquake.dynamics.ArchDynamics.from_arch`).
+        If the arch cannot be analysed (:meth:`archquake.fourlink.dynamics.ArchDynamics.from_arch`).
     """
-    from .dynamics import ArchDynamics
+    from ..fourlink.dynamics import ArchDynamics
 
     dynamics = ArchDynamics.from_arch(arch, restitution, nominal)
     d = np.asarray(durations, dtype=float)
@@ -627,16 +627,16 @@ def arch_outcomes(arch: BlockArch, durations, amplitudes_g, *, restitution=DEFAU
 
 @functools.lru_cache(maxsize=4)
 def _nominal_dynamics(nominal_json: str):
-    """The nominal arch's :class:`~archquake.dynamics.ArchDynamics`, built once per process and
-    nominal arch.
+    """The nominal arch's :class:`~archquake.fourlink.FourLinkModel`, built once per process
+    and nominal arch.
 
     Every chunk of a study needs its mechanisms for ``restitution="nominal"``; rebuilding them
     (limit analysis and linkage) in every chunk cost about a tenth of the chunk. They are frozen
     values, so sharing them between chunks changes no result.
     """
-    from .dynamics import ArchDynamics
+    from ..fourlink.dynamics import ArchDynamics
 
-    return ArchDynamics.from_arch(_nominal_from_dict(json.loads(nominal_json)))
+    return ArchDynamics.from_arch(nominal_from_dict(json.loads(nominal_json)))
 
 
 STATUS_EXCLUDED = -1
@@ -691,8 +691,8 @@ def _rows_without_motion(durations, amplitudes_g, status: int, k: float) -> dict
 def _analyse(arch: BlockArch | None, why: str, settings: FragilitySettings,
              nominal) -> tuple[dict[str, np.ndarray], str]:
     """Rows of one drawn arch and why it is excluded ("" if it is analysed)."""
-    from .errors import CannotStandError, NeverCollapsesError
-    from .limit_analysis import load_multipliers
+    from ..errors import CannotStandError, NeverCollapsesError
+    from ..limit_analysis import load_multipliers
 
     if arch is not None:
         try:
@@ -737,7 +737,7 @@ def fragility_task(chunk) -> dict[str, np.ndarray]:
     archquake.errors.StudyError
         For an error of an arch other than the exclusions, naming the arch.
     """
-    from .errors import StudyError
+    from ..errors import StudyError
 
     settings = FragilitySettings.from_dict(chunk.settings)
     nominal = None
@@ -777,9 +777,9 @@ def limit_task(chunk) -> dict[str, np.ndarray]:
     dict of ndarray
         Columns ``arch`` (item index), ``k_l``, ``k_r`` [-] and ``excluded``.
     """
-    from .limit_analysis import load_multipliers_of
+    from ..limit_analysis import load_multipliers_of
 
-    nominal = _nominal_from_dict(chunk.settings["nominal"])
+    nominal = nominal_from_dict(chunk.settings["nominal"])
     draws = [_draw(nominal, chunk.settings["tolerance"], rng) for rng in chunk.generators()]
     arches = [arch for arch, _ in draws if arch is not None]
     k = np.full((len(draws), 2), np.nan)
@@ -1077,7 +1077,7 @@ def fragility_curves(settings: FragilitySettings, table: pd.DataFrame, limit_sam
     ValueError
         If the table does not match the settings, or every arch was excluded.
     """
-    from .status import Status
+    from ..status import Status
 
     excluded = excluded_arches(table)
     keep = np.array([i not in excluded for i in range(settings.sample_size)])
@@ -1155,7 +1155,7 @@ def warm_up() -> None:
 def _nominal_domains(settings: FragilitySettings, resolution_g: float) -> tuple:
     """The nominal arch's failure domains over the study grid, directions l and r (point Q of
     Fig. 16 per duration), to ``resolution_g`` [g]."""
-    from .dynamics import ArchDynamics
+    from ..fourlink.dynamics import ArchDynamics
 
     dynamics = ArchDynamics.from_arch(settings.nominal, settings.restitution)
     return tuple(dynamics.failure_domain(settings.durations, settings.amplitudes_g,
@@ -1167,7 +1167,7 @@ def _nominal_domains(settings: FragilitySettings, resolution_g: float) -> tuple:
 def _check_nominal(nominal: BlockArch) -> None:
     """Refuse, before any study, a nominal arch whose limit analysis fails (e.g. it cannot
     stand under its own weight): its failure domains would fail only after the study."""
-    from .limit_analysis import both_directions
+    from ..limit_analysis import both_directions
 
     try:
         both_directions(nominal)
@@ -1243,19 +1243,19 @@ def run_fragility(
         If an irregular arch fails for a reason other than the exclusions (naming it), or the
         Dask cluster can no longer finish the study (:func:`archquake.execution.run_study`).
     """
-    from .execution import StudyPlan, default_backend, process_pool, run_study
-    from .limit_analysis import LimitSample
-    from .results_io import atomic_path, save_study
+    from ..execution import StudyPlan, default_backend, process_pool, run_study
+    from ..limit_analysis import LimitSample
+    from ..results_io import atomic_path, save_study
 
     if not isinstance(settings, FragilitySettings):
         raise ValueError(f"settings must be FragilitySettings, got {type(settings).__name__}")
     _check_nominal(settings.nominal)
     plan = StudyPlan(settings.to_dict(), settings.seed, settings.sample_size,
-                     _positive_int("chunk_size", chunk_size))
-    limit_settings = {"nominal": _nominal_dict(settings.nominal),
+                     positive_int("chunk_size", chunk_size))
+    limit_settings = {"nominal": nominal_dict(settings.nominal),
                       "tolerance": settings.tolerance, "limit_method": settings.limit_method}
     limit_plan = StudyPlan(limit_settings, settings.seed, settings.limit_sample_size,
-                           _positive_int("limit_chunk_size", limit_chunk_size))
+                           positive_int("limit_chunk_size", limit_chunk_size))
     backend = default_backend(backend, workers, scheduler, pool)
     out = None if out_dir is None else Path(out_dir)
     limit_dir = None if out is None else out / LIMIT_DIRECTORY
@@ -1275,7 +1275,7 @@ def run_fragility(
 
     if backend == "processes":
         if workers is not None:
-            _positive_int("workers", workers)
+            positive_int("workers", workers)
         if scheduler is not None:
             raise ValueError(f"scheduler is only used by backend 'dask', not {backend!r}")
         if pool is not None:
@@ -1326,8 +1326,8 @@ def load_fragility(out_dir: str | os.PathLike, *,
         If the directory holds no complete study (e.g. an interrupted one: continue it with
         ``resume=True``), or its files do not belong together.
     """
-    from .limit_analysis import LimitSample
-    from .results_io import load_study
+    from ..limit_analysis import LimitSample
+    from ..results_io import load_study
 
     out = Path(out_dir)
     stored = load_study(out)

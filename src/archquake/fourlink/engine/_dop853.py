@@ -136,9 +136,8 @@ D = np.array([
 # The step and the dense output written out stage by stage
 # ---------------------------------------------------------------------------------------------
 
-GENERATED_BEGIN = ("# --- begin: written out by archquake.engine._dop853.written_out_source(); "
-                   "do not edit by hand")
-GENERATED_END = "# --- end: written out by archquake.engine._dop853.written_out_source()"
+GENERATED_BEGIN = "# --- begin: written out by _dop853.written_out_source(); do not edit by hand"
+GENERATED_END = "# --- end: written out by _dop853.written_out_source()"
 
 _DECORATOR = '@numba.njit(cache=True, fastmath={"reassoc", "contract"}, _nrt=False)'
 """Compiled with reassociation and fused multiply-adds allowed: the stage sums are evaluated in
@@ -173,26 +172,27 @@ def _wrap(line: str, indent: int, width: int = 99) -> list[str]:
 
 
 def _rhs_call(target: str, time: str, theta: str, theta_dot: str) -> list[str]:
-    return [f"    {target} = _rhs({time}, {theta}, {theta_dot}, m, tab, xg_step, tcap, tcap_left,",
-            "               kind, params, times, values)"]
+    return [f"    {target} = motion_rhs({time}, {theta}, {theta_dot}, m, tab, xg_step, tcap,",
+            "                    tcap_left, kind, params, times, values)"]
 
 
 def written_out_source() -> str:
-    """Source of the engine's ``_step`` and ``_dense``: the stages of the tableau above written
-    out with their non-zero coefficients as literals, every stage held in local variables.
+    """Source of the engine's ``dop853_step`` and ``dense_coefficients``: the stages of the
+    tableau above written out with their non-zero coefficients as literals, every stage held in
+    local variables.
 
     The same arithmetic as loops over ``A``, ``B``, ``E5``, ``E3`` and ``D``, but a loop over the
     tableau with a test for zero entries made a step cost about three times the twelve
-    right-hand-side evaluations it needs. :mod:`archquake.engine.stepper` holds the text this
-    function returns between :data:`GENERATED_BEGIN` and :data:`GENERATED_END`, and a test checks
-    that it is unchanged.
+    right-hand-side evaluations it needs. :mod:`archquake.fourlink.engine.stepper` holds the text
+    this function returns between :data:`GENERATED_BEGIN` and :data:`GENERATED_END`, and a test
+    checks that it is unchanged.
     """
     v = [f"v{j}" for j in range(16)]  # theta' at stage j
     w = [f"w{j}" for j in range(16)]  # theta'' at stage j
     out = [GENERATED_BEGIN, "", "",
            _DECORATOR,
-           "def _step(t, y0, y1, f0, f1, h, m, tab, xg_step, tcap, tcap_left, kind, params, times,",
-           "          values, rtol, atol, K):",
+           "def dop853_step(t, y0, y1, f0, f1, h, m, tab, xg_step, tcap, tcap_left, kind, params,",
+           "                times, values, rtol, atol, K):",
            '    """One Dormand-Prince 8(5,3) step; stages kept in ``K`` for the dense output.',
            "",
            "    Returns ``(theta, theta', theta'', error_norm)`` at ``t + h``.\"\"\"",
@@ -228,8 +228,8 @@ def written_out_source() -> str:
         "    return n0, n1, w12, err",
         "", "",
         _DECORATOR,
-        "def _dense(t, y0, y1, n0, n1, h, m, tab, xg_step, tcap, tcap_left, kind, params, times,",
-        "           values, K, Fd):",
+        "def dense_coefficients(t, y0, y1, n0, n1, h, m, tab, xg_step, tcap, tcap_left, kind,",
+        "                       params, times, values, K, Fd):",
         '    """Coefficients ``Fd`` (7, 2) of the 7th-order dense output of the last step."""',
     ]
     used = {0, 12} | {j for j in range(13) if np.any(A[13:16, j] != 0.0) or np.any(D[:, j] != 0.0)}

@@ -7,9 +7,9 @@ Lagrange's equation (Eq. (5) in [1]_)
     \frac{d}{dt}\frac{\partial T}{\partial \dot\theta} - \frac{\partial T}{\partial \theta}
     + \frac{\partial V}{\partial \theta} = Q
 
-for the three rigid blocks of a :class:`~archquake.mechanism.FourLinkMechanism`, with the real
-(irregular) mass, centre of mass and moment of inertia of every block, gives for Mech-l (Eq. (6)
-in [1]_)
+for the three rigid blocks of a :class:`~archquake.fourlink.mechanism.FourLinkMechanism`, with the
+real (irregular) mass, centre of mass and moment of inertia of every block, gives for Mech-l (Eq.
+(6) in [1]_)
 
 .. math::
 
@@ -17,7 +17,7 @@ in [1]_)
 
 with, for blocks k = 1, 2, 3 of mass :math:`m_k`, centre of mass :math:`G_k = (x_{G_k},
 y_{G_k})`, moment of inertia :math:`I_k` about :math:`G_k` and rotation :math:`\delta_k`
-(:mod:`archquake.mechanism`),
+(:mod:`archquake.fourlink.mechanism`),
 
 .. math::
 
@@ -36,7 +36,7 @@ inertial forces :math:`-m_k \ddot x_g` (x toward +x of the mechanism's frame, :m
 [m/s^2]). In closed form, with the pivot inertias :math:`J_k` (about A, B, D), the arms
 :math:`r_k, \psi_k` of Eq. (3) in [1]_ and the four-bar rates :math:`w_{bc} =
 d\theta_{bc}/d\theta`, :math:`w_{cd} = d\theta_{cd}/d\theta`, :math:`a_{bc} = dw_{bc}/d\theta`,
-:math:`a_{cd} = dw_{cd}/d\theta` of :func:`~archquake.linkage.four_bar_rates`:
+:math:`a_{cd} = dw_{cd}/d\theta` of :func:`~archquake.fourlink.linkage.four_bar_rates`:
 
 .. math::
 
@@ -60,12 +60,13 @@ the opposite sign (Eq. (7) in [1]_):
     M(\theta')\,\ddot\theta' + L(\theta')\,\dot\theta'^2 + F(\theta')\,g
     = -P(\theta')\,\ddot x_g.
 
-This is the one definition of M, L, F, P: the compiled engine (:mod:`archquake.engine`) does not
-re-derive them, it tabulates these very functions (:func:`archquake.engine.tabulate`), and the
-slope of the potential energy is :math:`dV/d\theta = g F`
-(:meth:`~archquake.mechanism.FourLinkMechanism.potential_energy_derivative`). Masses are per
-unit depth of the arch: :math:`m_k` [kg/m], so M and L are in [kg m^2/m] and F and P in
-[kg m/m].
+This is the one definition of M, L, F, P: the compiled engine (:mod:`archquake.fourlink.engine`)
+does not re-derive them, it tabulates these very functions
+(:func:`archquake.fourlink.engine.tabulate`), and the slope of the potential energy is
+:math:`dV/d\theta = g F`
+(:meth:`~archquake.fourlink.mechanism.FourLinkMechanism.potential_energy_derivative`). Masses are
+per unit depth of the arch: :math:`m_k` [kg/m], so M and L are in [kg m^2/m] and F and P in [kg
+m/m].
 
 References
 ----------
@@ -82,7 +83,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .geometry import GRAVITY
+from ..geometry import GRAVITY
 from .linkage import four_bar_closure, four_bar_rates
 
 if TYPE_CHECKING:  # the mechanism builds on this module, not the other way round
@@ -93,8 +94,8 @@ def coefficients_from_parameters(theta, parameters):
     r"""M, L, F, P at ``theta`` from a mechanism's flat parameter vector (Eq. (6) in [1]_).
 
     The closed forms of the module docstring: the four-bar closure and rates at ``theta``
-    (:func:`~archquake.linkage.four_bar_closure`, :func:`~archquake.linkage.four_bar_rates`),
-    then
+    (:func:`~archquake.fourlink.linkage.four_bar_closure`,
+    :func:`~archquake.fourlink.linkage.four_bar_rates`), then
 
     .. math::
 
@@ -120,8 +121,8 @@ def coefficients_from_parameters(theta, parameters):
         Lagrangian coordinate [rad].
 
     parameters : ndarray, shape (23,)
-        :attr:`archquake.mechanism.FourLinkMechanism.parameters` (layout
-        :data:`archquake.mechanism.PARAMETER_NAMES`).
+        :attr:`archquake.fourlink.mechanism.FourLinkMechanism.parameters` (layout
+        :data:`archquake.fourlink.mechanism.PARAMETER_NAMES`).
 
     Returns
     -------
@@ -195,7 +196,7 @@ def coefficients(mechanism: FourLinkMechanism, theta):
     by virtual work: 0.37 for Oppenheim's arch (Table 1 of the paper).
 
     >>> from archquake import oppenheim
-    >>> from archquake.mechanism import mechanisms
+    >>> from archquake.fourlink.mechanism import mechanisms
     >>> mech_l, _ = mechanisms(oppenheim())
     >>> m, l, f, p = coefficients(mech_l, mech_l.theta_u)
     >>> round(float(-f / p), 3)
@@ -265,7 +266,7 @@ def angular_acceleration(mechanism: FourLinkMechanism, theta, theta_dot, ground_
 
     >>> from archquake import oppenheim
     >>> from archquake.geometry import GRAVITY
-    >>> from archquake.mechanism import mechanisms
+    >>> from archquake.fourlink.mechanism import mechanisms
     >>> mech_l, _ = mechanisms(oppenheim())
     >>> bool(angular_acceleration(mech_l, mech_l.theta_u, 0.0, 0.0) > 0.0)
     True

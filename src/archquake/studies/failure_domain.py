@@ -21,10 +21,10 @@ half the resolution of the class change.
 
 The search is written against any ``classify(amplitude) -> (status, half_cycle)`` callable, so it
 is independent of how the outcome is computed; :func:`domain_of` plugs in an arch's
-:class:`~archquake.dynamics.ArchDynamics` (its mechanisms, tables and coefficients of restitution,
-built once): the whole (duration x amplitude) scan is one compiled call, and only the bisection
-steps are single analyses. ``ArchDynamics.from_arch(arch, restitution).failure_domain(...)`` is
-the way in.
+:class:`~archquake.fourlink.dynamics.ArchDynamics` (its mechanisms, tables and coefficients of
+restitution, built once): the whole (duration x amplitude) scan is one compiled call, and only the
+bisection steps are single analyses. ``ArchDynamics.from_arch(arch,
+restitution).failure_domain(...)`` is the way in.
 
 Direction of the pulse
 ----------------------
@@ -45,7 +45,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .defaults import (
+from ..defaults import (
     DEFAULT_EXTEND_TO_G,
     DEFAULT_RESOLUTION_G,
     DOMAIN_AMPLITUDES_G,
@@ -165,7 +165,8 @@ def _json_float(x: float):
 
 def _key(outcome) -> OutcomeKey:
     status, half_cycle = outcome
-    return str(status), int(half_cycle) if status == "collapse" else 0
+    label = str(status)  # a Status member or its label
+    return label, int(half_cycle) if label == "collapse" else 0
 
 
 def _refine(classify, lo, key_lo, hi, key_hi, tol, depth=0) -> list[tuple[float, OutcomeKey]]:
@@ -342,7 +343,7 @@ class FailureDomain:
         return [s.to_dict() for s in self.slices]
 
 
-def _check_durations(durations) -> np.ndarray:
+def check_durations(durations) -> np.ndarray:
     d = np.atleast_1d(np.asarray(durations, dtype=float))
     if d.ndim != 1 or d.size == 0:
         raise ValueError("durations must be a non-empty sequence of pulse durations t_p [s]")
@@ -351,7 +352,7 @@ def _check_durations(durations) -> np.ndarray:
     return d
 
 
-def _check_amplitudes(amplitudes_g) -> np.ndarray:
+def check_amplitudes(amplitudes_g) -> np.ndarray:
     a = np.atleast_1d(np.asarray(amplitudes_g, dtype=float))
     if a.ndim != 1 or a.size < 2 or not np.all(np.isfinite(a)) or np.any(np.diff(a) <= 0):
         raise ValueError("amplitudes must be an increasing sequence of at least two finite "
@@ -432,8 +433,8 @@ def domain_of(dynamics, durations=None, amplitudes_g=None, *, direction: str = "
               extend_to_g: float | None = DEFAULT_EXTEND_TO_G) -> FailureDomain:
     """Failure domain of an arch's dynamics over (pulse duration, amplitude) [paper, Fig. 16].
 
-    What :meth:`archquake.dynamics.ArchDynamics.failure_domain` runs; with its defaults it is
-    ``archquake domain`` with its defaults. For every duration the amplitudes are scanned on
+    What :meth:`archquake.fourlink.dynamics.ArchDynamics.failure_domain` runs; with its defaults it
+    is ``archquake domain`` with its defaults. For every duration the amplitudes are scanned on
     ``amplitudes_g`` (one compiled call for the whole grid) and every change of outcome class
     (rest, recovery, collapse in half cycle h: the regions of Fig. 16 of [1]_) is bisected to
     ``resolution`` (:func:`domain_slice`).
@@ -476,11 +477,11 @@ def domain_of(dynamics, durations=None, amplitudes_g=None, *, direction: str = "
     ----------
     .. [1] The paper, Sect. 5.3.3 and Fig. 16.
     """
-    from .status import Status
+    from ..status import Status
 
     sign = PULSE_SIGNS[check_direction(direction)]
-    d = _check_durations(inclusive_range(*DOMAIN_DURATIONS) if durations is None else durations)
-    a = _check_amplitudes(inclusive_range(*DOMAIN_AMPLITUDES_G) if amplitudes_g is None
+    d = check_durations(inclusive_range(*DOMAIN_DURATIONS) if durations is None else durations)
+    a = check_amplitudes(inclusive_range(*DOMAIN_AMPLITUDES_G) if amplitudes_g is None
                           else amplitudes_g)
     if not (resolution > 0):
         raise ValueError(f"resolution must be > 0 [g], got {resolution!r}")
@@ -538,7 +539,7 @@ def _extend(run, grid, status, half_cycle, cap):
     """The scan of one duration continued beyond ``grid`` at its last spacing, a block of
     :data:`EXTENSION_BLOCK` amplitudes at a time, until the first collapse in the first half
     cycle or the amplitude ``cap`` [g] (included as the last point)."""
-    from .status import Status
+    from ..status import Status
 
     def first_half(st, hc):
         return bool(np.any((st == Status.COLLAPSE) & (hc == 1)))

@@ -15,9 +15,9 @@ potential energy :math:`V` [J/m] of Eq. (3) in [1]_ for the energy rules. Nothin
 linkage is recomputed while integrating, and one table serves every analysis of that arch.
 :func:`pack_pair` stacks the tables of Mech-l and Mech-r into the tuple the compiled driver takes.
 
-The exact functions come from :mod:`archquake.equations_of_motion` (:math:`M, L, F, P`) and
-:meth:`archquake.mechanism.FourLinkMechanism.potential_energy` (:math:`V`): the tables hold no
-physics of their own.
+The exact functions come from :mod:`archquake.fourlink.equations_of_motion` (:math:`M, L, F, P`) and
+:meth:`archquake.fourlink.mechanism.FourLinkMechanism.potential_energy` (:math:`V`): the tables hold
+no physics of their own.
 
 References
 ----------
@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 
-from ..geometry import GRAVITY
+from ...constants import GRAVITY
 from ._types import F8, F8_1D, F8_3D, I8, I8_1D, PACKED_PAIR
 from .codes import MECH_L
 
@@ -47,7 +47,7 @@ TABLE_FUNCTIONS = ("P/M", "gF/M", "L/M", "M", "V")
 """Functions of a :class:`MechanismTable`, in the order of its rows: the three ratios of the
 right-hand side ``theta'' = s P/M xg'' - gF/M - L/M theta'^2`` (``s = +1`` for Mech-l, ``-1`` for
 Mech-r), then ``M`` and ``V`` for the energy rules."""
-_ROW_B, _ROW_M, _ROW_V, _ROW_MAP = 1, 3, 4, 5  # rows 0-2 are read together by _table_rhs
+ROW_B, ROW_M, ROW_V, ROW_MAP = 1, 3, 4, 5  # rows 0-2 are read together by table_rhs
 
 _SIG_TABLE_VALUE = F8(F8, I8, F8, F8, I8_1D, F8_1D, F8_3D)
 _SIG_TABLE_FUNCTION = F8(F8, I8, I8, PACKED_PAIR)
@@ -157,7 +157,7 @@ class MechanismTable:
 
     def coefficients_at(self, theta):
         """Interpolated coefficients of the equation of motion at ``theta``, as
-        :func:`archquake.equations_of_motion.coefficients` gives them exactly.
+        :func:`archquake.fourlink.equations_of_motion.coefficients` gives them exactly.
 
         Parameters
         ----------
@@ -185,7 +185,7 @@ class MechanismTable:
         ndarray
             ``V`` [J/m], of the shape of ``theta``.
         """
-        return self.functions(theta)[_ROW_V]
+        return self.functions(theta)[ROW_V]
 
 
 def _table_functions(mechanism):
@@ -333,8 +333,8 @@ def tabulate(mechanism, *, degree: int = TABLE_DEGREE, tolerance: float = TABLE_
     breaks = np.append(np.asarray(accepted_lo)[order], theta_u)
     coefficients = np.zeros((order.size, 6, n))
     coefficients[:, :5] = np.asarray(accepted_coef)[order]
-    coefficients[:, _ROW_MAP, 0] = 0.5 * (breaks[:-1] + breaks[1:])
-    coefficients[:, _ROW_MAP, 1] = 2.0 / (breaks[1:] - breaks[:-1])
+    coefficients[:, ROW_MAP, 0] = 0.5 * (breaks[:-1] + breaks[1:])
+    coefficients[:, ROW_MAP, 1] = 2.0 / (breaks[1:] - breaks[:-1])
     max_error = np.max(np.asarray(accepted_err), axis=0)
     # equal cells no finer than the smallest piece (up to TABLE_MAX_CELLS)
     n_cells = int(min(TABLE_MAX_CELLS, 2 ** max(depths)))
@@ -382,7 +382,7 @@ def _estrin9(c, x, x2, x4, x8):
 
 
 @numba.njit(cache=True, inline="always")
-def _table_rhs(theta, lo, inv_cell, cells, breaks, coefs):
+def table_rhs(theta, lo, inv_cell, cells, breaks, coefs):
     """``(P/M, gF/M, L/M)`` of one table of degree 9 at ``theta`` [rad], by Estrin's scheme
     (short dependency chains: the integrator's stages wait on these values).
 
@@ -390,7 +390,7 @@ def _table_rhs(theta, lo, inv_cell, cells, breaks, coefs):
     every stage of the step, a second branch for other degrees cost 15 % of the compile time
     of a fresh clone for code that never ran."""
     c = coefs[_piece(theta, lo, inv_cell, cells, breaks)]
-    x = (theta - c[_ROW_MAP, 0]) * c[_ROW_MAP, 1]
+    x = (theta - c[ROW_MAP, 0]) * c[ROW_MAP, 1]
     x2 = x * x
     x4 = x2 * x2
     x8 = x4 * x4
@@ -404,7 +404,7 @@ def _table_rhs(theta, lo, inv_cell, cells, breaks, coefs):
 def _table_value(theta, j, lo, inv_cell, cells, breaks, coefs):
     """Row ``j`` (0..4 = P/M, gF/M, L/M, M, V) of one table at ``theta``."""
     c = coefs[_piece(theta, lo, inv_cell, cells, breaks)]
-    x = (theta - c[_ROW_MAP, 0]) * c[_ROW_MAP, 1]
+    x = (theta - c[ROW_MAP, 0]) * c[ROW_MAP, 1]
     deg = c.shape[1] - 1
     y = c[j, deg]
     for k in range(deg - 1, -1, -1):
@@ -413,7 +413,7 @@ def _table_value(theta, j, lo, inv_cell, cells, breaks, coefs):
 
 
 @numba.njit(_SIG_TABLE_FUNCTION, cache=True)
-def _table_function(theta, j, m, tab):
+def table_function(theta, j, m, tab):
     """Row ``j`` (0..4 = P/M, gF/M, L/M, M, V) of mechanism ``m`` of a packed pair at
     ``theta``."""
     scal, cells, breaks, coefs = tab
@@ -448,10 +448,11 @@ def pack_pair(table_l: MechanismTable, table_r: MechanismTable):
     -------
     scalars : ndarray, shape (2, 5)
         ``scalars[m] = (theta_u [rad], theta_cr [rad], theta_lo [rad], activation acceleration
-        [m/s^2], cells per radian [1/rad])``, ``m`` = :data:`~archquake.engine.codes.MECH_L`,
-        :data:`~archquake.engine.codes.MECH_R`; the activation acceleration is ``-k_l g`` for
-        Mech-l and ``+k_r g`` for Mech-r (for reference: the engine tests activation by the sign
-        of its own ``theta''``, :func:`archquake.engine.rules._activated`).
+        [m/s^2], cells per radian [1/rad])``, ``m`` =
+        :data:`~archquake.fourlink.engine.codes.MECH_L`,
+        :data:`~archquake.fourlink.engine.codes.MECH_R`; the activation acceleration is ``-k_l g``
+        for Mech-l and ``+k_r g`` for Mech-r (for reference: the engine tests activation by the sign
+        of its own ``theta''``, :func:`archquake.fourlink.engine.rules._activated`).
     cells : ndarray of int, shape (2, n_cells + 1)
         ``cells`` of each table (:class:`MechanismTable`), padded to the larger number of cells
         of the two (a padded entry repeats the last piece, never reached).
@@ -493,19 +494,19 @@ def pack_pair(table_l: MechanismTable, table_r: MechanismTable):
 
 
 @numba.njit(_SIG_ROOT_FUNCTION, cache=True)
-def _root_function(j, level, lo, hi, m, tab):
+def root_function(j, level, lo, hi, m, tab):
     """``theta`` in ``[lo, hi]`` [rad] where row ``j`` of mechanism ``m`` of a packed pair equals
     ``level`` (a sign change there assumed; else the end nearer to it): bracketing with Newton
     steps for the potential energy (``dV/d theta = g F = (gF/M) M``), bisection otherwise."""
-    ga = _table_function(lo, j, m, tab) - level
-    gb = _table_function(hi, j, m, tab) - level
+    ga = table_function(lo, j, m, tab) - level
+    gb = table_function(hi, j, m, tab) - level
     if ga == 0.0:
         return lo
     if gb == 0.0 or (ga > 0.0) == (gb > 0.0):
         return hi
     x = 0.5 * (lo + hi)
     for _ in range(200):
-        g = _table_function(x, j, m, tab) - level
+        g = table_function(x, j, m, tab) - level
         if g == 0.0:
             return x
         if (g > 0.0) == (ga > 0.0):
@@ -514,8 +515,8 @@ def _root_function(j, level, lo, hi, m, tab):
             hi = x
         # Newton step with dV/dtheta = F g = (gF/M) M when solving for V, else bisection
         x_new = 0.5 * (lo + hi)
-        if j == _ROW_V:
-            slope = _table_function(x, _ROW_B, m, tab) * _table_function(x, _ROW_M, m, tab)
+        if j == ROW_V:
+            slope = table_function(x, ROW_B, m, tab) * table_function(x, ROW_M, m, tab)
             if slope != 0.0:
                 x_newton = x - g / slope
                 if lo < x_newton < hi:

@@ -1,0 +1,162 @@
+"""The rigid-block model of one structure, behind the protocol both models satisfy.
+
+:class:`RigidBlockModel` holds a structure (any :class:`~archquake.geometry.BlockArch`, or an
+:class:`~archquake.rigid_blocks.assembly.Assembly`) and the :class:`BlockSettings` of its
+analyses, and answers as :class:`archquake.fourlink.FourLinkModel` does: an outcome
+(:meth:`RigidBlockModel.outcome`), a time history (:meth:`RigidBlockModel.simulate`) and a grid
+of pulses (:meth:`RigidBlockModel.outcomes`), so that a study written against
+:class:`archquake.models.StructuralModel` runs either model. It imports nothing of the four-link
+model.
+
+>>> from archquake import GRAVITY, oppenheim
+>>> from archquake.ground_motion import oppenheim_pulse
+>>> model = RigidBlockModel(oppenheim())
+>>> model.outcome(oppenheim_pulse(-0.3 * GRAVITY, 0.4)).status.label
+'rest'
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, fields
+from typing import ClassVar
+
+import numpy as np
+
+from ..constants import GRAVITY
+from ..status import Status
+from .assembly import Assembly
+from .dynamics import (
+    BlockOutcome,
+    BlockSettings,
+    block_outcome,
+    simulate_blocks,
+    structure_assembly,
+)
+
+
+@dataclass(frozen=True, eq=False)
+class RigidBlockModel:
+    """The rigid-block model of a structure: every block rigid, contacts with Coulomb friction
+    (:mod:`archquake.rigid_blocks`).
+
+    Parameters
+    ----------
+    structure : BlockArch or Assembly
+        The structure; an arch is converted to its :class:`Assembly` once (cached on the arch).
+    settings : BlockSettings
+        Settings of every analysis (friction, time step, outcome criteria).
+
+    Raises
+    ------
+    ValueError
+        If ``structure`` is neither an arch nor an Assembly, or ``settings`` is not a
+        :class:`BlockSettings`.
+    """
+
+    structure: object
+    settings: BlockSettings = field(default_factory=BlockSettings)
+    _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+
+    name: ClassVar[str] = "rigid-blocks"
+    """The model's name (:data:`archquake.models.MODELS`)."""
+
+    def __post_init__(self):
+        if not isinstance(self.settings, BlockSettings):
+            raise ValueError(f"settings must be a BlockSettings, got "
+                             f"{type(self.settings).__name__}")
+        structure_assembly(self.structure)  # checks the type, converts once
+
+    @property
+    def assembly(self) -> Assembly:
+        """The blocks and joints of the structure."""
+        return structure_assembly(self.structure)
+
+    @property
+    def load_multipliers(self) -> tuple[float, float]:
+        """``(k_l, k_r)``: the limit analysis' load multipliers of the structure [-] (the
+        accelerations, in g, at which it starts to move toward +x and -x; the rigid-block
+        model starts to move there too, within its friction)."""
+        cache = self._cache
+        if "load_multipliers" not in cache:
+            from ..limit_analysis import load_multipliers
+
+            if isinstance(self.structure, Assembly):
+                raise ValueError("the load multipliers need an arch (a BlockArch), not an "
+                                 "Assembly")
+            cache["load_multipliers"] = tuple(float(k) for k in load_multipliers(self.structure))
+        return cache["load_multipliers"]
+
+    def describe(self) -> dict:
+        """JSON-ready name and settings of the model (what results record of it).
+
+        Returns
+        -------
+        dict
+            ``model`` (``"rigid-blocks"``) and every field of :class:`BlockSettings`.
+        """
+        return {"model": self.name,
+                **{f.name: getattr(self.settings, f.name) for f in fields(self.settings)}}
+
+    def outcome(self, motion) -> BlockOutcome:
+        """Outcome under ``motion`` (:func:`~archquake.rigid_blocks.dynamics.block_outcome`).
+
+        Parameters
+        ----------
+        motion : GroundMotion or None
+            Horizontal ground acceleration [m/s^2]; None for a still ground.
+
+        Returns
+        -------
+        BlockOutcome
+        """
+        return block_outcome(self.assembly, motion, self.settings)
+
+    def simulate(self, motion, **options):
+        """Time history under ``motion`` (:func:`~archquake.rigid_blocks.dynamics.simulate_blocks`).
+
+        Parameters
+        ----------
+        motion : GroundMotion or None
+            Horizontal ground acceleration [m/s^2]; None for a still ground.
+        **options
+            ``initial``, ``record_every``, ``t_end``, ``tail`` of :func:`simulate_blocks`.
+
+        Returns
+        -------
+        BlockHistory
+        """
+        return simulate_blocks(self.assembly, motion, self.settings, **options)
+
+    def outcomes(self, durations, amplitudes_g, motion: str = "oppenheim") -> dict:
+        """Outcomes of a grid of pulses, one analysis each (amplitude 0 is rest, unanalysed).
+
+        Parameters
+        ----------
+        durations : array_like
+            Pulse durations t_p [s].
+        amplitudes_g : array_like
+            Signed amplitudes of the first pulse [g]; broadcast against ``durations``.
+        motion : str
+            Pulse shape, a name of :data:`archquake.ground_motion.ANALYTIC_GROUND_MOTIONS`.
+
+        Returns
+        -------
+        dict of ndarray
+            ``status`` (:class:`archquake.status.Status` codes) and ``half_cycle`` (0: the
+            rigid-block model does not count half cycles), of the broadcast shape.
+        """
+        from ..ground_motion import ground_motion
+
+        d, a = np.broadcast_arrays(np.asarray(durations, dtype=float),
+                                   np.asarray(amplitudes_g, dtype=float))
+        status = np.zeros(d.shape, dtype=np.int64)
+        for index in np.ndindex(d.shape):
+            if a[index] != 0.0:
+                pulse = ground_motion(motion, float(a[index]) * GRAVITY, float(d[index]))
+                status[index] = int(self.outcome(pulse).status)
+            else:
+                status[index] = int(Status.REST)
+        return {"status": status, "half_cycle": np.zeros(d.shape, dtype=np.int64)}
+
+
+__all__ = ["RigidBlockModel"]
