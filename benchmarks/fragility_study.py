@@ -66,7 +66,7 @@ def _concurrency_worker(repeat: int) -> float:
 def breakdown(settings: FragilitySettings) -> None:
     """Where the time of the dynamic study goes, per arch, in this process: the stages of
     :meth:`ArchDynamics.from_arch`, timed one by one, then the compiled grid."""
-    arches = irregular_sample(settings.nominal, settings.tolerance, 10, settings.seed)
+    arches = irregular_sample(settings.nominal, settings.epsilon, 10, settings.seed)
     nominal_pair = mechanisms(settings.nominal)
     times = {"limit analysis (hinges, k)": 0.0, "mechanisms + restitution": 0.0,
              "tables (polynomial pieces)": 0.0, "integration (2 x outcomes_grid)": 0.0}
@@ -114,10 +114,10 @@ def breakdown(settings: FragilitySettings) -> None:
           f"decided at the end of the pulse (3 t_p) in {np.mean(np.abs(after) < 1e-12):.0%} of "
           f"the cases, at most {max(after):.3f} s after it (energy test, eq. 3)")
     t0 = time.perf_counter()
-    limit_sample(settings.nominal, settings.tolerance, 200, settings.seed, "kinematic")
+    limit_sample(settings.nominal, settings.epsilon, 200, settings.seed, "kinematic")
     t_kin = (time.perf_counter() - t0) / 200
     t0 = time.perf_counter()
-    limit_sample(settings.nominal, settings.tolerance, 200, settings.seed, "static")
+    limit_sample(settings.nominal, settings.epsilon, 200, settings.seed, "static")
     t_sta = (time.perf_counter() - t0) / 200
     print(f"limit sample: {1e3 * t_kin:.1f} ms per arch (kinematic, used), {1e3 * t_sta:.1f} ms "
           f"(static LP) -> s = {settings.limit_sample_size}: "

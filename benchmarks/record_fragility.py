@@ -58,7 +58,7 @@ def breakdown(settings: RecordFragilitySettings, n_arches: int = 3) -> None:
     motions = settings.suite.motions()
     im = np.array([m.peak / GRAVITY for m in motions])
     factors = scale_factors(im, settings.levels, 1.0)
-    arches = irregular_sample(settings.nominal, settings.tolerance, n_arches, settings.seed)
+    arches = irregular_sample(settings.nominal, settings.epsilon, n_arches, settings.seed)
     t_build = t_all = 0.0
     n_total = n_run = 0
     per_level = np.zeros(len(settings.levels))

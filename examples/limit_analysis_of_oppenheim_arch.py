@@ -42,7 +42,7 @@ def main(argv=None):
         print(f"hinge {label}: joint {hinge.joint} {hinge.face:<9} beta = {beta:.4f} rad "
               f"(paper: {ref:.4f})")
 
-    rough = irregular_arch(nominal, tolerance=0.10, rng=2024)
+    rough = irregular_arch(nominal, epsilon=0.10, rng=2024)
     rough_l, _ = both_directions(rough)
     fig, axes = plt.subplots(1, 2, figsize=(13, 5), constrained_layout=True)
     plot_limit_analysis(la_l, axes[0])

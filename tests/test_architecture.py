@@ -16,6 +16,7 @@ import ast
 from pathlib import Path
 
 import pytest
+
 from import_graph import ROOT, package_imports
 
 MODELS = ("archquake.fourlink", "archquake.rigid_blocks")

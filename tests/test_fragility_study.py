@@ -52,7 +52,7 @@ def test_study_arches_are_those_of_irregular_sample(nominal):
 
 def test_limit_task_gives_the_values_of_limit_sample(nominal):
     settings = {"nominal": FragilitySettings(nominal=nominal).to_dict()["nominal"],
-                "tolerance": 0.1, "limit_method": "kinematic"}
+                "epsilon": 0.1, "limit_method": "kinematic"}
     plan = StudyPlan(settings, seed=5, n_items=6, chunk_size=4)
     rows = [limit_task(chunk) for chunk in plan.chunks()]
     k_l = np.concatenate([r["k_l"] for r in rows])
@@ -298,7 +298,7 @@ def test_run_study_pool_is_only_for_the_processes_backend():
 def test_arches_equal_to_the_nominal_one_are_not_below_its_load_multiplier():
     # epsilon = 0 draws the nominal arch itself: no k~ is below k, although the kinematic k~
     # of the sample and the static k of the nominal arch differ in the last bits
-    settings = FragilitySettings(sample_size=1, tolerance=0.0, durations=(0.4,),
+    settings = FragilitySettings(sample_size=1, epsilon=0.0, durations=(0.4,),
                                  amplitudes_g=(0.3, 0.5), limit_sample_size=4)
     result = run_fragility(settings, backend="serial", progress=False)
     assert np.allclose(result.limit_load_multipliers, result.nominal_load_multiplier,
@@ -328,7 +328,7 @@ def _independent_exclusions(nominal, tolerance, count, seed):
 
 def test_arches_that_cannot_be_analysed_are_excluded_and_counted(nominal, tmp_path):
     # epsilon = 0.5: some drawn arches come apart, some cannot carry their own weight
-    settings = FragilitySettings(sample_size=10, tolerance=0.5, durations=(0.4,),
+    settings = FragilitySettings(sample_size=10, epsilon=0.5, durations=(0.4,),
                                  amplitudes_g=(0.3, 0.5, 0.7), limit_sample_size=16, seed=0)
     result = run_fragility(settings, tmp_path / "study", backend="serial", progress=False)
     expected = _independent_exclusions(nominal, 0.5, 16, 0)

@@ -117,7 +117,7 @@ def test_bad_circular_input_names_the_parameter(kwargs, message):
 
 @pytest.mark.parametrize("eps", [-0.1, 1.0, 2.0, float("nan"), "x"])
 def test_bad_tolerance(nominal, eps):
-    with pytest.raises(ValueError, match="tolerance"):
+    with pytest.raises(ValueError, match="epsilon"):
         irregular_arch(nominal, eps, rng=0)
 
 

@@ -7,12 +7,12 @@ from scipy import integrate
 from archquake.geometry import GRAVITY
 from archquake.ground_motion import (
     GROUND_MOTIONS,
-    free_vibration,
     ground_motion,
     harmonic,
     oppenheim_pulse,
     rectangular_pulse,
     sine_pulse,
+    still_ground,
 )
 
 
@@ -48,8 +48,8 @@ def test_rectangular_and_scaling():
     assert g.peak == 3.0
 
 
-def test_free_vibration_is_still():
-    assert free_vibration().acceleration([0.0, 1.0, 10.0]) == pytest.approx([0, 0, 0])
+def test_still_ground_is_still():
+    assert still_ground().acceleration([0.0, 1.0, 10.0]) == pytest.approx([0, 0, 0])
 
 
 def test_registry_lists_options_for_unknown_name():

@@ -283,7 +283,7 @@ def test_empirical_cdf():
         (lambda a: both_directions(a, method="simplex"), "method"),
         (lambda a: limit_sample(a, 0.1, -1, seed=0), "sample_size"),
         (lambda a: limit_sample(a, 0.1, 2.5, seed=0), "sample_size"),
-        (lambda a: limit_sample(a, 1.5, 2, seed=0), "tolerance"),
+        (lambda a: limit_sample(a, 1.5, 2, seed=0), "epsilon"),
         (lambda a: limit_sample(a, 0.1, 2, seed=0, method="x"), "method"),
         (lambda a: irregular_sample(a, 0.1, -3, seed=0), "sample_size"),
         (lambda a: irregular_sample(a, 0.1, 3, seed=-1), "seed"),

@@ -88,7 +88,7 @@ def test_stripes_of_arias_intensity_scale_records_as_scale_to_im(nominal_pair):
     pair, c = nominal_pair
     suite = RecordSuite.from_stochastic(2, seed=4, **SUITE)
     settings = RecordFragilitySettings(suite=suite, levels=(0.05, 0.2, 0.6), im="arias",
-                                       sample_size=1, tolerance=0.0, restitution="computed")
+                                       sample_size=1, epsilon=0.0, restitution="computed")
     result = run_record_fragility(settings, backend="serial", progress=False)
     nominal = result.table[result.table["arch"] == NOMINAL_ARCH]
     for row, motion in zip(nominal.itertuples(), [m for m in suite.motions() for _ in range(6)],

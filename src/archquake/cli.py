@@ -892,7 +892,7 @@ def _run_fragility(args: argparse.Namespace) -> int:
         raise ValueError(f"--tolerance (epsilon) must be in [0, 1), got {args.tolerance}")
     workers = check_workers(args.workers)
     settings = FragilitySettings(
-        nominal=nominal, sample_size=args.samples, tolerance=args.tolerance,
+        nominal=nominal, sample_size=args.samples, epsilon=args.tolerance,
         durations=tuple(_durations(args.durations)),
         amplitudes_g=tuple(_amplitudes(args.amplitudes)), seed=args.seed,
         restitution=restitution_model(args.restitution), limit_sample_size=args.limit_samples,
@@ -909,7 +909,7 @@ def _run_fragility(args: argparse.Namespace) -> int:
     n_analyses = len(result.table)
     c_lr, c_rl = summary["nominal_restitution"]
     print(f"Fragility study: h = {settings.sample_size} irregular arches (epsilon = "
-          f"{settings.tolerance:g}, seed {settings.seed}), {len(settings.durations)} durations x "
+          f"{settings.epsilon:g}, seed {settings.seed}), {len(settings.durations)} durations x "
           f"{len(settings.amplitudes_g)} amplitudes x 2 directions = {n_analyses} analyses; "
           f"restitution {settings.restitution!r} (nominal arch: {c_lr:.4f})")
     print(f"nominal arch: k = {result.nominal_load_multiplier:.4f}")
@@ -1059,7 +1059,7 @@ def _run_record_fragility(args: argparse.Namespace) -> int:
                                                         "seed": None}))
     settings = RecordFragilitySettings(
         suite=RecordSuite.from_paths(args.records), levels=tuple(levels), im=im.name,
-        nominal=nominal, sample_size=args.samples, tolerance=args.tolerance, seed=args.seed,
+        nominal=nominal, sample_size=args.samples, epsilon=args.tolerance, seed=args.seed,
         restitution=restitution_model(args.restitution))
     workers = None if args.workers in (None, 1) else args.workers  # 1: in this process
     result = run_record_fragility(settings, args.out, workers=workers,
@@ -1089,7 +1089,7 @@ def _print_record_fragility(result, summary: dict) -> None:
     unit = s.unit
     analyses = summary["analyses"]
     print(f"Record-based fragility: h = {s.sample_size} irregular arches (epsilon = "
-          f"{s.tolerance:g}, seed {s.seed}) and the nominal arch, {len(result.records)} records "
+          f"{s.epsilon:g}, seed {s.seed}) and the nominal arch, {len(result.records)} records "
           f"x {result.levels.size} levels of {s.im} [{unit}] x 2 polarities = "
           f"{analyses['total']} analyses ({analyses['at_rest_without_integration']} at rest "
           f"without integration); restitution {s.restitution!r}")

@@ -224,7 +224,7 @@ class LimitSample:
     ----------
     load_multiplier_l, load_multiplier_r : array of float, shape (s,)
         k~_l and k~_r of every arch [-].
-    tolerance : float
+    epsilon : float
         epsilon of the irregular draw.
     seed : int or None
         Root seed of the sample (arch ``i`` uses child ``i`` of ``SeedSequence(seed)``).
@@ -234,7 +234,7 @@ class LimitSample:
 
     load_multiplier_l: np.ndarray
     load_multiplier_r: np.ndarray
-    tolerance: float
+    epsilon: float
     seed: int | None
     method: str = DEFAULT_LIMIT_METHOD
 
@@ -926,19 +926,19 @@ def load_multipliers_of(arches: Sequence[BlockArch],
 
 
 def limit_sample(
-    nominal: BlockArch, tolerance: float, sample_size: int, seed: int | None = 0,
+    nominal: BlockArch, epsilon: float, sample_size: int, seed: int | None = 0,
     method: str = DEFAULT_LIMIT_METHOD,
 ) -> LimitSample:
     r"""k~_l and k~_r of ``sample_size`` irregular arches around ``nominal`` [paper, Figs. 17-20].
 
     The arches are those of :func:`archquake.geometry.irregular_sample` with the same
-    ``tolerance`` and ``seed`` (arch ``i`` from child ``i`` of ``SeedSequence(seed)``).
+    ``epsilon`` and ``seed`` (arch ``i`` from child ``i`` of ``SeedSequence(seed)``).
 
     Parameters
     ----------
     nominal : CircularArch or ShapedArch
         The nominal arch.
-    tolerance : float
+    epsilon : float
         The paper's epsilon [-], in [0, 1).
     sample_size : int
         Number of arches s [-] (>= 0; the paper: 1000).
@@ -958,12 +958,12 @@ def limit_sample(
     if isinstance(sample_size, bool) or not float(sample_size).is_integer() or sample_size < 0:
         raise ValueError(f"sample_size must be an integer >= 0 (number of arches), got "
                          f"{sample_size!r}")
-    arches = irregular_sample(nominal, tolerance, int(sample_size), seed)
+    arches = irregular_sample(nominal, epsilon, int(sample_size), seed)
     k = load_multipliers_of(arches, method).reshape(-1, 2)
     k_l, k_r = k[:, 0].copy(), k[:, 1].copy()
     k_l.setflags(write=False)
     k_r.setflags(write=False)
-    return LimitSample(k_l, k_r, float(tolerance), seed, method)
+    return LimitSample(k_l, k_r, float(epsilon), seed, method)
 
 
 def empirical_cdf(values) -> tuple[np.ndarray, np.ndarray]:

@@ -1,7 +1,7 @@
 """Every table and figure of the paper, regenerated beside the paper's values.
 
 :func:`reproduce` runs the whole chain of the paper on its nominal arch (Oppenheim's arch, "NA")
-and on irregular arches drawn with tolerance epsilon = 0.10, and writes a report:
+and on irregular arches drawn with epsilon = 0.10, and writes a report:
 
 - ``report.html``: self-contained (figures embedded as base64 PNG), opens offline;
 - ``report.md`` with the PNG files beside it;
@@ -74,7 +74,7 @@ class ReproductionSettings:
 
     Attributes
     ----------
-    tolerance : float
+    epsilon : float
         epsilon of the irregular arches [-] (paper: 0.10).
     seed : int
         Root seed of every irregular arch: RA-1 and RA-2 are arches 0 and 1 of the sample, the
@@ -120,7 +120,7 @@ class ReproductionSettings:
         Reduced sizes for a smoke test (recorded in the report).
     """
 
-    tolerance: float = 0.10
+    epsilon: float = 0.10
     seed: int = 2024
     fragility_sample_size: int = 40
     limit_sample_size: int = 1000
@@ -146,8 +146,8 @@ class ReproductionSettings:
     quick: bool = False
 
     def __post_init__(self):
-        if not (0.0 <= self.tolerance < 1.0):
-            raise ValueError(f"tolerance must be in [0, 1), got {self.tolerance!r}")
+        if not (0.0 <= self.epsilon < 1.0):
+            raise ValueError(f"epsilon must be in [0, 1), got {self.epsilon!r}")
         for name in ("fragility_sample_size", "limit_sample_size", "record_count",
                      "record_sample_size"):
             value = getattr(self, name)
@@ -266,7 +266,7 @@ def _part_limit(settings: ReproductionSettings, paper: dict) -> tuple[_Arches, d
     from .fourlink.dynamics import ArchDynamics
 
     nominal = oppenheim()
-    ra = irregular_sample(nominal, settings.tolerance, 2, settings.seed)
+    ra = irregular_sample(nominal, settings.epsilon, 2, settings.seed)
     state = _Arches({"NA": nominal, "RA-1": ra[0], "RA-2": ra[1]})
     table = {}
     for name, arch in state.arches.items():
@@ -429,7 +429,7 @@ def _part_fragility(settings: ReproductionSettings, cases: dict, progress: bool)
     from .studies.fragility import FragilitySettings, run_fragility
 
     study = FragilitySettings(
-        sample_size=settings.fragility_sample_size, tolerance=settings.tolerance,
+        sample_size=settings.fragility_sample_size, epsilon=settings.epsilon,
         durations=settings.fragility_durations,
         amplitudes_g=tuple(inclusive_range(settings.amplitude_min_g, settings.amplitude_max_g,
                                            settings.amplitude_step_g).tolist()),
@@ -465,7 +465,7 @@ def _record_studies(settings: ReproductionSettings) -> tuple:
     t0 = time.perf_counter()
     results = oppenheim_record_fragility(
         ("pga", "pgv"), records=settings.record_count, sample_size=settings.record_sample_size,
-        tolerance=settings.tolerance, seed=settings.seed, suite_seed=settings.seed,
+        epsilon=settings.epsilon, seed=settings.seed, suite_seed=settings.seed,
         levels={"pga": settings.record_levels_pga, "pgv": settings.record_levels_pgv},
         bootstrap=settings.record_bootstrap)
     return results, time.perf_counter() - t0
@@ -811,7 +811,7 @@ def _fig_surface(out: Path, frag: dict) -> dict:
     return {"file": _save(fig, out, "fig21_fragility_surface.png"), "paper_figure": "Fig. 21",
             "agrees": ok,
             "caption": ("Fragility surface P_F(t_p, xg''/g) of the irregular arches (epsilon = "
-                        f"{result.settings.tolerance:.2f}), plane facets between the fragility "
+                        f"{result.settings.epsilon:.2f}), plane facets between the fragility "
                         "curves as in the paper, with the nominal arch's step surface (eq. 10, "
                         "the paper's 'cylinder'). The paper's point: part of the surface lies at "
                         "lower accelerations than the cylinder, where the nominal arch predicts "
@@ -849,7 +849,7 @@ def _fig_record_fragility(out: Path, record: dict) -> dict:
     for ax, (im, result) in zip(axes, record["results"].items(), strict=True):
         plot_record_fragility(result, ax)
         ax.set_title(f"Record-based fragility in {im.upper()}, $\\varepsilon$ = "
-                     f"{result.settings.tolerance:g}")
+                     f"{result.settings.epsilon:g}")
     parts = []
     for im, entry in record["summary"].items():
         fit = entry["lognormal"]
@@ -1207,7 +1207,7 @@ def _record_text(record: dict, settings: dict) -> str:
     return (
         f"The paper's conclusion names earthquake excitation as further work: the fragility of "
         f"Oppenheim's arch and of {pga['sample_size']} irregular arches (epsilon = "
-        f"{settings['tolerance']:.2f}, seed {settings['seed']}, arches 0-"
+        f"{settings['epsilon']:.2f}, seed {settings['seed']}, arches 0-"
         f"{pga['sample_size'] - 1} of the fragility sample) against {pga['records']} synthetic "
         f"ground motions (archquake.studies.record_fragility.STOCHASTIC_SUITE, a modulated, "
         f"filtered "
@@ -1255,8 +1255,8 @@ def _sections(results: dict, figures: dict) -> list[tuple[str, list]]:
     intro = [
         ("p", "The paper: 'Dynamic response of masonry arch with geometrical irregularities "
               "subjected to a pulse-type ground motion'. Nominal arch: Oppenheim's arch NA "
-              f"({_oppenheim_text()}). Irregular arches: tolerance "
-              f"epsilon = {s['tolerance']:.2f}, seed {s['seed']}. Coefficient of restitution of "
+              f"({_oppenheim_text()}). Irregular arches: epsilon "
+              f"epsilon = {s['epsilon']:.2f}, seed {s['seed']}. Coefficient of restitution of "
               f"the paper's dynamic results: c_v = {s['restitution']:.3f}."
               + (" QUICK RUN: reduced sample sizes, not the paper's study."
                  if s["quick"] else "")),

@@ -303,7 +303,7 @@ def plot_fragility_curve(result, duration: float, ax=None):
     ax.set_xlabel("pulse amplitude |$\\ddot{x}_g$| [g]; load multiplier k~ [-]")
     ax.set_ylabel("probability of failure P$_F$; cumulative probability [-]")
     ax.set_title(f"Fragility curve, t$_p$ = {result.durations[i]:.2f} s, "
-                 f"$\\varepsilon$ = {settings.tolerance:g}")
+                 f"$\\varepsilon$ = {settings.epsilon:g}")
     ax.grid(True, alpha=0.3)
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, fontsize=7.5,
               frameon=False)
@@ -356,7 +356,7 @@ def plot_fragility_surface(result, ax=None):
     ax.set_ylabel("pulse duration t$_p$ [s]")
     ax.set_zlabel("P$_F$ [-]")
     ax.set_zlim(0.0, 1.0)
-    ax.set_title(f"Fragility surface, $\\varepsilon$ = {result.settings.tolerance:g}, "
+    ax.set_title(f"Fragility surface, $\\varepsilon$ = {result.settings.epsilon:g}, "
                  f"h = {result.settings.sample_size}")
     ax.view_init(elev=25, azim=-125)
     return ax
@@ -600,7 +600,7 @@ def plot_record_fragility(result, ax=None, *, nominal: bool = True):
     ax.set_ylim(-0.02, 1.04)
     ax.set_xlabel(f"{settings.im} [{unit}]")
     ax.set_ylabel("P(collapse | IM) [-]")
-    ax.set_title(f"Record-based fragility, $\\varepsilon$ = {settings.tolerance:g}")
+    ax.set_title(f"Record-based fragility, $\\varepsilon$ = {settings.epsilon:g}")
     ax.grid(True, alpha=0.3)
     ax.legend(loc="lower right", fontsize=7.5)
     return ax

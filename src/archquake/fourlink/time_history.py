@@ -28,8 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..ground_motion import GroundMotion
-from ..ground_motion import free_vibration as still_ground
+from ..ground_motion import GroundMotion, still_ground
 from ..status import Status
 from . import engine
 

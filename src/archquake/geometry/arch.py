@@ -457,7 +457,7 @@ class CircularArch(BlockArch):
         block = int(np.clip(np.searchsorted(beta, top, side="right") - 1, 0, n - 1))
         return block, self.point(self.outer_radii[block], top)
 
-    def perturbed(self, tolerance: float, draws: np.ndarray) -> CircularArch:
+    def perturbed(self, epsilon: float, draws: np.ndarray) -> CircularArch:
         r"""The irregular arch of eq. (1) of [1]_ for given uniform draws.
 
         For every voussoir :math:`i`:
@@ -478,7 +478,7 @@ class CircularArch(BlockArch):
 
         Parameters
         ----------
-        tolerance : float
+        epsilon : float
             :math:`\varepsilon` [-].
         draws : ndarray, shape (3, n)
             :math:`\tilde p` in [-1, 1]: row 0 angles, row 1 thicknesses, row 2 radii.
@@ -491,7 +491,7 @@ class CircularArch(BlockArch):
         ----------
         .. [1] The paper, Sect. 2, eq. (1) and Fig. 1b-c.
         """
-        eps, p = float(tolerance), np.asarray(draws, dtype=float)
+        eps, p = float(epsilon), np.asarray(draws, dtype=float)
         angles = self.angles * (1.0 + eps * p[0])
         angles *= self.embrace / angles.sum()
         thicknesses = self.thicknesses * (1.0 + eps * p[1])

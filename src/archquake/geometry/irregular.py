@@ -1,7 +1,7 @@
 r"""Irregular arches: the paper's eq. (1) [1]_, on the circle and on any centreline.
 
 For every voussoir :math:`i`, independently, with :math:`\tilde p` drawn from the uniform
-distribution on [-1, 1] and the tolerance :math:`\varepsilon`:
+distribution on [-1, 1] and the tolerance :math:`\varepsilon` (``epsilon``):
 
 - on the paper's circular :class:`~archquake.geometry.CircularArch` (eq. (1) of [1]_):
 
@@ -50,7 +50,7 @@ import numpy as np
 from .blocks import BlockArch
 
 
-def irregular_arch(nominal: BlockArch, tolerance: float,
+def irregular_arch(nominal: BlockArch, epsilon: float,
                    rng: np.random.Generator | int | None = None) -> BlockArch:
     r"""Random irregular arch drawn around a nominal one [paper, Sect. 2, eq. (1)].
 
@@ -58,9 +58,9 @@ def irregular_arch(nominal: BlockArch, tolerance: float,
     ----------
     nominal : CircularArch or ShapedArch
         The nominal arch.
-    tolerance : float
+    epsilon : float
         :math:`\varepsilon` [-], in [0, 1); the paper's study uses 0.10 (:math:`\chi = 0.015`
-        for Oppenheim's arch). ``tolerance = 0`` returns the nominal arch.
+        for Oppenheim's arch). ``epsilon = 0`` returns the nominal arch.
     rng : numpy.random.Generator, int or None
         Source of randomness (an int seeds a new generator; None draws fresh entropy). The draws
         are made in one call ``rng.uniform(-1, 1, size=(3, n))``: row 0 angles (lengths), row 1
@@ -76,7 +76,7 @@ def irregular_arch(nominal: BlockArch, tolerance: float,
     Raises
     ------
     ValueError
-        When ``tolerance`` is not in [0, 1), or ``nominal`` has no centreline to perturb.
+        When ``epsilon`` is not in [0, 1), or ``nominal`` has no centreline to perturb.
 
     See Also
     --------
@@ -87,11 +87,11 @@ def irregular_arch(nominal: BlockArch, tolerance: float,
     .. [1] The paper, Sect. 2, eq. (1) and Fig. 1b-c.
     """
     try:
-        eps = float(tolerance)
+        eps = float(epsilon)
     except (TypeError, ValueError) as exc:
-        raise ValueError(f"tolerance must be a number in [0, 1), got {tolerance!r}") from exc
+        raise ValueError(f"epsilon must be a number in [0, 1), got {epsilon!r}") from exc
     if not (0.0 <= eps < 1.0):
-        raise ValueError(f"tolerance must be in [0, 1), got {tolerance!r}")
+        raise ValueError(f"epsilon must be in [0, 1), got {epsilon!r}")
     perturbed = getattr(nominal, "perturbed", None)
     if not isinstance(nominal, BlockArch) or perturbed is None:
         raise ValueError(
@@ -105,7 +105,7 @@ def irregular_arch(nominal: BlockArch, tolerance: float,
     return perturbed(eps, p)
 
 
-def irregular_sample(nominal: BlockArch, tolerance: float, sample_size: int,
+def irregular_sample(nominal: BlockArch, epsilon: float, sample_size: int,
                      seed: int | None) -> list[BlockArch]:
     r"""``sample_size`` irregular arches drawn around ``nominal`` [paper, Sect. 2, eq. (1)].
 
@@ -113,13 +113,13 @@ def irregular_sample(nominal: BlockArch, tolerance: float, sample_size: int,
     seeded by the child ``i`` of ``numpy.random.SeedSequence(seed).spawn(sample_size)``. The child
     ``i`` does not depend on ``sample_size``, so arch ``i`` is the same whatever the size of the
     sample, and any part of a study can redraw it alone:
-    ``irregular_sample(nominal, tolerance, i + 1, seed)[i]``.
+    ``irregular_sample(nominal, epsilon, i + 1, seed)[i]``.
 
     Parameters
     ----------
     nominal : CircularArch or ShapedArch
         The nominal arch.
-    tolerance : float
+    epsilon : float
         The paper's :math:`\varepsilon` [-], in [0, 1).
     sample_size : int
         Number of arches (the paper's :math:`s` or :math:`h`), >= 0.
@@ -143,4 +143,4 @@ def irregular_sample(nominal: BlockArch, tolerance: float, sample_size: int,
     if seed is not None and (isinstance(seed, bool) or not float(seed).is_integer() or seed < 0):
         raise ValueError(f"seed must be an integer >= 0 or None, got {seed!r}")
     children = np.random.SeedSequence(None if seed is None else int(seed)).spawn(int(sample_size))
-    return [irregular_arch(nominal, tolerance, np.random.default_rng(child)) for child in children]
+    return [irregular_arch(nominal, epsilon, np.random.default_rng(child)) for child in children]

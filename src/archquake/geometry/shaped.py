@@ -369,7 +369,7 @@ class ShapedArch(BlockArch):
         return cls(line, data["lengths"], data["thicknesses"], data["offsets"],
                    data.get("faces", "curved"), data.get("density", DEFAULT_DENSITY))
 
-    def perturbed(self, tolerance: float, draws: np.ndarray) -> ShapedArch:
+    def perturbed(self, epsilon: float, draws: np.ndarray) -> ShapedArch:
         r"""The irregular arch of eq. (1) of the paper, generalised, for given uniform draws.
 
         For every voussoir :math:`i`:
@@ -387,7 +387,7 @@ class ShapedArch(BlockArch):
 
         Parameters
         ----------
-        tolerance : float
+        epsilon : float
             :math:`\varepsilon` [-].
         draws : ndarray, shape (3, n)
             :math:`\tilde p` in [-1, 1]: row 0 lengths, row 1 thicknesses, row 2 shifts.
@@ -396,7 +396,7 @@ class ShapedArch(BlockArch):
         -------
         ShapedArch
         """
-        eps, p = float(tolerance), np.asarray(draws, dtype=float)
+        eps, p = float(epsilon), np.asarray(draws, dtype=float)
         lengths = self.lengths * (1.0 + eps * p[0])
         s = self.joint_positions
         middle = 0.5 * (s[:-1] + s[1:])

@@ -34,7 +34,7 @@ from .core import (
     GroundMotion,
     analytic_duration,
     evaluate,
-    free_vibration,
+    still_ground,
 )
 from .intensity import (
     INTENSITY_MEASURES,
@@ -92,7 +92,7 @@ __all__ = [
     "MAVROEIDIS_PAPAGEORGIOU", "RECORD_EXTENSIONS", "RECORD_FORMATS", "RICKER", "STEP",
     "GroundMotion", "analytic_duration", "antisymmetric_ricker_wavelet", "cycloidal_a",
     "cycloidal_b", "cycloidal_c", "cycloidal_phase", "cycloidal_pulse", "evaluate",
-    "free_vibration", "ground_motion", "harmonic", "mavroeidis_papageorgiou_pulse",
+    "still_ground", "ground_motion", "harmonic", "mavroeidis_papageorgiou_pulse",
     "oppenheim_pulse", "parse_at2_record", "parse_csv_record", "parse_esm_record", "read_record",
     "read_suite", "record", "record_format", "rectangular_pulse", "ricker_wavelet",
     "shape_parameters", "sine_pulse", "stochastic", "stochastic_motion", "stochastic_suite",

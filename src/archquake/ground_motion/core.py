@@ -334,11 +334,17 @@ def check_number(name: str, value: float, unit: str, *, positive: bool = True) -
     return value
 
 
-def free_vibration() -> GroundMotion:
-    """No ground motion (a still ground), for free vibrations."""
+def still_ground() -> GroundMotion:
+    """A still ground: no ground motion (what a free vibration runs under).
+
+    Returns
+    -------
+    GroundMotion
+        Zero acceleration; its name is ``"free vibration"``.
+    """
     return GroundMotion(STEP, [0.0, 1e-300], [0.0], name="free vibration")
 
 
 __all__ = ["ANALYTIC_KINDS", "GRAVITY", "HARMONIC", "LINEAR", "MAVROEIDIS_PAPAGEORGIOU", "RICKER",
            "STEP", "GroundMotion", "analytic_duration", "check_number", "evaluate",
-           "evaluate_many", "free_vibration"]
+           "evaluate_many", "still_ground"]

@@ -464,9 +464,9 @@ def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None,
     if not isinstance(settings, BlockSettings):
         raise ValueError(f"settings must be a BlockSettings, got {type(settings).__name__}")
     if motion is None:
-        from ..ground_motion import free_vibration
+        from ..ground_motion import still_ground
 
-        motion = free_vibration()
+        motion = still_ground()
     if not isinstance(motion, GroundMotion):
         raise ValueError(f"motion must be a GroundMotion, got {type(motion).__name__}")
     q0, v0 = _initial_state(assembly, initial)

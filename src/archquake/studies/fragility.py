@@ -46,7 +46,7 @@ of eq. (10)) and its k.
 
 Arch ``i`` of both samples is drawn by :func:`archquake.geometry.irregular_arch` from
 ``SeedSequence(seed, spawn_key=(i,))``, i.e. it is arch ``i`` of
-``irregular_sample(nominal, tolerance, sample_size, seed)`` and of ``limit_sample(...)``: the first
+``irregular_sample(nominal, epsilon, sample_size, seed)`` and of ``limit_sample(...)``: the first
 h arches of the limit sample are the arches of the dynamic study. The study runs through
 :func:`archquake.execution.run_study` (chunks of arches, serial / local processes / Dask, resumable
 checkpoints); the results do not depend on how it is run.
@@ -396,7 +396,7 @@ class FragilitySettings:
         Number h of irregular arches analysed dynamically (the paper: 40), at most
         :data:`~archquake.defaults.MAX_SAMPLES`; with the grid, at most
         :data:`~archquake.defaults.MAX_STUDY_ANALYSES` analyses in all.
-    tolerance : float
+    epsilon : float
         epsilon of the irregular draw [eq. (1)], in [0, 1) (the paper: 0.10).
     durations : tuple of float
         Pulse durations t_p [s] (the paper: 0.4, 0.5, 0.6, 0.7).
@@ -428,7 +428,7 @@ class FragilitySettings:
 
     nominal: BlockArch = field(default_factory=default_nominal)
     sample_size: int = STUDY_SAMPLE_SIZE
-    tolerance: float = DEFAULT_EPSILON
+    epsilon: float = DEFAULT_EPSILON
     durations: tuple[float, ...] = DEFAULT_DURATIONS
     amplitudes_g: tuple[float, ...] = DEFAULT_AMPLITUDES_G
     seed: int = DEFAULT_SEED
@@ -452,11 +452,11 @@ class FragilitySettings:
         positive_int("limit_sample_size", self.limit_sample_size, maximum=MAX_LIMIT_SAMPLES)
         positive_int("seed", self.seed, minimum=0)
         try:
-            eps = float(self.tolerance)
+            eps = float(self.epsilon)
         except (TypeError, ValueError):
             eps = math.nan
         if not 0.0 <= eps < 1.0:
-            raise ValueError(f"tolerance (epsilon) must be in [0, 1), got {self.tolerance!r}")
+            raise ValueError(f"epsilon must be in [0, 1), got {self.epsilon!r}")
         d = np.atleast_1d(np.asarray(self.durations, dtype=float))
         if d.ndim != 1 or d.size == 0 or not np.all(np.isfinite(d)) or np.any(d <= 0):
             raise ValueError(f"durations must be a non-empty list of pulse durations > 0 [s], "
@@ -492,7 +492,7 @@ class FragilitySettings:
         object.__setattr__(self, "sample_size", int(self.sample_size))
         object.__setattr__(self, "limit_sample_size", int(self.limit_sample_size))
         object.__setattr__(self, "seed", int(self.seed))
-        object.__setattr__(self, "tolerance", eps)
+        object.__setattr__(self, "epsilon", eps)
         object.__setattr__(self, "durations", tuple(float(x) for x in d))
         object.__setattr__(self, "amplitudes_g", tuple(float(x) for x in a))
 
@@ -507,7 +507,7 @@ class FragilitySettings:
         return {
             "nominal": nominal_dict(self.nominal),
             "sample_size": self.sample_size,
-            "tolerance": self.tolerance,
+            "epsilon": self.epsilon,
             "durations": list(self.durations),
             "amplitudes_g": list(self.amplitudes_g),
             "seed": self.seed,
@@ -531,7 +531,8 @@ class FragilitySettings:
         FragilitySettings
         """
         return cls(nominal=nominal_from_dict(data["nominal"]), sample_size=data["sample_size"],
-                   tolerance=data["tolerance"], durations=tuple(data["durations"]),
+                   epsilon=data.get("epsilon", data.get("tolerance")),
+                   durations=tuple(data["durations"]),
                    amplitudes_g=tuple(data["amplitudes_g"]), seed=data["seed"],
                    restitution=data["restitution"], limit_sample_size=data["limit_sample_size"],
                    limit_method=data["limit_method"], motion=data["motion"])
@@ -544,11 +545,11 @@ class FragilitySettings:
     __hash__ = None  # mutable-free but holds arrays: compare by value, do not hash
 
 
-def chunk_arches(chunk, nominal: BlockArch, tolerance: float) -> list[BlockArch]:
+def chunk_arches(chunk, nominal: BlockArch, epsilon: float) -> list[BlockArch]:
     """The irregular arches of the items of ``chunk``, drawn from their own seed sequences.
 
-    Arch ``i`` is ``irregular_arch(nominal, tolerance, default_rng(SeedSequence(seed,
-    spawn_key=(i,))))``: the same as ``irregular_sample(nominal, tolerance, count, seed)[i]``
+    Arch ``i`` is ``irregular_arch(nominal, epsilon, default_rng(SeedSequence(seed,
+    spawn_key=(i,))))``: the same as ``irregular_sample(nominal, epsilon, count, seed)[i]``
     (eq. (1) of the paper).
 
     Parameters
@@ -557,7 +558,7 @@ def chunk_arches(chunk, nominal: BlockArch, tolerance: float) -> list[BlockArch]
         The items (arch indices) and the root seed.
     nominal : CircularArch
         The nominal arch.
-    tolerance : float
+    epsilon : float
         epsilon of eq. (1) [-], in [0, 1).
 
     Returns
@@ -565,7 +566,7 @@ def chunk_arches(chunk, nominal: BlockArch, tolerance: float) -> list[BlockArch]
     list of CircularArch
         One arch per item, in item order.
     """
-    return [irregular_arch(nominal, tolerance, rng) for rng in chunk.generators()]
+    return [irregular_arch(nominal, epsilon, rng) for rng in chunk.generators()]
 
 
 def arch_outcomes(arch: BlockArch, durations, amplitudes_g, *, restitution=DEFAULT_RESTITUTION,
@@ -661,10 +662,10 @@ instead would raise P_F by at most (their number) / h everywhere. An arch that n
 with k~ = inf."""
 
 
-def _draw(nominal: BlockArch, tolerance: float, rng) -> tuple[BlockArch | None, str]:
+def _draw(nominal: BlockArch, epsilon: float, rng) -> tuple[BlockArch | None, str]:
     """``(arch, "")``, or ``(None, "not an arch")`` when the draw of eq. (1) is no arch."""
     try:
-        return irregular_arch(nominal, tolerance, rng), ""
+        return irregular_arch(nominal, epsilon, rng), ""
     except ValueError:
         return None, "not an arch"
 
@@ -745,7 +746,7 @@ def fragility_task(chunk) -> dict[str, np.ndarray]:
         nominal = _nominal_dynamics(json.dumps(chunk.settings["nominal"], sort_keys=True))
     parts = []
     for item, rng in zip(chunk.items, chunk.generators(), strict=True):
-        arch, why = _draw(settings.nominal, settings.tolerance, rng)
+        arch, why = _draw(settings.nominal, settings.epsilon, rng)
         try:
             columns, why = _analyse(arch, why, settings, nominal)
         except Exception as exc:
@@ -761,7 +762,7 @@ def fragility_task(chunk) -> dict[str, np.ndarray]:
 def limit_task(chunk) -> dict[str, np.ndarray]:
     """Study task: k~_l and k~_r of the irregular arches of one chunk.
 
-    ``chunk.settings`` holds ``nominal``, ``tolerance`` and ``limit_method``; the arches are those
+    ``chunk.settings`` holds ``nominal``, ``epsilon`` and ``limit_method``; the arches are those
     of :func:`chunk_arches`, hence the values are those of
     :func:`archquake.limit_analysis.limit_sample` with the same seed. An arch that is not an
     arch or cannot stand has k~ = nan and its reason in the column ``excluded``
@@ -780,7 +781,7 @@ def limit_task(chunk) -> dict[str, np.ndarray]:
     from ..limit_analysis import load_multipliers_of
 
     nominal = nominal_from_dict(chunk.settings["nominal"])
-    draws = [_draw(nominal, chunk.settings["tolerance"], rng) for rng in chunk.generators()]
+    draws = [_draw(nominal, chunk.settings["epsilon"], rng) for rng in chunk.generators()]
     arches = [arch for arch, _ in draws if arch is not None]
     k = np.full((len(draws), 2), np.nan)
     drawn = np.array([arch is not None for arch, _ in draws])
@@ -1086,7 +1087,7 @@ def fragility_curves(settings: FragilitySettings, table: pd.DataFrame, limit_sam
                            pd.Series(list(excluded.values())).value_counts().items())
         raise ValueError(f"every one of the {settings.sample_size} irregular arches was excluded "
                          f"({counts}): no probability of failure can be estimated; use a "
-                         f"smaller tolerance (epsilon = {settings.tolerance:g}) or a thicker "
+                         f"smaller epsilon (epsilon = {settings.epsilon:g}) or a thicker "
                          f"nominal arch")
     collapsed = _study_arrays(table, settings)[keep] == Status.COLLAPSE
     failed_l, failed_r = collapsed[:, 0], collapsed[:, 1]
@@ -1253,7 +1254,7 @@ def run_fragility(
     plan = StudyPlan(settings.to_dict(), settings.seed, settings.sample_size,
                      positive_int("chunk_size", chunk_size))
     limit_settings = {"nominal": nominal_dict(settings.nominal),
-                      "tolerance": settings.tolerance, "limit_method": settings.limit_method}
+                      "epsilon": settings.epsilon, "limit_method": settings.limit_method}
     limit_plan = StudyPlan(limit_settings, settings.seed, settings.limit_sample_size,
                            positive_int("limit_chunk_size", limit_chunk_size))
     backend = default_backend(backend, workers, scheduler, pool)
@@ -1289,7 +1290,7 @@ def run_fragility(
         table, limit_table, domains = studies(workers=workers, scheduler=scheduler)
 
     limit = LimitSample(limit_table["k_l"].to_numpy(), limit_table["k_r"].to_numpy(),
-                        settings.tolerance, settings.seed, settings.limit_method)
+                        settings.epsilon, settings.seed, settings.limit_method)
     metadata = dict(table.attrs.get("study", {}))
     result = fragility_curves(settings, table, limit, domains, metadata)
     if out is not None:
@@ -1341,6 +1342,6 @@ def load_fragility(out_dir: str | os.PathLike, *,
         raise ValueError(f"{out / LIMIT_DIRECTORY} has {len(limit_table)} arches, the study's "
                          f"settings say {settings.limit_sample_size}")
     limit = LimitSample(limit_table["k_l"].to_numpy(), limit_table["k_r"].to_numpy(),
-                        settings.tolerance, settings.seed, settings.limit_method)
+                        settings.epsilon, settings.seed, settings.limit_method)
     domains = _nominal_domains(settings, nominal_resolution_g)
     return fragility_curves(settings, stored.table, limit, domains, stored.metadata)

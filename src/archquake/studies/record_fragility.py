@@ -115,10 +115,10 @@ from ..geometry import GRAVITY, BlockArch, irregular_arch
 from .fragility import (
     LognormalFragility,
     default_nominal,
+    fit_lognormal,
     nominal_dict,
     nominal_from_dict,
     positive_int,
-    fit_lognormal,
 )
 
 NOMINAL_ARCH = -1
@@ -241,7 +241,7 @@ class RecordSuite:
             If a file cannot be read as a record (the message names it), or there is none.
         """
         from ..ground_motion import read_suite
-        from ..ground_motion.records import suite_files, record_format
+        from ..ground_motion.records import record_format, suite_files
 
         motions = read_suite(paths)  # validates every file; names and order of the suite
         found = {}
@@ -430,7 +430,7 @@ class RecordFragilitySettings:
         Nominal arch (default: Oppenheim's arch).
     sample_size : int
         Number h of irregular arches (default 40).
-    tolerance : float
+    epsilon : float
         epsilon of the irregular draw [eq. (1)], in [0, 1) (default 0.10); 0 makes every arch
         the nominal one.
     seed : int
@@ -455,7 +455,7 @@ class RecordFragilitySettings:
     im: str = "pga"
     nominal: BlockArch = field(default_factory=default_nominal)
     sample_size: int = 40
-    tolerance: float = 0.10
+    epsilon: float = 0.10
     seed: int = 0
     restitution: str | float = DEFAULT_RESTITUTION
     bootstrap: int = DEFAULT_BOOTSTRAP
@@ -484,13 +484,13 @@ class RecordFragilitySettings:
             raise ValueError(f"confidence must be in (0, 1), got {self.confidence!r}")
         # the arch, sample and restitution rules of the pulse study
         FragilitySettings(nominal=self.nominal, sample_size=self.sample_size,
-                          tolerance=self.tolerance, seed=self.seed,
+                          epsilon=self.epsilon, seed=self.seed,
                           restitution=self.restitution, limit_sample_size=1)
         object.__setattr__(self, "im", im.name)
         object.__setattr__(self, "levels", tuple(float(v) for v in x))
         object.__setattr__(self, "sample_size", int(self.sample_size))
         object.__setattr__(self, "seed", int(self.seed))
-        object.__setattr__(self, "tolerance", float(self.tolerance))
+        object.__setattr__(self, "epsilon", float(self.epsilon))
         object.__setattr__(self, "bootstrap", int(self.bootstrap))
         object.__setattr__(self, "confidence", float(self.confidence))
         if not isinstance(self.restitution, str):
@@ -517,7 +517,7 @@ class RecordFragilitySettings:
             "levels": list(self.levels),
             "nominal": nominal_dict(self.nominal),
             "sample_size": self.sample_size,
-            "tolerance": self.tolerance,
+            "epsilon": self.epsilon,
             "seed": self.seed,
             "restitution": self.restitution,
             "bootstrap": self.bootstrap,
@@ -539,7 +539,8 @@ class RecordFragilitySettings:
         """
         return cls(suite=RecordSuite.from_dict(data["suite"]), levels=tuple(data["levels"]),
                    im=data["im"], nominal=nominal_from_dict(data["nominal"]),
-                   sample_size=data["sample_size"], tolerance=data["tolerance"],
+                   sample_size=data["sample_size"],
+                   epsilon=data.get("epsilon", data.get("tolerance")),
                    seed=data["seed"],
                    restitution=data["restitution"], bootstrap=data["bootstrap"],
                    confidence=data["confidence"])
@@ -712,7 +713,7 @@ def record_fragility_task(chunk) -> dict[str, np.ndarray]:
     parts = []
     for item, rng in zip(chunk.items, chunk.generators(), strict=True):
         if item < settings.sample_size:
-            arch, arch_id = irregular_arch(settings.nominal, settings.tolerance, rng), int(item)
+            arch, arch_id = irregular_arch(settings.nominal, settings.epsilon, rng), int(item)
         else:
             arch, arch_id = settings.nominal, NOMINAL_ARCH
         try:
@@ -1245,7 +1246,7 @@ class RecordFragilityResult:
     @property
     def geometric_dispersion(self) -> float | None:
         """beta_G [-] (0 when every arch is the nominal one; None when it has no estimate)."""
-        if self.settings.tolerance == 0.0:
+        if self.settings.epsilon == 0.0:
             return 0.0
         return None if self.geometric is None else self.geometric.dispersion
 
@@ -1383,7 +1384,7 @@ class RecordFragilityResult:
                        f"maximum likelihood to multiple stripes of {s.im} "
                        f"({self.levels[0]:g} to {self.levels[-1]:g} {s.unit}), "
                        f"{len(self.records)} records x 2 polarities; '{taxonomy}': "
-                       f"{s.sample_size} irregular arches (epsilon {s.tolerance:g}, seed "
+                       f"{s.sample_size} irregular arches (epsilon {s.epsilon:g}, seed "
                        f"{s.seed}); "
                        f"'{taxonomy}-nominal': the nominal arch")
         return write_fragility_nrml(path, functions, im=s.im, min_iml=float(self.levels[0]),
@@ -1490,7 +1491,7 @@ def record_fragility_result(settings: RecordFragilitySettings, table: pd.DataFra
     total = lognormal_fit(levels, h * r, failed.sum(axis=(0, 1)))
     nominal_fit = lognormal_fit(levels, r, nominal_failed.sum(axis=0))
     geometric = None
-    if settings.tolerance > 0.0:
+    if settings.epsilon > 0.0:
         geometric = common_dispersion_fit(levels, h, failed.sum(axis=0))
     root = np.random.SeedSequence(settings.seed, spawn_key=(BOOTSTRAP_KEY,))
     total_stream, nominal_stream = (np.random.default_rng(s) for s in root.spawn(2))
@@ -1685,7 +1686,7 @@ DEFAULT_LEVELS = {"pga": tuple(np.round(0.1 * np.arange(1, 21), 10)),
 
 
 def oppenheim_record_fragility(ims=("pga", "pgv"), *, records: int = 20, sample_size: int = 40,
-                               tolerance: float = 0.10, seed: int = 0, levels=None,
+                               epsilon: float = 0.10, seed: int = 0, levels=None,
                                suite_seed: int = 0, suite_parameters=None,
                                bootstrap: int = DEFAULT_BOOTSTRAP, backend: str = "serial",
                                workers: int | None = None, pool: Any = None,
@@ -1701,8 +1702,8 @@ def oppenheim_record_fragility(ims=("pga", "pgv"), *, records: int = 20, sample_
     records : int
         Records of the suite (:data:`STOCHASTIC_SUITE`, ``stochastic_suite(records,
         seed=suite_seed)``).
-    sample_size, tolerance, seed : int, float, int
-        h irregular arches drawn with epsilon ``tolerance`` [eq. (1)] from ``seed``.
+    sample_size, epsilon, seed : int, float, int
+        h irregular arches drawn with epsilon ``epsilon`` [eq. (1)] from ``seed``.
     levels : dict, optional
         ``{im: levels}`` [the IM's unit]; default :data:`DEFAULT_LEVELS` (an IM without default
         needs its levels here).
@@ -1743,7 +1744,7 @@ def oppenheim_record_fragility(ims=("pga", "pgv"), *, records: int = 20, sample_
                              f"[...]}} [{im.unit}]")
         settings[im.name] = RecordFragilitySettings(
             suite=suite, levels=tuple(levels[im.name]), im=im.name, sample_size=sample_size,
-            tolerance=tolerance, seed=seed, bootstrap=bootstrap)
+            epsilon=epsilon, seed=seed, bootstrap=bootstrap)
 
     def run_all(**options):
         results = {}
