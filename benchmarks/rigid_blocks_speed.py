@@ -41,8 +41,12 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 from archquake import oppenheim  # noqa: E402
 from archquake.geometry import GRAVITY, CircularArch  # noqa: E402
 from archquake.ground_motion import oppenheim_pulse  # noqa: E402
-from archquake.rigid_blocks import block_outcome, simulate_blocks  # noqa: E402
-from archquake.rigid_blocks.failure import failure_curve  # noqa: E402
+from archquake.rigid_blocks import (  # noqa: E402
+    RigidBlockModel,  # noqa: E402
+    block_outcome,
+    simulate_blocks,
+)
+from archquake.studies.failure_domain import domain_of  # noqa: E402
 
 STATED_LMGC90_SECONDS = 15.0
 """The reference time stated for this analysis in LMGC90 on this machine (median) [s]."""
@@ -192,11 +196,12 @@ def main(argv=None) -> int:
         return 0
     print(f"\nFailure curve of Oppenheim's arch, t_p = {', '.join(map(str, DURATIONS))} s "
           f"(0.10 .. 3.00 g by 0.05 g, bisected to 0.005 g), {args.workers} workers:")
-    from archquake.rigid_blocks.failure import warm_up
+    from archquake.rigid_blocks.model import warm_up
 
     warm_up()
     start = time.perf_counter()
-    curve = failure_curve(arch, DURATIONS, workers=args.workers)
+    curve = domain_of(RigidBlockModel(arch), DURATIONS, np.round(np.arange(0.10, 3.001, 0.05), 12),
+                      resolution=0.005, extend_to_g=None, workers=args.workers)
     elapsed = time.perf_counter() - start
     print(f"  {elapsed:.1f} s wall (target <= 120 s), including starting the workers")
     four_link = {}
@@ -205,7 +210,7 @@ def main(argv=None) -> int:
         from archquake.studies.failure_domain import inclusive_range
 
         for restitution in ("computed", "paper"):
-            domain = ArchDynamics.from_arch(arch, restitution).failure_domain(
+            domain = domain_of(ArchDynamics.from_arch(arch, restitution),
                 DURATIONS, inclusive_range(0.3, 3.0, 0.01), resolution=1e-3, extend_to_g=None)
             four_link[restitution] = domain.failure_accelerations_g
     print(f"  {'t_p [s]':>8} {'rigid blocks [g]':>17} {'recovery above':>16}"

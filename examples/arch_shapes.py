@@ -32,6 +32,7 @@ from archquake.geometry import SHAPES, irregular_sample, shaped_arch  # noqa: E4
 from archquake.limit_analysis import both_directions  # noqa: E402
 from archquake.plotting import plot_arch  # noqa: E402
 from archquake.reference_arches import OPPENHEIM, paper_values  # noqa: E402
+from archquake.studies.failure_domain import domain_of  # noqa: E402
 from archquake.studies.fragility import fit_lognormal, probability_of_failure  # noqa: E402
 
 RADIUS, EMBRACE = OPPENHEIM["radius"], OPPENHEIM["embrace"]
@@ -89,7 +90,7 @@ def main(argv=None):
         dynamics = ArchDynamics.from_arch(arch, RESTITUTION)
         mech_l = dynamics.mechanisms[0]
         k = dynamics.load_multiplier
-        domain = dynamics.failure_domain(durations, amplitudes, extend_to_g=6.0)
+        domain = domain_of(dynamics, durations, amplitudes, extend_to_g=6.0)
         curve = domain.failure_accelerations_g
         sample = irregular_sample(arch, 0.10, samples, seed=2024)
         p_f = probability_of_failure(np.array([failures(a, amplitudes) for a in sample]))

@@ -15,9 +15,12 @@ import pytest  # noqa: E402
 from archquake import ArchDynamics  # noqa: E402
 from archquake.cli import main  # noqa: E402
 from archquake.plotting import plot_model_comparison, plot_model_differences  # noqa: E402
-from archquake.rigid_blocks import BlockSettings  # noqa: E402
-from archquake.rigid_blocks.failure import failure_curve  # noqa: E402
+from archquake.rigid_blocks import (
+    BlockSettings,  # noqa: E402
+    RigidBlockModel,  # noqa: E402
+)
 from archquake.studies.comparison import compare_models  # noqa: E402
+from archquake.studies.failure_domain import domain_of  # noqa: E402
 
 DURATIONS = (0.3, 0.6)
 GRID = np.round(np.arange(0.3, 1.71, 0.1), 10)
@@ -31,13 +34,15 @@ def comparison(nominal):
 
 def test_values_are_each_models_own_failure_curve(nominal, comparison):
     """The four-link columns are ArchDynamics.failure_domain with each restitution model, the
-    rigid-block column is failure_curve: the same functions, the same scan and resolution."""
-    rigid = failure_curve(nominal, DURATIONS, amplitudes_g=GRID, resolution=RESOLUTION)
+    rigid-block column is the rigid-block model's failure domain: the same search, the same scan
+    and resolution (its default strategy and the exhaustive grid give the same slices here)."""
+    rigid = domain_of(RigidBlockModel(nominal), DURATIONS, GRID, resolution=RESOLUTION,
+                      extend_to_g=None, search="exhaustive")
     assert comparison.rigid_block.slices == rigid.slices
     dynamics = ArchDynamics.from_arch(nominal)
     assert list(comparison.four_link) == ["computed", "link", "paper", "blocks"]
     for model, domain in comparison.four_link.items():
-        direct = dynamics.with_restitution(model).failure_domain(
+        direct = domain_of(dynamics.with_restitution(model),
             DURATIONS, GRID, resolution=RESOLUTION, extend_to_g=None)
         assert domain.slices == direct.slices, model
         assert domain.restitution == direct.restitution
@@ -46,7 +51,7 @@ def test_values_are_each_models_own_failure_curve(nominal, comparison):
         assert row["duration"] == DURATIONS[i]
         assert row["rigid_block"] == rigid.failure_accelerations_g[i]
         assert row["recovery_above"]["rigid_block"] == [list(b) for b in
-                                                       rigid.recovery_bands()[i]]
+                                                       rigid.slices[i].recovery_above_g]
     fa = comparison.failure_accelerations_g()
     np.testing.assert_array_equal(comparison.relative_differences()["paper"],
                                   fa["paper"] / fa["rigid_block"] - 1.0)

@@ -13,6 +13,7 @@ from archquake.cli import main
 from archquake.fourlink.impact import restitution
 from archquake.fourlink.mechanism import mechanisms
 from archquake.limit_analysis import both_directions
+from archquake.studies.failure_domain import domain_of
 
 
 def test_quick_start_reproduces_the_paper(paper):
@@ -22,7 +23,7 @@ def test_quick_start_reproduces_the_paper(paper):
     history = dynamics.simulate(oppenheim_pulse(-GRAVITY, 0.27))
     assert history.outcome.status is Status.COLLAPSE and history.outcome.half_cycle == 2
     assert dynamics.outcome(oppenheim_pulse(-GRAVITY, 0.27)).half_cycle == 2
-    q = dynamics.failure_domain([0.4]).slices[0].failure_acceleration_g
+    q = domain_of(dynamics, [0.4]).slices[0].failure_acceleration_g
     assert q == pytest.approx(paper["dynamics"]["NA"]["failure_acceleration_tp040"], abs=0.01)
 
 
@@ -54,7 +55,7 @@ def test_nominal_restitution_takes_the_nominal_arch(nominal):
 def test_domain_command_and_python_agree_with_their_defaults(capsys):
     assert main(["domain", "--durations", "0.3,0.6", "--json"]) == 0
     cli = json.loads(capsys.readouterr().out)
-    python = ArchDynamics.from_arch(oppenheim()).failure_domain([0.3, 0.6]).to_list()
+    python = domain_of(ArchDynamics.from_arch(oppenheim()), [0.3, 0.6]).to_list()
     assert cli == json.loads(json.dumps(python))
 
 

@@ -17,11 +17,18 @@ from archquake.rigid_blocks import (
     GROUND,
     Assembly,
     BlockSettings,
+    RigidBlockModel,
     block_outcome,
     from_arch,
     simulate_blocks,
 )
-from archquake.rigid_blocks.failure import failure_curve, failure_slice
+from archquake.studies.failure_domain import domain_of
+
+
+def failure_curve(structure, durations, amplitudes_g, resolution, **options):
+    """The rigid-block model's failure domain over a grid (no extension)."""
+    return domain_of(RigidBlockModel(structure), durations, amplitudes_g, resolution=resolution,
+                     extend_to_g=None, **options)
 
 ARCHES = {"NA": oppenheim()} | {f"irregular-{seed}": irregular_arch(oppenheim(), 0.10, rng=seed)
                                 for seed in (1, 2, 3)}
@@ -53,7 +60,7 @@ def test_model_is_independent_of_the_four_link_code():
     """Importing and running the rigid-block model (its analyses, failure curves and impact
     measurement) loads none of the four-link modules."""
     code = ("import sys; from archquake import oppenheim; from archquake.rigid_blocks import "
-            "block_outcome; from archquake.rigid_blocks.failure import failure_slice; "
+            "block_outcome, RigidBlockModel; "
             "block_outcome(oppenheim(), None); "
             "from archquake.rigid_blocks.impacts import closing_impact; import numpy; "
             "closing_impact(oppenheim(), numpy.ones((7, 3))); "
@@ -161,13 +168,14 @@ def test_long_pulse_failure_agrees_with_four_link_model(nominal):
 def test_failure_curve_reports_activation_and_failure(nominal):
     curve = failure_curve(nominal, [0.5], amplitudes_g=np.arange(0.30, 0.61, 0.05),
                           resolution=5e-3)
+    assert curve.model["model"] == "rigid-blocks"
     (row,) = curve.to_list()
     statuses = [iv["outcome"] for iv in row["intervals"]]
     assert statuses == ["rest", "recovery", "collapse"]
     # activation at k = 0.370 (limit analysis), failure above it
     assert row["intervals"][1]["from"] == pytest.approx(0.370, abs=5e-3)
     assert 0.40 < row["failure_acceleration"] < 0.50
-    assert row["recovery_above"] == []
+    assert curve.slices[0].recovery_above_g == []
 
 
 @pytest.mark.parametrize("amplitude", [0.43, 0.44, 0.46, 0.70])
@@ -224,9 +232,9 @@ def test_bad_input_is_a_value_error(nominal):
     with pytest.raises(ValueError, match="joint_bodies"):
         Assembly([1.0], [[0, 0]], [1.0], [[0, 0]], [[[0, 0], [1, 0]]], [[0.0, 1.0]])
     with pytest.raises(ValueError, match="direction"):
-        failure_slice(nominal, 0.5, direction="x")
-    with pytest.raises(ValueError, match="duration"):
-        failure_slice(nominal, -1.0)
+        domain_of(RigidBlockModel(nominal), [0.5], direction="x")
+    with pytest.raises(ValueError, match="durations"):
+        domain_of(RigidBlockModel(nominal), [-1.0])
     with pytest.raises(ValueError, match="record_every"):
         simulate_blocks(nominal, None, record_every=0)
     assert math.isnan(block_outcome(nominal, None).collapse_time)

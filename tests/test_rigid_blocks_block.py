@@ -26,7 +26,6 @@ from archquake.rigid_blocks import (
     rectangular_block,
     simulate_blocks,
 )
-from archquake.rigid_blocks.failure import failure_slice
 from archquake.rigid_blocks.solver import local_coulomb, mean_acceleration
 
 WIDTH, HEIGHT = 0.4, 2.0
@@ -149,8 +148,12 @@ def test_overturning_threshold_of_rectangular_pulse(block, duration):
         mid = 0.5 * (lo + hi)
         lo, hi = (lo, mid) if overturns(mid) else (mid, hi)
     ode = 0.5 * (lo + hi)
-    dem = failure_slice(block, duration, direction="r", motion="rectangular",
-                        amplitudes_g=np.arange(0.15, 1.0, 0.05), resolution=1e-3)
+    from archquake.rigid_blocks import RigidBlockModel
+    from archquake.studies.failure_domain import domain_of
+
+    dem = domain_of(RigidBlockModel(block), [duration], np.arange(0.15, 1.0, 0.05),
+                    direction="r", motion="rectangular", resolution=1e-3,
+                    extend_to_g=None).slices[0]
     assert dem.failure_acceleration_g == pytest.approx(ode, rel=1e-2)
     # and the block starts rocking at g tan(alpha) = 0.2 g (statics)
     assert dem.intervals[0].status == "rest"

@@ -11,6 +11,7 @@ from archquake.fourlink.mechanism import mechanisms
 from archquake.fourlink.time_history import free_vibration
 from archquake.geometry import GRAVITY, SHAPES, irregular_arch, shaped_arch, surveyed_arch
 from archquake.limit_analysis import both_directions
+from archquake.studies.failure_domain import domain_of
 from kinematics_reference import instantaneous_velocities, mirrored_hinges
 
 RISES = {"circular": 3.5, "pointed": 7.5, "elliptical": 4.0, "parabolic": 4.5, "catenary": 4.5,
@@ -165,7 +166,7 @@ def test_failure_domain_and_fragility_of_a_pointed_arch():
 
     arch = arch_of("pointed")
     k = both_directions(arch)[0].load_multiplier
-    domain = ArchDynamics.from_arch(arch, "computed").failure_domain(
+    domain = domain_of(ArchDynamics.from_arch(arch, "computed"),
         [0.4, 0.6], np.linspace(0.05, 1.0, 20))
     assert domain.limit_multiplier == pytest.approx(k, abs=1e-12)
     for piece in domain.slices:

@@ -772,9 +772,11 @@ def _run_domain(args: argparse.Namespace) -> int:
         raise ValueError(f"--extend-to must be a finite amplitude of at most "
                          f"{MAX_ACCELERATION_G:g} g, got {args.extend_to:g}")
     extend_to = args.extend_to if args.extend_to > amplitudes[-1] else None
+    from .studies.failure_domain import domain_of
+
     dynamics = dynamics_from_args(args)
     with analysing(args):
-        domain = dynamics.failure_domain(durations, amplitudes, direction=args.direction,
+        domain = domain_of(dynamics, durations, amplitudes, direction=args.direction,
                                          resolution=args.resolution, extend_to_g=extend_to)
     if args.plot:
         _pyplot()

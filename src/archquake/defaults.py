@@ -124,3 +124,14 @@ COMPARE_RESTITUTIONS = ("computed", "link", "paper", "blocks")
 MAX_BLOCK_GRID_POINTS = 10_000
 """Most (duration, amplitude) points of a rigid-block failure curve's scan: some tens of minutes
 of analyses on two cores (a point costs 10-100 ms)."""
+
+# --- how a study searches a grid (archquake.studies.strategies)
+
+DEFAULT_SEARCH = {"four-link": "exhaustive", "rigid-blocks": "screened"}
+"""Search strategy of a grid per model: the four-link model analyses a whole grid in one compiled
+call (about 15 µs a point), so every point is analysed; a rigid-block analysis costs 10-60 ms,
+so the grid is scanned coarsely, every change of outcome bisected, and the stretches where its
+outcome is not smooth in the amplitude analysed point by point (``"screened"``,
+:mod:`archquake.studies.strategies`: the outcomes of the exhaustive grid in every case compared).
+``"bisection"`` is faster still, and misses the isolated recoveries of the rigid-block model
+among its late collapses."""

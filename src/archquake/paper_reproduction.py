@@ -406,16 +406,17 @@ def _domain_grid(settings: ReproductionSettings) -> np.ndarray:
 def _part_failure_domain(settings: ReproductionSettings, state: _Arches, cases: dict) -> dict:
     """Failure domain of the nominal arch over (t_p, xg''/g) [paper, Fig. 16] and point Q."""
     from .fourlink.dynamics import ArchDynamics
+    from .studies.failure_domain import domain_of
 
     nominal = state.arches["NA"]
     pair = cases["paper"]
     grid = _domain_grid(settings)
-    domain = ArchDynamics.from_arch(nominal, pair[0]).failure_domain(
+    domain = domain_of(ArchDynamics.from_arch(nominal, pair[0]),
         settings.domain_durations, grid, resolution=settings.domain_resolution_g,
         extend_to_g=None)
     q = {}
     for case, p in cases.items():  # point Q, to 1e-4 g, with both coefficients of restitution
-        part = ArchDynamics.from_arch(nominal, p[0]).failure_domain(
+        part = domain_of(ArchDynamics.from_arch(nominal, p[0]),
             (0.4,), grid, resolution=1e-4, extend_to_g=None)
         q[case] = part.slices[0].failure_acceleration_g
     return {"domain": domain, "activation": domain.limit_multiplier, "restitution": list(pair),
@@ -450,10 +451,12 @@ def _comparison_grid(settings: ReproductionSettings) -> np.ndarray:
 def _rigid_block_curve(arch, durations, grid, resolution) -> tuple:
     """The rigid-block failure curve of the comparison and its run time [s] (a worker's task;
     the same call :func:`archquake.studies.comparison.compare_models` makes)."""
-    from .rigid_blocks.failure import failure_curve
+    from .rigid_blocks import RigidBlockModel
+    from .studies.failure_domain import domain_of
 
     t0 = time.perf_counter()
-    curve = failure_curve(arch, durations, amplitudes_g=grid, resolution=resolution)
+    curve = domain_of(RigidBlockModel(arch), durations, grid, resolution=resolution,
+                      extend_to_g=None)
     return curve, time.perf_counter() - t0
 
 
@@ -497,7 +500,7 @@ def _start_background(settings: ReproductionSettings, stack) -> dict:
     if (os.cpu_count() or 1) < 2:
         return {}
     from .execution import process_pool
-    from .rigid_blocks.failure import warm_up
+    from .rigid_blocks.model import warm_up
 
     pool = stack.enter_context(process_pool(1, warm_up=warm_up))
     return {"pool": pool,
@@ -532,14 +535,14 @@ def _part_comparison(settings: ReproductionSettings, state: _Arches, background:
 
     mech_l, mech_r = state.dynamics["NA"].mechanisms
     u_l, u_r = (np.column_stack(m.mode_shape()) for m in (mech_l, mech_r))
-    impact = closing_impact(state.arches["NA"], u_l, comparison.rigid_block.settings)
+    impact = closing_impact(state.arches["NA"], u_l, comparison.settings)
     rotation = np.concatenate(([0.0], impact.velocities_after[:, 2], [0.0]))
     hinges = np.flatnonzero(np.abs(np.diff(rotation)) > 1e-3 * np.abs(rotation).max())
     half_cycles = {}
     for name, domain in comparison.four_link.items():
         half_cycles[name] = [next((iv.half_cycle for iv in s.intervals
                                    if iv.status == "collapse"), None) for s in domain.slices]
-    block_settings = comparison.rigid_block.settings
+    block_settings = comparison.settings
     return {"comparison": comparison, "summary": {
         "rows": comparison.to_list(), "restitution": comparison.restitution,
         "load_multiplier": comparison.load_multiplier,

@@ -730,7 +730,7 @@ def plot_model_comparison(comparison, ax=None):
     ax.minorticks_off()
     ax.set_xlabel("pulse duration t$_p$ [s]")
     ax.set_ylabel("failure acceleration |$\\ddot{x}_g$|/g [-]")
-    friction = comparison.rigid_block.settings.friction
+    friction = comparison.settings.friction
     ax.set_title(f"Rigid-block and four-link models: failure curves (friction {friction:g})")
     ax.grid(True, alpha=0.3)
     ax.legend(loc="upper right", fontsize=8, framealpha=0.9)

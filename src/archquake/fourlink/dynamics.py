@@ -6,7 +6,8 @@ restitution of the impacts between them [Sect. 4.4] and the compiled tables of t
 motion [eqs. (6)-(7)] -- is one value, built by :meth:`FourLinkModel.from_arch`. Every analysis of
 the arch runs from it: a time history (:meth:`~FourLinkModel.simulate`), an outcome
 (:meth:`~FourLinkModel.outcome`), a grid of pulses in one compiled call
-(:meth:`~FourLinkModel.outcomes`) and the failure domain (:meth:`~FourLinkModel.failure_domain`).
+(:meth:`~FourLinkModel.outcomes`); the failure domain and the studies run from it through the model
+protocol (:func:`archquake.studies.failure_domain.domain_of`).
 
 >>> from archquake import FourLinkModel, GRAVITY, oppenheim
 >>> from archquake.ground_motion import oppenheim_pulse
@@ -23,9 +24,7 @@ from typing import ClassVar
 import numpy as np
 
 from ..defaults import (
-    DEFAULT_EXTEND_TO_G,
     DEFAULT_LIMIT_METHOD,
-    DEFAULT_RESOLUTION_G,
     DEFAULT_RESTITUTION,
 )
 from ..geometry import GRAVITY, BlockArch
@@ -313,46 +312,6 @@ class FourLinkModel:
         c_lr, c_rl = self.restitution
         return outcomes_grid(table_l, table_r, c_lr, c_rl, durations,
                              GRAVITY * np.asarray(amplitudes_g, dtype=float), motion)
-
-    def failure_domain(self, durations=None, amplitudes_g=None, *, direction: str = "l",
-                       resolution: float = DEFAULT_RESOLUTION_G,
-                       extend_to_g: float | None = DEFAULT_EXTEND_TO_G,
-                       motion: str = "oppenheim"):
-        """Failure domain over (pulse duration, amplitude) [paper, Sect. 5.3.3, Fig. 16].
-
-        What :func:`archquake.studies.failure_domain.domain_of` computes for this arch, with its
-        defaults (those of ``archquake domain``).
-
-        Parameters
-        ----------
-        durations : sequence of float, optional
-            Pulse durations t_p [s] (default :data:`archquake.defaults.DOMAIN_DURATIONS`).
-        amplitudes_g : sequence of float, optional
-            Increasing scan grid of amplitudes a >= 0 [g] (default
-            :data:`archquake.defaults.DOMAIN_AMPLITUDES_G`).
-        direction : {"l", "r"}
-            ``"l"``: the first pulse is ``-a g`` and opens Mech-l; ``"r"``: ``+a g``, Mech-r.
-        resolution : float
-            Bisection width of every boundary [g].
-        extend_to_g : float or None
-            Cap [g] of the extension of the scan to find the collapse in the first half cycle
-            (None: the grid alone).
-        motion : str
-            Pulse shape (:data:`archquake.ground_motion.ANALYTIC_GROUND_MOTIONS`).
-
-        Returns
-        -------
-        FailureDomain
-
-        Raises
-        ------
-        ValueError
-            As :func:`archquake.studies.failure_domain.domain_of`.
-        """
-        from ..studies.failure_domain import domain_of
-
-        return domain_of(self, durations, amplitudes_g, direction=direction,
-                         resolution=resolution, extend_to_g=extend_to_g, motion=motion)
 
 
 ArchDynamics = FourLinkModel

@@ -142,21 +142,32 @@ class RigidBlockModel:
         Returns
         -------
         dict of ndarray
-            ``status`` (:class:`archquake.status.Status` codes) and ``half_cycle`` (0: the
-            rigid-block model does not count half cycles), of the broadcast shape.
+            ``status`` (:class:`archquake.status.Status` codes), ``half_cycle`` (0: the
+            rigid-block model does not count half cycles) and ``collapse_time`` (when the
+            collapse became certain [s], nan without one), of the broadcast shape.
         """
         from ..ground_motion import ground_motion
 
         d, a = np.broadcast_arrays(np.asarray(durations, dtype=float),
                                    np.asarray(amplitudes_g, dtype=float))
-        status = np.zeros(d.shape, dtype=np.int64)
+        status = np.full(d.shape, int(Status.REST), dtype=np.int64)
+        collapse_time = np.full(d.shape, np.nan)
         for index in np.ndindex(d.shape):
             if a[index] != 0.0:
                 pulse = ground_motion(motion, float(a[index]) * GRAVITY, float(d[index]))
-                status[index] = int(self.outcome(pulse).status)
-            else:
-                status[index] = int(Status.REST)
-        return {"status": status, "half_cycle": np.zeros(d.shape, dtype=np.int64)}
+                outcome = self.outcome(pulse)
+                status[index], collapse_time[index] = int(outcome.status), outcome.collapse_time
+        return {"status": status, "half_cycle": np.zeros(d.shape, dtype=np.int64),
+                "collapse_time": collapse_time}
 
 
-__all__ = ["RigidBlockModel"]
+def warm_up() -> None:
+    """Load the compiled rigid-block solver in this process (a worker pool's ``warm_up``): one
+    short analysis of Oppenheim's arch under a 0.5 g pulse of 0.05 s."""
+    from ..ground_motion import ground_motion
+    from ..reference_arches import oppenheim
+
+    block_outcome(oppenheim(), ground_motion("oppenheim", -0.5 * GRAVITY, 0.05))
+
+
+__all__ = ["RigidBlockModel", "warm_up"]

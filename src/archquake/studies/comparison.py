@@ -2,20 +2,19 @@ r"""The four-link model beside the rigid-block model: how far to trust the four-
 
 The same arch under the same pulses, in the package's two models:
 
-- the four-link model [paper, Sects. 4-5] (:class:`archquake.fourlink.dynamics.ArchDynamics`): one
-degree
-  of freedom, the hinges of the limit analysis, impacts by a coefficient of restitution chosen by
-  a rule (:data:`archquake.fourlink.impact.RESTITUTION_MODELS`);
+- the four-link model [paper, Sects. 4-5] (:class:`archquake.fourlink.FourLinkModel`): one
+  degree of freedom, the hinges of the limit analysis, impacts by a coefficient of restitution
+  chosen by a rule (:data:`archquake.fourlink.impact.RESTITUTION_MODELS`);
 - the rigid-block model (:mod:`archquake.rigid_blocks`): every voussoir a block, unilateral
   contacts with Coulomb friction at both ends of every joint, Newton impacts with restitution 0;
   any mechanism may form and change, blocks may slide.
 
 :func:`compare_models` computes, per pulse duration t_p, the failure acceleration (the lowest
-collapsing amplitude, and the recovery bands above it) of the rigid-block model
-(:func:`archquake.rigid_blocks.failure.failure_curve`) and of the four-link model with each
-restitution model (:meth:`archquake.fourlink.dynamics.ArchDynamics.failure_domain`), on the same
-amplitude scan bisected to the same resolution, and with no extension of the scan (a failure
-acceleration above the scan is reported as none, for either model).
+collapsing amplitude, and the recovery bands above it) of the rigid-block model and of the
+four-link model with each restitution model, both by the one failure-domain search over the model
+protocol (:func:`archquake.studies.failure_domain.domain_of`), on the same amplitude scan bisected
+to the same resolution, and with no extension of the scan (a failure acceleration above the scan
+is reported as none, for either model).
 
 For Oppenheim's arch under Oppenheim's pulse (``archquake compare``; the numbers are in the
 README and the report) the two models agree for long pulses, where the arch falls in its first
@@ -50,7 +49,7 @@ class ModelComparison:
     ----------
     arch : BlockArch
         The arch.
-    rigid_block : FailureCurve
+    rigid_block : FailureDomain
         The rigid-block model's outcome intervals per duration.
     four_link : dict
         ``{restitution model: FailureDomain}`` of the four-link model, in the order given.
@@ -58,6 +57,8 @@ class ModelComparison:
         The amplitude scan of both models [g].
     resolution : float
         Bisection width of every boundary of both models [g].
+    settings : BlockSettings
+        Friction, time step and outcome criteria of the rigid-block model.
     """
 
     arch: BlockArch
@@ -65,6 +66,7 @@ class ModelComparison:
     four_link: dict
     amplitudes_g: np.ndarray
     resolution: float
+    settings: object = None
 
     @property
     def durations(self) -> np.ndarray:
@@ -146,14 +148,18 @@ def _four_link(dynamics, model: str, settings):
 
 def _check_curve(curve, durations, direction, motion, settings, resolution, grid) -> None:
     from ..rigid_blocks import BlockSettings
-    from ..rigid_blocks.failure import FailureCurve
+    from .failure_domain import FailureDomain
 
-    if not isinstance(curve, FailureCurve):
-        raise ValueError(f"rigid_block must be a FailureCurve, got {type(curve).__name__}")
+    described = getattr(curve, "model", None) or {}
+    if not isinstance(curve, FailureDomain) or described.get("model") != "rigid-blocks":
+        raise ValueError(f"rigid_block must be the FailureDomain of a RigidBlockModel, got "
+                         f"{type(curve).__name__}")
+    expected = BlockSettings() if settings is None else settings
     same = (curve.durations.shape == durations.shape
             and np.allclose(curve.durations, durations, rtol=0, atol=1e-12)
             and curve.direction == direction and curve.motion == motion
-            and curve.settings == (BlockSettings() if settings is None else settings)
+            and {k: v for k, v in described.items() if k != "model"}
+            == {k: getattr(expected, k) for k in described if k != "model"}
             and all(s.resolution == resolution and s.intervals[0].start == grid[0]
                     and s.scanned_to_g == grid[-1] for s in curve.slices))
     if not same:
@@ -165,7 +171,8 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
                    restitutions: Sequence[str] = COMPARE_RESTITUTIONS, amplitudes_g=None,
                    resolution: float = COMPARE_RESOLUTION_G, direction: str = "l",
                    motion: str = "oppenheim", settings=None, workers: int | None = None,
-                   progress: bool = False, dynamics=None, rigid_block=None) -> ModelComparison:
+                   progress: bool = False, dynamics=None, rigid_block=None,
+                   search: str | None = None) -> ModelComparison:
     """Failure accelerations of the rigid-block and four-link models of ``arch`` under pulses.
 
     Parameters
@@ -195,9 +202,13 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
         Progress bar over the rigid-block durations (the long part).
     dynamics : ArchDynamics, optional
         The arch's four-link dynamics, if already built.
-    rigid_block : FailureCurve, optional
-        The rigid-block curve, if already computed (e.g. on another process) with the same
-        durations, direction, motion, settings, scan and resolution (checked).
+    rigid_block : FailureDomain, optional
+        The rigid-block model's failure domain, if already computed (e.g. on another process)
+        with the same durations, direction, motion, settings, scan and resolution (checked).
+    search : {"exhaustive", "bisection", "screened"}, optional
+        Search strategy of the rigid-block scan (:mod:`archquake.studies.strategies`; default
+        :data:`archquake.defaults.DEFAULT_SEARCH` of the rigid blocks). The four-link runs
+        analyse every grid point.
 
     Returns
     -------
@@ -205,8 +216,8 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
     """
     from ..fourlink.dynamics import ArchDynamics
     from ..fourlink.impact import check_restitution_model
-    from ..rigid_blocks.failure import failure_curve
-    from .failure_domain import check_direction, check_durations
+    from ..rigid_blocks import BlockSettings, RigidBlockModel
+    from .failure_domain import check_direction, check_durations, domain_of
 
     if not isinstance(arch, BlockArch):
         raise ValueError(f"arch must be a BlockArch, got {type(arch).__name__}")
@@ -227,18 +238,20 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
         dynamics = ArchDynamics.from_arch(arch)
     elif not isinstance(dynamics, ArchDynamics) or dynamics.arch is not arch:
         raise ValueError("dynamics must be the ArchDynamics of arch")
+    settings = BlockSettings() if settings is None else settings
     if rigid_block is None:
-        rigid_block = failure_curve(arch, d, direction=direction, motion=motion,
-                                    amplitudes_g=grid, resolution=float(resolution),
-                                    settings=settings, workers=workers, progress=progress)
+        blocks = RigidBlockModel(arch, settings)
+        rigid_block = domain_of(blocks, d, grid, direction=direction, motion=motion,
+                                resolution=float(resolution), extend_to_g=None, search=search,
+                                workers=workers, progress=progress)
     else:
         _check_curve(rigid_block, d, direction, motion, settings, float(resolution), grid)
     four_link = {}
     for name in names:
-        four_link[name] = _four_link(dynamics, name, settings).failure_domain(
+        four_link[name] = domain_of(_four_link(dynamics, name, settings),
             d, grid, direction=direction, resolution=float(resolution), extend_to_g=None,
             motion=motion)
-    return ModelComparison(arch, rigid_block, four_link, grid, float(resolution))
+    return ModelComparison(arch, rigid_block, four_link, grid, float(resolution), settings)
 
 
 __all__ = ["ModelComparison", "compare_models"]

@@ -48,11 +48,15 @@ import numpy as np
 from ..defaults import (
     DEFAULT_EXTEND_TO_G,
     DEFAULT_RESOLUTION_G,
+    DEFAULT_SEARCH,
     DOMAIN_AMPLITUDES_G,
     DOMAIN_DURATIONS,
     MAX_ACCELERATION_G,
+    MAX_BLOCK_GRID_POINTS,
     MAX_GRID_POINTS,
 )
+from ..status import Status
+from .strategies import DEFAULT_STRIDE
 
 OutcomeKey = tuple[str, int]
 
@@ -277,12 +281,19 @@ class FailureDomain:
     load_multipliers : tuple of float
         ``(k_l, k_r)`` of the arch [-].
     restitution : tuple of float
-        ``(c_lr, c_rl)`` used at the impacts [-].
+        ``(c_lr, c_rl)`` used at the impacts [-] (nan for a model without them).
     motion : str
         Pulse shape (name in :data:`archquake.ground_motion.GROUND_MOTIONS`).
     extend_to_g : float or None
         Cap [g] up to which a scan was extended to find the collapse in the first half cycle
         (None: the scan was the grid alone).
+    model : dict or None
+        The model that made the domain (:meth:`archquake.models.StructuralModel.describe`:
+        ``{"model": name, **settings}``).
+    search : str
+        The search strategy of the grid (:data:`archquake.studies.strategies.SEARCHES`).
+    analyses : tuple of int
+        Number of analyses per duration (scan, extension and bisection) [-].
     """
 
     slices: tuple[DomainSlice, ...]
@@ -292,6 +303,9 @@ class FailureDomain:
     restitution: tuple[float, float]
     motion: str = "oppenheim"
     extend_to_g: float | None = None
+    model: dict | None = None
+    search: str = "exhaustive"
+    analyses: tuple[int, ...] = ()
 
     @property
     def durations(self) -> np.ndarray:
@@ -428,21 +442,27 @@ def inclusive_range(start: float, stop: float, step: float) -> np.ndarray:
     return np.round(start + step * np.arange(count), 12)
 
 
-def domain_of(dynamics, durations=None, amplitudes_g=None, *, direction: str = "l",
+def domain_of(model, durations=None, amplitudes_g=None, *, direction: str = "l",
               resolution: float = DEFAULT_RESOLUTION_G, motion: str = "oppenheim",
-              extend_to_g: float | None = DEFAULT_EXTEND_TO_G) -> FailureDomain:
-    """Failure domain of an arch's dynamics over (pulse duration, amplitude) [paper, Fig. 16].
+              extend_to_g: float | None = DEFAULT_EXTEND_TO_G, search: str | None = None,
+              stride: int = DEFAULT_STRIDE, screen=None, workers: int | None = None,
+              progress: bool = False) -> FailureDomain:
+    """Failure domain of a model of a structure over (pulse duration, amplitude) [paper, Fig. 16].
 
-    What :meth:`archquake.fourlink.dynamics.ArchDynamics.failure_domain` runs; with its defaults it
-    is ``archquake domain`` with its defaults. For every duration the amplitudes are scanned on
-    ``amplitudes_g`` (one compiled call for the whole grid) and every change of outcome class
-    (rest, recovery, collapse in half cycle h: the regions of Fig. 16 of [1]_) is bisected to
-    ``resolution`` (:func:`domain_slice`).
+    Written against the model protocol (:class:`archquake.models.StructuralModel`): the same
+    search for the four-link and the rigid-block model. For every duration the outcome (rest,
+    recovery, collapse in half cycle h: the regions of Fig. 16 of [1]_; the rigid-block model
+    does not count half cycles) is found at every amplitude of ``amplitudes_g`` by the strategy
+    ``search`` (:mod:`archquake.studies.strategies`), and every change of outcome class is then
+    bisected to ``resolution`` (:func:`domain_slice`). With its defaults and the four-link model
+    it is ``archquake domain`` with its defaults (what
+    :meth:`archquake.fourlink.FourLinkModel.failure_domain` runs).
 
     Parameters
     ----------
-    dynamics : ArchDynamics
-        The arch, its mechanisms, restitution and tables.
+    model : StructuralModel
+        The model of the structure: a :class:`~archquake.fourlink.FourLinkModel` (its
+        mechanisms, restitution and tables) or a :class:`~archquake.rigid_blocks.RigidBlockModel`.
     durations : sequence of float, optional
         Pulse durations t_p [s] (default :data:`archquake.defaults.DOMAIN_DURATIONS`).
     amplitudes_g : sequence of float, optional
@@ -457,10 +477,25 @@ def domain_of(dynamics, durations=None, amplitudes_g=None, *, direction: str = "
         Oppenheim's pulse: ``-a g`` (direction ``"l"``) for ``t_p``, then ``+a g/2`` for
         ``2 t_p`` [paper, Sect. 5.3.1].
     extend_to_g : float or None
-        A duration whose grid holds no collapse in the first half cycle is scanned further, at
-        the grid's last spacing, until that collapse is found or the amplitude reaches this cap
-        [g]; the slice then covers the extended range, and a boundary beyond the cap is reported
-        as nan. None scans the grid alone.
+        A duration whose grid does not hold the outcome sought -- for the four-link model the
+        collapse in the first half cycle, for the rigid-block model any collapse -- is scanned
+        further, at the grid's last spacing (times ``stride`` for the faster strategies), until
+        it is found or the amplitude reaches this cap [g]; the slice then covers the extended
+        range, and a boundary beyond the cap is reported as nan. None scans the grid alone.
+    search : {"exhaustive", "bisection", "screened"}, optional
+        How the grid is scanned (:data:`archquake.defaults.DEFAULT_SEARCH` of the model by
+        default: every point for the four-link model, whose whole grid is one compiled call;
+        a coarse scan and bisection for the rigid blocks).
+    stride : int
+        Grid steps between the coarse points of ``bisection`` and ``screened`` [-].
+    screen : StructuralModel, optional
+        The screening model of ``screened`` (default: the four-link model of the same
+        structure with the default restitution, where it has one).
+    workers : int, optional
+        Local worker processes, one duration per task (models whose analyses are single calls,
+        i.e. the rigid blocks); default: run here.
+    progress : bool
+        Show a progress bar over the durations (on stderr).
 
     Returns
     -------
@@ -470,88 +505,228 @@ def domain_of(dynamics, durations=None, amplitudes_g=None, *, direction: str = "
     ------
     ValueError
         For an invalid direction, durations, amplitudes (increasing, >= 0, at most
-        :data:`~archquake.defaults.MAX_ACCELERATION_G`), resolution or ``extend_to_g``, or a scan
-        of more than :data:`~archquake.defaults.MAX_GRID_POINTS` analyses.
+        :data:`~archquake.defaults.MAX_ACCELERATION_G`), resolution, search, ``extend_to_g``
+        or ``workers``, or a scan of more than :data:`~archquake.defaults.MAX_GRID_POINTS`
+        analyses (:data:`~archquake.defaults.MAX_BLOCK_GRID_POINTS` for the rigid blocks).
 
     References
     ----------
     .. [1] The paper, Sect. 5.3.3 and Fig. 16.
     """
-    from ..status import Status
+    from .strategies import check_search, check_stride
 
+    name = getattr(model, "name", None)
+    if name not in DEFAULT_SEARCH:
+        raise ValueError(f"model must be a model of a structure (archquake.models."
+                         f"StructuralModel: four-link or rigid-blocks), got "
+                         f"{type(model).__name__}")
+    search = check_search(DEFAULT_SEARCH[name] if search is None else search)
+    stride = check_stride(stride)
     sign = PULSE_SIGNS[check_direction(direction)]
     d = check_durations(inclusive_range(*DOMAIN_DURATIONS) if durations is None else durations)
     a = check_amplitudes(inclusive_range(*DOMAIN_AMPLITUDES_G) if amplitudes_g is None
-                          else amplitudes_g)
-    if not (resolution > 0):
-        raise ValueError(f"resolution must be > 0 [g], got {resolution!r}")
+                         else amplitudes_g)
+    if not (isinstance(resolution, int | float) and math.isfinite(resolution)
+            and resolution > 0):
+        raise ValueError(f"resolution must be a finite number > 0 [g], got {resolution!r}")
     if extend_to_g is not None and extend_to_g <= a[-1]:
         extend_to_g = None  # the grid already reaches the cap
     if extend_to_g is not None and not (math.isfinite(extend_to_g)
                                         and extend_to_g <= MAX_ACCELERATION_G):
         raise ValueError(f"extend_to_g must be a finite amplitude of at most "
                          f"{MAX_ACCELERATION_G:g} g, got {extend_to_g!r}")
-    _check_scan_size(d.size, a, extend_to_g)
-
-    def run(dur, amp):
-        return dynamics.outcomes(dur, sign * np.asarray(amp, dtype=float), motion)
-
-    scan = run(d[:, None], a[None, :])
-    slices = []
-    for i, tp in enumerate(d):
-        grid, status, half_cycle = a, scan["status"][i], scan["half_cycle"][i]
-        if extend_to_g is not None:
-            grid, status, half_cycle = _extend(lambda amp, tp=tp: run(tp, amp), grid, status,
-                                               half_cycle, extend_to_g)
-        known = {float(x): (Status(int(st)).label, int(hc)) for x, st, hc in
-                 zip(grid, status, half_cycle, strict=True)}
-
-        def classify(amplitude, tp=tp, known=known):
-            key = known.get(float(amplitude))
-            if key is None:
-                out = run(tp, float(amplitude))
-                key = (Status(int(out["status"])).label, int(out["half_cycle"]))
-            return key
-
-        slices.append(domain_slice(classify, grid, duration=float(tp), resolution=resolution))
-    k = dynamics.load_multipliers
+    if workers is not None and (isinstance(workers, bool) or int(workers) != workers
+                                or workers < 1):
+        raise ValueError(f"workers must be an integer >= 1, got {workers!r}")
+    single = name != "four-link"
+    _check_scan_size(d.size, a, extend_to_g, MAX_BLOCK_GRID_POINTS if single else
+                     MAX_GRID_POINTS)
+    screen_model = screen
+    if search == "screened" and screen is None:
+        screen_model = model if name == "four-link" else _four_link_screen(model.structure)
+    job = _SliceJob(model, screen_model, sign, a, float(resolution), motion, extend_to_g,
+                    search, stride)
+    if name == "four-link" and search == "exhaustive":
+        job = job.with_scan(model.outcomes(d[:, None], sign * a[None, :], motion))
+    slices = _run_slices(job, d, workers if single else None, progress)
+    try:
+        k = model.load_multipliers
+    except ValueError:  # a structure without a limit analysis (a rigid-block Assembly)
+        k = (math.nan, math.nan)
     limit_k = k[0] if direction == "l" else k[1]
-    return FailureDomain(tuple(slices), direction, limit_k, k, tuple(dynamics.restitution),
-                         motion, None if extend_to_g is None else float(extend_to_g))
+    restitution = tuple(getattr(model, "restitution", (math.nan, math.nan)))
+    return FailureDomain(tuple(s for s, _ in slices), direction, limit_k, k, restitution,
+                         motion, None if extend_to_g is None else float(extend_to_g),
+                         model.describe(), search, tuple(n for _, n in slices))
 
 
-def _check_scan_size(durations: int, amplitudes: np.ndarray, extend_to_g: float | None) -> None:
-    """Refuse a scan of more than :data:`archquake.defaults.MAX_GRID_POINTS` analyses (counting
-    the largest possible extension)."""
+def _four_link_screen(structure):
+    """The four-link model of ``structure`` (default restitution), or None where there is none
+    (a structure that is not an arch, or whose collapse is no four-link mechanism)."""
+    from ..fourlink import FourLinkModel
+    from ..geometry import BlockArch
+
+    if not isinstance(structure, BlockArch):
+        return None
+    try:
+        return FourLinkModel.from_arch(structure)
+    except ValueError:
+        return None
+
+
+def _encode(status, half_cycle) -> np.ndarray:
+    """Integer outcome keys: the status code times 1000, plus the half cycle of a collapse."""
+    status = np.asarray(status, dtype=np.int64)
+    return status * 1000 + np.where(status == Status.COLLAPSE,
+                                    np.asarray(half_cycle, dtype=np.int64), 0)
+
+
+def _decode(key: int) -> tuple[str, int]:
+    return Status(int(key) // 1000).label, int(key) % 1000
+
+
+@dataclass(frozen=True)
+class _SliceJob:
+    """What every duration of a domain needs (sent whole to a worker)."""
+
+    model: object
+    screen: object
+    sign: float
+    grid: np.ndarray
+    resolution: float
+    motion: str
+    extend_to_g: float | None
+    search: str
+    stride: int
+    scan: dict | None = None  # the four-link model's whole (duration x amplitude) grid
+
+    def with_scan(self, scan: dict) -> _SliceJob:
+        return _SliceJob(self.model, self.screen, self.sign, self.grid, self.resolution,
+                         self.motion, self.extend_to_g, self.search, self.stride, scan)
+
+    def outcome_keys(self, duration: float, amplitudes, smooth: bool = False):
+        """Outcome keys at ``amplitudes`` [g] (and, with ``smooth``, which are smooth in the
+        amplitude: :func:`archquake.studies.strategies.smooth_outcomes`)."""
+        from .strategies import excitation_end, smooth_outcomes
+
+        out = self.model.outcomes(duration, self.sign * np.asarray(amplitudes, dtype=float),
+                                  self.motion)
+        keys = np.atleast_1d(_encode(out["status"], out["half_cycle"]))
+        if not smooth:
+            return keys
+        return keys, smooth_outcomes(out, excitation_end(self.motion, duration))
+
+
+def _slice_task(args) -> tuple[DomainSlice, int]:
+    """One duration of a domain: ``(slice, number of analyses)`` (a worker's job)."""
+    job, index, duration = args
+    return _domain_slice_of(job, index, duration)
+
+
+def _domain_slice_of(job: _SliceJob, index: int, tp: float) -> tuple[DomainSlice, int]:
+    from .strategies import search_grid
+
+    count = 0
+    if job.scan is not None:  # the whole grid, analysed in one call
+        keys = _encode(job.scan["status"][index], job.scan["half_cycle"][index])
+        count += keys.size
+    else:
+        screen = None
+        if job.search == "screened" and job.screen is not None:
+            out = job.screen.outcomes(tp, job.sign * job.grid, job.motion)
+            screen = _encode(out["status"], out["half_cycle"])
+
+        def classify_indices(indices):
+            return job.outcome_keys(tp, job.grid[indices], smooth=True)
+
+        keys, analysed = search_grid(classify_indices, job.grid.size, search=job.search,
+                                     stride=job.stride, screen=screen)
+        count += int(analysed.sum())
+    grid = job.grid
+    if job.extend_to_g is not None:
+        step = 1 if job.search == "exhaustive" else job.stride
+        grid, keys, extra = _extend(lambda amp: job.outcome_keys(tp, amp), grid, keys,
+                                    job.extend_to_g, step, _target(job.model))
+        count += extra
+    known = {float(x): int(key) for x, key in zip(grid, keys, strict=True)}
+    analyses = [0]
+
+    def classify(amplitude, known=known):
+        key = known.get(float(amplitude))
+        if key is None:
+            key = int(job.outcome_keys(tp, [float(amplitude)])[0])
+            analyses[0] += 1
+        return _decode(key)
+
+    piece = domain_slice(classify, grid, duration=float(tp), resolution=job.resolution)
+    return piece, count + analyses[0]
+
+
+def _run_slices(job: _SliceJob, durations: np.ndarray, workers: int | None,
+                progress: bool) -> list[tuple[DomainSlice, int]]:
+    """Every duration's slice, here or on local worker processes."""
+    import sys
+
+    from tqdm.auto import tqdm
+
+    tasks = [(job, i, float(tp)) for i, tp in enumerate(durations)]
+    out = []
+    with tqdm(total=len(tasks), desc=f"failure domain ({job.model.name})", unit="duration",
+              disable=not progress, file=sys.stderr) as bar:
+        if workers is None or workers == 1 or len(tasks) == 1:
+            for task in tasks:
+                out.append(_slice_task(task))
+                bar.update()
+        else:
+            from ..execution import process_pool
+
+            with process_pool(min(int(workers), len(tasks))) as pool:
+                for result in pool.map(_slice_task, tasks):
+                    out.append(result)
+                    bar.update()
+    return out
+
+
+def _target(model) -> Callable[[np.ndarray], bool]:
+    """What an extension of the scan looks for: the collapse in the first half cycle (four-link
+    model) or any collapse (models that do not count half cycles)."""
+    if model.name == "four-link":
+        return lambda keys: bool(np.any(keys == int(Status.COLLAPSE) * 1000 + 1))
+    return lambda keys: bool(np.any(keys // 1000 == int(Status.COLLAPSE)))
+
+
+def _check_scan_size(durations: int, amplitudes: np.ndarray, extend_to_g: float | None,
+                     largest: int = MAX_GRID_POINTS) -> None:
+    """Refuse a scan of more than ``largest`` analyses (counting the largest possible
+    extension)."""
     extension = 0
     if extend_to_g is not None:
         extension = math.ceil((extend_to_g - amplitudes[-1]) / (amplitudes[-1] - amplitudes[-2]))
     points = durations * (amplitudes.size + extension)
-    if points > MAX_GRID_POINTS:
+    if points > largest:
         more = "" if not extension else f" + up to {extension} beyond it up to {extend_to_g:g} g"
+        name = "MAX_GRID_POINTS" if largest == MAX_GRID_POINTS else "MAX_BLOCK_GRID_POINTS"
         raise ValueError(f"the scan of {durations} durations x ({amplitudes.size} amplitudes"
-                         f"{more}) = {points} analyses is too large: at most {MAX_GRID_POINTS} "
-                         f"(MAX_GRID_POINTS, about a minute); use fewer durations or a coarser "
-                         f"grid")
+                         f"{more}) = {points} analyses is too large: at most {largest} "
+                         f"({name}); use fewer durations or a coarser grid")
 
 
-def _extend(run, grid, status, half_cycle, cap):
-    """The scan of one duration continued beyond ``grid`` at its last spacing, a block of
-    :data:`EXTENSION_BLOCK` amplitudes at a time, until the first collapse in the first half
-    cycle or the amplitude ``cap`` [g] (included as the last point)."""
-    from ..status import Status
-
-    def first_half(st, hc):
-        return bool(np.any((st == Status.COLLAPSE) & (hc == 1)))
-
-    step = float(grid[-1] - grid[-2])
-    parts = [(grid, np.asarray(status), np.asarray(half_cycle))]
-    last = float(grid[-1])
-    while not first_half(*parts[-1][1:]) and last < cap:
-        block = np.round(last + step * np.arange(1, EXTENSION_BLOCK + 1), 12)
+def _extend(run, grid, keys, cap, stride, found):
+    """The scan of one duration continued beyond ``grid`` at its last spacing times ``stride``,
+    a block of :data:`EXTENSION_BLOCK` amplitudes at a time (one amplitude at a time for
+    ``stride > 1``, whose analyses are single), until ``found(keys)`` or the amplitude ``cap``
+    [g] (included as the last point). Returns ``(grid, keys, analyses)``."""
+    step = float(grid[-1] - grid[-2]) * stride
+    block_size = EXTENSION_BLOCK if stride == 1 else 1
+    parts = [(np.asarray(grid, dtype=float), np.asarray(keys, dtype=np.int64))]
+    last, count = float(grid[-1]), 0
+    while not found(parts[-1][1]) and last < cap:
+        block = np.round(last + step * np.arange(1, block_size + 1), 12)
         block = block[block < cap]
-        block = np.append(block, cap) if block.size < EXTENSION_BLOCK else block
+        block = np.append(block, cap) if block.size < block_size else block
         out = run(block)
-        parts.append((block, np.asarray(out["status"]), np.asarray(out["half_cycle"])))
+        count += block.size
+        parts.append((block, np.asarray(out, dtype=np.int64)))
         last = float(block[-1])
-    return tuple(np.concatenate([p[j] for p in parts]) for j in range(3))
+    return (np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts]),
+            count)

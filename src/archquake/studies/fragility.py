@@ -104,6 +104,7 @@ from ..geometry import BlockArch, arch_from_dict, irregular_arch
 from .failure_domain import (
     PULSE_SIGNS,
     FailureDomain,
+    domain_of,
     inclusive_range,
 )
 
@@ -1159,7 +1160,7 @@ def _nominal_domains(settings: FragilitySettings, resolution_g: float) -> tuple:
     from ..fourlink.dynamics import ArchDynamics
 
     dynamics = ArchDynamics.from_arch(settings.nominal, settings.restitution)
-    return tuple(dynamics.failure_domain(settings.durations, settings.amplitudes_g,
+    return tuple(domain_of(dynamics, settings.durations, settings.amplitudes_g,
                                          direction=direction, resolution=resolution_g,
                                          motion=settings.motion, extend_to_g=None)
                  for direction in PULSE_SIGNS)
