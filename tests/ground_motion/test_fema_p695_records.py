@@ -85,7 +85,7 @@ def by_record(records):
     """``{record number: [component a, component b]}``."""
     out = defaultdict(list)
     for r in records:
-        out[r.metadata.record].append(r)
+        out[r.metadata.record_number].append(r)
     return dict(out)
 
 
@@ -159,7 +159,7 @@ def test_each_ground_motion_is_its_record_in_m_per_s2_from_t0(suites):
     for name, records in suites.items():
         package = load_ground_motions(sets[name]).ground_motions
         for r in records:
-            row = package.loc[(r.metadata.record, r.metadata.component)]
+            row = package.loc[(r.metadata.record_number, r.metadata.component)]
             m = r.motion
             assert m.name == r.name == r.metadata.name
             assert m.times[0] == 0.0 and m.times.size == r.metadata.samples
@@ -260,7 +260,7 @@ def test_spectra_match_the_shipped_response_spectra(suites):
             for period in periods:
                 if period < 40 * r.metadata.time_step:
                     continue
-                theirs = float(spectra.pseudo_accel.sel(record=r.metadata.record,
+                theirs = float(spectra.pseudo_accel.sel(record=r.metadata.record_number,
                                                         component=r.metadata.component,
                                                         period=period))
                 ours = pseudo_spectral_acceleration(r.motion, period) / GRAVITY
@@ -364,7 +364,7 @@ def test_cli_records_of_a_builtin_suite(suites, capsys):
     assert main(["records", "--suite", "fema-p695-near-field-pulse", "--im", "pga,pgv",
                  "--json"]) == 0
     rows = json.loads(capsys.readouterr().out)
-    assert len(rows) == 28 and len({row["fema_record"] for row in rows}) == 14
+    assert len(rows) == 28 and len({row["record_number"] for row in rows}) == 14
     pga = intensity_measure("pga")
     first = suites["fema-p695-near-field-pulse"][0]
     assert rows[0]["record"] == first.name

