@@ -19,8 +19,10 @@ $(BASE): pyproject.toml
 	$(BIN)/pip install --quiet -e .
 	touch $@
 
+# The records extra (the FEMA P695 record sets, about 300 MB with its dependencies) so that
+# the tests of the built-in suites run.
 $(TEST): $(BASE)
-	$(BIN)/pip install --quiet -e ".[test]"
+	$(BIN)/pip install --quiet -e ".[test,records]"
 	touch $@
 
 $(DOCS): $(BASE)

@@ -1408,8 +1408,14 @@ def add_records(subparsers) -> None:
                     "for its files with extension .at2, .csv or .asc; the records are sorted "
                     "by file name.",
     )
-    parser.add_argument("paths", nargs="+", metavar="PATH",
+    parser.add_argument("paths", nargs="*", metavar="PATH",
                         help="record files and folders of record files")
+    parser.add_argument("--suite", metavar="NAME",
+                        help="a built-in record suite instead of files: fema-p695-far-field, "
+                             "fema-p695-near-field-pulse or fema-p695-near-field-no-pulse "
+                             "(the FEMA P695 record sets, both components of every record; "
+                             'needs pip install "archquake[records]"); --json adds each '
+                             "record's metadata")
     parser.add_argument("--im", default="pga,pgv,pgd,arias,d5-95", metavar="LIST",
                         help="comma-separated intensity measures, e.g. pga,pgv,sa(0.5) "
                              "(default: %(default)s)")
@@ -1425,11 +1431,18 @@ def _run_records(args: argparse.Namespace) -> int:
     names = [im.name for im in measures]
     if len(set(names)) != len(names):
         raise ValueError(f"--im names an intensity measure twice: {args.im!r}")
-    rows = []
-    for motion in read_suite(args.paths):
-        row = {"record": motion.name}
-        row.update({im.name: im(motion) for im in measures})
-        rows.append(row)
+    if args.suite is not None:
+        if args.paths:
+            raise ValueError("records: give --suite or record files, not both")
+        rows = _builtin_suite_rows(args.suite, measures)
+    elif not args.paths:
+        raise ValueError("records: give record files and folders, or --suite NAME")
+    else:
+        rows = []
+        for motion in read_suite(args.paths):
+            row = {"record": motion.name}
+            row.update({im.name: im(motion) for im in measures})
+            rows.append(row)
     if args.json:
         print_json(rows)
         return 0
@@ -1441,6 +1454,26 @@ def _run_records(args: argparse.Namespace) -> int:
                                                                        strict=True)]
         print("  ".join(cells).rstrip())
     return 0
+
+
+def _builtin_suite_rows(name: str, measures) -> list[dict]:
+    """Rows of ``archquake records --suite NAME``: each ground motion of a built-in suite with
+    its intensity measures, then its metadata (the ground motion's name is ``record``)."""
+    from .ground_motion import builtin_suite
+
+    try:
+        records = builtin_suite(name)
+    except ImportError as exc:
+        raise ValueError(f"--suite {name}: {exc}") from None
+    except ValueError as exc:
+        raise ValueError(f"--suite: {exc}") from None
+    rows = []
+    for r in records:
+        row = {"record": r.name}
+        row.update({im.name: im(r.motion) for im in measures})
+        row.update({key: value for key, value in r.metadata.to_dict().items() if key != "name"})
+        rows.append(row)
+    return rows
 
 
 COMMANDS.append(add_records)

