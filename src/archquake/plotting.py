@@ -770,3 +770,48 @@ def plot_model_differences(comparison, ax=None):
     ax.grid(True, alpha=0.3)
     ax.legend(loc="best", fontsize=8, framealpha=0.9)
     return ax
+
+
+def plot_disagreement(disagreement, ax=None):
+    """Hatch where two failure domains disagree on collapse (over a failure-domain figure).
+
+    Drawn over :func:`plot_failure_domain` of the first domain, it shows where in
+    (pulse duration, amplitude) the second model -- the rigid blocks, for the four-link
+    model's domain -- collapses and the first does not (``\\\\``, red) or the reverse (``//``,
+    blue): the four-link model's error as the rigid-block model estimates it.
+
+    Parameters
+    ----------
+    disagreement : archquake.studies.comparison.Disagreement
+        :func:`archquake.studies.comparison.domain_disagreement` of two domains.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; a new figure when None.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn on.
+    """
+    from matplotlib.patches import Patch, Rectangle
+
+    ax = _axes(ax)
+    durations = np.asarray(disagreement.durations, dtype=float)
+    order = np.argsort(durations)
+    edges = _cell_edges(durations[order])
+    first, second = disagreement.names
+    style = {"second only": ("\\\\\\\\", "#b2182b", f"{second} collapses, {first} does not"),
+             "first only": ("////", "#2166ac", f"{first} collapses, {second} does not")}
+    used = set()
+    for x0, x1, i in zip(edges[:-1], edges[1:], order, strict=True):
+        for lo, hi, which in disagreement.intervals[i]:
+            hatch, colour, _ = style[which]
+            ax.add_patch(Rectangle((x0, lo), x1 - x0, hi - lo, fill=False, hatch=hatch,
+                                   edgecolor=colour, linewidth=0.0, zorder=1))
+            used.add(which)
+    handles = [Patch(facecolor="none", hatch=style[w][0], edgecolor=style[w][1],
+                     label=style[w][2]) for w in ("second only", "first only") if w in used]
+    if handles:
+        previous = ax.get_legend()
+        extra = list(previous.legend_handles) if previous is not None else []
+        ax.legend(handles=extra + handles, loc="upper right", fontsize=7, framealpha=0.9)
+    return ax

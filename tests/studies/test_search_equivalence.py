@@ -70,3 +70,31 @@ def test_rigid_block_domain_is_the_same_by_every_strategy():
         assert domain.slices == domains["exhaustive"].slices, search
         assert domain.model["model"] == "rigid-blocks" and domain.search == search
     assert sum(domains["screened"].analyses) < sum(domains["exhaustive"].analyses)
+
+
+def test_disagreement_of_two_domains_is_where_exactly_one_collapses():
+    """domain_disagreement from the domains' intervals, against the two models' outcomes
+    evaluated directly at points inside each piece (and outside every piece they agree)."""
+    from archquake.ground_motion import oppenheim_pulse
+    from archquake.studies.comparison import domain_disagreement
+
+    arch = oppenheim()
+    four_link, blocks = model_for(arch, "four-link", restitution="paper"), model_for(
+        arch, "rigid-blocks")
+    grid = inclusive_range(0.3, 1.5, 0.1)
+    first = domain_of(four_link, [0.2, 0.5], grid, resolution=0.01, extend_to_g=None)
+    second = domain_of(blocks, [0.2, 0.5], grid, resolution=0.01, extend_to_g=None)
+    gap = domain_disagreement(first, second)
+    assert gap.names == ("four-link", "rigid-blocks")
+    short, long = gap.intervals
+    assert short and gap.width_g()[0] > 5 * gap.width_g()[1]  # the models part at short pulses
+    for tp, piece in zip(gap.durations, gap.intervals, strict=True):
+        for lo, hi, which in piece:
+            if hi - lo < 0.03:
+                continue  # within the bisections' resolution of a boundary
+            mid = 0.5 * (lo + hi)
+            pulse = oppenheim_pulse(-mid * 9.81, tp)
+            collapsed = four_link.outcome(pulse).collapsed, blocks.outcome(pulse).collapsed
+            assert collapsed == ((True, False) if which == "first only" else (False, True))
+    json = gap.to_list()
+    assert json[0]["duration"] == 0.2 and {"from", "to", "collapses"} <= set(json[0]["intervals"][0])

@@ -254,4 +254,104 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
     return ModelComparison(arch, rigid_block, four_link, grid, float(resolution), settings)
 
 
-__all__ = ["ModelComparison", "compare_models"]
+@dataclass(frozen=True)
+class Disagreement:
+    """Where two failure domains of the same structure disagree on collapse, per duration.
+
+    Attributes
+    ----------
+    durations : tuple of float
+        Pulse durations t_p [s].
+    intervals : tuple of tuple of (float, float, str)
+        Per duration, the amplitude intervals ``(from, to, which)`` [g] where one model collapses
+        and the other does not; ``which`` is ``"first only"`` (the first domain collapses, the
+        second does not) or ``"second only"``.
+    names : (str, str)
+        The two domains' model names (as they describe themselves).
+    """
+
+    durations: tuple[float, ...]
+    intervals: tuple[tuple[tuple[float, float, str], ...], ...]
+    names: tuple[str, str]
+
+    def width_g(self) -> np.ndarray:
+        """Total width of the disagreement per duration [g]."""
+        return np.array([sum(b - a for a, b, _ in piece) for piece in self.intervals])
+
+    def to_list(self) -> list[dict]:
+        """JSON-ready list: ``duration`` [s] and ``intervals`` (``from``, ``to`` [g],
+        ``collapses``: the name of the model that collapses there).
+
+        Returns
+        -------
+        list of dict
+        """
+        return [{"duration": d,
+                 "intervals": [{"from": a, "to": b,
+                                "collapses": self.names[0 if which == "first only" else 1]}
+                               for a, b, which in piece]}
+                for d, piece in zip(self.durations, self.intervals, strict=True)]
+
+
+def _collapse_edges(piece) -> list[tuple[float, float, bool]]:
+    return [(iv.start, iv.end, iv.status == "collapse") for iv in piece.intervals]
+
+
+def domain_disagreement(first, second) -> Disagreement:
+    """Where two failure domains disagree on collapse: the four-link model's error, in the
+    (pulse duration, amplitude) plane, estimated by the rigid-block model.
+
+    The two domains are values already computed (no analysis is run): at every duration the
+    amplitude axis is cut at the boundaries of both, and every piece where exactly one of them
+    collapses is reported. With the four-link domain first and the rigid-block domain second,
+    ``"first only"`` is where the four-link model predicts a collapse the rigid blocks do not
+    (unconservative nowhere, conservative there) and ``"second only"`` where it misses one (the
+    four-link model is unconservative).
+
+    Parameters
+    ----------
+    first, second : FailureDomain
+        Domains of the same durations (to 1e-9 s) and direction; their boundaries are known to
+        their resolutions, so a disagreement narrower than the coarser resolution may be the
+        bisection's, not the models'.
+
+    Returns
+    -------
+    Disagreement
+
+    Raises
+    ------
+    ValueError
+        If the durations or directions differ.
+    """
+    from .failure_domain import FailureDomain
+
+    if not (isinstance(first, FailureDomain) and isinstance(second, FailureDomain)):
+        raise ValueError("first and second must be FailureDomain values")
+    if (first.durations.shape != second.durations.shape
+            or not np.allclose(first.durations, second.durations, rtol=0, atol=1e-9)
+            or first.direction != second.direction):
+        raise ValueError("the two domains must have the same durations and direction")
+    out = []
+    for a, b in zip(first.slices, second.slices, strict=True):
+        ea, eb = _collapse_edges(a), _collapse_edges(b)
+        lo = max(ea[0][0], eb[0][0])
+        hi = min(ea[-1][1], eb[-1][1])
+        cuts = sorted({lo, hi, *(x for e in ea + eb for x in e[:2] if lo < x < hi)})
+        piece = []
+        for x0, x1 in zip(cuts[:-1], cuts[1:], strict=False):
+            mid = 0.5 * (x0 + x1)
+            ca = next(c for s, e, c in ea if s <= mid <= e)
+            cb = next(c for s, e, c in eb if s <= mid <= e)
+            if ca != cb:
+                which = "first only" if ca else "second only"
+                if piece and piece[-1][2] == which and piece[-1][1] == x0:
+                    piece[-1] = (piece[-1][0], x1, which)
+                else:
+                    piece.append((x0, x1, which))
+        out.append(tuple(piece))
+    names = tuple((d.model or {}).get("model", "?") for d in (first, second))
+    return Disagreement(tuple(float(s.duration) for s in first.slices), tuple(out), names)
+
+
+__all__ = ["Disagreement", "ModelComparison", "compare_models", "domain_disagreement"]
