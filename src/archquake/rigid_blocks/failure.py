@@ -37,6 +37,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..checks import json_float
 from ..constants import GRAVITY
 from ..defaults import MAX_BLOCK_GRID_POINTS
 from ..ground_motion import ANALYTIC_GROUND_MOTIONS, ground_motion
@@ -108,7 +109,7 @@ class FailureCurve:
         for s, bands in zip(self.slices, self.recovery_bands(), strict=True):
             failure = s.failure_acceleration_g
             out.append({"duration": s.duration,
-                        "failure_acceleration": None if math.isnan(failure) else failure,
+                        "failure_acceleration": json_float(failure),
                         "recovery_above": [list(b) for b in bands],
                         "intervals": [iv.to_dict() for iv in s.intervals]})
         return out
