@@ -34,13 +34,12 @@ from archquake.execution import process_pool  # noqa: E402
 from archquake.fourlink.engine import outcomes_grid  # noqa: E402
 from archquake.fourlink.time_history import simulate  # noqa: E402
 from archquake.geometry import irregular_sample  # noqa: E402
+from archquake.ground_motion import RecordSuite, scale_factors  # noqa: E402
 from archquake.studies.record_fragility import (  # noqa: E402
     STOCHASTIC_SUITE,
     RecordFragilitySettings,
-    RecordSuite,
     record_outcomes,
     run_record_fragility,
-    scale_factors,
     warm_up,
 )
 

@@ -33,7 +33,7 @@ from archquake.limit_analysis import both_directions  # noqa: E402
 from archquake.plotting import plot_arch  # noqa: E402
 from archquake.reference_arches import OPPENHEIM, paper_values  # noqa: E402
 from archquake.studies.failure_domain import domain_of  # noqa: E402
-from archquake.studies.fragility import fit_lognormal, probability_of_failure  # noqa: E402
+from archquake.studies.fits import fit_lognormal, probability_of_failure  # noqa: E402
 
 RADIUS, EMBRACE = OPPENHEIM["radius"], OPPENHEIM["embrace"]
 SPAN = 2 * RADIUS * math.sin(EMBRACE / 2)  # Oppenheim's arch: 19.6 m

@@ -24,7 +24,7 @@ from archquake import ArchDynamics, Status, oppenheim  # noqa: E402
 from archquake.geometry import irregular_sample  # noqa: E402
 from archquake.limit_analysis import limit_sample  # noqa: E402
 from archquake.plotting import plot_load_multiplier_cdf  # noqa: E402
-from archquake.studies.fragility import fit_lognormal, probability_of_failure  # noqa: E402
+from archquake.studies.fits import fit_lognormal, probability_of_failure  # noqa: E402
 
 DURATION = 0.40  # t_p [s]
 RESTITUTION = 0.875  # the paper's c_v

@@ -11,7 +11,6 @@ from archquake.limit_analysis import (
     AGREEMENT_TOLERANCE,
     _mechanisms,
     both_directions,
-    empirical_cdf,
     limit_analysis,
     limit_sample,
     load_multipliers,
@@ -268,12 +267,6 @@ def test_limit_sample_with_zero_tolerance_is_the_nominal_multiplier(nominal, pap
         [paper["table1"]["NA"]["load_multiplier"]] * 4, abs=1e-3)
 
 
-def test_empirical_cdf():
-    x, p = empirical_cdf([0.3, 0.1, 0.2, 0.4])
-    assert x.tolist() == [0.1, 0.2, 0.3, 0.4]
-    assert p.tolist() == [0.25, 0.5, 0.75, 1.0]
-
-
 # ------------------------------------------------------------------ bad input
 @pytest.mark.parametrize(
     ("call", "name"),
@@ -290,7 +283,6 @@ def test_empirical_cdf():
         (lambda a: limit_analysis("arch"), "arch"),
         (lambda a: min_thickness(-1.0, math.pi, 10), "radius"),
         (lambda a: min_thickness(1.0, math.pi, 2), "voussoirs"),
-        (lambda a: empirical_cdf([]), "values"),
     ],
 )
 def test_bad_input_names_the_parameter(nominal, call, name):

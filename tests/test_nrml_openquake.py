@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from archquake.results_io import lognormal_moments, openquake_imt, write_fragility_nrml
-from archquake.studies.fragility import LognormalFragility
+from archquake.studies.fits import LognormalFragility
 from archquake.studies.record_fragility import (
     RecordFragilitySettings,
     RecordSuite,

@@ -952,7 +952,8 @@ def limit_sample(
     LimitSample
         :math:`\tilde k_l, \tilde k_r` of every arch and
         :math:`\tilde k = \min(\tilde k_l, \tilde k_r)` [-], whose empirical distribution
-        (:func:`empirical_cdf`) is the blue curve of Figs. 17-20 of the paper.
+        (:func:`archquake.studies.fits.empirical_cdf`) is the blue curve of Figs. 17-20 of
+        the paper.
     """
     _check_method(method)
     if isinstance(sample_size, bool) or not float(sample_size).is_integer() or sample_size < 0:
@@ -964,29 +965,6 @@ def limit_sample(
     k_l.setflags(write=False)
     k_r.setflags(write=False)
     return LimitSample(k_l, k_r, float(epsilon), seed, method)
-
-
-def empirical_cdf(values) -> tuple[np.ndarray, np.ndarray]:
-    r"""Empirical cumulative distribution: sorted values and probabilities ``i / s``, i = 1..s.
-
-    Parameters
-    ----------
-    values : array_like of float
-        The sample (any shape; flattened), finite.
-
-    Returns
-    -------
-    x : ndarray, shape (s,)
-        The sorted values.
-    p : ndarray, shape (s,)
-        :math:`P(X \le x_i) = i / s` [-].
-    """
-    x = np.sort(np.asarray(values, dtype=float).ravel())
-    if x.size == 0:
-        raise ValueError("values must contain at least one number")
-    if not np.all(np.isfinite(x)):
-        raise ValueError("values must be finite numbers")
-    return x, np.arange(1, x.size + 1) / x.size
 
 
 # ---------------------------------------------------------------------------------- thickness

@@ -40,7 +40,7 @@ import numpy as np
 from ._version import __version__
 from .defaults import COMPARE_DURATIONS, COMPARE_RESOLUTION_G
 from .fourlink.impact import PAPER_RESTITUTION, restitution
-from .geometry import GRAVITY, irregular_sample
+from .geometry import GRAVITY
 from .reference_arches import oppenheim, paper_values
 
 ARCH_NAMES = ("NA", "RA-1", "RA-2")
@@ -264,9 +264,10 @@ def _label(case: str, pair) -> str:
 # ------------------------------------------------------------------------------ parts
 def _part_limit(settings: ReproductionSettings, paper: dict) -> tuple[_Arches, dict]:
     from .fourlink.dynamics import ArchDynamics
+    from .studies.arch_sample import ArchSample
 
     nominal = oppenheim()
-    ra = irregular_sample(nominal, settings.epsilon, 2, settings.seed)
+    ra = ArchSample(nominal, settings.epsilon, settings.seed).arches(2)  # the studies' arches 0, 1
     state = _Arches({"NA": nominal, "RA-1": ra[0], "RA-2": ra[1]})
     table = {}
     for name, arch in state.arches.items():

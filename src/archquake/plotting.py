@@ -11,7 +11,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from .geometry import BlockArch
-from .limit_analysis import LimitAnalysis, empirical_cdf
+from .limit_analysis import LimitAnalysis
+from .studies.fits import empirical_cdf
 
 HINGE_LABELS = ("A", "B", "C", "D")
 _MECHANISM_NAMES = {"l": "Mech-l", "r": "Mech-r"}
@@ -265,7 +266,7 @@ def plot_fragility_curve(result, duration: float, ax=None):
     matplotlib.axes.Axes
         The axes drawn on.
     """
-    from .studies.fragility import evaluate_polynomial_fit
+    from .studies.fits import evaluate_polynomial_fit
 
     if ax is None:
         _, ax = plt.subplots(figsize=(7.5, 6.2), constrained_layout=True)
@@ -582,7 +583,7 @@ def plot_record_fragility(result, ax=None, *, nominal: bool = True):
                 label=f"lognormal fit: median {fit.median:.3g} {unit}, "
                       f"$\\beta$ = {fit.dispersion:.3f}")
     ax.plot(x, result.probability, "o", color="black", markersize=4,
-            label=f"irregular arches: {settings.sample_size} arches x {len(result.records)} "
+            label=f"irregular arches: {result.analysed} arches x {len(result.records)} "
                   f"records")
     if nominal:
         if result.nominal_band is not None:
@@ -627,12 +628,12 @@ def plot_incremental(result, ax=None, *, arch: int | None = None):
         _, ax = plt.subplots(figsize=(7.5, 5.6), constrained_layout=True)
     if arch is None:
         failed = result.failed.reshape(-1, result.levels.size)
-        what = f"{result.settings.sample_size} arches x {len(result.records)} records"
+        what = f"{result.analysed} arches x {len(result.records)} records"
     elif arch == -1:
         failed = result.nominal_failed
         what = f"nominal arch, {len(result.records)} records"
     else:
-        failed = result.failed[arch]
+        failed = result.arch_failed(arch)
         what = f"arch {arch}, {len(result.records)} records"
     n_levels = result.levels.size
     first = np.where(failed.any(axis=1), np.argmax(failed, axis=1), n_levels)

@@ -97,4 +97,5 @@ def test_disagreement_of_two_domains_is_where_exactly_one_collapses():
             collapsed = four_link.outcome(pulse).collapsed, blocks.outcome(pulse).collapsed
             assert collapsed == ((True, False) if which == "first only" else (False, True))
     json = gap.to_list()
-    assert json[0]["duration"] == 0.2 and {"from", "to", "collapses"} <= set(json[0]["intervals"][0])
+    assert json[0]["duration"] == 0.2
+    assert {"from", "to", "collapses"} <= set(json[0]["intervals"][0])

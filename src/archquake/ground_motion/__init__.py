@@ -14,7 +14,10 @@ The package is made of these modules (each one's names are also exported here):
     analytic pulses: Oppenheim's, rectangular, sine, harmonic, Ricker wavelets, Makris'
     cycloidal pulses, Mavroeidis-Papageorgiou.
 :mod:`~archquake.ground_motion.records`
-    recorded accelerograms (PEER NGA ``.AT2``, CSV, ESM ASCII) and suites of them.
+    recorded accelerograms (PEER NGA ``.AT2``, CSV, ESM ASCII).
+:mod:`~archquake.ground_motion.suites`
+    suites of records (a folder, a list of files, or the stochastic model; :class:`RecordSuite`)
+    and their scaling to levels of an intensity measure.
 :mod:`~archquake.ground_motion.intensity`
     intensity measures by name (PGA, PGV, PGD, Arias intensity, D5-95, Sa(T)) and scaling of a
     motion to an intensity level.
@@ -81,7 +84,6 @@ from .records import (
     parse_csv_record,
     parse_esm_record,
     read_record,
-    read_suite,
     record,
     record_format,
 )
@@ -93,6 +95,7 @@ from .registry import (
     stochastic,
 )
 from .stochastic import stochastic_motion, stochastic_suite
+from .suites import RecordFile, RecordSuite, file_digest, read_suite, scale_factors, stripe_measure
 
 __all__ = [
     "BUILTIN_SUITES", "BuiltinSuite", "RecordMetadata", "SuiteRecord", "builtin_suite",
@@ -108,4 +111,5 @@ __all__ = [
     "oppenheim_pulse", "parse_at2_record", "parse_csv_record", "parse_esm_record", "read_record",
     "read_suite", "record", "record_format", "rectangular_pulse", "ricker_wavelet",
     "shape_parameters", "sine_pulse", "stochastic", "stochastic_motion", "stochastic_suite",
+    "RecordFile", "RecordSuite", "file_digest", "scale_factors", "stripe_measure",
 ]

@@ -1,8 +1,9 @@
-"""Recorded accelerograms: file formats, one record, and suites of records.
+"""Recorded accelerograms: file formats and one record.
 
 :func:`read_record` reads a recorded (or any tabulated) ground acceleration from a file, in one of
-the formats of :data:`RECORD_FORMATS`, into a ``LINEAR`` ground motion; :func:`read_suite` reads a
-folder or a list of files as a suite of records. Records come only from the user's files: nothing
+the formats of :data:`RECORD_FORMATS`, into a ``LINEAR`` ground motion
+(:func:`~archquake.ground_motion.read_suite` of :mod:`~archquake.ground_motion.suites` reads a
+folder or a list of files as a suite of records). Records come only from the user's files: nothing
 is downloaded.
 
 ``csv``
@@ -33,7 +34,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Callable, Iterable
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -452,82 +453,3 @@ def record(path: str | Path, scale_to: float | None = None) -> GroundMotion:
             f"got {path!r}; use read_record(path, scale_to=...)"
         )
     return read_record(path, scale_to=scale_to)
-
-
-def suite_files(paths) -> list[tuple[Path, str | None]]:
-    """``(file, format or None)`` of every record of a folder or list of paths."""
-    if isinstance(paths, (str, Path)):
-        paths = [paths]
-    try:
-        paths = [Path(p) for p in paths]
-    except TypeError as exc:
-        raise ValueError(f"paths must be a folder, a file or a list of them, got {paths!r}") \
-            from exc
-    if not paths:
-        raise ValueError("a record suite needs at least one file or folder, got none")
-    files: list[tuple[Path, str | None]] = []
-    for path in paths:
-        if path.is_dir():
-            found = sorted(
-                (f for f in path.iterdir()
-                 if f.is_file() and not f.name.startswith(".")
-                 and f.suffix.lower() in RECORD_EXTENSIONS),
-                key=lambda f: f.name,
-            )
-            if not found:
-                raise ValueError(
-                    f"record folder '{path}': no record files in it (looked for the extensions "
-                    f"{', '.join(sorted(RECORD_EXTENSIONS))})"
-                )
-            files.extend((f, RECORD_EXTENSIONS[f.suffix.lower()]) for f in found)
-        elif path.exists():
-            files.append((path, None))
-        else:
-            raise _record_error(path, "no such file or folder")
-    return files
-
-
-def read_suite(paths: str | Path | Iterable[str | Path], *,
-               file_format: str | None = None) -> list[GroundMotion]:
-    """A suite of recorded accelerograms: every record of a folder or of a list of paths.
-
-    A folder contributes its files with a record extension (``.at2``, ``.csv``, ``.asc``; other
-    files such as PEER's ``.VT2``/``.DT2`` or a README are left out, hidden files too); a file is
-    read whatever its extension (format by :func:`record_format`). Each record is read by
-    :func:`read_record` and named by its file name; the suite is sorted by name, so it does not
-    depend on the order of the paths.
-
-    Parameters
-    ----------
-    paths : str, Path or iterable of them
-        Folders and files.
-    file_format : str, optional
-        A key of :data:`RECORD_FORMATS` for every file; by default chosen per file.
-
-    Returns
-    -------
-    list of GroundMotion
-        ``LINEAR`` motions [m/s^2], sorted by name (the file name).
-
-    Raises
-    ------
-    ValueError
-        For no paths, a missing path, a folder without record files, two records of the same
-        file name (their results could not be told apart), or any bad file (the message of
-        :func:`read_record`, naming the file and the line).
-    """
-    files = suite_files(paths)
-    names: dict[str, Path] = {}
-    for path, _ in files:
-        if path.name in names and names[path.name].resolve() != path.resolve():
-            raise ValueError(
-                f"two records of one suite are named {path.name!r}: '{names[path.name]}' and "
-                f"'{path}' (records are named by their file names; rename one)"
-            )
-        names[path.name] = path
-    suite = {}
-    for path, fmt in files:
-        if path.name not in suite:
-            motion = read_record(path, file_format=file_format or fmt)
-            suite[path.name] = motion.renamed(path.name)
-    return [suite[name] for name in sorted(suite)]

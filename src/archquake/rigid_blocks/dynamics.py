@@ -89,6 +89,7 @@ from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
 
+from ..checks import json_float
 from ..defaults import DEFAULT_FRICTION, MAX_BLOCK_STEPS
 from ..geometry import GRAVITY, BlockArch
 from ..ground_motion import GroundMotion
@@ -259,8 +260,8 @@ class BlockOutcome:
         return self.status is Status.COLLAPSE
 
     def to_dict(self) -> dict:
-        """JSON-ready summary: every field by name, in the units above (nan as None, the status
-        by its label).
+        """JSON-ready summary: every field by name, in the units above (nan as None,
+        :func:`archquake.checks.json_float`; the status by its label).
 
         Returns
         -------
@@ -271,8 +272,8 @@ class BlockOutcome:
             value = getattr(self, f.name)
             if isinstance(value, Status):
                 value = value.label
-            elif isinstance(value, float) and math.isnan(value):
-                value = None
+            elif isinstance(value, float):
+                value = json_float(value)
             out[f.name] = value
         return out
 

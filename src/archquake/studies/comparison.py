@@ -32,6 +32,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..checks import json_float
 from ..defaults import (
     COMPARE_AMPLITUDES_G,
     COMPARE_DURATIONS,
@@ -108,8 +109,8 @@ class ModelComparison:
             fl = {name: domain.slices[i] for name, domain in self.four_link.items()}
             out.append({
                 "duration": rb.duration,
-                "rigid_block": _json(rb.failure_acceleration_g),
-                "four_link": {name: _json(s.failure_acceleration_g) for name, s in fl.items()},
+                "rigid_block": json_float(rb.failure_acceleration_g),
+                "four_link": {name: json_float(s.failure_acceleration_g) for name, s in fl.items()},
                 "recovery_above": {
                     "rigid_block": [list(b) for b in rb.recovery_above_g],
                     "four_link": {name: [list(b) for b in s.recovery_above_g]
@@ -117,10 +118,6 @@ class ModelComparison:
                 "scanned_to": rb.scanned_to_g,
             })
         return out
-
-
-def _json(x: float):
-    return None if math.isnan(x) else float(x)
 
 
 def _scan(amplitudes_g) -> np.ndarray:

@@ -45,6 +45,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..checks import json_float
 from ..defaults import (
     DEFAULT_EXTEND_TO_G,
     DEFAULT_RESOLUTION_G,
@@ -156,15 +157,11 @@ class DomainSlice:
         """
         return {
             "duration": self.duration,
-            "failure_acceleration": _json_float(self.failure_acceleration_g),
-            "first_half_cycle_acceleration": _json_float(self.first_half_cycle_acceleration_g),
+            "failure_acceleration": json_float(self.failure_acceleration_g),
+            "first_half_cycle_acceleration": json_float(self.first_half_cycle_acceleration_g),
             "scanned_to": self.scanned_to_g,
             "intervals": [iv.to_dict() for iv in self.intervals],
         }
-
-
-def _json_float(x: float):
-    return None if math.isnan(x) else x
 
 
 def _key(outcome) -> OutcomeKey:

@@ -25,13 +25,14 @@ the dashed curves of Figs. 17-20 of [1]_), and the lognormal fragility function
     P_F(a) = \Phi\left(\frac{\ln(a/\theta)}{\beta}\right)
 
 with median :math:`\theta` [g] and dispersion :math:`\beta` [-], fitted by maximum likelihood to
-the binomial counts of the grid (Eq. (11) in [2]_, :func:`fit_lognormal`), the standard form in
-earthquake engineering. Under a pulse :math:`P_F(a)` need not be monotone: above the failure
+the binomial counts of the grid (Eq. (11) in [2]_, :func:`archquake.studies.fits.fit_lognormal`),
+the standard form in earthquake engineering (the statistics live in
+:mod:`archquake.studies.fits`). Under a pulse :math:`P_F(a)` need not be monotone: above the failure
 accelerations a band of amplitudes lets arches recover again (the last phase of the pulse brings
 them back, README). A lognormal CDF cannot follow that, so it is fitted to the rising part of the
 data, the amplitudes up to the first grid point where :math:`P_F` takes its largest value
-(:func:`rising_part`, recorded with the fit); the polynomial, as in the paper, is fitted to the
-whole grid.
+(:func:`~archquake.studies.fits.rising_part`, recorded with the fit); the polynomial, as in the
+paper, is fitted to the whole grid.
 
 The study [paper, Sect. 5.3.3]
 ------------------------------
@@ -44,19 +45,21 @@ arches gives the empirical CDF of k~ = min(k~_l, k~_r) (the blue curves of Figs.
 nominal arch gives its failure acceleration per duration (point Q of Fig. 16, the step fragility
 of eq. (10)) and its k.
 
-Arch ``i`` of both samples is drawn by :func:`archquake.geometry.irregular_arch` from
-``SeedSequence(seed, spawn_key=(i,))``, i.e. it is arch ``i`` of
-``irregular_sample(nominal, epsilon, sample_size, seed)`` and of ``limit_sample(...)``: the first
-h arches of the limit sample are the arches of the dynamic study. The study runs through
-:func:`archquake.execution.run_study` (chunks of arches, serial / local processes / Dask, resumable
-checkpoints); the results do not depend on how it is run.
+Arch ``i`` of both samples is arch ``i`` of the study's
+:class:`~archquake.studies.arch_sample.ArchSample` (drawn by
+:func:`archquake.geometry.irregular_arch` from ``SeedSequence(seed, spawn_key=(i,))``), i.e. arch
+``i`` of ``irregular_sample(nominal, epsilon, sample_size, seed)`` and of ``limit_sample(...)``:
+the first h arches of the limit sample are the arches of the dynamic study, and of the
+record-based study with the same seed. The study runs through
+:func:`archquake.execution.run_study` (chunks of arches, serial / local processes / Dask,
+resumable checkpoints); the results do not depend on how it is run.
 
-Arches that cannot be analysed: with a large epsilon (or a thin nominal arch) a drawn arch may
-not be an arch (neighbouring voussoirs no longer touch) or may not stand under its own weight.
-Such arches are excluded, not allowed to stop the study: they are counted and named by reason
-(:data:`EXCLUSIONS`), index and seed in the summary and the text output, and left out of h, so
-P_F is the probability of failure of the drawn arches that stand. Any other error names the
-arch that raised it.
+Arches that cannot be analysed follow the one rule of :mod:`archquake.studies.arch_sample`: with a
+large epsilon (or a thin nominal arch) a drawn arch may not be an arch, may not stand under its own
+weight, or may not have a four-link mechanism. Such arches are excluded, not allowed to stop the
+study: they are counted and named by reason (:data:`~archquake.studies.arch_sample.EXCLUSIONS`),
+index and seed in the summary and the text output, and left out of h, so P_F is the probability of
+failure of the drawn arches that stand. Any other error names the arch that raised it.
 
 Restitution: by default ``"computed"`` (:data:`archquake.defaults.DEFAULT_RESTITUTION`, as every
 analysis of the package), each arch its own pair (c_lr, c_rl); ``"nominal"`` applies the
@@ -72,8 +75,6 @@ References
 
 from __future__ import annotations
 
-import functools
-import json
 import math
 import os
 from dataclasses import dataclass, field
@@ -82,8 +83,8 @@ from typing import Any
 
 import numpy as np
 import pandas as pd
-from scipy import optimize, stats
 
+from ..checks import check_integer, json_float
 from ..defaults import (
     DEFAULT_EPSILON,
     DEFAULT_RESTITUTION,
@@ -100,248 +101,31 @@ from ..defaults import (
     STUDY_DURATIONS,
     STUDY_SAMPLE_SIZE,
 )
-from ..geometry import BlockArch, arch_from_dict, irregular_arch
+from ..geometry import BlockArch, arch_from_dict
+from ..reference_arches import oppenheim
+from .arch_sample import (
+    STATUS_EXCLUDED,
+    ArchSample,
+    check_analysed,
+    check_nominal,
+    excluded_arches,
+    exclusion_summary,
+    nominal_model,
+    study_error,
+)
 from .failure_domain import (
     PULSE_SIGNS,
     FailureDomain,
     domain_of,
     inclusive_range,
 )
-
-
-def probability_of_failure(failed: np.ndarray) -> np.ndarray:
-    r"""The estimated probability of failure of Eq. (9) in [1]_,
-
-    .. math::
-
-        P_F = \frac{h_f}{h},
-
-    the fraction of the :math:`h` arches (first axis) that fail.
-
-    Parameters
-    ----------
-    failed : array_like of bool, shape (h, ...)
-        Failure of every arch (first axis) at every point of the rest of the shape.
-
-    Returns
-    -------
-    ndarray, shape (...)
-        :math:`P_F` [-].
-
-    Raises
-    ------
-    ValueError
-        If ``failed`` has no arch.
-
-    References
-    ----------
-    .. [1] The paper, Sect. 5.3.3, Eq. (9).
-
-    Examples
-    --------
-    >>> probability_of_failure([[False, True], [True, True], [False, True], [False, False]])
-    array([0.25, 0.75])
-    """
-    failed = np.asarray(failed, dtype=bool)
-    if failed.ndim < 1 or failed.shape[0] == 0:
-        raise ValueError("failed must have at least one arch (first axis)")
-    return failed.mean(axis=0)
-
-
-@dataclass(frozen=True)
-class LognormalFragility:
-    r"""Lognormal fragility function [1]_:
-
-    .. math::
-
-        P_F(a) = \Phi\left(\frac{\ln(a/\theta)}{\beta}\right),
-
-    :math:`\Phi` the standard normal CDF. Calling it evaluates :math:`P_F` [-] at amplitudes
-    :math:`a` (0 for :math:`a \le 0`).
-
-    Attributes
-    ----------
-    median : float
-        :math:`\theta`: the amplitude with 50 % probability of failure [g] (or the unit of the
-        intensity measure it was fitted to, :mod:`archquake.studies.record_fragility`).
-    dispersion : float
-        :math:`\beta`: the logarithmic standard deviation [-].
-
-    References
-    ----------
-    .. [1] Baker, J. W. (2015). Efficient analytical fragility function fitting using dynamic
-       structural analysis. Earthquake Spectra 31(1), 579-599.
-    """
-
-    median: float
-    dispersion: float
-
-    def __call__(self, amplitude) -> np.ndarray:
-        a = np.asarray(amplitude, dtype=float)
-        with np.errstate(divide="ignore"):
-            z = np.log(np.where(a > 0, a, np.nan) / self.median) / self.dispersion
-        return np.where(a > 0, stats.norm.cdf(z), 0.0)
-
-
-def fit_lognormal(amplitudes, trials, failures) -> LognormalFragility:
-    r"""Maximum-likelihood lognormal fragility from binomial counts.
-
-    With :math:`z_j` collapses in :math:`n_j` analyses at amplitude :math:`a_j`, the counts are
-    binomial with probability :math:`P(a_j) = \Phi(\ln(a_j/\theta)/\beta)`, and the fit
-    maximises the log-likelihood (Eq. (11) in [1]_, without its constant binomial coefficients)
-
-    .. math::
-
-        \{\hat\theta, \hat\beta\} = \arg\max_{\theta, \beta} \sum_j \Bigl[z_j \ln P(a_j)
-        + (n_j - z_j) \ln\bigl(1 - P(a_j)\bigr)\Bigr].
-
-    It is solved by Nelder-Mead in :math:`(\ln\theta, \ln\beta)` from the amplitude nearest
-    50 % failures and :math:`\beta = 0.3`. Separated data (every survival at an amplitude no
-    higher than every failure) have no maximum: the fit then tends to a step, and its
-    dispersion is only as small as the optimizer's tolerances leave it
-    (:func:`archquake.studies.record_fragility.separated` tells such data).
-
-    Parameters
-    ----------
-    amplitudes : array_like of float
-        Amplitudes :math:`a_j` > 0 [g] (or the unit of the intensity measure), 1-D, at least 2.
-    trials : int or array_like of int
-        Number of analyses :math:`n_j` at each amplitude (one number: the same at every one).
-    failures : array_like of int
-        Number of collapses :math:`z_j` at each amplitude, :math:`0 \le z_j \le n_j`.
-
-    Returns
-    -------
-    LognormalFragility
-        :math:`\hat\theta` [unit of ``amplitudes``] and :math:`\hat\beta` [-].
-
-    Raises
-    ------
-    ValueError
-        If the arrays do not match, an amplitude is not finite and > 0, a count is out of range,
-        or the data hold no failure or no survival (no maximum exists).
-
-    See Also
-    --------
-    archquake.studies.record_fragility.lognormal_fit : the same fit, None where no maximum exists.
-
-    References
-    ----------
-    .. [1] Baker, J. W. (2015). Efficient analytical fragility function fitting using dynamic
-       structural analysis. Earthquake Spectra 31(1), 579-599.
-    """
-    a = np.asarray(amplitudes, dtype=float)
-    n = np.broadcast_to(np.asarray(trials, dtype=float), a.shape)
-    z = np.asarray(failures, dtype=float)
-    if a.shape != z.shape or a.ndim != 1 or a.size < 2:
-        raise ValueError("amplitudes and failures must be 1-D arrays of the same length (>= 2)")
-    if np.any(a <= 0) or not np.all(np.isfinite(a)):
-        raise ValueError("amplitudes must be finite and > 0 [g] for a lognormal fit")
-    if np.any(z < 0) or np.any(z > n):
-        raise ValueError("failures must be between 0 and the number of trials")
-    if z.sum() == 0 or z.sum() == n.sum():
-        raise ValueError("a lognormal fit needs both failures and survivals in the data")
-    x = np.log(a)
-
-    def nll(p):
-        mu, log_beta = p
-        beta = math.exp(log_beta)
-        s = (x - mu) / beta
-        return -(z * stats.norm.logcdf(s) + (n - z) * stats.norm.logsf(s)).sum()
-
-    # start from the amplitude nearest 50 % and a typical dispersion
-    frac = z / n
-    mu0 = x[np.argmin(np.abs(frac - 0.5))]
-    res = optimize.minimize(nll, [mu0, math.log(0.3)], method="Nelder-Mead",
-                            options={"xatol": 1e-10, "fatol": 1e-12, "maxiter": 4000})
-    mu, log_beta = res.x
-    return LognormalFragility(float(math.exp(mu)), float(math.exp(log_beta)))
-
-
-def rising_part(probability) -> int:
-    """Number of leading grid points up to and including the first point where ``probability``
-    takes its largest value: the part of a fragility curve a monotone (lognormal) model can
-    describe.
-
-    A local maximum below the largest value does not end the rising part (a dip on the way up
-    is kept in the data of the fit).
-
-    Parameters
-    ----------
-    probability : array_like, shape (n,)
-        P_F [-] on an increasing amplitude grid.
-
-    Returns
-    -------
-    int
-        In ``1 .. n``.
-
-    Raises
-    ------
-    ValueError
-        If ``probability`` is not a non-empty 1-D array.
-
-    Examples
-    --------
-    >>> rising_part([0.0, 0.5, 0.25, 1.0, 1.0, 0.5])
-    4
-    """
-    p = np.asarray(probability, dtype=float)
-    if p.ndim != 1 or p.size == 0:
-        raise ValueError("probability must be a non-empty 1-D array")
-    return int(np.argmax(p)) + 1
-
-
-def fit_polynomial(amplitudes, probabilities, degree: int = 5) -> np.polynomial.Polynomial:
-    """Least-squares polynomial of ``degree`` (the paper: 5) through (a [g], P_F) points.
-
-    The paper fits such a polynomial to each fragility curve (the dashed curves of Figs. 17-20).
-    Evaluate it with :func:`evaluate_polynomial_fit`, which clips to [0, 1].
-
-    Parameters
-    ----------
-    amplitudes : array_like
-        Amplitudes [g].
-    probabilities : array_like
-        P_F [-] at ``amplitudes``.
-    degree : int
-        Degree of the polynomial.
-
-    Returns
-    -------
-    numpy.polynomial.Polynomial
-        The fit (in the scaled variable of :meth:`numpy.polynomial.Polynomial.fit`; ``convert()``
-        gives the coefficients in powers of the amplitude [g]).
-
-    Raises
-    ------
-    ValueError
-        If the arrays differ in shape or hold no more than ``degree`` points.
-    """
-    a = np.asarray(amplitudes, dtype=float)
-    p = np.asarray(probabilities, dtype=float)
-    if a.shape != p.shape or a.size <= degree:
-        raise ValueError(f"a degree-{degree} fit needs more than {degree} points, got {a.size}")
-    return np.polynomial.Polynomial.fit(a, p, degree)
-
-
-def evaluate_polynomial_fit(poly: np.polynomial.Polynomial, amplitude) -> np.ndarray:
-    """The polynomial fit clipped to probabilities in [0, 1].
-
-    Parameters
-    ----------
-    poly : numpy.polynomial.Polynomial
-        A fit of :func:`fit_polynomial`.
-    amplitude : float or array_like
-        Amplitudes [g].
-
-    Returns
-    -------
-    ndarray
-        P_F [-], in [0, 1].
-    """
-    return np.clip(poly(np.asarray(amplitude, dtype=float)), 0.0, 1.0)
-
+from .fits import (
+    evaluate_polynomial_fit,
+    fit_lognormal,
+    fit_polynomial,
+    probability_of_failure,
+    rising_part,
+)
 
 # ---------------------------------------------------------------------------------------------
 # The study
@@ -359,28 +143,6 @@ below it [-]: the static and kinematic limit analyses of one arch agree to about
 (with epsilon = 0 every drawn arch is the nominal one, and a strict ``<`` counted all of them)."""
 POLYNOMIAL_DEGREE = 5
 """Degree of the paper's polynomial fit of a fragility curve."""
-
-
-def nominal_dict(arch: BlockArch) -> dict:
-    return arch.to_dict()
-
-
-def nominal_from_dict(data: dict) -> BlockArch:
-    return arch_from_dict(data)
-
-
-def default_nominal() -> BlockArch:
-    from ..reference_arches import oppenheim
-
-    return oppenheim()
-
-
-def positive_int(name: str, value: Any, minimum: int = 1, maximum: int | None = None) -> int:
-    if (isinstance(value, bool) or not isinstance(value, int | np.integer) or value < minimum
-            or (maximum is not None and value > maximum)):
-        accepted = f">= {minimum}" if maximum is None else f"in [{minimum}, {maximum}]"
-        raise ValueError(f"{name} must be an integer {accepted}, got {value!r}")
-    return int(value)
 
 
 @dataclass(frozen=True, eq=False)
@@ -427,7 +189,7 @@ class FragilitySettings:
         :data:`~archquake.defaults.MAX_STUDY_ANALYSES` analyses.
     """
 
-    nominal: BlockArch = field(default_factory=default_nominal)
+    nominal: BlockArch = field(default_factory=oppenheim)
     sample_size: int = STUDY_SAMPLE_SIZE
     epsilon: float = DEFAULT_EPSILON
     durations: tuple[float, ...] = DEFAULT_DURATIONS
@@ -442,22 +204,9 @@ class FragilitySettings:
         from ..fourlink.impact import check_restitution_model
         from ..ground_motion import ANALYTIC_GROUND_MOTIONS
 
-        if not isinstance(self.nominal, BlockArch):
-            raise ValueError(f"nominal must be an arch (CircularArch or ShapedArch), got "
-                             f"{type(self.nominal).__name__}")
-        if not hasattr(self.nominal, "perturbed"):
-            raise ValueError(f"nominal must be an arch with a centreline to draw irregular "
-                             f"arches around (CircularArch or ShapedArch), got "
-                             f"{type(self.nominal).__name__}")
-        positive_int("sample_size", self.sample_size, maximum=MAX_SAMPLES)
-        positive_int("limit_sample_size", self.limit_sample_size, maximum=MAX_LIMIT_SAMPLES)
-        positive_int("seed", self.seed, minimum=0)
-        try:
-            eps = float(self.epsilon)
-        except (TypeError, ValueError):
-            eps = math.nan
-        if not 0.0 <= eps < 1.0:
-            raise ValueError(f"epsilon must be in [0, 1), got {self.epsilon!r}")
+        sample = ArchSample(self.nominal, self.epsilon, self.seed)  # nominal, epsilon, seed
+        check_integer("sample_size", self.sample_size, maximum=MAX_SAMPLES)
+        check_integer("limit_sample_size", self.limit_sample_size, maximum=MAX_LIMIT_SAMPLES)
         d = np.atleast_1d(np.asarray(self.durations, dtype=float))
         if d.ndim != 1 or d.size == 0 or not np.all(np.isfinite(d)) or np.any(d <= 0):
             raise ValueError(f"durations must be a non-empty list of pulse durations > 0 [s], "
@@ -492,10 +241,17 @@ class FragilitySettings:
                              f"{self.motion!r}")
         object.__setattr__(self, "sample_size", int(self.sample_size))
         object.__setattr__(self, "limit_sample_size", int(self.limit_sample_size))
-        object.__setattr__(self, "seed", int(self.seed))
-        object.__setattr__(self, "epsilon", eps)
+        object.__setattr__(self, "seed", sample.seed)
+        object.__setattr__(self, "epsilon", sample.epsilon)
         object.__setattr__(self, "durations", tuple(float(x) for x in d))
         object.__setattr__(self, "amplitudes_g", tuple(float(x) for x in a))
+
+    @property
+    def sample(self) -> ArchSample:
+        """The irregular arches of the study: :class:`~archquake.studies.arch_sample.ArchSample`
+        ``(nominal, epsilon, seed)``, arches ``0 .. sample_size - 1`` (and ``0 ..
+        limit_sample_size - 1`` for the limit analysis)."""
+        return ArchSample(self.nominal, self.epsilon, self.seed)
 
     def to_dict(self) -> dict:
         """The settings as JSON-ready data, as stored with the results.
@@ -506,7 +262,7 @@ class FragilitySettings:
             Every field, the nominal arch as :meth:`archquake.geometry.CircularArch.to_dict`.
         """
         return {
-            "nominal": nominal_dict(self.nominal),
+            "nominal": self.nominal.to_dict(),
             "sample_size": self.sample_size,
             "epsilon": self.epsilon,
             "durations": list(self.durations),
@@ -531,7 +287,7 @@ class FragilitySettings:
         -------
         FragilitySettings
         """
-        return cls(nominal=nominal_from_dict(data["nominal"]), sample_size=data["sample_size"],
+        return cls(nominal=arch_from_dict(data["nominal"]), sample_size=data["sample_size"],
                    epsilon=data.get("epsilon", data.get("tolerance")),
                    durations=tuple(data["durations"]),
                    amplitudes_g=tuple(data["amplitudes_g"]), seed=data["seed"],
@@ -546,37 +302,10 @@ class FragilitySettings:
     __hash__ = None  # mutable-free but holds arrays: compare by value, do not hash
 
 
-def chunk_arches(chunk, nominal: BlockArch, epsilon: float) -> list[BlockArch]:
-    """The irregular arches of the items of ``chunk``, drawn from their own seed sequences.
-
-    Arch ``i`` is ``irregular_arch(nominal, epsilon, default_rng(SeedSequence(seed,
-    spawn_key=(i,))))``: the same as ``irregular_sample(nominal, epsilon, count, seed)[i]``
-    (eq. (1) of the paper).
-
-    Parameters
-    ----------
-    chunk : archquake.execution.Chunk
-        The items (arch indices) and the root seed.
-    nominal : CircularArch
-        The nominal arch.
-    epsilon : float
-        epsilon of eq. (1) [-], in [0, 1).
-
-    Returns
-    -------
-    list of CircularArch
-        One arch per item, in item order.
-    """
-    return [irregular_arch(nominal, epsilon, rng) for rng in chunk.generators()]
-
-
 def arch_outcomes(arch: BlockArch, durations, amplitudes_g, *, restitution=DEFAULT_RESTITUTION,
                   nominal=None, motion: str = "oppenheim") -> dict[str, np.ndarray]:
-    """Outcomes of one arch over the (duration x amplitude) grid, for both pulse directions.
-
-    The arch's :class:`~archquake.fourlink.dynamics.ArchDynamics`, then one compiled call
-    (:meth:`~archquake.fourlink.dynamics.ArchDynamics.outcomes`) per direction. Rows are ordered by
-    direction (``"l"`` then ``"r"``), duration, amplitude.
+    """Outcomes of one arch over the (duration x amplitude) grid, for both pulse directions:
+    :func:`model_outcomes` of its :class:`~archquake.fourlink.dynamics.ArchDynamics`.
 
     Parameters
     ----------
@@ -596,10 +325,7 @@ def arch_outcomes(arch: BlockArch, durations, amplitudes_g, *, restitution=DEFAU
     Returns
     -------
     dict of ndarray
-        Columns ``direction``, ``duration`` [s], ``amplitude_g`` [g], ``status``,
-        ``half_cycle``, ``impacts``, ``collapse_time`` [s], ``k_l``, ``k_r``, ``c_lr``,
-        ``c_rl`` [-] (2 x durations x amplitudes rows); ``status`` holds the integer codes of
-        :class:`archquake.status.Status`.
+        As :func:`model_outcomes`.
 
     Raises
     ------
@@ -608,72 +334,59 @@ def arch_outcomes(arch: BlockArch, durations, amplitudes_g, *, restitution=DEFAU
     """
     from ..fourlink.dynamics import ArchDynamics
 
-    dynamics = ArchDynamics.from_arch(arch, restitution, nominal)
+    return model_outcomes(ArchDynamics.from_arch(arch, restitution, nominal), durations,
+                          amplitudes_g, motion=motion)
+
+
+def model_outcomes(model, durations, amplitudes_g, *, motion: str = "oppenheim"
+                   ) -> dict[str, np.ndarray]:
+    """Outcomes of one arch's model over the (duration x amplitude) grid, for both pulse
+    directions.
+
+    One compiled call (:meth:`~archquake.fourlink.dynamics.ArchDynamics.outcomes`) per
+    direction. Rows are ordered by direction (``"l"`` then ``"r"``), duration, amplitude.
+
+    Parameters
+    ----------
+    model : FourLinkModel
+        The arch's model (:meth:`archquake.fourlink.dynamics.ArchDynamics.from_arch`).
+    durations : sequence of float
+        Pulse durations t_p [s].
+    amplitudes_g : sequence of float
+        Pulse amplitudes a > 0 [g]; direction ``"l"`` applies ``-a g`` first, ``"r"`` ``+a g``.
+    motion : str
+        Pulse shape (:data:`archquake.ground_motion.ANALYTIC_GROUND_MOTIONS`).
+
+    Returns
+    -------
+    dict of ndarray
+        Columns ``direction``, ``duration`` [s], ``amplitude_g`` [g], ``status``,
+        ``half_cycle``, ``impacts``, ``collapse_time`` [s], ``k_l``, ``k_r``, ``c_lr``,
+        ``c_rl`` [-] (2 x durations x amplitudes rows); ``status`` holds the integer codes of
+        :class:`archquake.status.Status`.
+    """
     d = np.asarray(durations, dtype=float)
     a = np.asarray(amplitudes_g, dtype=float)
     grid_d, grid_a = np.meshgrid(d, a, indexing="ij")
     parts = []
     for direction, sign in PULSE_SIGNS.items():
-        out = dynamics.outcomes(grid_d, sign * grid_a, motion)
+        out = model.outcomes(grid_d, sign * grid_a, motion)
         parts.append({"direction": np.full(grid_d.size, direction),
                       "duration": grid_d.ravel(), "amplitude_g": grid_a.ravel(),
                       **{name: out[name].ravel() for name in
                          ("status", "half_cycle", "impacts", "collapse_time")}})
     columns = {name: np.concatenate([p[name] for p in parts]) for name in parts[0]}
     rows = columns["duration"].size
-    values = (*dynamics.load_multipliers, *dynamics.restitution)
+    values = (*model.load_multipliers, *model.restitution)
     for name, value in zip(("k_l", "k_r", "c_lr", "c_rl"), values, strict=True):
         columns[name] = np.full(rows, float(value))
     return columns
 
 
-@functools.lru_cache(maxsize=4)
-def _nominal_dynamics(nominal_json: str):
-    """The nominal arch's :class:`~archquake.fourlink.FourLinkModel`, built once per process
-    and nominal arch.
-
-    Every chunk of a study needs its mechanisms for ``restitution="nominal"``; rebuilding them
-    (limit analysis and linkage) in every chunk cost about a tenth of the chunk. They are frozen
-    values, so sharing them between chunks changes no result.
-    """
-    from ..fourlink.dynamics import ArchDynamics
-
-    return ArchDynamics.from_arch(nominal_from_dict(json.loads(nominal_json)))
-
-
-STATUS_EXCLUDED = -1
-"""``status`` of the rows of an excluded arch (not analysed; see :data:`EXCLUSIONS`)."""
-
-EXCLUSIONS = {
-    "not an arch": "the draw of eq. (1) separates neighbouring voussoirs (their radial "
-                   "extents no longer overlap) or makes a voussoir thicker than its diameter",
-    "cannot stand": "no line of thrust fits inside the arch under its own weight: it falls "
-                    "without any ground motion, so it has no activation threshold",
-    "not analysable": "the arch stands but its collapse mechanism is not the four-link "
-                      "mechanism of the dynamics (e.g. a joint that opens over its whole depth, "
-                      "or no mechanism in one direction)",
-}
-"""Why an irregular arch of a study is excluded (not analysed), by the name recorded in the
-``excluded`` column of the study table ("" for an analysed arch). Excluded arches are counted
-and named (index, seed) in the summary and the text output, and left out of h: P_F is the
-probability of failure of the arches that stand (conditional on the draw being a standing
-arch). An arch that cannot stand would fail at every amplitude; counting those as failures
-instead would raise P_F by at most (their number) / h everywhere. An arch that never collapses
-(a line of thrust for every k) is analysed, not excluded: it stays at rest at every amplitude,
-with k~ = inf."""
-
-
-def _draw(nominal: BlockArch, epsilon: float, rng) -> tuple[BlockArch | None, str]:
-    """``(arch, "")``, or ``(None, "not an arch")`` when the draw of eq. (1) is no arch."""
-    try:
-        return irregular_arch(nominal, epsilon, rng), ""
-    except ValueError:
-        return None, "not an arch"
-
-
 def _rows_without_motion(durations, amplitudes_g, status: int, k: float) -> dict[str, np.ndarray]:
-    """The rows of :func:`arch_outcomes` for an arch that is not set in motion (status 0, an
-    arch that never collapses, k = inf) or not analysed (:data:`STATUS_EXCLUDED`, k = nan)."""
+    """The rows of :func:`model_outcomes` for an arch that is not set in motion (status 0, an
+    arch that never collapses, k = inf) or not analysed
+    (:data:`~archquake.studies.arch_sample.STATUS_EXCLUDED`, k = nan)."""
     d, a = np.meshgrid(np.asarray(durations, float), np.asarray(amplitudes_g, float),
                        indexing="ij")
     n = d.size
@@ -690,37 +403,14 @@ def _rows_without_motion(durations, amplitudes_g, status: int, k: float) -> dict
     return columns
 
 
-def _analyse(arch: BlockArch | None, why: str, settings: FragilitySettings,
-             nominal) -> tuple[dict[str, np.ndarray], str]:
-    """Rows of one drawn arch and why it is excluded ("" if it is analysed)."""
-    from ..errors import CannotStandError, NeverCollapsesError
-    from ..limit_analysis import load_multipliers
-
-    if arch is not None:
-        try:
-            return arch_outcomes(arch, settings.durations, settings.amplitudes_g,
-                                 restitution=settings.restitution, nominal=nominal,
-                                 motion=settings.motion), ""
-        except CannotStandError:
-            why = "cannot stand"
-        except NeverCollapsesError:
-            if np.all(np.isinf(load_multipliers(arch))):
-                return _rows_without_motion(settings.durations, settings.amplitudes_g, 0,
-                                            math.inf), ""
-            why = "not analysable"
-        except ValueError:
-            why = "not analysable"
-    return _rows_without_motion(settings.durations, settings.amplitudes_g, STATUS_EXCLUDED,
-                                math.nan), why
-
-
 def fragility_task(chunk) -> dict[str, np.ndarray]:
     """Study task (:func:`archquake.execution.run_study`): the arches of one chunk.
 
     ``chunk.settings`` is :meth:`FragilitySettings.to_dict`; every item is one irregular arch
-    (:func:`chunk_arches`), analysed by :func:`arch_outcomes`. An arch that cannot be analysed
-    is excluded (:data:`EXCLUSIONS`; its rows then have status :data:`STATUS_EXCLUDED`); any
-    other error stops the study with a message that names the arch (index and seed).
+    of :attr:`FragilitySettings.sample`, analysed by :func:`model_outcomes`. An arch that cannot
+    be analysed is excluded (:data:`~archquake.studies.arch_sample.EXCLUSIONS`; its rows then
+    have status :data:`~archquake.studies.arch_sample.STATUS_EXCLUDED`); any other error stops
+    the study with a message that names the arch (index and seed).
 
     Parameters
     ----------
@@ -731,7 +421,7 @@ def fragility_task(chunk) -> dict[str, np.ndarray]:
     -------
     dict of ndarray
         The tidy rows: the column ``arch`` (item index) first, the columns of
-        :func:`arch_outcomes`, and ``excluded`` last: why the arch was not analysed, "" if it
+        :func:`model_outcomes`, and ``excluded`` last: why the arch was not analysed, "" if it
         was.
 
     Raises
@@ -739,24 +429,24 @@ def fragility_task(chunk) -> dict[str, np.ndarray]:
     archquake.errors.StudyError
         For an error of an arch other than the exclusions, naming the arch.
     """
-    from ..errors import StudyError
-
     settings = FragilitySettings.from_dict(chunk.settings)
-    nominal = None
-    if settings.restitution == "nominal":
-        nominal = _nominal_dynamics(json.dumps(chunk.settings["nominal"], sort_keys=True))
+    sample = settings.sample
+    grid = (settings.durations, settings.amplitudes_g)
     parts = []
-    for item, rng in zip(chunk.items, chunk.generators(), strict=True):
-        arch, why = _draw(settings.nominal, settings.epsilon, rng)
+    for item in chunk.items:
         try:
-            columns, why = _analyse(arch, why, settings, nominal)
+            member = sample.member(item, restitution=settings.restitution)
+            if member.model is not None:
+                columns = model_outcomes(member.model, *grid, motion=settings.motion)
+            elif member.never_collapses:
+                columns = _rows_without_motion(*grid, 0, math.inf)
+            else:
+                columns = _rows_without_motion(*grid, STATUS_EXCLUDED, math.nan)
         except Exception as exc:
-            raise StudyError(f"irregular arch {item} (SeedSequence({chunk.seed}, spawn_key="
-                             f"({item},))) stopped the study: {type(exc).__name__}: "
-                             f"{exc}") from exc
+            raise study_error(sample.label(item), exc) from exc
         n = columns["duration"].size
         parts.append({"arch": np.full(n, item, dtype=np.int64), **columns,
-                      "excluded": np.full(n, why, dtype="<U16")})
+                      "excluded": np.full(n, member.excluded, dtype="<U16")})
     return {name: np.concatenate([p[name] for p in parts]) for name in parts[0]}
 
 
@@ -764,10 +454,11 @@ def limit_task(chunk) -> dict[str, np.ndarray]:
     """Study task: k~_l and k~_r of the irregular arches of one chunk.
 
     ``chunk.settings`` holds ``nominal``, ``epsilon`` and ``limit_method``; the arches are those
-    of :func:`chunk_arches`, hence the values are those of
-    :func:`archquake.limit_analysis.limit_sample` with the same seed. An arch that is not an
-    arch or cannot stand has k~ = nan and its reason in the column ``excluded``
-    (:data:`EXCLUSIONS`); one that never collapses has k~ = inf.
+    of the study's :class:`~archquake.studies.arch_sample.ArchSample` with the chunk's seed,
+    hence the values are those of :func:`archquake.limit_analysis.limit_sample` with the same
+    seed (:meth:`~archquake.studies.arch_sample.ArchSample.load_multipliers`). An arch that is
+    not an arch or cannot stand has k~ = nan and its reason in the column ``excluded``
+    (:data:`~archquake.studies.arch_sample.EXCLUSIONS`); one that never collapses has k~ = inf.
 
     Parameters
     ----------
@@ -779,20 +470,9 @@ def limit_task(chunk) -> dict[str, np.ndarray]:
     dict of ndarray
         Columns ``arch`` (item index), ``k_l``, ``k_r`` [-] and ``excluded``.
     """
-    from ..limit_analysis import load_multipliers_of
-
-    nominal = nominal_from_dict(chunk.settings["nominal"])
-    draws = [_draw(nominal, chunk.settings["epsilon"], rng) for rng in chunk.generators()]
-    arches = [arch for arch, _ in draws if arch is not None]
-    k = np.full((len(draws), 2), np.nan)
-    drawn = np.array([arch is not None for arch, _ in draws])
-    if arches:
-        k[drawn] = load_multipliers_of(arches, chunk.settings["limit_method"]).reshape(-1, 2)
-    why = np.array([why for _, why in draws], dtype="<U16")
-    # static: nan when no thrust line exists; kinematic: a negative self-weight multiplier
-    cannot_stand = drawn & np.any(np.isnan(k) | (k < 0.0), axis=1)
-    why[cannot_stand] = "cannot stand"
-    k[why != ""] = np.nan
+    sample = ArchSample(arch_from_dict(chunk.settings["nominal"]), chunk.settings["epsilon"],
+                        chunk.seed)
+    k, why = sample.load_multipliers(chunk.items, chunk.settings["limit_method"])
     return {"arch": chunk.items, "k_l": k[:, 0], "k_r": k[:, 1], "excluded": why}
 
 
@@ -808,9 +488,10 @@ class FragilityResult:
         Tidy table, one row per analysis, ordered by arch, direction, duration and amplitude:
         ``arch`` (item index), ``direction`` (``"l"``, ``"r"``), ``duration`` [s],
         ``amplitude_g`` [g], ``status`` (the codes of :class:`archquake.status.Status`: 0 rest,
-        1 recovery, 2 collapse; :data:`STATUS_EXCLUDED` for an excluded arch),
-        ``half_cycle``, ``impacts``, ``collapse_time`` [s], ``k_l``, ``k_r``, ``c_lr``,
-        ``c_rl`` [-] and ``excluded`` (:data:`EXCLUSIONS`, "" for an analysed arch).
+        1 recovery, 2 collapse; :data:`~archquake.studies.arch_sample.STATUS_EXCLUDED` for an
+        excluded arch), ``half_cycle``, ``impacts``, ``collapse_time`` [s], ``k_l``, ``k_r``,
+        ``c_lr``, ``c_rl`` [-] and ``excluded``
+        (:data:`~archquake.studies.arch_sample.EXCLUSIONS`, "" for an analysed arch).
     durations : ndarray, shape (d,)
         Pulse durations t_p [s].
     amplitudes_g : ndarray, shape (a,)
@@ -822,10 +503,11 @@ class FragilityResult:
     polynomial_fits : tuple of numpy.polynomial.Polynomial
         Quintic least-squares fit of P_F(a) per duration (the paper's dashed curves).
     lognormal_fits : tuple of LognormalFragility or None
-        Maximum-likelihood lognormal fragility per duration (:func:`fit_lognormal`), fitted to
-        the amplitudes up to the first one where P_F takes its largest value
-        (:func:`rising_part`); None when no arch, or every arch, fails there, or fewer than two
-        amplitudes are left.
+        Maximum-likelihood lognormal fragility per duration
+        (:func:`~archquake.studies.fits.fit_lognormal`), fitted to the amplitudes up to the
+        first one where P_F takes its largest value
+        (:func:`~archquake.studies.fits.rising_part`); None when no arch, or every arch, fails
+        there, or fewer than two amplitudes are left.
     lognormal_upper : ndarray, shape (d,)
         Largest amplitude of the data of each lognormal fit [g].
     limit_sample : archquake.limit_analysis.LimitSample
@@ -843,8 +525,8 @@ class FragilityResult:
         :func:`archquake.execution.run_study`).
     excluded : dict of int to str
         The irregular arches of the dynamic study that were not analysed, by index, with the
-        reason (a key of :data:`EXCLUSIONS`); they are left out of h, so ``failures`` and the
-        probabilities count the :attr:`analysed` arches only.
+        reason (a key of :data:`~archquake.studies.arch_sample.EXCLUSIONS`); they are left out
+        of h, so ``failures`` and the probabilities count the :attr:`analysed` arches only.
     """
 
     settings: FragilitySettings
@@ -964,10 +646,10 @@ class FragilityResult:
     def summary(self) -> dict:
         """JSON-ready summary: per duration the nominal failure acceleration, P_F below it,
         the fits; ``arches``: how many were drawn and analysed, and the excluded ones by reason
-        (:data:`EXCLUSIONS`); the k~ statistics of the limit sample over its arches that are
-        not excluded (``count``; ``excluded``; ``never_collapse``: k~ = inf, left out of the
-        mean, std, min and max; ``fraction_below_nominal``: the fraction with
-        ``k~ < k (1 - BELOW_NOMINAL_RTOL)``).
+        (:data:`~archquake.studies.arch_sample.EXCLUSIONS`); the k~ statistics of the limit
+        sample over its arches that are not excluded (``count``; ``excluded``;
+        ``never_collapse``: k~ = inf, left out of the mean, std, min and max;
+        ``fraction_below_nominal``: the fraction with ``k~ < k (1 - BELOW_NOMINAL_RTOL)``).
 
         Returns
         -------
@@ -985,9 +667,9 @@ class FragilityResult:
             q = float(self.nominal_failure_acceleration_g[i])
             per_duration.append({
                 "duration": float(tp),
-                "nominal_failure_acceleration": _json_number(q),
-                "probability_below_nominal": _json_number(below[i]),
-                "lowest_failure_acceleration": _json_number(lowest[i]),
+                "nominal_failure_acceleration": json_float(q),
+                "probability_below_nominal": json_float(below[i]),
+                "lowest_failure_acceleration": json_float(lowest[i]),
                 "polynomial_coefficients": self.polynomial_fits[i].convert().coef.tolist(),
                 "lognormal_median": None if lognormal is None else lognormal.median,
                 "lognormal_fitted_up_to": float(self.lognormal_upper[i]),
@@ -996,19 +678,14 @@ class FragilityResult:
                                          else float(lognormal(q))),
             })
         def stat(function, values):
-            return _json_number(float(function(values))) if values.size else None
+            return json_float(float(function(values))) if values.size else None
 
-        reasons = sorted(set(self.excluded.values()), key=list(EXCLUSIONS).index)
         return {
             "settings": self.settings.to_dict(),
             "seed": self.settings.seed,
             "nominal_load_multiplier": self.nominal_load_multiplier,
             "nominal_restitution": list(self.nominal_domains[0].restitution),
-            "arches": {
-                "drawn": self.settings.sample_size, "analysed": self.analysed,
-                "excluded": {why: sorted(i for i, w in self.excluded.items() if w == why)
-                             for why in reasons},
-            },
+            "arches": exclusion_summary(self.settings.sample_size, self.excluded),
             "limit_sample": {
                 "count": int(counted.size), "excluded": int(k.size - counted.size),
                 "never_collapse": int(counted.size - finite.size),
@@ -1022,10 +699,6 @@ class FragilityResult:
             },
             "durations": per_duration,
         }
-
-
-def _json_number(x: float):
-    return None if not math.isfinite(x) else float(x)
 
 
 def _study_arrays(table: pd.DataFrame, settings: FragilitySettings):
@@ -1054,8 +727,9 @@ def fragility_curves(settings: FragilitySettings, table: pd.DataFrame, limit_sam
     nominal arch's failure domains (both directions).
 
     P_F of eq. (9) of the paper counts an arch as failed where it collapses in either direction,
-    over the arches that are not excluded; the fits are :func:`fit_polynomial` (whole grid) and
-    :func:`fit_lognormal` (rising part).
+    over the arches that are not excluded; the fits are
+    :func:`~archquake.studies.fits.fit_polynomial` (whole grid) and
+    :func:`~archquake.studies.fits.fit_lognormal` (rising part).
 
     Parameters
     ----------
@@ -1082,14 +756,8 @@ def fragility_curves(settings: FragilitySettings, table: pd.DataFrame, limit_sam
     from ..status import Status
 
     excluded = excluded_arches(table)
+    check_analysed(settings.sample_size, excluded, settings.epsilon)
     keep = np.array([i not in excluded for i in range(settings.sample_size)])
-    if not keep.any():
-        counts = ", ".join(f"{why}: {n}" for why, n in
-                           pd.Series(list(excluded.values())).value_counts().items())
-        raise ValueError(f"every one of the {settings.sample_size} irregular arches was excluded "
-                         f"({counts}): no probability of failure can be estimated; use a "
-                         f"smaller epsilon (epsilon = {settings.epsilon:g}) or a thicker "
-                         f"nominal arch")
     collapsed = _study_arrays(table, settings)[keep] == Status.COLLAPSE
     failed_l, failed_r = collapsed[:, 0], collapsed[:, 1]
     failed = failed_l | failed_r
@@ -1121,26 +789,6 @@ def fragility_curves(settings: FragilitySettings, table: pd.DataFrame, limit_sam
         metadata=dict(metadata or {}), excluded=excluded)
 
 
-def excluded_arches(table: pd.DataFrame) -> dict[int, str]:
-    """The excluded arches of a study table (column ``excluded``, :data:`EXCLUSIONS`).
-
-    Parameters
-    ----------
-    table : pandas.DataFrame
-        A study table (:func:`fragility_task` rows).
-
-    Returns
-    -------
-    dict of int to str
-        ``{arch: reason}``; empty for a table without that column.
-    """
-    if "excluded" not in table.columns:
-        return {}
-    why = table["excluded"].fillna("").astype(str)  # "" reads back from CSV as missing
-    rows = table.loc[why != "", "arch"]
-    return {int(i): str(w) for i, w in zip(rows, why[why != ""], strict=True)}
-
-
 def warm_up() -> None:
     """Load everything a fragility study runs (compiled engine, limit analysis) in this process
     by running a two-arch study of two analyses each, serially.
@@ -1157,24 +805,11 @@ def warm_up() -> None:
 def _nominal_domains(settings: FragilitySettings, resolution_g: float) -> tuple:
     """The nominal arch's failure domains over the study grid, directions l and r (point Q of
     Fig. 16 per duration), to ``resolution_g`` [g]."""
-    from ..fourlink.dynamics import ArchDynamics
-
-    dynamics = ArchDynamics.from_arch(settings.nominal, settings.restitution)
+    dynamics = nominal_model(settings.nominal, settings.restitution)
     return tuple(domain_of(dynamics, settings.durations, settings.amplitudes_g,
-                                         direction=direction, resolution=resolution_g,
-                                         motion=settings.motion, extend_to_g=None)
+                           direction=direction, resolution=resolution_g,
+                           motion=settings.motion, extend_to_g=None)
                  for direction in PULSE_SIGNS)
-
-
-def _check_nominal(nominal: BlockArch) -> None:
-    """Refuse, before any study, a nominal arch whose limit analysis fails (e.g. it cannot
-    stand under its own weight): its failure domains would fail only after the study."""
-    from ..limit_analysis import both_directions
-
-    try:
-        both_directions(nominal)
-    except ValueError as exc:
-        raise ValueError(f"the nominal arch cannot be analysed: {exc}") from exc
 
 
 LIMIT_DIRECTORY = "limit_sample"
@@ -1251,13 +886,13 @@ def run_fragility(
 
     if not isinstance(settings, FragilitySettings):
         raise ValueError(f"settings must be FragilitySettings, got {type(settings).__name__}")
-    _check_nominal(settings.nominal)
+    check_nominal(settings.nominal, settings.restitution)
     plan = StudyPlan(settings.to_dict(), settings.seed, settings.sample_size,
-                     positive_int("chunk_size", chunk_size))
-    limit_settings = {"nominal": nominal_dict(settings.nominal),
+                     check_integer("chunk_size", chunk_size))
+    limit_settings = {"nominal": settings.nominal.to_dict(),
                       "epsilon": settings.epsilon, "limit_method": settings.limit_method}
     limit_plan = StudyPlan(limit_settings, settings.seed, settings.limit_sample_size,
-                           positive_int("limit_chunk_size", limit_chunk_size))
+                           check_integer("limit_chunk_size", limit_chunk_size))
     backend = default_backend(backend, workers, scheduler, pool)
     out = None if out_dir is None else Path(out_dir)
     limit_dir = None if out is None else out / LIMIT_DIRECTORY
@@ -1277,7 +912,7 @@ def run_fragility(
 
     if backend == "processes":
         if workers is not None:
-            positive_int("workers", workers)
+            check_integer("workers", workers)
         if scheduler is not None:
             raise ValueError(f"scheduler is only used by backend 'dask', not {backend!r}")
         if pool is not None:

@@ -26,8 +26,9 @@ likelihood on the binomial counts per stripe (Eq. (11) in [1]_):
     \{\hat\theta, \hat\beta\} = \arg\max_{\theta, \beta} \sum_j \Bigl[z_j \ln P(x_j)
     + (n_j - z_j) \ln\bigl(1 - P(x_j)\bigr)\Bigr]
 
-(:func:`archquake.studies.fragility.fit_lognormal`; none exists for separated counts,
-:func:`separated`). Three dispersions are reported:
+(:func:`archquake.studies.fits.lognormal_fit`; none exists for separated counts,
+:func:`archquake.studies.fits.separated`). Three dispersions are reported
+(:func:`archquake.studies.fits.dispersions`):
 
 record-to-record, :math:`\beta_{RTR}`
     the fit to the nominal arch's stripes (``n_j = R`` records): how the collapse level of one
@@ -36,9 +37,10 @@ geometric, :math:`\beta_G`
     the irregular arches' spread for the same records: the joint maximum-likelihood fit of
     :math:`P_r(x) = \Phi(\ln(x/\theta_r)/\beta_G)` with one median :math:`\theta_r` per record
     and one common dispersion, to the counts ``z_{r,j} = sum_a y[a, r, j]`` of ``n = h`` arches
-    (:func:`common_dispersion_fit`). Records that collapse no arch, or every arch, at every level
-    carry no information on it and are left out. It also absorbs the non-monotone response of a
-    record (an arch that recovers at a level above one that collapses it). With
+    (:func:`archquake.studies.fits.common_dispersion_fit`). Records that collapse no arch, or
+    every arch, at every level carry no information on it and are left out. It also absorbs
+    the non-monotone response of a record (an arch that recovers at a level above one that
+    collapses it). With
     :math:`\varepsilon = 0` every arch is the nominal one and :math:`\beta_G = 0` by definition.
 total, :math:`\beta`
     everything pooled: the fit to ``z_j`` of all ``h R`` arch-record pairs; its median and
@@ -48,7 +50,8 @@ total, :math:`\beta`
 
 The confidence band of a fit is a percentile bootstrap (ch. 13 of [2]_): the arches and the
 records are resampled with replacement (both, for the sample; the records, for the nominal
-arch), the counts rebuilt from the resampled pairs and refitted (:func:`bootstrap_lognormal`;
+arch), the counts rebuilt from the resampled pairs and refitted
+(:func:`archquake.studies.fits.bootstrap_lognormal`;
 :math:`B` = ``bootstrap`` resamples, 1000 by default, from
 ``SeedSequence(seed, spawn_key=(BOOTSTRAP_KEY,))``); with :math:`\alpha = 1 -` ``confidence``,
 the band at every IM value :math:`x` is
@@ -71,13 +74,24 @@ in the paper's Fig. 16): :meth:`RecordFragilityResult.incremental`.
 Execution
 ---------
 :func:`run_record_fragility` runs through :func:`archquake.execution.run_study`: one item per
-arch, the ``h`` irregular arches first (arch ``i`` drawn from ``SeedSequence(seed,
+arch, the ``h`` irregular arches first (arch ``i`` of the study's
+:class:`~archquake.studies.arch_sample.ArchSample`, drawn from ``SeedSequence(seed,
 spawn_key=(i,))``, i.e. arch ``i`` of :func:`archquake.geometry.irregular_sample` and of the pulse
 study), then the nominal arch (``arch = -1`` in the table). Chunks of arches run serially, on local
 processes or on Dask, are checkpointed and resumable, and the results do not depend on how they
 were run. The workers read the records from their files (so on a Dask cluster the files must be at
-the same paths on every worker); the settings hold each file's name and SHA-256 digest, a worker
+the same paths on every worker); the settings hold the suite
+(:class:`~archquake.ground_motion.RecordSuite`: each file's name and SHA-256 digest), a worker
 refuses a file whose content changed, and a resume with changed files is refused.
+
+An irregular arch that cannot be analysed (it is not an arch, cannot stand, or has no four-link
+mechanism) is excluded as in the pulse study, by the one rule of
+:mod:`archquake.studies.arch_sample`: its rows carry ``status``
+:data:`~archquake.studies.arch_sample.STATUS_EXCLUDED` and the reason in the column ``excluded``,
+the summary names it (``arches``), and the stripes count the ``h`` analysed arches only
+(:attr:`RecordFragilityResult.analysed`); a study whose every irregular arch is excluded is an
+error. An arch that never collapses is analysed: it stays at rest at every level. The nominal arch
+must be analysable (checked before the study starts).
 
 For each arch and record, all levels and both polarities are one compiled call
 (:func:`archquake.fourlink.engine.outcomes_grid` with the record as template). An analysis whose
@@ -97,9 +111,6 @@ References
 
 from __future__ import annotations
 
-import functools
-import hashlib
-import json
 import math
 import os
 from dataclasses import dataclass, field
@@ -109,16 +120,30 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from ..defaults import DEFAULT_RESTITUTION
-from ..fourlink.dynamics import ArchDynamics
-from ..geometry import GRAVITY, BlockArch, irregular_arch
-from .fragility import (
+from ..checks import check_integer
+from ..defaults import DEFAULT_RESTITUTION, MAX_SAMPLES
+from ..geometry import GRAVITY, BlockArch, arch_from_dict
+from ..ground_motion.suites import RecordSuite, stripe_measure
+from ..reference_arches import oppenheim
+from .arch_sample import (
+    STATUS_EXCLUDED,
+    ArchSample,
+    check_analysed,
+    check_nominal,
+    excluded_arches,
+    exclusion_summary,
+    nominal_model,
+    study_error,
+)
+from .fits import (
+    DISPERSIONS,
+    BootstrapBand,
+    CommonDispersionFit,
     LognormalFragility,
-    default_nominal,
-    fit_lognormal,
-    nominal_dict,
-    nominal_from_dict,
-    positive_int,
+    bootstrap_lognormal,
+    common_dispersion_fit,
+    dispersions,
+    lognormal_fit,
 )
 
 NOMINAL_ARCH = -1
@@ -135,277 +160,11 @@ far beyond any arch index, so it is independent of every arch's stream."""
 REST_MARGIN = 1e-12
 """Relative margin [-] below the activation acceleration within which an analysis is integrated
 rather than declared at rest (round-off of the interpolation between samples)."""
-BAND_POINTS = 200
-"""IM values (log-spaced over the levels) at which a band is evaluated."""
 
 CURVES_CSV = "curves.csv"
 """File of the stripes and fits (:meth:`RecordFragilityResult.curves`) in a study directory."""
 INCREMENTAL_CSV = "incremental.csv"
 """File of the incremental view (:meth:`RecordFragilityResult.incremental`)."""
-
-
-# ---------------------------------------------------------------------------------------------
-# The record suite of a study
-# ---------------------------------------------------------------------------------------------
-
-
-def file_digest(path: str | os.PathLike) -> str:
-    """SHA-256 digest of a file's content.
-
-    Parameters
-    ----------
-    path : str or os.PathLike
-        The file.
-
-    Returns
-    -------
-    str
-        The digest in hexadecimal (64 characters).
-
-    Raises
-    ------
-    OSError
-        If the file cannot be read.
-    """
-    h = hashlib.sha256()
-    with open(path, "rb") as f:
-        for block in iter(lambda: f.read(1 << 20), b""):
-            h.update(block)
-    return h.hexdigest()
-
-
-@dataclass(frozen=True)
-class RecordFile:
-    """One record file of a suite.
-
-    Attributes
-    ----------
-    name : str
-        The record's name (its file name), as in the table.
-    path : str
-        Absolute path of the file.
-    file_format : str
-        Key of :data:`archquake.ground_motion.RECORD_FORMATS`.
-    sha256 : str
-        SHA-256 digest of the file's content.
-    """
-
-    name: str
-    path: str
-    file_format: str
-    sha256: str
-
-
-@dataclass(frozen=True, eq=False)
-class RecordSuite:
-    """Where the records of a study come from: files, or the seeded stochastic model.
-
-    Build it with :meth:`from_paths` or :meth:`from_stochastic`; a study stores it in its settings
-    (:meth:`to_dict`) and every worker rebuilds the motions from it (:meth:`motions`).
-
-    Attributes
-    ----------
-    files : tuple of RecordFile
-        The record files, sorted by name (empty for a stochastic suite).
-    stochastic : dict or None
-        ``{"count": n, "seed": s, "parameters": {...}}`` of
-        :func:`archquake.ground_motion.stochastic_suite` (None for files).
-    """
-
-    files: tuple[RecordFile, ...] = ()
-    stochastic: dict | None = None
-
-    def __post_init__(self) -> None:
-        if bool(self.files) == (self.stochastic is not None):
-            raise ValueError("a record suite is either files or a stochastic suite (one of them)")
-
-    @classmethod
-    def from_paths(cls, paths) -> RecordSuite:
-        """The records of folders and files, as :func:`archquake.ground_motion.read_suite` reads
-        them (a folder stands for its files with a record extension; sorted by file name).
-
-        Every file is read once here, so a bad file is reported (naming it) before a study starts.
-
-        Parameters
-        ----------
-        paths : str, os.PathLike or sequence of them
-            Record files and folders (:func:`archquake.ground_motion.read_suite`).
-
-        Returns
-        -------
-        RecordSuite
-
-        Raises
-        ------
-        ValueError
-            If a file cannot be read as a record (the message names it), or there is none.
-        """
-        from ..ground_motion import read_suite
-        from ..ground_motion.records import record_format, suite_files
-
-        motions = read_suite(paths)  # validates every file; names and order of the suite
-        found = {}
-        for path, fmt in suite_files(paths):
-            found.setdefault(path.name, (path, fmt))
-        files = []
-        for motion in motions:
-            path, fmt = found[motion.name]
-            files.append(RecordFile(motion.name, str(path.resolve()), fmt or record_format(path),
-                                    file_digest(path)))
-        return cls(files=tuple(files))
-
-    @classmethod
-    def from_stochastic(cls, count: int, seed: int = 0, **parameters) -> RecordSuite:
-        """``count`` motions of :func:`archquake.ground_motion.stochastic_suite`; no files are
-        needed.
-
-        Parameters
-        ----------
-        count : int
-            Number of motions, >= 1.
-        seed : int
-            Seed of the suite, >= 0.
-        **parameters
-            Model parameters [SI units, see :func:`~archquake.ground_motion.stochastic_motion`]
-            (checked here by drawing one motion).
-
-        Returns
-        -------
-        RecordSuite
-
-        Raises
-        ------
-        ValueError
-            For an invalid count, seed or parameter.
-        """
-        from ..ground_motion import stochastic_suite
-
-        positive_int("count", count)
-        positive_int("seed", seed, minimum=0)
-        spec = {"count": int(count), "seed": int(seed),
-                "parameters": json.loads(json.dumps(parameters))}
-        stochastic_suite(1, seed=spec["seed"], **spec["parameters"])  # check the parameters now
-        return cls(stochastic=spec)
-
-    @property
-    def kind(self) -> str:
-        """``"files"`` or ``"stochastic"``."""
-        return "files" if self.files else "stochastic"
-
-    @property
-    def names(self) -> tuple[str, ...]:
-        """Names of the records, in suite order."""
-        if self.files:
-            return tuple(f.name for f in self.files)
-        count = self.stochastic["count"]
-        width = max(3, len(str(count - 1)))
-        return tuple(f"stochastic-{i:0{width}d}" for i in range(count))
-
-    def __len__(self) -> int:
-        return len(self.files) if self.files else int(self.stochastic["count"])
-
-    def motions(self) -> list:
-        """The ground motions of the suite.
-
-        Returns
-        -------
-        list of GroundMotion
-            ``LINEAR`` motions [m/s^2], named as :attr:`names`.
-
-        Raises
-        ------
-        ValueError
-            If a file is missing or its content no longer has the recorded digest.
-        """
-        from ..ground_motion import read_record, stochastic_suite
-
-        if self.stochastic is not None:
-            spec = self.stochastic
-            return stochastic_suite(spec["count"], seed=spec["seed"], **spec["parameters"])
-        motions = []
-        for f in self.files:
-            try:
-                digest = file_digest(f.path)
-            except OSError as exc:
-                raise ValueError(f"record file '{f.path}' of the study cannot be read: "
-                                 f"{exc.strerror}") from exc
-            if digest != f.sha256:
-                raise ValueError(f"record file '{f.path}' has changed since the study was set up "
-                                 f"(sha256 {digest[:12]}... instead of {f.sha256[:12]}...)")
-            motions.append(read_record(f.path, file_format=f.file_format).renamed(f.name))
-        return motions
-
-    def to_dict(self) -> dict:
-        """The suite as JSON-ready data (what a study's settings store).
-
-        Returns
-        -------
-        dict
-            ``{"kind": "files", "records": [{name, path, format, sha256}, ...]}`` or
-            ``{"kind": "stochastic", "count", "seed", "parameters"}``.
-        """
-        if self.stochastic is not None:
-            return {"kind": "stochastic", **self.stochastic}
-        return {"kind": "files", "records": [
-            {"name": f.name, "path": f.path, "format": f.file_format, "sha256": f.sha256}
-            for f in self.files]}
-
-    @classmethod
-    def from_dict(cls, data: dict) -> RecordSuite:
-        """Inverse of :meth:`to_dict`.
-
-        Parameters
-        ----------
-        data : dict
-            As :meth:`to_dict` writes it.
-
-        Returns
-        -------
-        RecordSuite
-        """
-        if data.get("kind") == "stochastic":
-            return cls(stochastic={"count": data["count"], "seed": data["seed"],
-                                   "parameters": dict(data["parameters"])})
-        return cls(files=tuple(RecordFile(r["name"], r["path"], r["format"], r["sha256"])
-                               for r in data["records"]))
-
-    def __eq__(self, other: object) -> bool:
-        if not isinstance(other, RecordSuite):
-            return NotImplemented
-        return self.to_dict() == other.to_dict()
-
-    __hash__ = None
-
-
-def stripe_measure(name: str):
-    """The :class:`~archquake.ground_motion.IntensityMeasure` of a stripe: one that scales with
-    the record.
-
-    Parameters
-    ----------
-    name : str
-        ``pga``, ``pgv``, ``pgd``, ``arias`` or ``sa(T)`` (T the period [s]).
-
-    Returns
-    -------
-    IntensityMeasure
-
-    Raises
-    ------
-    ValueError
-        For an unknown name, or a measure that does not change when a record is scaled
-        (``d5-95``); the message names ``im``.
-    """
-    from ..ground_motion import intensity_measure
-
-    try:
-        im = intensity_measure(name)
-    except ValueError as exc:
-        raise ValueError(f"im: {exc}") from None
-    if im.exponent == 0.0:
-        raise ValueError(f"im {im.name!r} ({im.description}) cannot define stripes: it does not "
-                         "change when a record is scaled; choose pga, pgv, pgd, arias or sa(T)")
-    return im
 
 
 # ---------------------------------------------------------------------------------------------
@@ -420,21 +179,24 @@ class RecordFragilitySettings:
     Parameters
     ----------
     suite : RecordSuite
-        The records.
+        The records (:class:`archquake.ground_motion.RecordSuite`).
     levels : tuple of float
         Increasing stripe levels of the intensity measure, each > 0 [the IM's unit: g for pga and
         sa(T), m/s for pgv and arias, m for pgd].
     im : str
-        Intensity measure of the stripes (:func:`stripe_measure`).
+        Intensity measure of the stripes (:func:`archquake.ground_motion.stripe_measure`).
     nominal : CircularArch or ShapedArch
-        Nominal arch (default: Oppenheim's arch).
+        Nominal arch (default: Oppenheim's arch); any arch with a centreline to draw irregular
+        arches around.
     sample_size : int
-        Number h of irregular arches (default 40).
+        Number h of irregular arches (default 40), at most
+        :data:`~archquake.defaults.MAX_SAMPLES`.
     epsilon : float
         epsilon of the irregular draw [eq. (1)], in [0, 1) (default 0.10); 0 makes every arch
         the nominal one.
     seed : int
-        Root seed (>= 0) of the arches and of the bootstrap.
+        Root seed (>= 0) of the arches (arch i uses ``SeedSequence(seed, spawn_key=(i,))``, as
+        in :class:`archquake.studies.fragility.FragilitySettings`) and of the bootstrap.
     restitution : str or float
         Restitution model (:func:`archquake.fourlink.impact.check_restitution_model`; default
         ``"computed"``, :data:`archquake.defaults.DEFAULT_RESTITUTION`, as in
@@ -453,7 +215,7 @@ class RecordFragilitySettings:
     suite: RecordSuite
     levels: tuple[float, ...]
     im: str = "pga"
-    nominal: BlockArch = field(default_factory=default_nominal)
+    nominal: BlockArch = field(default_factory=oppenheim)
     sample_size: int = 40
     epsilon: float = 0.10
     seed: int = 0
@@ -462,7 +224,7 @@ class RecordFragilitySettings:
     confidence: float = DEFAULT_CONFIDENCE
 
     def __post_init__(self) -> None:
-        from .fragility import FragilitySettings
+        from ..fourlink.impact import check_restitution_model
 
         if not isinstance(self.suite, RecordSuite):
             raise ValueError(f"suite must be a RecordSuite, got {type(self.suite).__name__}")
@@ -479,27 +241,30 @@ class RecordFragilitySettings:
                              f"be scaled to 0), got {bad}")
         if np.any(np.diff(x) <= 0):
             raise ValueError(f"levels must increase strictly, got {x.tolist()}")
-        positive_int("bootstrap", self.bootstrap, minimum=10)
+        check_integer("bootstrap", self.bootstrap, minimum=10)
         if not (isinstance(self.confidence, int | float) and 0.0 < self.confidence < 1.0):
             raise ValueError(f"confidence must be in (0, 1), got {self.confidence!r}")
-        # the arch, sample and restitution rules of the pulse study
-        FragilitySettings(nominal=self.nominal, sample_size=self.sample_size,
-                          epsilon=self.epsilon, seed=self.seed,
-                          restitution=self.restitution, limit_sample_size=1)
+        sample = ArchSample(self.nominal, self.epsilon, self.seed)  # nominal, epsilon, seed
+        check_integer("sample_size", self.sample_size, maximum=MAX_SAMPLES)
+        object.__setattr__(self, "restitution", check_restitution_model(self.restitution))
         object.__setattr__(self, "im", im.name)
         object.__setattr__(self, "levels", tuple(float(v) for v in x))
         object.__setattr__(self, "sample_size", int(self.sample_size))
-        object.__setattr__(self, "seed", int(self.seed))
-        object.__setattr__(self, "epsilon", float(self.epsilon))
+        object.__setattr__(self, "seed", sample.seed)
+        object.__setattr__(self, "epsilon", sample.epsilon)
         object.__setattr__(self, "bootstrap", int(self.bootstrap))
         object.__setattr__(self, "confidence", float(self.confidence))
-        if not isinstance(self.restitution, str):
-            object.__setattr__(self, "restitution", float(self.restitution))
 
     @property
     def unit(self) -> str:
         """Unit of the IM and of the levels."""
         return stripe_measure(self.im).unit
+
+    @property
+    def sample(self) -> ArchSample:
+        """The irregular arches of the study: :class:`~archquake.studies.arch_sample.ArchSample`
+        ``(nominal, epsilon, seed)``, arches ``0 .. sample_size - 1``."""
+        return ArchSample(self.nominal, self.epsilon, self.seed)
 
     def to_dict(self) -> dict:
         """The settings as JSON-ready data, as stored with the results.
@@ -507,15 +272,15 @@ class RecordFragilitySettings:
         Returns
         -------
         dict
-            Every field (the suite by :meth:`RecordSuite.to_dict`, the nominal arch by
-            :meth:`archquake.geometry.CircularArch.to_dict`) and ``im_unit``.
+            Every field (the suite by :meth:`archquake.ground_motion.RecordSuite.to_dict`, the
+            nominal arch by :meth:`archquake.geometry.CircularArch.to_dict`) and ``im_unit``.
         """
         return {
             "suite": self.suite.to_dict(),
             "im": self.im,
             "im_unit": self.unit,
             "levels": list(self.levels),
-            "nominal": nominal_dict(self.nominal),
+            "nominal": self.nominal.to_dict(),
             "sample_size": self.sample_size,
             "epsilon": self.epsilon,
             "seed": self.seed,
@@ -538,7 +303,7 @@ class RecordFragilitySettings:
         RecordFragilitySettings
         """
         return cls(suite=RecordSuite.from_dict(data["suite"]), levels=tuple(data["levels"]),
-                   im=data["im"], nominal=nominal_from_dict(data["nominal"]),
+                   im=data["im"], nominal=arch_from_dict(data["nominal"]),
                    sample_size=data["sample_size"],
                    epsilon=data.get("epsilon", data.get("tolerance")),
                    seed=data["seed"],
@@ -556,43 +321,6 @@ class RecordFragilitySettings:
 # ---------------------------------------------------------------------------------------------
 # One arch under one record: every level, both polarities, one compiled call
 # ---------------------------------------------------------------------------------------------
-
-
-def scale_factors(im_values, levels, exponent: float) -> np.ndarray:
-    r"""Factors that scale each record to each level, as
-    :func:`archquake.ground_motion.scale_to_im` does.
-
-    An intensity measure of exponent :math:`p` scales as :math:`IM(s\,\ddot x_g) = s^p\,
-    IM(\ddot x_g)` (:math:`p = 1` for PGA, PGV, PGD and SA, 2 for the Arias intensity), so the
-    factor that brings record :math:`r` to level :math:`x_j` is
-
-    .. math::
-
-        s_{rj} = \left(\frac{x_j}{IM_r}\right)^{1/p}.
-
-    Parameters
-    ----------
-    im_values : array_like, shape (R,)
-        The intensity measure of every record [the IM's unit].
-    levels : array_like, shape (L,)
-        Stripe levels [the IM's unit].
-    exponent : float
-        :math:`p` [-].
-
-    Returns
-    -------
-    ndarray, shape (R, L)
-        :math:`s_{rj}` [-].
-
-    Examples
-    --------
-    >>> scale_factors([0.2, 0.5], [0.1, 1.0], 1.0)
-    array([[0.5, 5. ],
-           [0.2, 2. ]])
-    """
-    im_values = np.asarray(im_values, dtype=float)
-    levels = np.asarray(levels, dtype=float)
-    return (levels[None, :] / im_values[:, None]) ** (1.0 / exponent)
 
 
 def record_outcomes(dynamics, motion, factors) -> dict[str, np.ndarray]:
@@ -656,33 +384,31 @@ def record_outcomes(dynamics, motion, factors) -> dict[str, np.ndarray]:
     return out
 
 
+
 # ---------------------------------------------------------------------------------------------
 # The study task (runs in the workers)
 # ---------------------------------------------------------------------------------------------
 
 
-@functools.lru_cache(maxsize=2)
-def _suite_motions(suite_json: str) -> tuple:
-    """The suite's motions, read once per process and suite."""
-    return tuple(RecordSuite.from_dict(json.loads(suite_json)).motions())
-
-
-@functools.lru_cache(maxsize=4)
-def _suite_im_values(suite_json: str, im_name: str) -> np.ndarray:
-    """The intensity measure of every record of the suite [the IM's unit]."""
-    im = stripe_measure(im_name)
-    values = np.array([im(m) for m in _suite_motions(suite_json)])
-    bad = [m.name for m, v in zip(_suite_motions(suite_json), values, strict=True) if not v > 0]
-    if bad:
-        raise ValueError(f"records with {im.name} = 0 cannot be scaled to a level: {bad}")
-    return values
+def _outcomes_without_motion(n: int, status: int) -> dict[str, np.ndarray]:
+    """The columns of :func:`record_outcomes` for ``n`` analyses of an arch that is not set in
+    motion (status 0: it never collapses) or not analysed
+    (:data:`~archquake.studies.arch_sample.STATUS_EXCLUDED`)."""
+    return {"status": np.full(n, status, dtype=np.int8),
+            "half_cycle": np.zeros(n, dtype=np.int16), "impacts": np.zeros(n, dtype=np.int32),
+            "collapse_time": np.full(n, np.nan),
+            "max_phi": np.zeros(n) if status == 0 else np.full(n, np.nan),
+            "integrated": np.zeros(n, dtype=bool)}
 
 
 def record_fragility_task(chunk) -> dict[str, np.ndarray]:
     """Study task (:func:`archquake.execution.run_study`): the arches of one chunk.
 
-    ``chunk.settings`` is :meth:`RecordFragilitySettings.to_dict`; item ``i < h`` is irregular
-    arch ``i`` (drawn from ``chunk.generators()``), item ``h`` the nominal arch.
+    ``chunk.settings`` is :meth:`RecordFragilitySettings.to_dict`; item ``i < h`` is arch ``i``
+    of :attr:`RecordFragilitySettings.sample`, item ``h`` the nominal arch. An irregular arch
+    that cannot be analysed is excluded (:mod:`archquake.studies.arch_sample`: its rows have
+    status :data:`~archquake.studies.arch_sample.STATUS_EXCLUDED` and the reason in the column
+    ``excluded``); one that never collapses is at rest at every level.
 
     Parameters
     ----------
@@ -698,45 +424,51 @@ def record_fragility_task(chunk) -> dict[str, np.ndarray]:
     Raises
     ------
     ValueError
-        If an arch cannot be analysed (naming it; unlike the pulse study, no arch is
-        excluded), or a record file changed.
+        If a record file changed.
+    archquake.errors.StudyError
+        For an error of an arch other than the exclusions, naming the arch.
     """
     settings = RecordFragilitySettings.from_dict(chunk.settings)
-    suite_json = json.dumps(chunk.settings["suite"], sort_keys=True)
-    motions = _suite_motions(suite_json)
-    im = stripe_measure(settings.im)
-    factors = scale_factors(_suite_im_values(suite_json, settings.im), settings.levels,
-                            im.exponent)
+    sample = settings.sample
+    motions = settings.suite.motions(cached=True)
+    factors = settings.suite.scale_factors(settings.im, settings.levels)
     levels = np.asarray(settings.levels)
-    n_levels = levels.size
-    polarity = np.tile(np.array(POLARITIES, dtype=np.int8), n_levels)
+    polarity = np.tile(np.array(POLARITIES, dtype=np.int8), levels.size)
     parts = []
-    for item, rng in zip(chunk.items, chunk.generators(), strict=True):
+    for item in chunk.items:
         if item < settings.sample_size:
-            arch, arch_id = irregular_arch(settings.nominal, settings.epsilon, rng), int(item)
+            arch_id, label = int(item), sample.label(item)
         else:
-            arch, arch_id = settings.nominal, NOMINAL_ARCH
+            arch_id, label = NOMINAL_ARCH, "the nominal arch"
         try:
-            dynamics = ArchDynamics.from_arch(arch, settings.restitution, settings.nominal)
-        except ValueError as exc:
-            raise ValueError(f"arch {arch_id} (seed {chunk.seed}) cannot be analysed: "
-                             f"{exc}") from exc
-        k_l, k_r = dynamics.load_multipliers
-        c_lr, c_rl = dynamics.restitution
-        for r, motion in enumerate(motions):
-            signed = (factors[r][:, None] * np.array(POLARITIES, dtype=float)[None, :]).ravel()
-            out = record_outcomes(dynamics, motion, signed)
-            n = signed.size
-            parts.append({
-                "arch": np.full(n, arch_id, dtype=np.int64),
-                "record": np.full(n, motion.name),
-                "level": np.repeat(levels, len(POLARITIES)),
-                "polarity": polarity,
-                "scale_factor": np.abs(signed),
-                **out,
-                "k_l": np.full(n, k_l), "k_r": np.full(n, k_r),
-                "c_lr": np.full(n, c_lr), "c_rl": np.full(n, c_rl),
-            })
+            if arch_id == NOMINAL_ARCH:
+                model, excluded = nominal_model(settings.nominal, settings.restitution), ""
+                k, c = model.load_multipliers, model.restitution
+            else:
+                member = sample.member(item, restitution=settings.restitution)
+                model, excluded = member.model, member.excluded
+                k = member.load_multipliers
+                c = (math.nan, math.nan) if model is None else model.restitution
+            for r, motion in enumerate(motions):
+                signed = (factors[r][:, None] * np.array(POLARITIES, dtype=float)[None, :]).ravel()
+                n = signed.size
+                if model is not None:
+                    out = record_outcomes(model, motion, signed)
+                else:
+                    out = _outcomes_without_motion(n, STATUS_EXCLUDED if excluded else 0)
+                parts.append({
+                    "arch": np.full(n, arch_id, dtype=np.int64),
+                    "record": np.full(n, motion.name),
+                    "level": np.repeat(levels, len(POLARITIES)),
+                    "polarity": polarity,
+                    "scale_factor": np.abs(signed),
+                    **out,
+                    "k_l": np.full(n, float(k[0])), "k_r": np.full(n, float(k[1])),
+                    "c_lr": np.full(n, float(c[0])), "c_rl": np.full(n, float(c[1])),
+                    "excluded": np.full(n, excluded, dtype="<U16"),
+                })
+        except Exception as exc:
+            raise study_error(label, exc) from exc
     columns = {name: np.concatenate([p[name] for p in parts]) for name in parts[0]}
     width = max(len(name) for name in columns["record"])
     columns["record"] = columns["record"].astype(f"<U{width}")
@@ -744,394 +476,8 @@ def record_fragility_task(chunk) -> dict[str, np.ndarray]:
 
 
 # ---------------------------------------------------------------------------------------------
-# Fits
-# ---------------------------------------------------------------------------------------------
-
-
-def separated(levels, trials, failures) -> bool:
-    """Whether binomial stripe counts admit no maximum-likelihood lognormal fit.
-
-    True if there is no failure or no survival, or if every survival lies at a level no higher
-    than every failure (complete or quasi-complete separation: the likelihood grows without
-    bound as the fit tends to a step, beta -> 0).
-
-    Parameters
-    ----------
-    levels : array_like, shape (L,)
-        Stripe levels [the IM's unit].
-    trials : int or array_like
-        Trials ``n_j`` per stripe.
-    failures : array_like, shape (L,)
-        Failures ``z_j`` per stripe.
-
-    Returns
-    -------
-    bool
-
-    Examples
-    --------
-    Survivals above a failure leave a maximum; a single mixed level between all survivals and
-    all failures does not (quasi-complete separation):
-
-    >>> separated([0.1, 0.2, 0.3], 10, [0, 4, 8]), separated([0.1, 0.2, 0.3], 10, [0, 4, 10])
-    (False, True)
-    """
-    x = np.asarray(levels, dtype=float)
-    n = np.broadcast_to(np.asarray(trials, dtype=float), x.shape)
-    z = np.asarray(failures, dtype=float)
-    fails, survives = z > 0, z < n
-    if not np.any(fails) or not np.any(survives):
-        return True
-    return bool(np.max(x[survives]) <= np.min(x[fails]))
-
-
-def lognormal_fit(levels, trials, failures) -> LognormalFragility | None:
-    """Maximum-likelihood lognormal fragility of stripe counts, or None when none exists.
-
-    Parameters
-    ----------
-    levels : array_like, shape (L,)
-        Stripe levels [the IM's unit].
-    trials : int or array_like
-        Trials ``n_j`` per stripe.
-    failures : array_like, shape (L,)
-        Failures ``z_j`` per stripe.
-
-    Returns
-    -------
-    LognormalFragility or None
-        :func:`archquake.studies.fragility.fit_lognormal`; None for fewer than two levels or
-        separated counts (:func:`separated`).
-    """
-    if np.asarray(levels).size < 2 or separated(levels, trials, failures):
-        return None
-    return fit_lognormal(levels, trials, failures)
-
-
-def _inverse_mills(t):
-    """``phi(t) / Phi(t)`` [-], stable for large negative t."""
-    from scipy import special
-
-    return np.exp(-0.5 * t * t - 0.5 * math.log(2.0 * math.pi) - special.log_ndtr(t))
-
-
-def _probit_log_likelihood(eta, n, z):
-    from scipy import special
-
-    return np.sum(z * special.log_ndtr(eta) + (n - z) * special.log_ndtr(-eta), axis=-1)
-
-
-def probit_newton(log_levels, trials, failures, *, slope=None, start=(0.0, 1.0),
-                  iterations: int = 60, tolerance: float = 1e-12):
-    r"""Maximum likelihood of ``P = Phi(a + b ln x)`` for many sets of stripe counts at once.
-
-    The lognormal fragility function is this probit model with :math:`b = 1/\beta` and
-    :math:`a = -\ln(\theta)/\beta`; its log-likelihood
-
-    .. math::
-
-        \ell(a, b) = \sum_j z_j \ln\Phi(\eta_j) + (n_j - z_j) \ln\Phi(-\eta_j),
-        \qquad \eta_j = a + b \ln x_j,
-
-    is concave in :math:`(a, b)`, so Newton's method with step halving converges from any start
-    when the maximum exists. Its score and (negative) Hessian come from
-    :math:`\partial\ell/\partial\eta_j = z_j \lambda(\eta_j) - (n_j - z_j) \lambda(-\eta_j)`,
-    :math:`\lambda = \varphi/\Phi` the inverse Mills ratio. Used where many fits are needed at
-    once (bootstrap resamples, the records of :func:`common_dispersion_fit`); a single fit is
-    :func:`archquake.studies.fragility.fit_lognormal`.
-
-    Parameters
-    ----------
-    log_levels : array, shape (L,)
-        ``ln x_j`` [ln of the IM's unit].
-    trials : array, broadcastable to ``failures``
-        Trials ``n_j`` per stripe.
-    failures : array, shape (..., L)
-        Failures ``z_j`` per stripe, for every set.
-    slope : float, optional
-        If given, ``b`` is held at this value and only ``a`` is fitted.
-    start : (float, float) or arrays
-        Starting ``(a, b)``.
-    iterations : int
-        Largest number of Newton steps.
-    tolerance : float
-        Convergence: the largest Newton step [-].
-
-    Returns
-    -------
-    a, b : ndarray, shape (...)
-        The estimates [-] and [1/ln of the IM's unit] (nan for a set that did not converge).
-    """
-    u = np.asarray(log_levels, dtype=float)
-    z = np.asarray(failures, dtype=float)
-    n = np.broadcast_to(np.asarray(trials, dtype=float), z.shape)
-    batch = z.shape[:-1]
-    a = np.broadcast_to(np.asarray(start[0], dtype=float), batch).copy()
-    b = np.broadcast_to(np.asarray(start[1] if slope is None else slope, dtype=float),
-                        batch).copy()
-    converged = np.zeros(batch, dtype=bool)
-
-    def loglik(a_, b_):
-        return _probit_log_likelihood(a_[..., None] + b_[..., None] * u, n, z)
-
-    current = loglik(a, b)
-    for _ in range(iterations):
-        eta = a[..., None] + b[..., None] * u
-        lam_p, lam_m = _inverse_mills(eta), _inverse_mills(-eta)
-        score = z * lam_p - (n - z) * lam_m  # d loglik / d eta
-        weight = z * lam_p * (eta + lam_p) + (n - z) * lam_m * (lam_m - eta)  # -d2/deta2 > 0
-        g_a, h_aa = score.sum(-1), weight.sum(-1)
-        if slope is None:
-            g_b, h_ab, h_bb = (score * u).sum(-1), (weight * u).sum(-1), (weight * u * u).sum(-1)
-            det = h_aa * h_bb - h_ab * h_ab
-            with np.errstate(divide="ignore", invalid="ignore"):
-                d_a = (h_bb * g_a - h_ab * g_b) / det
-                d_b = (h_aa * g_b - h_ab * g_a) / det
-        else:
-            with np.errstate(divide="ignore", invalid="ignore"):
-                d_a = g_a / h_aa
-            d_b = np.zeros(batch)
-        d_a = np.where(converged, 0.0, d_a)
-        d_b = np.where(converged, 0.0, d_b)
-        step = np.ones(batch)
-        for _ in range(30):  # halve the step until the likelihood does not decrease
-            trial = loglik(a + step * d_a, b + step * d_b)
-            ok = np.isfinite(trial) & (trial >= current - 1e-12 * np.abs(current))
-            if np.all(ok | converged):
-                break
-            step = np.where(ok | converged, step, 0.5 * step)
-        a, b = a + step * d_a, b + step * d_b
-        current = loglik(a, b)
-        converged |= np.maximum(np.abs(step * d_a), np.abs(step * d_b)) <= tolerance * (
-            1.0 + np.abs(a) + np.abs(b))
-        if np.all(converged):
-            break
-    bad = ~converged | ~np.isfinite(a) | ~np.isfinite(b)
-    return np.where(bad, np.nan, a), np.where(bad, np.nan, b)
-
-
-@dataclass(frozen=True)
-class BootstrapBand:
-    """Percentile bootstrap of a lognormal fragility fit.
-
-    Attributes
-    ----------
-    x : ndarray
-        IM values of the band [the IM's unit].
-    lower, upper : ndarray
-        Band limits of P(collapse | IM = x) [-].
-    median_interval, dispersion_interval : (float, float)
-        Percentile intervals of theta [the IM's unit] and beta [-].
-    resamples : int
-        Resamples drawn.
-    degenerate : int
-        Resamples without a maximum-likelihood fit (left out).
-    confidence : float
-        Confidence level [-].
-    """
-
-    x: np.ndarray
-    lower: np.ndarray
-    upper: np.ndarray
-    median_interval: tuple[float, float]
-    dispersion_interval: tuple[float, float]
-    resamples: int
-    degenerate: int
-    confidence: float
-
-    def to_dict(self) -> dict:
-        """The band's numbers as JSON-ready data.
-
-        Returns
-        -------
-        dict
-            ``resamples``, ``degenerate``, ``confidence``, ``median_interval`` [the IM's unit]
-            and ``dispersion_interval`` [-] (the band itself is in
-            :meth:`RecordFragilityResult.curves`).
-        """
-        return {"resamples": self.resamples, "degenerate": self.degenerate,
-                "confidence": self.confidence, "median_interval": list(self.median_interval),
-                "dispersion_interval": list(self.dispersion_interval)}
-
-
-def bootstrap_lognormal(levels, failed, fit: LognormalFragility, *, resamples: int,
-                        confidence: float, rng, x=None) -> BootstrapBand | None:
-    r"""Confidence band of a lognormal fit by resampling the units of ``failed`` with replacement.
-
-    Every leading axis of ``failed`` (arches, records) is resampled with replacement (drawn as
-    multinomial multiplicities of its units), the counts :math:`z^{*b}_j` of resample :math:`b`
-    rebuilt from the resampled units and refitted by maximum likelihood
-    (:func:`probit_newton`, started from ``fit``); the band is the percentile interval (ch. 13
-    of [1]_) of the refitted curves at every IM value :math:`x`,
-
-    .. math::
-
-        \Bigl[q_{\alpha/2}\{P^{*b}(x)\},\; q_{1-\alpha/2}\{P^{*b}(x)\}\Bigr], \qquad
-        \alpha = 1 - \text{confidence},
-
-    and the intervals of :math:`\theta` and :math:`\beta` are the same percentiles of their
-    refitted values. Resamples whose counts are separated (:func:`separated`) or whose fit does
-    not converge are left out and counted.
-
-    Parameters
-    ----------
-    levels : array, shape (L,)
-        Stripe levels [the IM's unit].
-    failed : bool array, shape (units..., L)
-        Failure of every unit at every level; every leading axis is resampled independently
-        (e.g. ``(arches, records, L)``: arches and records).
-    fit : LognormalFragility
-        The fit to all data (start of every refit).
-    resamples : int
-        Number of resamples :math:`B`.
-    confidence : float
-        Central fraction of the refitted curves the band holds [-], in (0, 1).
-    rng : numpy.random.Generator
-        Source of the resampling.
-    x : array, optional
-        IM values of the band [the IM's unit] (default: :data:`BAND_POINTS` log-spaced over
-        the levels).
-
-    Returns
-    -------
-    BootstrapBand or None
-        None if no resample has a fit.
-
-    References
-    ----------
-    .. [1] Efron, B. and Tibshirani, R. J. (1993). An Introduction to the Bootstrap. Chapman &
-       Hall, ch. 13 (percentile intervals).
-    """
-    from scipy import stats
-
-    y = np.asarray(failed, dtype=float)
-    levels = np.asarray(levels, dtype=float)
-    unit_axes = y.shape[:-1]
-    counts = y
-    weights = [rng.multinomial(size, np.full(size, 1.0 / size), size=resamples)
-               for size in unit_axes]
-    # z[b, j] = sum over units of (product of the units' multiplicities) * y[units, j]
-    z = np.tensordot(weights[0], counts, axes=(1, 0))  # (B, rest..., L)
-    for w in weights[1:]:
-        z = np.einsum("bk...,bk->b...", z, w)
-    trials = float(np.prod(unit_axes))
-    u = np.log(levels)
-    good = np.array([not separated(levels, trials, zb) for zb in z])
-    a = np.full(resamples, np.nan)
-    b = np.full(resamples, np.nan)
-    if np.any(good):
-        start = (-math.log(fit.median) / fit.dispersion, 1.0 / fit.dispersion)
-        a[good], b[good] = probit_newton(u, trials, z[good], start=start)
-    ok = np.isfinite(a) & np.isfinite(b) & (b > 0)
-    if not np.any(ok):
-        return None
-    beta = 1.0 / b[ok]
-    theta = np.exp(-a[ok] * beta)
-    if x is None:
-        x = np.geomspace(levels[0], levels[-1], BAND_POINTS)
-    curves = stats.norm.cdf(np.log(x[None, :] / theta[:, None]) / beta[:, None])
-    tail = 50.0 * (1.0 - confidence)
-    lower, upper = np.percentile(curves, [tail, 100.0 - tail], axis=0)
-    return BootstrapBand(
-        x=np.asarray(x, dtype=float), lower=lower, upper=upper,
-        median_interval=tuple(float(v) for v in np.percentile(theta, [tail, 100.0 - tail])),
-        dispersion_interval=tuple(float(v) for v in np.percentile(beta, [tail, 100.0 - tail])),
-        resamples=int(resamples), degenerate=int(resamples - ok.sum()),
-        confidence=float(confidence))
-
-
-@dataclass(frozen=True)
-class CommonDispersionFit:
-    """Lognormal fragility per record with one common dispersion (:func:`common_dispersion_fit`).
-
-    Attributes
-    ----------
-    dispersion : float
-        The common dispersion beta_G [-].
-    medians : ndarray
-        Median theta_r of every record used [the IM's unit].
-    records : ndarray of int
-        Indices of the records used.
-    """
-
-    dispersion: float
-    medians: np.ndarray
-    records: np.ndarray
-
-
-def common_dispersion_fit(levels, trials, failures) -> CommonDispersionFit | None:
-    r"""Joint maximum-likelihood fit of :math:`P_r(x) = \Phi(\ln(x/\theta_r)/\beta)`: one median
-    per set of counts (row of ``failures``) and one common dispersion.
-
-    .. math::
-
-        \hat\beta = \arg\max_\beta \max_{\theta_1 \dots \theta_R} \sum_r \sum_j
-        \Bigl[z_{rj} \ln P_r(x_j) + (n_{rj} - z_{rj}) \ln\bigl(1 - P_r(x_j)\bigr)\Bigr]:
-
-    the profile likelihood of :math:`\beta`, maximised by a bounded scalar search on
-    :math:`\ln\beta \in [\ln 10^{-3}, \ln 10]`, each :math:`\theta_r` at given :math:`\beta` by
-    Newton's method (:func:`probit_newton` with the slope held). It is the multiple-stripe fit
-    of [1]_ with the records as groups. Rows with no failure or no survival are left out (they
-    hold no information on :math:`\beta`).
-
-    Parameters
-    ----------
-    levels : array, shape (L,)
-        Stripe levels [the IM's unit].
-    trials : int or array
-        Trials :math:`n_{rj}` per stripe (e.g. the number of arches).
-    failures : array, shape (R, L)
-        Failures :math:`z_{rj}` per row and stripe.
-
-    Returns
-    -------
-    CommonDispersionFit or None
-        None if no row has both failures and survivals, or if every used row is a step
-        (:func:`separated`), for which beta -> 0.
-
-    References
-    ----------
-    .. [1] Baker, J. W. (2015). Efficient analytical fragility function fitting using dynamic
-       structural analysis. Earthquake Spectra 31(1), 579-599.
-    """
-    from scipy import optimize
-
-    u = np.log(np.asarray(levels, dtype=float))
-    z = np.asarray(failures, dtype=float)
-    n = np.broadcast_to(np.asarray(trials, dtype=float), z.shape)
-    used = np.flatnonzero((z.sum(-1) > 0) & (z.sum(-1) < n.sum(-1)))
-    if used.size == 0 or u.size < 2:
-        return None
-    z, n = z[used], n[used]
-    if all(separated(np.exp(u), n[i], z[i]) for i in range(used.size)):
-        return None
-    centre = np.array([u[np.argmin(np.abs(zi / ni - 0.5))] for zi, ni in zip(z, n, strict=True)])
-
-    def intercepts(beta):
-        a, _ = probit_newton(u, n, z, slope=1.0 / beta, start=(-centre / beta, 1.0 / beta))
-        return a
-
-    def negative(log_beta):
-        beta = math.exp(log_beta)
-        a = intercepts(beta)
-        if not np.all(np.isfinite(a)):
-            return np.inf
-        return -float(np.sum(_probit_log_likelihood(a[:, None] + u[None, :] / beta, n, z)))
-
-    res = optimize.minimize_scalar(negative, bounds=(math.log(1e-3), math.log(10.0)),
-                                   method="bounded", options={"xatol": 1e-9})
-    beta = math.exp(res.x)
-    a = intercepts(beta)
-    return CommonDispersionFit(float(beta), np.exp(-a * beta), used)
-
-
-# ---------------------------------------------------------------------------------------------
 # The result
 # ---------------------------------------------------------------------------------------------
-
-
-def _json_number(x) -> float | None:
-    return None if x is None or not math.isfinite(float(x)) else float(x)
 
 
 def _fit_dict(fit: LognormalFragility | None) -> dict:
@@ -1153,13 +499,17 @@ class RecordFragilityResult:
         ``record``, ``level`` [IM unit], ``polarity`` (+1 as recorded, -1 reversed),
         ``scale_factor`` [-], ``status`` (0 rest, 1 recovery, 2 collapse), ``half_cycle``,
         ``impacts``, ``collapse_time`` [s], ``max_phi`` [rad], ``integrated`` (False: rest
-        without integrating), ``k_l``, ``k_r``, ``c_lr``, ``c_rl`` [-].
+        without integrating, or not analysed), ``k_l``, ``k_r``, ``c_lr``, ``c_rl`` [-] and
+        ``excluded`` ("" for an analysed arch, else why it is not:
+        :data:`~archquake.studies.arch_sample.EXCLUSIONS`; its ``status`` is then
+        :data:`~archquake.studies.arch_sample.STATUS_EXCLUDED`).
     records : tuple of str
         Record names, in suite order.
     levels : ndarray, shape (L,)
         Stripe levels [IM unit].
     collapsed : bool ndarray, shape (h, R, L, 2)
-        Collapse of every irregular arch, record, level and polarity (as recorded, reversed).
+        Collapse of every analysed irregular arch (:attr:`arches`), record, level and polarity
+        (as recorded, reversed).
     nominal_collapsed : bool ndarray, shape (R, L, 2)
         The same for the nominal arch.
     lognormal : LognormalFragility or None
@@ -1174,6 +524,10 @@ class RecordFragilityResult:
         Bootstrap bands of the total and nominal fits.
     metadata : dict
         Settings, seed, version, timings of the study.
+    excluded : dict of int to str
+        The irregular arches that were not analysed, by index, with the reason (a key of
+        :data:`~archquake.studies.arch_sample.EXCLUSIONS`); they are left out of h, so the
+        stripes count the :attr:`analysed` arches only.
     """
 
     settings: RecordFragilitySettings
@@ -1188,12 +542,54 @@ class RecordFragilityResult:
     band: BootstrapBand | None = field(repr=False)
     nominal_band: BootstrapBand | None = field(repr=False)
     metadata: dict = field(repr=False, default_factory=dict)
+    excluded: dict = field(default_factory=dict)
+
+    # ------------------------------------------------------------------ arches
+    @property
+    def analysed(self) -> int:
+        """Number h of irregular arches analysed (drawn minus excluded)."""
+        return self.settings.sample_size - len(self.excluded)
+
+    @property
+    def arches(self) -> np.ndarray:
+        """Indices of the analysed irregular arches: the arch of each row of :attr:`collapsed`
+        and :attr:`failed`."""
+        return np.array([i for i in range(self.settings.sample_size) if i not in self.excluded],
+                        dtype=np.int64)
+
+    def arch_failed(self, arch: int) -> np.ndarray:
+        """Failure of one arch under every record at every level (either polarity).
+
+        Parameters
+        ----------
+        arch : int
+            Index of an analysed irregular arch, or :data:`NOMINAL_ARCH` (-1).
+
+        Returns
+        -------
+        bool ndarray, shape (R, L)
+
+        Raises
+        ------
+        ValueError
+            For an excluded arch or an index that is not in the study.
+        """
+        if arch == NOMINAL_ARCH:
+            return self.nominal_failed
+        if arch in self.excluded:
+            raise ValueError(f"arch {arch} was excluded ({self.excluded[arch]}): it has no "
+                             f"outcomes")
+        rows = np.flatnonzero(self.arches == arch)
+        if rows.size == 0:
+            raise ValueError(f"arch must be {NOMINAL_ARCH} (the nominal arch) or an irregular "
+                             f"arch in [0, {self.settings.sample_size}), got {arch!r}")
+        return self.failed[rows[0]]
 
     # ------------------------------------------------------------------ stripes
     @property
     def failed(self) -> np.ndarray:
-        """Failure of every irregular arch-record pair at every level (either polarity),
-        shape (h, R, L)."""
+        """Failure of every analysed irregular arch-record pair at every level (either
+        polarity), shape (h, R, L)."""
         return self.collapsed.any(axis=-1)
 
     @property
@@ -1262,22 +658,12 @@ class RecordFragilityResult:
             without an estimate; ``geometric_records_used`` and the ``definitions`` in words.
         """
         rtr = None if self.nominal_lognormal is None else self.nominal_lognormal.dispersion
-        geo = self.geometric_dispersion
         total = None if self.lognormal is None else self.lognormal.dispersion
-        srss = None if rtr is None or geo is None else math.hypot(rtr, geo)
         return {
-            "record_to_record": rtr, "geometric": geo, "total": total, "srss": srss,
+            **dispersions(rtr, self.geometric_dispersion, total),
             "geometric_records_used": (0 if self.geometric is None
                                        else int(self.geometric.records.size)),
-            "definitions": {
-                "record_to_record": "dispersion of the lognormal fit to the nominal arch's "
-                                    "stripes (one geometry, the records vary)",
-                "geometric": "common dispersion of lognormal fits with one median per record to "
-                             "the irregular arches' stripes (the records fixed, the geometry "
-                             "varies)",
-                "total": "dispersion of the lognormal fit to all arch-record pairs pooled",
-                "srss": "sqrt(record_to_record^2 + geometric^2), for comparison with total",
-            },
+            "definitions": dict(DISPERSIONS),
         }
 
     # ------------------------------------------------------------------ views
@@ -1292,7 +678,7 @@ class RecordFragilityResult:
             ``recoveries_above`` (count), ``recovery_levels`` (space-separated levels).
         """
         rows = []
-        blocks = [(a, self.failed[a]) for a in range(self.failed.shape[0])]
+        blocks = [(int(a), self.failed[row]) for row, a in enumerate(self.arches)]
         blocks.append((NOMINAL_ARCH, self.nominal_failed))
         for arch, failed in blocks:
             for r, name in enumerate(self.records):
@@ -1384,20 +770,23 @@ class RecordFragilityResult:
                        f"maximum likelihood to multiple stripes of {s.im} "
                        f"({self.levels[0]:g} to {self.levels[-1]:g} {s.unit}), "
                        f"{len(self.records)} records x 2 polarities; '{taxonomy}': "
-                       f"{s.sample_size} irregular arches (epsilon {s.epsilon:g}, seed "
+                       f"{self.analysed} irregular arches (epsilon {s.epsilon:g}, seed "
                        f"{s.seed}); "
                        f"'{taxonomy}-nominal': the nominal arch")
         return write_fragility_nrml(path, functions, im=s.im, min_iml=float(self.levels[0]),
                                     max_iml=float(self.levels[-1]), description=description)
 
     def summary(self) -> dict:
-        """JSON-ready summary: IM, levels, stripes, fits, bands, variability, incremental view.
+        """JSON-ready summary: IM, levels, stripes, fits, bands, variability, incremental view,
+        and the arches drawn, analysed and excluded (``arches``, by reason:
+        :data:`~archquake.studies.arch_sample.EXCLUSIONS`).
 
         Returns
         -------
         dict
             What ``summary.json`` of the study holds under ``summary`` (levels in the IM's
-            unit, probabilities and dispersions [-]).
+            unit, probabilities and dispersions [-]); ``analyses`` counts the analyses of the
+            analysed arches (the nominal one included).
         """
         incremental = self.incremental()
         sample = incremental[incremental["arch"] != NOMINAL_ARCH]
@@ -1405,13 +794,15 @@ class RecordFragilityResult:
         total["band"] = None if self.band is None else self.band.to_dict()
         nominal = _fit_dict(self.nominal_lognormal)
         nominal["band"] = None if self.nominal_band is None else self.nominal_band.to_dict()
-        integrated = self.table["integrated"].to_numpy()
+        analysed = ~self.table["arch"].isin(list(self.excluded)).to_numpy()
+        integrated = self.table["integrated"].to_numpy()[analysed]
         return {
             "im": self.settings.im,
             "im_unit": self.settings.unit,
             "levels": self.levels.tolist(),
             "records": list(self.records),
             "sample_size": self.settings.sample_size,
+            "arches": exclusion_summary(self.settings.sample_size, self.excluded),
             "trials": self.trials,
             "failures": self.failures.tolist(),
             "probability": self.probability.tolist(),
@@ -1462,14 +853,15 @@ def record_fragility_result(settings: RecordFragilitySettings, table: pd.DataFra
 
     The bootstrap draws from ``SeedSequence(settings.seed, spawn_key=(BOOTSTRAP_KEY,))`` (one
     child stream for the total band, one for the nominal band), so the same table gives the
-    same bands.
+    same bands. The excluded irregular arches (column ``excluded``) are left out of the stripes.
 
     Parameters
     ----------
     settings : RecordFragilitySettings
         The settings of the study.
     table : pandas.DataFrame
-        The rows of :func:`record_fragility_task`, in its order.
+        The rows of :func:`record_fragility_task`, in its order (a table written before the
+        column ``excluded`` existed has no excluded arch).
     metadata : dict, optional
         Metadata of the study.
 
@@ -1480,10 +872,13 @@ def record_fragility_result(settings: RecordFragilitySettings, table: pd.DataFra
     Raises
     ------
     ValueError
-        If the table does not match the settings.
+        If the table does not match the settings, or every irregular arch was excluded.
     """
     collapsed = _study_arrays(table, settings)
-    sample, nominal = collapsed[:-1], collapsed[-1]
+    excluded = excluded_arches(table)
+    check_analysed(settings.sample_size, excluded, settings.epsilon)
+    keep = np.array([i not in excluded for i in range(settings.sample_size)], dtype=bool)
+    sample, nominal = collapsed[:-1][keep], collapsed[-1]
     levels = np.asarray(settings.levels)
     failed = sample.any(axis=-1)
     nominal_failed = nominal.any(axis=-1)
@@ -1504,7 +899,8 @@ def record_fragility_result(settings: RecordFragilitySettings, table: pd.DataFra
         settings=settings, table=table, records=settings.suite.names, levels=levels,
         collapsed=sample, nominal_collapsed=nominal, lognormal=total,
         nominal_lognormal=nominal_fit, geometric=geometric, band=band, nominal_band=nominal_band,
-        metadata=dict(metadata or {}))
+        metadata=dict(metadata or {}), excluded=excluded)
+
 
 
 # ---------------------------------------------------------------------------------------------
@@ -1518,18 +914,31 @@ def warm_up() -> None:
     from ..ground_motion import stochastic_motion
 
     motion = stochastic_motion(0.5, 2.0, 1.0, 2.0, 0.0, 0.2, duration=2.0, rng=0)
-    dynamics = ArchDynamics.from_arch(default_nominal(), "nominal", default_nominal())
-    record_outcomes(dynamics, motion, [0.5, -3.0])
+    record_outcomes(nominal_model(oppenheim()), motion, [0.5, -3.0])
 
 
 def _check_resume(out: Path, settings: RecordFragilitySettings) -> None:
-    """Refuse to resume a study whose record files differ from the stored ones, naming them."""
-    from ..execution import STUDY_JSON
+    """Refuse to resume a study whose record files differ from the stored ones, naming them,
+    or whose saved chunks have no column ``excluded`` (written before arches could be
+    excluded: they cannot be joined with new chunks)."""
+    from ..execution import CHUNK_DIR, STUDY_JSON
     from ..results_io import read_json
 
     study = out / STUDY_JSON
     if not study.is_file():
         return
+    saved = sorted((out / CHUNK_DIR).glob("chunk-*.npz"))
+    if saved:
+        try:
+            with np.load(saved[0], allow_pickle=False) as chunk:
+                columns = set(chunk.files)
+        except Exception:  # a damaged chunk: run_study recomputes it, with a warning
+            columns = {"excluded"}
+        if "excluded" not in columns:
+            raise ValueError(f"cannot resume the study in {out}: its saved chunks were written "
+                             f"by an earlier version of archquake, whose table has no column "
+                             f"'excluded'; start the study again in another directory (or "
+                             f"delete {out / CHUNK_DIR})")
     stored = read_json(study).get("settings", {}).get("suite")
     if not isinstance(stored, dict):
         return
@@ -1605,11 +1014,12 @@ def run_record_fragility(
     ------
     ValueError
         For invalid settings or execution options, a record that cannot be read or scaled
-        (IM = 0), changed record files on resume, an arch that cannot be analysed, or an output
-        directory that is not empty (without ``resume``) or holds another study.
+        (IM = 0), changed record files on resume, a nominal arch that cannot be analysed, every
+        irregular arch excluded, or an output directory that is not empty (without ``resume``)
+        or holds another study.
     archquake.errors.StudyError
-        If the Dask cluster can no longer finish the study
-        (:func:`archquake.execution.run_study`).
+        If an arch fails for a reason other than the exclusions (naming it), or the Dask
+        cluster can no longer finish the study (:func:`archquake.execution.run_study`).
     """
     from ..execution import StudyPlan, run_study
     from ..results_io import atomic_path, save_study
@@ -1618,13 +1028,13 @@ def run_record_fragility(
         raise ValueError(f"settings must be RecordFragilitySettings, got "
                          f"{type(settings).__name__}")
     # read every record and its IM here, so that a bad file stops the study before it starts
-    suite_json = json.dumps(settings.suite.to_dict(), sort_keys=True)
-    _suite_im_values(suite_json, settings.im)
+    settings.suite.intensities(settings.im)
+    check_nominal(settings.nominal, settings.restitution)
     out = None if out_dir is None else Path(out_dir)
     if resume and out is not None:
         _check_resume(out, settings)
     plan = StudyPlan(settings.to_dict(), settings.seed, settings.sample_size + 1,
-                     positive_int("chunk_size", chunk_size))
+                     check_integer("chunk_size", chunk_size))
     table = run_study(record_fragility_task, plan, out, backend=backend, workers=workers,
                       scheduler=scheduler, pool=pool, resume=resume, progress=progress)
     metadata = dict(table.attrs.get("study", {}))
@@ -1760,11 +1170,9 @@ def oppenheim_record_fragility(ims=("pga", "pgv"), *, records: int = 20, sample_
 
 
 __all__ = [
-    "BOOTSTRAP_KEY", "DEFAULT_BOOTSTRAP", "DEFAULT_CONFIDENCE", "DEFAULT_LEVELS", "NOMINAL_ARCH",
-    "POLARITIES", "STOCHASTIC_SUITE", "oppenheim_record_fragility",
-    "REST_MARGIN", "BootstrapBand", "CommonDispersionFit", "RecordFile",
-    "RecordFragilityResult", "RecordFragilitySettings", "RecordSuite", "bootstrap_lognormal",
-    "common_dispersion_fit", "file_digest", "load_record_fragility", "lognormal_fit",
-    "probit_newton", "record_fragility_result", "record_fragility_task", "record_outcomes",
-    "run_record_fragility", "scale_factors", "separated", "stripe_measure", "warm_up",
+    "BOOTSTRAP_KEY", "CURVES_CSV", "DEFAULT_BOOTSTRAP", "DEFAULT_CONFIDENCE", "DEFAULT_LEVELS",
+    "INCREMENTAL_CSV", "NOMINAL_ARCH", "POLARITIES", "REST_MARGIN", "STOCHASTIC_SUITE",
+    "RecordFragilityResult", "RecordFragilitySettings", "RecordSuite", "load_record_fragility",
+    "oppenheim_record_fragility", "record_fragility_result", "record_fragility_task",
+    "record_outcomes", "run_record_fragility", "stripe_measure", "warm_up",
 ]

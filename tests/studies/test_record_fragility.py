@@ -1,5 +1,6 @@
-"""Record-based fragility (multiple-stripe analysis): stripes, fits, bands, incremental view,
-execution and the command line, each against an independent value."""
+"""Record-based fragility (multiple-stripe analysis): stripes, the study's fits and bands,
+incremental view, excluded arches, execution and the command line, each against an independent
+value (the fits themselves: tests/studies/test_fragility_fits.py)."""
 
 import json
 import math
@@ -7,28 +8,24 @@ import math
 import numpy as np
 import pandas as pd
 import pytest
-from scipy import special, stats
 
 from archquake import oppenheim
 from archquake.cli import main
 from archquake.fourlink.impact import restitution
 from archquake.fourlink.mechanism import mechanisms
 from archquake.fourlink.time_history import simulate
-from archquake.ground_motion import read_suite, scale_to_im, stochastic_suite
-from archquake.studies.fragility import LognormalFragility, fit_lognormal
+from archquake.ground_motion import RecordSuite, read_suite, scale_to_im, stochastic_suite
+from archquake.studies.fits import LognormalFragility
 from archquake.studies.record_fragility import (
     NOMINAL_ARCH,
     RecordFragilitySettings,
-    RecordSuite,
-    bootstrap_lognormal,
-    common_dispersion_fit,
     load_record_fragility,
-    probit_newton,
     record_fragility_result,
     record_outcomes,
     run_record_fragility,
-    separated,
 )
+from exclusion_reference import independent_exclusions
+from likelihood_grid import grid_mle
 
 LEVELS = "0.3:1.9:0.2"  # pga [g]: below activation (k = 0.37) up to most records collapsing
 SUITE = {"significant_duration": 4.0, "midpoint_time": 3.0, "filter_frequency": 1.0,
@@ -116,135 +113,6 @@ def test_analyses_below_activation_are_exact_rests():
     for name in ("status", "half_cycle", "impacts", "max_phi"):
         assert np.array_equal(out[name], reference[name]), name
     assert np.sum(~out["integrated"]) >= 6 and np.all(out["status"][~out["integrated"]] == 0)
-
-
-# --------------------------------------------------------------------------------------------
-# fits
-# --------------------------------------------------------------------------------------------
-
-
-def _grid_mle(levels, trials, failures, medians, dispersions):
-    """Brute force: the likelihood on a (median, dispersion) grid, its best node."""
-    x = np.log(np.asarray(levels, float))
-    m, b = np.meshgrid(np.log(medians), dispersions, indexing="ij")
-    s = (x[None, None, :] - m[..., None]) / b[..., None]
-    n = np.broadcast_to(trials, x.shape)
-    ll = (failures * stats.norm.logcdf(s) + (n - failures) * stats.norm.logsf(s)).sum(-1)
-    i, j = np.unravel_index(np.argmax(ll), ll.shape)
-    return medians[i], dispersions[j]
-
-
-def test_lognormal_fits_are_the_maximum_of_a_likelihood_grid():
-    rng = np.random.default_rng(11)
-    levels = np.linspace(0.2, 1.6, 15)
-    trials = 60
-    failures = rng.binomial(trials, stats.norm.cdf(np.log(levels / 0.7) / 0.45))
-    medians, dispersions = np.linspace(0.5, 0.9, 401), np.linspace(0.25, 0.7, 451)
-    grid_median, grid_beta = _grid_mle(levels, trials, failures, medians, dispersions)
-    fit = fit_lognormal(levels, trials, failures)  # the study's fit
-    assert fit.median == pytest.approx(grid_median, abs=1e-3)
-    assert fit.dispersion == pytest.approx(grid_beta, abs=1e-3)
-    a, b = probit_newton(np.log(levels), trials, failures[None, :])  # the bootstrap's refit
-    assert 1 / b[0] == pytest.approx(fit.dispersion, rel=1e-7)
-    assert math.exp(-a[0] / b[0]) == pytest.approx(fit.median, rel=1e-7)
-
-
-def test_separated_stripes_have_no_fit():
-    levels = [0.2, 0.4, 0.6, 0.8]
-    assert separated(levels, 10, [0, 0, 10, 10])  # a step
-    assert separated(levels, 10, [0, 0, 4, 10])  # quasi-complete: one mixed stripe
-    assert separated(levels, 10, [0, 0, 0, 0]) and separated(levels, 10, [10] * 4)
-    assert not separated(levels, 10, [0, 3, 4, 10])
-    assert not separated(levels, 10, [0, 10, 0, 10])  # non-monotone: a finite maximum exists
-
-
-def test_geometric_dispersion_is_the_maximum_of_a_profile_likelihood_grid():
-    """Two records, one median each and a common dispersion: brute force over a grid of all
-    three parameters (separable: for each dispersion, the best median of each record)."""
-    rng = np.random.default_rng(3)
-    levels = np.linspace(0.3, 2.0, 12)
-    truth = [(0.7, 0.3), (1.2, 0.3)]
-    failures = np.array([rng.binomial(40, stats.norm.cdf(np.log(levels / m) / b))
-                         for m, b in truth])
-    fit = common_dispersion_fit(levels, 40, failures)
-    medians, dispersions = np.geomspace(0.4, 2.0, 801), np.linspace(0.1, 0.6, 251)
-    x = np.log(levels)
-    s = (x[None, None, :] - np.log(medians)[:, None, None]) / dispersions[None, :, None]
-    log_p, log_q = special.log_ndtr(s), special.log_ndtr(-s)
-    best = 0.0
-    for z in failures:
-        ll = (z * log_p + (40 - z) * log_q).sum(-1)
-        best = best + ll.max(axis=0)  # best median of this record, for every dispersion
-    assert fit.dispersion == pytest.approx(dispersions[np.argmax(best)], abs=2e-3)
-    for r, z in enumerate(failures):
-        beta = dispersions[np.argmax(best)]
-        sr = (x[None, :] - np.log(medians)[:, None]) / beta
-        ll = (z * stats.norm.logcdf(sr) + (40 - z) * stats.norm.logsf(sr)).sum(-1)
-        assert fit.medians[r] == pytest.approx(medians[np.argmax(ll)], rel=5e-3)
-
-
-def test_geometric_dispersion_recovers_the_spread_of_simulated_arches():
-    """Arches whose collapse level is lognormal around a median per record: the common
-    dispersion of the fit is that spread."""
-    rng = np.random.default_rng(8)
-    levels = np.geomspace(0.3, 3.0, 20)
-    record_medians = np.array([0.6, 0.9, 1.3, 1.8])
-    capacity = record_medians[None, :] * np.exp(0.25 * rng.standard_normal((2000, 4)))
-    failed = levels[None, None, :] >= capacity[..., None]
-    fit = common_dispersion_fit(levels, 2000, failed.sum(axis=0))
-    assert fit.dispersion == pytest.approx(0.25, rel=0.05)
-    assert fit.medians == pytest.approx(record_medians, rel=0.03)
-
-
-def _synthetic_failed(arches, records, rng):
-    """Collapse of (arch, record) pairs: the collapse level is lognormal (median 0.8 g,
-    dispersion 0.3 from the record, 0.2 from the arch)."""
-    levels = np.geomspace(0.3, 2.0, 12)
-    capacity = 0.8 * np.exp(0.3 * rng.standard_normal(records)[None, :]
-                            + 0.2 * rng.standard_normal((arches, records)))
-    return levels, levels[None, None, :] >= capacity[..., None]
-
-
-def test_bootstrap_band_holds_the_fit_and_narrows_with_more_data():
-    widths = []
-    for arches, records in ((8, 8), (40, 40)):
-        levels, failed = _synthetic_failed(arches, records, np.random.default_rng(1))
-        fit = fit_lognormal(levels, arches * records, failed.sum(axis=(0, 1)))
-        band = bootstrap_lognormal(levels, failed, fit, resamples=400, confidence=0.9,
-                                   rng=np.random.default_rng(2))
-        curve = fit(band.x)
-        assert np.all(band.lower <= curve + 1e-9) and np.all(curve <= band.upper + 1e-9)
-        lo, hi = band.median_interval
-        assert lo <= fit.median <= hi
-        widths.append((np.mean(band.upper - band.lower), hi - lo))
-        again = bootstrap_lognormal(levels, failed, fit, resamples=400, confidence=0.9,
-                                    rng=np.random.default_rng(2))
-        assert np.array_equal(again.lower, band.lower)  # seeded
-    # 5 times the records and arches: about half the width (the records dominate)
-    assert widths[1][0] < 0.7 * widths[0][0] and widths[1][1] < 0.7 * widths[0][1]
-
-
-def test_bootstrap_counts_are_those_of_the_resampled_pairs():
-    """The counts of a resample are rebuilt from the resampled arches and records: with one
-    resample drawn by hand, the refit equals fit_lognormal of those counts."""
-    levels, failed = _synthetic_failed(6, 5, np.random.default_rng(4))
-    fit = fit_lognormal(levels, 30, failed.sum(axis=(0, 1)))
-    rng = np.random.default_rng(9)
-    band = bootstrap_lognormal(levels, failed, fit, resamples=10, confidence=0.9, rng=rng,
-                               x=np.array([fit.median]))
-    rng = np.random.default_rng(9)
-    w_arch = rng.multinomial(6, np.full(6, 1 / 6), size=10)
-    w_rec = rng.multinomial(5, np.full(5, 1 / 5), size=10)
-    refits = []
-    for b in range(10):
-        arches = np.repeat(np.arange(6), w_arch[b])
-        records = np.repeat(np.arange(5), w_rec[b])
-        z = failed[arches][:, records].sum(axis=(0, 1))
-        if not separated(levels, 30, z):
-            refits.append(fit_lognormal(levels, 30, z)(fit.median))
-    lo, hi = np.percentile(refits, [5, 95])
-    assert band.lower[0] == pytest.approx(lo, abs=1e-6)
-    assert band.upper[0] == pytest.approx(hi, abs=1e-6)
 
 
 # --------------------------------------------------------------------------------------------
@@ -420,7 +288,7 @@ def test_settings_refuse_bad_values():
 
 def test_lognormal_fragility_of_the_study_maximises_its_likelihood(small_study):
     result, _ = small_study
-    grid = _grid_mle(result.levels, result.trials, result.failures,
+    grid = grid_mle(result.levels, result.trials, result.failures,
                      np.linspace(0.4, 1.4, 501), np.linspace(0.1, 1.2, 551))
     assert result.lognormal.median == pytest.approx(grid[0], abs=3e-3)
     assert result.lognormal.dispersion == pytest.approx(grid[1], abs=3e-3)
@@ -459,3 +327,139 @@ def test_cli_record_study_writes_tables_figures_and_nrml(suite_dir, tmp_path, ca
     functions = ET.parse(nrml).getroot().iter("{http://openquake.org/xmlns/nrml/0.5}imls")
     assert {f.get("imt") for f in functions} == {"PGV"}
     assert summary["im_unit"] == "m/s" and summary["lognormal"]["median"] is not None
+
+
+# --------------------------------------------------------------------------------------------
+# arches that cannot be analysed: the rule of the pulse study (archquake.studies.arch_sample)
+# --------------------------------------------------------------------------------------------
+
+EXCLUDING = {"epsilon": 0.5, "seed": 0, "sample_size": 5, "levels": (0.5, 1.0, 1.5),
+             "bootstrap": 20}
+"""epsilon = 0.5: of arches 0-4 (seed 0), one comes apart and two cannot stand."""
+
+
+@pytest.fixture(scope="module")
+def excluding_study(tmp_path_factory):
+    settings = RecordFragilitySettings(suite=RecordSuite.from_stochastic(2, seed=1, **SUITE),
+                                       **EXCLUDING)
+    out = tmp_path_factory.mktemp("excluding") / "out"
+    return run_record_fragility(settings, out, backend="serial", progress=False), out
+
+
+def test_arches_that_cannot_be_analysed_are_excluded_as_in_the_pulse_study(nominal,
+                                                                             excluding_study):
+    from archquake.studies.fragility import FragilitySettings, run_fragility
+
+    result, out = excluding_study
+    expected = independent_exclusions(nominal, 0.5, 5, 0)
+    assert set(expected.values()) == {"not an arch", "cannot stand"}
+    assert result.excluded == expected
+    # the pulse study with the same sample excludes the same arches, for the same reasons
+    pulse = run_fragility(FragilitySettings(sample_size=5, epsilon=0.5, seed=0, durations=(0.4,),
+                                            amplitudes_g=(0.3, 0.6), limit_sample_size=5),
+                          backend="serial", progress=False)
+    assert pulse.excluded == expected
+    t = result.table
+    dropped = t["arch"].isin(list(expected))
+    assert set(t.loc[dropped, "status"]) == {-1} and not t.loc[dropped, "integrated"].any()
+    assert dict(t.loc[dropped].groupby("arch")["excluded"].first()) == expected
+    assert set(t.loc[~dropped, "excluded"]) == {""}
+    # the stripes count the analysed arches only, rebuilt from their rows
+    analysed = sorted(set(range(5)) - set(expected))
+    assert result.analysed == len(analysed) and result.arches.tolist() == analysed
+    assert result.trials == len(analysed) * 2
+    rows = t[t["arch"].isin(analysed)]
+    pairs = rows.groupby(["arch", "record", "level"])["status"].apply(lambda s: (s == 2).any())
+    assert result.probability == pytest.approx(pairs.groupby(level="level").mean().to_numpy(),
+                                               abs=0)
+    summary = result.summary()
+    assert summary["arches"] == {"drawn": 5, "analysed": len(analysed), "excluded": {
+        why: sorted(i for i, w in expected.items() if w == why)
+        for why in ("not an arch", "cannot stand")}}
+    assert summary["analyses"]["total"] == (len(analysed) + 1) * 2 * 3 * 2
+    assert set(result.incremental()["arch"]) == {*analysed, NOMINAL_ARCH}
+    assert result.arch_failed(analysed[-1]).shape == (2, 3)
+    with pytest.raises(ValueError, match=f"arch {min(expected)} was excluded"):
+        result.arch_failed(min(expected))
+    # saved and reloaded: the same exclusions
+    again = load_record_fragility(out)
+    assert again.excluded == expected and np.array_equal(again.probability, result.probability)
+
+
+def test_a_study_whose_every_arch_is_excluded_is_an_error(tmp_path):
+    # every arch of epsilon = 0.99 (seed 3) comes apart or falls: nothing to estimate
+    settings = RecordFragilitySettings(suite=RecordSuite.from_stochastic(1, **SUITE),
+                                       levels=(0.5, 1.0), sample_size=3, epsilon=0.99, seed=3,
+                                       bootstrap=10)
+    with pytest.raises(ValueError, match="every one of the 3 irregular arches was excluded"):
+        run_record_fragility(settings, backend="serial", progress=False)
+
+
+def test_an_arch_that_never_collapses_stays_at_rest_at_every_level():
+    """The task on the arches of a thick flat arch (k = inf both ways): rows at rest, not
+    integrated, analysed (the nominal arch itself could not be a study's nominal arch)."""
+    from archquake import circular_arch
+    from archquake.execution import StudyPlan
+    from archquake.studies.record_fragility import record_fragility_task
+
+    thick_flat = circular_arch(1.0, math.radians(40), 0.5, 6)
+    settings = RecordFragilitySettings(suite=RecordSuite.from_stochastic(1, **SUITE),
+                                       levels=(0.5, 2.0), nominal=thick_flat, sample_size=2,
+                                       epsilon=0.02, bootstrap=10)
+    columns = record_fragility_task(StudyPlan(settings.to_dict(), 0, 2, 2).chunk(0))
+    assert columns["arch"].tolist() == [0] * 4 + [1] * 4
+    assert set(columns["status"]) == {0} and not columns["integrated"].any()
+    assert set(columns["excluded"]) == {""} and np.all(np.isinf(columns["k_l"]))
+
+
+def test_an_unexpected_error_names_the_arch_that_raised_it(monkeypatch):
+    from archquake.errors import StudyError
+    from archquake.execution import StudyPlan
+    from archquake.studies import record_fragility
+
+    real = record_fragility.record_outcomes
+    calls = []
+
+    def failing_second_arch(model, motion, factors):
+        calls.append(model)
+        if len(calls) == 3:  # two records per arch: the first record of arch 1
+            raise RuntimeError("integrator failure")
+        return real(model, motion, factors)
+
+    monkeypatch.setattr(record_fragility, "record_outcomes", failing_second_arch)
+    settings = RecordFragilitySettings(suite=RecordSuite.from_stochastic(2, **SUITE),
+                                       levels=(0.5, 1.0), sample_size=2, seed=11, bootstrap=10)
+    with pytest.raises(StudyError, match=r"irregular arch 1 \(SeedSequence\(11, spawn_key=\(1,\)"
+                                         r"\)\) stopped the study: RuntimeError: integrator"):
+        record_fragility.record_fragility_task(StudyPlan(settings.to_dict(), 11, 3, 3).chunk(0))
+
+
+def test_a_study_written_before_the_excluded_column_loads_and_is_not_resumed(excluding_study,
+                                                                             tmp_path):
+    """A finished study without the column ``excluded`` (none was excluded then) gives the same
+    result; interrupted, its chunks cannot be joined with new ones: a clear refusal."""
+    import shutil
+
+    result, out = excluding_study
+    analysed = result.table[result.table["excluded"] == ""]
+    settings = RecordFragilitySettings(suite=RecordSuite.from_stochastic(2, seed=1, **SUITE),
+                                       **{**EXCLUDING, "epsilon": 0.05})
+    fresh = run_record_fragility(settings, tmp_path / "new", backend="serial", progress=False)
+    old_table = fresh.table.drop(columns="excluded")
+    old = record_fragility_result(settings, old_table)
+    assert old.excluded == {} and np.array_equal(old.probability, fresh.probability)
+    assert old.lognormal == fresh.lognormal
+    assert len(analysed) < len(result.table)
+    # an interrupted study of the earlier format: chunks without the column
+    interrupted = tmp_path / "old"
+    shutil.copytree(tmp_path / "new", interrupted)
+    (interrupted / "summary.json").unlink()
+    for path in sorted((interrupted / "chunks").glob("chunk-*.npz")):
+        with np.load(path) as data:
+            columns = {k: data[k] for k in data.files if k != "excluded"}
+        np.savez(path, **columns)
+    (sorted((interrupted / "chunks").glob("chunk-*.npz"))[-1]).unlink()
+    with pytest.raises(ValueError, match=r"cannot resume .*earlier version of archquake.*no "
+                                         r"column 'excluded'"):
+        run_record_fragility(settings, interrupted, backend="serial", progress=False,
+                             resume=True)

@@ -16,16 +16,16 @@ from archquake.ground_motion import oppenheim_pulse
 from archquake.limit_analysis import limit_sample, load_multipliers
 from archquake.results_io import load_study
 from archquake.studies.failure_domain import inclusive_range
+from archquake.studies.fits import fit_lognormal
 from archquake.studies.fragility import (
     FragilitySettings,
-    chunk_arches,
-    fit_lognormal,
     fragility_task,
     limit_task,
     load_fragility,
     run_fragility,
     warm_up,
 )
+from exclusion_reference import independent_exclusions
 
 TINY = {"sample_size": 3, "durations": (0.4,),
         "amplitudes_g": tuple(inclusive_range(0.3, 0.9, 0.1)), "limit_sample_size": 6, "seed": 11}
@@ -38,16 +38,6 @@ def small_result(tmp_path_factory):
                                  limit_sample_size=8, seed=3)
     out = tmp_path_factory.mktemp("fragility") / "study"
     return run_fragility(settings, out, backend="serial", progress=False), out
-
-
-def test_study_arches_are_those_of_irregular_sample(nominal):
-    plan = StudyPlan({}, seed=7, n_items=6, chunk_size=4)
-    drawn = chunk_arches(plan.chunk(1), nominal, 0.1)  # items 4 and 5
-    reference = irregular_sample(nominal, 0.1, 6, 7)[4:]
-    for a, b in zip(drawn, reference, strict=True):
-        for name in ("angles", "thicknesses", "radii"):
-            assert np.array_equal(getattr(a, name), getattr(b, name))
-        assert a.start_angle == b.start_angle
 
 
 def test_limit_task_gives_the_values_of_limit_sample(nominal):
@@ -308,30 +298,12 @@ def test_arches_equal_to_the_nominal_one_are_not_below_its_load_multiplier():
     assert summary["below_nominal_rtol"] == 1e-9
 
 
-def _independent_exclusions(nominal, tolerance, count, seed):
-    """Which drawn arches are not arches or cannot stand, found arch by arch without the
-    study: the draw of eq. (1) refused, or a static load multiplier that is not >= 0."""
-    from archquake.geometry import irregular_arch
-
-    expected = {}
-    for i in range(count):
-        rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(i,)))
-        try:
-            arch = irregular_arch(nominal, tolerance, rng)
-        except ValueError:
-            expected[i] = "not an arch"
-            continue
-        if not all(k >= 0 for k in load_multipliers(arch)):  # nan: no thrust line at all
-            expected[i] = "cannot stand"
-    return expected
-
-
 def test_arches_that_cannot_be_analysed_are_excluded_and_counted(nominal, tmp_path):
     # epsilon = 0.5: some drawn arches come apart, some cannot carry their own weight
     settings = FragilitySettings(sample_size=10, epsilon=0.5, durations=(0.4,),
                                  amplitudes_g=(0.3, 0.5, 0.7), limit_sample_size=16, seed=0)
     result = run_fragility(settings, tmp_path / "study", backend="serial", progress=False)
-    expected = _independent_exclusions(nominal, 0.5, 16, 0)
+    expected = independent_exclusions(nominal, 0.5, 16, 0)
     dynamic = {i: why for i, why in expected.items() if i < 10}
     assert set(dynamic.values()) == {"not an arch", "cannot stand"}  # both cases occur
     assert result.excluded == dynamic
@@ -370,16 +342,16 @@ def test_an_unexpected_error_names_the_arch_that_raised_it(monkeypatch):
     from archquake.errors import StudyError
     from archquake.studies import fragility
 
-    real = fragility.arch_outcomes
+    real = fragility.model_outcomes
     calls = []
 
-    def failing_second(arch, *args, **kwargs):
-        calls.append(arch)
+    def failing_second(model, *args, **kwargs):
+        calls.append(model)
         if len(calls) == 2:
             raise RuntimeError("integrator failure")
-        return real(arch, *args, **kwargs)
+        return real(model, *args, **kwargs)
 
-    monkeypatch.setattr(fragility, "arch_outcomes", failing_second)
+    monkeypatch.setattr(fragility, "model_outcomes", failing_second)
     plan = StudyPlan(FragilitySettings(**TINY).to_dict(), 11, 3, 2)
     with pytest.raises(StudyError, match=r"irregular arch 1 \(SeedSequence\(11, spawn_key=\(1,\)"
                                          r"\)\) stopped the study: RuntimeError: integrator"):
@@ -402,3 +374,21 @@ def test_cli_resume_repairs_a_damaged_chunk_and_names_a_damaged_study_json(tmp_p
     assert main(FRAGILITY_ARGS + ["--out", str(out), "--resume"]) == 2
     err = capsys.readouterr().err
     assert f"{out / 'study.json'} is not valid JSON" in err and "delete" in err
+
+
+def test_an_arch_that_never_collapses_stays_at_rest_at_every_amplitude():
+    """The task on the arches of a thick flat arch (k = inf both ways): analysed, at rest
+    (the rule of archquake.studies.arch_sample, as in the record-based study)."""
+    import math
+
+    from archquake import circular_arch
+
+    thick_flat = circular_arch(1.0, math.radians(40), 0.5, 6)
+    settings = FragilitySettings(nominal=thick_flat, sample_size=2, epsilon=0.02,
+                                 durations=(0.4,), amplitudes_g=(0.5, 2.0), limit_sample_size=2)
+    columns = fragility_task(StudyPlan(settings.to_dict(), settings.seed, 2, 2).chunk(0))
+    assert set(columns["status"]) == {0} and set(columns["excluded"]) == {""}
+    assert np.all(np.isinf(columns["k_l"])) and np.all(np.isinf(columns["k_r"]))
+    limit = limit_task(StudyPlan({"nominal": thick_flat.to_dict(), "epsilon": 0.02,
+                                  "limit_method": "static"}, 0, 2, 2).chunk(0))
+    assert np.all(np.isinf(limit["k_l"])) and set(limit["excluded"]) == {""}

@@ -12,7 +12,7 @@ import pytest
 
 from archquake.ground_motion import LINEAR, read_record, read_suite, record_format
 
-DATA = Path(__file__).parent / "data"
+DATA = Path(__file__).resolve().parents[1] / "data"
 ESM = DATA / "decaying_sine.ASC"
 HEADER_LINES = ESM.read_text().splitlines()[:64]
 

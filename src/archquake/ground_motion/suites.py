@@ -1,0 +1,504 @@
+"""Suites of ground motions: records read from files and folders, or drawn from the seeded
+stochastic model, and scaled to levels of an intensity measure.
+
+:func:`read_suite` reads every record of a folder or a list of paths (:func:`suite_files` lists
+them) as ``LINEAR`` ground motions named by their file names. A :class:`RecordSuite` is where the
+records of a study come from: files (each with its SHA-256 digest, :func:`file_digest`, so that a
+file that changes under a study is noticed) or the stochastic model of
+:func:`~archquake.ground_motion.stochastic_suite` (count, seed and parameters, no files). It is a
+JSON-ready value (:meth:`RecordSuite.to_dict`): a study stores it in its settings and every worker
+rebuilds the motions from it (:meth:`RecordSuite.motions`, read once per process).
+
+Scaling a record to a level :math:`x` of an intensity measure of exponent :math:`p`
+(:func:`stripe_measure`; PGA, PGV, PGD and Sa(T) have :math:`p = 1`, the Arias intensity
+:math:`p = 2`) multiplies it by :math:`(x / IM)^{1/p}` (:func:`scale_factors`,
+:meth:`RecordSuite.scale_factors`), as :func:`~archquake.ground_motion.scale_to_im` does for one
+record.
+"""
+
+from __future__ import annotations
+
+import functools
+import hashlib
+import json
+import os
+from collections.abc import Iterable
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..checks import check_integer
+from .core import GroundMotion
+from .intensity import IntensityMeasure, intensity_measure
+from .records import RECORD_EXTENSIONS, read_record, record_format
+from .stochastic import stochastic_suite
+
+
+def suite_files(paths) -> list[tuple[Path, str | None]]:
+    """Every record file of a folder or a list of paths, with its format.
+
+    A folder stands for its files with a record extension
+    (:data:`~archquake.ground_motion.RECORD_EXTENSIONS`, hidden files left out), sorted by name;
+    a file stands for itself, whatever its extension.
+
+    Parameters
+    ----------
+    paths : str, Path or iterable of them
+        Folders and files.
+
+    Returns
+    -------
+    list of (pathlib.Path, str or None)
+        ``(file, format)``: the format of a folder's file by its extension, None for a file
+        given by itself (:func:`~archquake.ground_motion.record_format` decides when it is read).
+
+    Raises
+    ------
+    ValueError
+        For no paths, a path that does not exist, or a folder without record files.
+    """
+    if isinstance(paths, (str, Path)):
+        paths = [paths]
+    try:
+        paths = [Path(p) for p in paths]
+    except TypeError as exc:
+        raise ValueError(f"paths must be a folder, a file or a list of them, got {paths!r}") \
+            from exc
+    if not paths:
+        raise ValueError("a record suite needs at least one file or folder, got none")
+    files: list[tuple[Path, str | None]] = []
+    for path in paths:
+        if path.is_dir():
+            found = sorted(
+                (f for f in path.iterdir()
+                 if f.is_file() and not f.name.startswith(".")
+                 and f.suffix.lower() in RECORD_EXTENSIONS),
+                key=lambda f: f.name,
+            )
+            if not found:
+                raise ValueError(
+                    f"record folder '{path}': no record files in it (looked for the extensions "
+                    f"{', '.join(sorted(RECORD_EXTENSIONS))})"
+                )
+            files.extend((f, RECORD_EXTENSIONS[f.suffix.lower()]) for f in found)
+        elif path.exists():
+            files.append((path, None))
+        else:
+            raise ValueError(f"record file '{path}': no such file or folder")
+    return files
+
+
+def read_suite(paths: str | Path | Iterable[str | Path], *,
+               file_format: str | None = None) -> list[GroundMotion]:
+    """A suite of recorded accelerograms: every record of a folder or of a list of paths.
+
+    A folder contributes its files with a record extension (``.at2``, ``.csv``, ``.asc``; other
+    files such as PEER's ``.VT2``/``.DT2`` or a README are left out, hidden files too); a file is
+    read whatever its extension (format by :func:`~archquake.ground_motion.record_format`). Each
+    record is read by :func:`~archquake.ground_motion.read_record` and named by its file name;
+    the suite is sorted by name, so it does not depend on the order of the paths.
+
+    Parameters
+    ----------
+    paths : str, Path or iterable of them
+        Folders and files.
+    file_format : str, optional
+        A key of :data:`~archquake.ground_motion.RECORD_FORMATS` for every file; by default
+        chosen per file.
+
+    Returns
+    -------
+    list of GroundMotion
+        ``LINEAR`` motions [m/s^2], sorted by name (the file name).
+
+    Raises
+    ------
+    ValueError
+        For no paths, a missing path, a folder without record files, two records of the same
+        file name (their results could not be told apart), or any bad file (the message of
+        :func:`~archquake.ground_motion.read_record`, naming the file and the line).
+    """
+    files = suite_files(paths)
+    names: dict[str, Path] = {}
+    for path, _ in files:
+        if path.name in names and names[path.name].resolve() != path.resolve():
+            raise ValueError(
+                f"two records of one suite are named {path.name!r}: '{names[path.name]}' and "
+                f"'{path}' (records are named by their file names; rename one)"
+            )
+        names[path.name] = path
+    suite = {}
+    for path, fmt in files:
+        if path.name not in suite:
+            motion = read_record(path, file_format=file_format or fmt)
+            suite[path.name] = motion.renamed(path.name)
+    return [suite[name] for name in sorted(suite)]
+
+
+def file_digest(path: str | os.PathLike) -> str:
+    """SHA-256 digest of a file's content.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file.
+
+    Returns
+    -------
+    str
+        The digest in hexadecimal (64 characters).
+
+    Raises
+    ------
+    OSError
+        If the file cannot be read.
+    """
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+@dataclass(frozen=True)
+class RecordFile:
+    """One record file of a suite.
+
+    Attributes
+    ----------
+    name : str
+        The record's name (its file name), as in the table.
+    path : str
+        Absolute path of the file.
+    file_format : str
+        Key of :data:`archquake.ground_motion.RECORD_FORMATS`.
+    sha256 : str
+        SHA-256 digest of the file's content.
+    """
+
+    name: str
+    path: str
+    file_format: str
+    sha256: str
+
+
+@dataclass(frozen=True, eq=False)
+class RecordSuite:
+    """Where the records of a study come from: files, or the seeded stochastic model.
+
+    Build it with :meth:`from_paths` or :meth:`from_stochastic`; a study stores it in its settings
+    (:meth:`to_dict`) and every worker rebuilds the motions from it (:meth:`motions`).
+
+    Attributes
+    ----------
+    files : tuple of RecordFile
+        The record files, sorted by name (empty for a stochastic suite).
+    stochastic : dict or None
+        ``{"count": n, "seed": s, "parameters": {...}}`` of
+        :func:`archquake.ground_motion.stochastic_suite` (None for files).
+    """
+
+    files: tuple[RecordFile, ...] = ()
+    stochastic: dict | None = None
+
+    def __post_init__(self) -> None:
+        if bool(self.files) == (self.stochastic is not None):
+            raise ValueError("a record suite is either files or a stochastic suite (one of them)")
+
+    @classmethod
+    def from_paths(cls, paths) -> RecordSuite:
+        """The records of folders and files, as :func:`read_suite` reads them (a folder stands
+        for its files with a record extension; sorted by file name).
+
+        Every file is read once here, so a bad file is reported (naming it) before a study starts.
+
+        Parameters
+        ----------
+        paths : str, os.PathLike or sequence of them
+            Record files and folders (:func:`read_suite`).
+
+        Returns
+        -------
+        RecordSuite
+
+        Raises
+        ------
+        ValueError
+            If a file cannot be read as a record (the message names it), or there is none.
+        """
+        motions = read_suite(paths)  # validates every file; names and order of the suite
+        found = {}
+        for path, fmt in suite_files(paths):
+            found.setdefault(path.name, (path, fmt))
+        files = []
+        for motion in motions:
+            path, fmt = found[motion.name]
+            files.append(RecordFile(motion.name, str(path.resolve()), fmt or record_format(path),
+                                    file_digest(path)))
+        return cls(files=tuple(files))
+
+    @classmethod
+    def from_stochastic(cls, count: int, seed: int = 0, **parameters) -> RecordSuite:
+        """``count`` motions of :func:`archquake.ground_motion.stochastic_suite`; no files are
+        needed.
+
+        Parameters
+        ----------
+        count : int
+            Number of motions, >= 1.
+        seed : int
+            Seed of the suite, >= 0.
+        **parameters
+            Model parameters [SI units, see :func:`~archquake.ground_motion.stochastic_motion`]
+            (checked here by drawing one motion).
+
+        Returns
+        -------
+        RecordSuite
+
+        Raises
+        ------
+        ValueError
+            For an invalid count, seed or parameter.
+        """
+        check_integer("count", count)
+        check_integer("seed", seed, minimum=0)
+        spec = {"count": int(count), "seed": int(seed),
+                "parameters": json.loads(json.dumps(parameters))}
+        stochastic_suite(1, seed=spec["seed"], **spec["parameters"])  # check the parameters now
+        return cls(stochastic=spec)
+
+    @property
+    def kind(self) -> str:
+        """``"files"`` or ``"stochastic"``."""
+        return "files" if self.files else "stochastic"
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        """Names of the records, in suite order."""
+        if self.files:
+            return tuple(f.name for f in self.files)
+        count = self.stochastic["count"]
+        width = max(3, len(str(count - 1)))
+        return tuple(f"stochastic-{i:0{width}d}" for i in range(count))
+
+    def __len__(self) -> int:
+        return len(self.files) if self.files else int(self.stochastic["count"])
+
+    def motions(self, *, cached: bool = False) -> list[GroundMotion]:
+        """The ground motions of the suite.
+
+        Parameters
+        ----------
+        cached : bool
+            Read the suite once in this process and return the same motions on later calls
+            (what the workers of a study do: every chunk needs them). The first call checks the
+            files as an uncached one does; later calls do not read them again.
+
+        Returns
+        -------
+        list of GroundMotion
+            ``LINEAR`` motions [m/s^2], named as :attr:`names`.
+
+        Raises
+        ------
+        ValueError
+            If a file is missing or its content no longer has the recorded digest.
+        """
+        if cached:
+            return list(_cached_motions(self._key()))
+        if self.stochastic is not None:
+            spec = self.stochastic
+            return stochastic_suite(spec["count"], seed=spec["seed"], **spec["parameters"])
+        motions = []
+        for f in self.files:
+            try:
+                digest = file_digest(f.path)
+            except OSError as exc:
+                raise ValueError(f"record file '{f.path}' of the study cannot be read: "
+                                 f"{exc.strerror}") from exc
+            if digest != f.sha256:
+                raise ValueError(f"record file '{f.path}' has changed since the study was set up "
+                                 f"(sha256 {digest[:12]}... instead of {f.sha256[:12]}...)")
+            motions.append(read_record(f.path, file_format=f.file_format).renamed(f.name))
+        return motions
+
+    def to_dict(self) -> dict:
+        """The suite as JSON-ready data (what a study's settings store).
+
+        Returns
+        -------
+        dict
+            ``{"kind": "files", "records": [{name, path, format, sha256}, ...]}`` or
+            ``{"kind": "stochastic", "count", "seed", "parameters"}``.
+        """
+        if self.stochastic is not None:
+            return {"kind": "stochastic", **self.stochastic}
+        return {"kind": "files", "records": [
+            {"name": f.name, "path": f.path, "format": f.file_format, "sha256": f.sha256}
+            for f in self.files]}
+
+    @classmethod
+    def from_dict(cls, data: dict) -> RecordSuite:
+        """Inverse of :meth:`to_dict`.
+
+        Parameters
+        ----------
+        data : dict
+            As :meth:`to_dict` writes it.
+
+        Returns
+        -------
+        RecordSuite
+        """
+        if data.get("kind") == "stochastic":
+            return cls(stochastic={"count": data["count"], "seed": data["seed"],
+                                   "parameters": dict(data["parameters"])})
+        return cls(files=tuple(RecordFile(r["name"], r["path"], r["format"], r["sha256"])
+                               for r in data["records"]))
+
+    def intensities(self, im: str) -> np.ndarray:
+        """The intensity measure of every record of the suite (read once in this process).
+
+        Parameters
+        ----------
+        im : str
+            An intensity measure that scales with a record (:func:`stripe_measure`).
+
+        Returns
+        -------
+        ndarray, shape (R,)
+            The records' values [the IM's unit], in suite order.
+
+        Raises
+        ------
+        ValueError
+            For an IM that does not scale, or a record whose IM is 0 (it cannot be scaled to a
+            level; the message names the records).
+        """
+        return _cached_intensities(self._key(), stripe_measure(im).name)
+
+    def scale_factors(self, im: str, levels) -> np.ndarray:
+        """Factors that scale every record of the suite to every level of ``im``
+        (:func:`scale_factors`).
+
+        Parameters
+        ----------
+        im : str
+            An intensity measure that scales with a record (:func:`stripe_measure`).
+        levels : array_like, shape (L,)
+            Levels > 0 [the IM's unit].
+
+        Returns
+        -------
+        ndarray, shape (R, L)
+            Scale factors [-].
+
+        Raises
+        ------
+        ValueError
+            As :meth:`intensities`.
+        """
+        measure = stripe_measure(im)
+        return scale_factors(self.intensities(measure.name), levels, measure.exponent)
+
+    def _key(self) -> str:
+        """The suite as canonical JSON text: the key of the per-process caches."""
+        return json.dumps(self.to_dict(), sort_keys=True)
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, RecordSuite):
+            return NotImplemented
+        return self.to_dict() == other.to_dict()
+
+    __hash__ = None
+
+
+@functools.lru_cache(maxsize=2)
+def _cached_motions(key: str) -> tuple[GroundMotion, ...]:
+    """The motions of a suite (its :meth:`RecordSuite._key`), read once per process."""
+    return tuple(RecordSuite.from_dict(json.loads(key)).motions())
+
+
+@functools.lru_cache(maxsize=4)
+def _cached_intensities(key: str, im_name: str) -> np.ndarray:
+    """The IM of every record of a suite, computed once per process, suite and IM."""
+    im = intensity_measure(im_name)
+    motions = _cached_motions(key)
+    values = np.array([im(m) for m in motions])
+    bad = [m.name for m, v in zip(motions, values, strict=True) if not v > 0]
+    if bad:
+        raise ValueError(f"records with {im.name} = 0 cannot be scaled to a level: {bad}")
+    values.setflags(write=False)  # shared by every caller in the process
+    return values
+
+
+def stripe_measure(name: str) -> IntensityMeasure:
+    """The :class:`~archquake.ground_motion.IntensityMeasure` of a stripe: one that scales with
+    the record, so that a record can be scaled to a level of it.
+
+    Parameters
+    ----------
+    name : str
+        ``pga``, ``pgv``, ``pgd``, ``arias`` or ``sa(T)`` (T the period [s]).
+
+    Returns
+    -------
+    IntensityMeasure
+
+    Raises
+    ------
+    ValueError
+        For an unknown name, or a measure that does not change when a record is scaled
+        (``d5-95``); the message names ``im``.
+    """
+    try:
+        im = intensity_measure(name)
+    except ValueError as exc:
+        raise ValueError(f"im: {exc}") from None
+    if im.exponent == 0.0:
+        raise ValueError(f"im {im.name!r} ({im.description}) cannot define stripes: it does not "
+                         "change when a record is scaled; choose pga, pgv, pgd, arias or sa(T)")
+    return im
+
+
+def scale_factors(im_values, levels, exponent: float) -> np.ndarray:
+    r"""Factors that scale each record to each level, as
+    :func:`archquake.ground_motion.scale_to_im` does.
+
+    An intensity measure of exponent :math:`p` scales as :math:`IM(s\,\ddot x_g) = s^p\,
+    IM(\ddot x_g)` (:math:`p = 1` for PGA, PGV, PGD and SA, 2 for the Arias intensity), so the
+    factor that brings record :math:`r` to level :math:`x_j` is
+
+    .. math::
+
+        s_{rj} = \left(\frac{x_j}{IM_r}\right)^{1/p}.
+
+    Parameters
+    ----------
+    im_values : array_like, shape (R,)
+        The intensity measure of every record [the IM's unit].
+    levels : array_like, shape (L,)
+        Stripe levels [the IM's unit].
+    exponent : float
+        :math:`p` [-].
+
+    Returns
+    -------
+    ndarray, shape (R, L)
+        :math:`s_{rj}` [-].
+
+    Examples
+    --------
+    >>> scale_factors([0.2, 0.5], [0.1, 1.0], 1.0)
+    array([[0.5, 5. ],
+           [0.2, 2. ]])
+    """
+    im_values = np.asarray(im_values, dtype=float)
+    levels = np.asarray(levels, dtype=float)
+    return (levels[None, :] / im_values[:, None]) ** (1.0 / exponent)
+
+
+__all__ = ["RecordFile", "RecordSuite", "file_digest", "read_suite", "scale_factors",
+           "stripe_measure", "suite_files"]
