@@ -265,7 +265,7 @@ class ArchSample:
             return None, "not an arch"
 
     def member(self, index: int, *, restitution=DEFAULT_RESTITUTION,
-               model: str = DEFAULT_MODEL) -> SampledArch:
+               model: str = DEFAULT_MODEL, block_settings=None) -> SampledArch:
         """Arch ``index`` with its model, or the reason it is excluded (the rule of the module
         docstring).
 
@@ -279,6 +279,8 @@ class ArchSample:
             nominal arch's coefficients (:func:`nominal_model`).
         model : str
             ``"four-link"`` or ``"rigid-blocks"`` (:func:`archquake.models.model_for`).
+        block_settings : BlockSettings, optional
+            Settings of the rigid-block model.
 
         Returns
         -------
@@ -296,7 +298,8 @@ class ArchSample:
         nominal = None
         if restitution == "nominal":
             nominal = nominal_model(self.nominal, model=model)
-        built, why = analysable_model(arch, restitution=restitution, nominal=nominal, model=model)
+        built, why = analysable_model(arch, restitution=restitution, nominal=nominal, model=model,
+                                      block_settings=block_settings)
         return SampledArch(int(index), arch, built, why)
 
     def load_multipliers(self, indices, method: str) -> tuple[np.ndarray, np.ndarray]:
@@ -353,8 +356,14 @@ class ArchSample:
 
 
 def analysable_model(arch: BlockArch, *, restitution=DEFAULT_RESTITUTION, nominal=None,
-                     model: str = DEFAULT_MODEL) -> tuple[Any, str]:
+                     model: str = DEFAULT_MODEL, block_settings=None) -> tuple[Any, str]:
     """The model of an arch, or why the arch cannot be analysed (:data:`EXCLUSIONS`).
+
+    The rule is the same for both models where it can be: an arch that cannot stand (no line
+    of thrust under its own weight, by the limit analysis) is excluded, and one with no
+    collapse mechanism in either direction is analysed as at rest. "not analysable" (a collapse
+    mechanism that is no four-link mechanism) is the four-link model's alone: the rigid blocks
+    take any mechanism.
 
     Parameters
     ----------
@@ -366,6 +375,8 @@ def analysable_model(arch: BlockArch, *, restitution=DEFAULT_RESTITUTION, nomina
         The nominal arch, for ``restitution="nominal"``.
     model : str
         The model's name.
+    block_settings : BlockSettings, optional
+        Settings of the rigid-block model.
 
     Returns
     -------
@@ -383,7 +394,14 @@ def analysable_model(arch: BlockArch, *, restitution=DEFAULT_RESTITUTION, nomina
     from ..models import model_for
 
     try:
-        return model_for(arch, model, restitution=restitution, nominal=nominal), ""
+        if check_model(model) == "rigid-blocks":
+            k = np.asarray(load_multipliers(arch), dtype=float)  # the same verdict on standing
+            if np.any(np.isnan(k) | (k < 0.0)):
+                raise CannotStandError("the arch cannot stand under its own weight")
+            if np.all(np.isinf(k)):
+                raise NeverCollapsesError("no collapse mechanism in either direction")
+        return model_for(arch, model, restitution=restitution, nominal=nominal,
+                         block_settings=block_settings), ""
     except CannotStandError:
         return None, "cannot stand"
     except NeverCollapsesError:

@@ -87,8 +87,10 @@ import pandas as pd
 from ..checks import check_integer, json_float
 from ..defaults import (
     DEFAULT_EPSILON,
+    DEFAULT_FRICTION,
     DEFAULT_RESTITUTION,
     DEFAULT_SAMPLE_LIMIT_METHOD,
+    DEFAULT_SEARCH,
     DEFAULT_SEED,
     LIMIT_METHODS,
     LIMIT_SAMPLE_SIZE,
@@ -102,6 +104,7 @@ from ..defaults import (
     STUDY_SAMPLE_SIZE,
 )
 from ..geometry import BlockArch, arch_from_dict
+from ..models import DEFAULT_MODEL
 from ..reference_arches import oppenheim
 from .arch_sample import (
     STATUS_EXCLUDED,
@@ -126,6 +129,7 @@ from .fits import (
     probability_of_failure,
     rising_part,
 )
+from .strategies import DEFAULT_STRIDE
 
 # ---------------------------------------------------------------------------------------------
 # The study
@@ -181,6 +185,17 @@ class FragilitySettings:
     motion : str
         Pulse shape, a name of :data:`archquake.ground_motion.ANALYTIC_GROUND_MOTIONS` (default
         Oppenheim's pulse).
+    model : {"four-link", "rigid-blocks"}
+        The dynamic model of every arch (:func:`archquake.models.model_for`; default the
+        paper's four-link model). ``restitution`` applies to the four-link model only.
+    search : {"exhaustive", "bisection", "screened"}, optional
+        How each arch's amplitude lines are searched (:mod:`archquake.studies.strategies`;
+        default :data:`archquake.defaults.DEFAULT_SEARCH` of the model).
+    stride : int
+        Grid steps between the coarse points of ``bisection`` and ``screened`` [-].
+    friction : float
+        Coulomb friction coefficient of the rigid-block model's joints [-] (ignored by the
+        four-link model).
 
     Raises
     ------
@@ -199,11 +214,22 @@ class FragilitySettings:
     limit_sample_size: int = LIMIT_SAMPLE_SIZE
     limit_method: str = DEFAULT_SAMPLE_LIMIT_METHOD
     motion: str = "oppenheim"
+    model: str = DEFAULT_MODEL
+    search: str | None = None
+    stride: int = DEFAULT_STRIDE
+    friction: float = DEFAULT_FRICTION
 
     def __post_init__(self) -> None:
         from ..fourlink.impact import check_restitution_model
         from ..ground_motion import ANALYTIC_GROUND_MOTIONS
+        from ..models import check_model
+        from .strategies import check_search, check_stride
 
+        object.__setattr__(self, "model", check_model(self.model))
+        object.__setattr__(self, "search", check_search(
+            DEFAULT_SEARCH[self.model] if self.search is None else self.search))
+        object.__setattr__(self, "stride", check_stride(self.stride))
+        _ = self.block_settings  # checks the friction
         sample = ArchSample(self.nominal, self.epsilon, self.seed)  # nominal, epsilon, seed
         check_integer("sample_size", self.sample_size, maximum=MAX_SAMPLES)
         check_integer("limit_sample_size", self.limit_sample_size, maximum=MAX_LIMIT_SAMPLES)
@@ -247,6 +273,13 @@ class FragilitySettings:
         object.__setattr__(self, "amplitudes_g", tuple(float(x) for x in a))
 
     @property
+    def block_settings(self):
+        """The rigid-block model's settings (:class:`archquake.rigid_blocks.BlockSettings`)."""
+        from ..rigid_blocks import BlockSettings
+
+        return BlockSettings(friction=self.friction)
+
+    @property
     def sample(self) -> ArchSample:
         """The irregular arches of the study: :class:`~archquake.studies.arch_sample.ArchSample`
         ``(nominal, epsilon, seed)``, arches ``0 .. sample_size - 1`` (and ``0 ..
@@ -272,6 +305,10 @@ class FragilitySettings:
             "limit_sample_size": self.limit_sample_size,
             "limit_method": self.limit_method,
             "motion": self.motion,
+            "model": self.model,
+            "search": self.search,
+            "stride": self.stride,
+            "friction": self.friction,
         }
 
     @classmethod
@@ -292,7 +329,10 @@ class FragilitySettings:
                    durations=tuple(data["durations"]),
                    amplitudes_g=tuple(data["amplitudes_g"]), seed=data["seed"],
                    restitution=data["restitution"], limit_sample_size=data["limit_sample_size"],
-                   limit_method=data["limit_method"], motion=data["motion"])
+                   limit_method=data["limit_method"], motion=data["motion"],
+                   model=data.get("model", DEFAULT_MODEL), search=data.get("search"),
+                   stride=data.get("stride", DEFAULT_STRIDE),
+                   friction=data.get("friction", DEFAULT_FRICTION))
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, FragilitySettings):
@@ -338,33 +378,48 @@ def arch_outcomes(arch: BlockArch, durations, amplitudes_g, *, restitution=DEFAU
                           amplitudes_g, motion=motion)
 
 
-def model_outcomes(model, durations, amplitudes_g, *, motion: str = "oppenheim"
+def model_outcomes(model, durations, amplitudes_g, *, motion: str = "oppenheim",
+                   search: str | None = None, stride: int = DEFAULT_STRIDE, screen=None
                    ) -> dict[str, np.ndarray]:
     """Outcomes of one arch's model over the (duration x amplitude) grid, for both pulse
     directions.
 
-    One compiled call (:meth:`~archquake.fourlink.dynamics.ArchDynamics.outcomes`) per
-    direction. Rows are ordered by direction (``"l"`` then ``"r"``), duration, amplitude.
+    The four-link model's whole grid is one compiled call per direction
+    (:meth:`~archquake.fourlink.FourLinkModel.outcomes`); the rigid-block model's amplitude
+    lines are searched by ``search`` (:func:`archquake.studies.strategies.pulse_grid_outcomes`).
+    Rows are ordered by direction (``"l"`` then ``"r"``), duration, amplitude.
 
     Parameters
     ----------
-    model : FourLinkModel
-        The arch's model (:meth:`archquake.fourlink.dynamics.ArchDynamics.from_arch`).
+    model : StructuralModel
+        The arch's model (:func:`archquake.models.model_for`).
     durations : sequence of float
         Pulse durations t_p [s].
     amplitudes_g : sequence of float
         Pulse amplitudes a > 0 [g]; direction ``"l"`` applies ``-a g`` first, ``"r"`` ``+a g``.
     motion : str
         Pulse shape (:data:`archquake.ground_motion.ANALYTIC_GROUND_MOTIONS`).
+    search : {"exhaustive", "bisection", "screened"}, optional
+        Search strategy (default :data:`archquake.defaults.DEFAULT_SEARCH` of the model).
+    stride : int
+        Coarse stride of the faster strategies [grid steps].
+    screen : StructuralModel, optional
+        The screening model of ``"screened"`` (the four-link model of the same arch).
 
     Returns
     -------
     dict of ndarray
         Columns ``direction``, ``duration`` [s], ``amplitude_g`` [g], ``status``,
-        ``half_cycle``, ``impacts``, ``collapse_time`` [s], ``k_l``, ``k_r``, ``c_lr``,
-        ``c_rl`` [-] (2 x durations x amplitudes rows); ``status`` holds the integer codes of
-        :class:`archquake.status.Status`.
+        ``half_cycle``, ``impacts`` (-1 where the model does not count them or the outcome was
+        inferred), ``collapse_time`` [s] (nan where inferred), ``analysed`` (False where the
+        outcome was inferred from analysed neighbours), ``k_l``, ``k_r``, ``c_lr``, ``c_rl``
+        [-] (nan for a model without restitution) (2 x durations x amplitudes rows);
+        ``status`` holds the integer codes of :class:`archquake.status.Status`.
     """
+    search = DEFAULT_SEARCH[model.name] if search is None else search
+    if not (model.name == "four-link" and search == "exhaustive"):
+        return _searched_outcomes(model, durations, amplitudes_g, motion, search, stride,
+                                  screen)
     d = np.asarray(durations, dtype=float)
     a = np.asarray(amplitudes_g, dtype=float)
     grid_d, grid_a = np.meshgrid(d, a, indexing="ij")
@@ -374,10 +429,28 @@ def model_outcomes(model, durations, amplitudes_g, *, motion: str = "oppenheim"
         parts.append({"direction": np.full(grid_d.size, direction),
                       "duration": grid_d.ravel(), "amplitude_g": grid_a.ravel(),
                       **{name: out[name].ravel() for name in
-                         ("status", "half_cycle", "impacts", "collapse_time")}})
+                         ("status", "half_cycle", "impacts", "collapse_time")},
+                      "analysed": np.ones(grid_d.size, dtype=bool)})
     columns = {name: np.concatenate([p[name] for p in parts]) for name in parts[0]}
     rows = columns["duration"].size
     values = (*model.load_multipliers, *model.restitution)
+    for name, value in zip(("k_l", "k_r", "c_lr", "c_rl"), values, strict=True):
+        columns[name] = np.full(rows, float(value))
+    return columns
+
+
+def _searched_outcomes(model, durations, amplitudes_g, motion, search, stride, screen):
+    """:func:`model_outcomes` by a search strategy (one analysis per point analysed)."""
+    from .strategies import pulse_grid_outcomes
+
+    out = pulse_grid_outcomes(model, durations, amplitudes_g, motion=motion, search=search,
+                              stride=stride, screen=screen)
+    rows = out["duration"].size
+    columns = {name: out[name] for name in ("direction", "duration", "amplitude_g")}
+    columns |= {"status": out["status"], "half_cycle": out["half_cycle"],
+                "impacts": np.full(rows, -1, dtype=np.int64),
+                "collapse_time": np.full(rows, np.nan), "analysed": out["analysed"]}
+    values = (*model.load_multipliers, *getattr(model, "restitution", (np.nan, np.nan)))
     for name, value in zip(("k_l", "k_r", "c_lr", "c_rl"), values, strict=True):
         columns[name] = np.full(rows, float(value))
     return columns
@@ -395,7 +468,8 @@ def _rows_without_motion(durations, amplitudes_g, status: int, k: float) -> dict
                "status": np.full(2 * n, status, dtype=np.int8),
                "half_cycle": np.zeros(2 * n, dtype=np.int16),
                "impacts": np.zeros(2 * n, dtype=np.int32),
-               "collapse_time": np.full(2 * n, np.nan)}
+               "collapse_time": np.full(2 * n, np.nan),
+               "analysed": np.zeros(2 * n, dtype=bool)}
     for name in ("k_l", "k_r"):
         columns[name] = np.full(2 * n, k)
     for name in ("c_lr", "c_rl"):
@@ -435,9 +509,15 @@ def fragility_task(chunk) -> dict[str, np.ndarray]:
     parts = []
     for item in chunk.items:
         try:
-            member = sample.member(item, restitution=settings.restitution)
+            member = sample.member(item, restitution=settings.restitution, model=settings.model,
+                                   block_settings=settings.block_settings)
             if member.model is not None:
-                columns = model_outcomes(member.model, *grid, motion=settings.motion)
+                screen = None
+                if settings.search == "screened" and settings.model != "four-link":
+                    screen = sample.member(item).model  # the four-link model, where it has one
+                columns = model_outcomes(member.model, *grid, motion=settings.motion,
+                                         search=settings.search, stride=settings.stride,
+                                         screen=screen)
             elif member.never_collapses:
                 columns = _rows_without_motion(*grid, 0, math.inf)
             else:
@@ -684,7 +764,7 @@ class FragilityResult:
             "settings": self.settings.to_dict(),
             "seed": self.settings.seed,
             "nominal_load_multiplier": self.nominal_load_multiplier,
-            "nominal_restitution": list(self.nominal_domains[0].restitution),
+            "nominal_restitution": [json_float(c) for c in self.nominal_domains[0].restitution],
             "arches": exclusion_summary(self.settings.sample_size, self.excluded),
             "limit_sample": {
                 "count": int(counted.size), "excluded": int(k.size - counted.size),
@@ -805,10 +885,16 @@ def warm_up() -> None:
 def _nominal_domains(settings: FragilitySettings, resolution_g: float) -> tuple:
     """The nominal arch's failure domains over the study grid, directions l and r (point Q of
     Fig. 16 per duration), to ``resolution_g`` [g]."""
-    dynamics = nominal_model(settings.nominal, settings.restitution)
-    return tuple(domain_of(dynamics, settings.durations, settings.amplitudes_g,
+    if settings.model == "four-link":
+        model = nominal_model(settings.nominal, settings.restitution)
+    else:
+        from ..rigid_blocks import RigidBlockModel
+
+        model = RigidBlockModel(settings.nominal, settings.block_settings)
+    return tuple(domain_of(model, settings.durations, settings.amplitudes_g,
                            direction=direction, resolution=resolution_g,
-                           motion=settings.motion, extend_to_g=None)
+                           motion=settings.motion, extend_to_g=None, search=settings.search,
+                           stride=settings.stride)
                  for direction in PULSE_SIGNS)
 
 
@@ -828,7 +914,7 @@ def run_fragility(
     pool: Any = None,
     resume: bool = False,
     progress: bool = True,
-    chunk_size: int = 2,
+    chunk_size: int | None = None,
     limit_chunk_size: int = 50,
     nominal_resolution_g: float = 1e-4,
 ) -> FragilityResult:
@@ -862,8 +948,9 @@ def run_fragility(
     progress : bool
         Progress bars on stderr.
     chunk_size, limit_chunk_size : int
-        Arches per chunk of the dynamic study and of the limit sample (recorded; a resumed study
-        must use the same).
+        Arches per chunk of the dynamic study (default 2 with the four-link model, 1 with the
+        rigid blocks, whose arch takes seconds) and of the limit sample (recorded; a resumed
+        study must use the same).
     nominal_resolution_g : float
         Bisection width of the nominal failure acceleration [g].
 
@@ -886,7 +973,9 @@ def run_fragility(
 
     if not isinstance(settings, FragilitySettings):
         raise ValueError(f"settings must be FragilitySettings, got {type(settings).__name__}")
-    check_nominal(settings.nominal, settings.restitution)
+    check_nominal(settings.nominal, settings.restitution, model=settings.model)
+    if chunk_size is None:  # a rigid-block arch is seconds of work: one per chunk balances
+        chunk_size = 2 if settings.model == "four-link" else 1
     plan = StudyPlan(settings.to_dict(), settings.seed, settings.sample_size,
                      check_integer("chunk_size", chunk_size))
     limit_settings = {"nominal": settings.nominal.to_dict(),

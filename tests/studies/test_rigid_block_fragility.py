@@ -1,0 +1,81 @@
+"""The fragility study with the rigid-block model: the same execution layer (serial, processes,
+Dask, resume), results that say which model made them, and rows equal to direct analyses."""
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from archquake import GRAVITY
+from archquake.ground_motion import oppenheim_pulse
+from archquake.results_io import load_study
+from archquake.rigid_blocks import RigidBlockModel
+from archquake.studies.fragility import FragilitySettings, run_fragility
+
+TINY = {"sample_size": 2, "durations": (0.4,), "limit_sample_size": 4, "seed": 3,
+        "amplitudes_g": tuple(np.round(np.arange(0.10, 0.71, 0.05), 2)), "model": "rigid-blocks",
+        "stride": 4}
+FAST = {"progress": False, "nominal_resolution_g": 0.01, "limit_chunk_size": 2}
+
+
+@pytest.fixture(scope="module")
+def serial():
+    return run_fragility(FragilitySettings(**TINY), backend="serial", **FAST)
+
+
+def test_results_say_which_model_made_them(serial):
+    summary = serial.summary()
+    assert summary["settings"]["model"] == "rigid-blocks"
+    assert summary["settings"]["search"] == "screened"
+    assert summary["nominal_restitution"] == [None, None]  # no coefficient of restitution
+    assert serial.nominal_domains[0].model["model"] == "rigid-blocks"
+
+
+def test_analysed_rows_are_the_rigid_block_outcomes(serial):
+    """Every analysed row against a direct analysis of the same arch and pulse."""
+    table = serial.table
+    sample = serial.settings.sample
+    rows = table[table["analysed"]]
+    assert len(rows) > 0
+    for _, row in rows.sample(6, random_state=0).iterrows():
+        model = RigidBlockModel(sample.arch(int(row["arch"])))
+        sign = -1.0 if row["direction"] == "l" else 1.0
+        pulse = oppenheim_pulse(sign * row["amplitude_g"] * GRAVITY, row["duration"])
+        assert int(model.outcome(pulse).status) == row["status"]
+
+
+def test_screened_equals_the_exhaustive_study(serial):
+    exhaustive = run_fragility(FragilitySettings(**TINY, search="exhaustive"), backend="serial",
+                               **FAST)
+    assert np.array_equal(exhaustive.probability, serial.probability)
+    assert np.array_equal(exhaustive.table["status"], serial.table["status"])
+    assert exhaustive.table["analysed"].all() and not serial.table["analysed"].all()
+
+
+def test_the_same_results_serially_on_processes_and_on_dask(serial):
+    from distributed import Client, LocalCluster
+
+    settings = FragilitySettings(**TINY)
+    processes = run_fragility(settings, backend="processes", workers=2, **FAST)
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
+                      dashboard_address=None) as cluster, Client(cluster) as client:
+        dask = run_fragility(settings, backend="dask", scheduler=client, **FAST)
+    for other in (processes, dask):
+        pd.testing.assert_frame_equal(other.table, serial.table)
+        assert np.array_equal(other.probability, serial.probability)
+
+
+def test_an_interrupted_study_resumes_and_a_change_of_model_is_refused(serial, tmp_path):
+    out = tmp_path / "study"
+    settings = FragilitySettings(**TINY)
+    run_fragility(settings, out, backend="serial", **FAST)
+    for name in ("summary.json", "results.parquet", "results.csv", "curves.csv"):
+        (out / name).unlink()
+    chunks = sorted((out / "chunks").glob("chunk-*.npz"))
+    assert len(chunks) == 2  # one arch per chunk with the rigid blocks
+    chunks[1].unlink()
+    resumed = run_fragility(settings, out, backend="serial", resume=True, **FAST)
+    pd.testing.assert_frame_equal(resumed.table, serial.table)
+    assert load_study(out).metadata["timings"]["chunks_resumed"] == 1
+    four_link = FragilitySettings(**{**TINY, "model": "four-link"})
+    with pytest.raises(ValueError, match="differ"):
+        run_fragility(four_link, out, backend="serial", resume=True, **FAST)
