@@ -121,9 +121,10 @@ import numpy as np
 import pandas as pd
 
 from ..checks import check_integer
-from ..defaults import DEFAULT_RESTITUTION, MAX_SAMPLES
+from ..defaults import DEFAULT_FRICTION, DEFAULT_RESTITUTION, DEFAULT_SEARCH, MAX_SAMPLES
 from ..geometry import GRAVITY, BlockArch, arch_from_dict
 from ..ground_motion.suites import RecordSuite, stripe_measure
+from ..models import DEFAULT_MODEL
 from ..reference_arches import oppenheim
 from .arch_sample import (
     STATUS_EXCLUDED,
@@ -150,6 +151,9 @@ NOMINAL_ARCH = -1
 """Value of the ``arch`` column for the nominal arch (the irregular arches are 0 .. h-1)."""
 POLARITIES = (1, -1)
 """Polarities of a record: +1 as recorded, -1 reversed (``GroundMotion.reversed()``)."""
+DEFAULT_LEVEL_STRIDE = 4
+"""Levels between the coarse points of a searched line of stripes [-] (20 levels: 5 coarse)."""
+
 DEFAULT_BOOTSTRAP = 1000
 """Default number of bootstrap resamples of a confidence band."""
 DEFAULT_CONFIDENCE = 0.90
@@ -205,6 +209,16 @@ class RecordFragilitySettings:
         Number of bootstrap resamples of the confidence bands (>= 10).
     confidence : float
         Confidence level of the bands [-], in (0, 1).
+    model : {"four-link", "rigid-blocks"}
+        The dynamic model of every arch (:func:`archquake.models.model_for`).
+    search : {"exhaustive", "bisection", "screened"}, optional
+        How each (arch, record, polarity) line of levels is searched
+        (:mod:`archquake.studies.strategies`; default :data:`archquake.defaults.DEFAULT_SEARCH`
+        of the model).
+    stride : int
+        Levels between the coarse points of ``bisection`` and ``screened`` [-].
+    friction : float
+        Coulomb friction coefficient of the rigid-block model's joints [-].
 
     Raises
     ------
@@ -222,9 +236,22 @@ class RecordFragilitySettings:
     restitution: str | float = DEFAULT_RESTITUTION
     bootstrap: int = DEFAULT_BOOTSTRAP
     confidence: float = DEFAULT_CONFIDENCE
+    model: str = DEFAULT_MODEL
+    search: str | None = None
+    stride: int = DEFAULT_LEVEL_STRIDE
+    friction: float = DEFAULT_FRICTION
 
     def __post_init__(self) -> None:
         from ..fourlink.impact import check_restitution_model
+        from ..models import check_model
+        from ..rigid_blocks import BlockSettings
+        from .strategies import check_search, check_stride
+
+        object.__setattr__(self, "model", check_model(self.model))
+        object.__setattr__(self, "search", check_search(
+            DEFAULT_SEARCH[self.model] if self.search is None else self.search))
+        object.__setattr__(self, "stride", check_stride(self.stride))
+        BlockSettings(friction=self.friction)  # checks the friction
 
         if not isinstance(self.suite, RecordSuite):
             raise ValueError(f"suite must be a RecordSuite, got {type(self.suite).__name__}")
@@ -266,6 +293,13 @@ class RecordFragilitySettings:
         ``(nominal, epsilon, seed)``, arches ``0 .. sample_size - 1``."""
         return ArchSample(self.nominal, self.epsilon, self.seed)
 
+    @property
+    def block_settings(self):
+        """The rigid-block model's settings (:class:`archquake.rigid_blocks.BlockSettings`)."""
+        from ..rigid_blocks import BlockSettings
+
+        return BlockSettings(friction=self.friction)
+
     def to_dict(self) -> dict:
         """The settings as JSON-ready data, as stored with the results.
 
@@ -287,6 +321,10 @@ class RecordFragilitySettings:
             "restitution": self.restitution,
             "bootstrap": self.bootstrap,
             "confidence": self.confidence,
+            "model": self.model,
+            "search": self.search,
+            "stride": self.stride,
+            "friction": self.friction,
         }
 
     @classmethod
@@ -308,7 +346,10 @@ class RecordFragilitySettings:
                    epsilon=data.get("epsilon", data.get("tolerance")),
                    seed=data["seed"],
                    restitution=data["restitution"], bootstrap=data["bootstrap"],
-                   confidence=data["confidence"])
+                   confidence=data["confidence"], model=data.get("model", DEFAULT_MODEL),
+                   search=data.get("search"),
+                   stride=data.get("stride", DEFAULT_LEVEL_STRIDE),
+                   friction=data.get("friction", DEFAULT_FRICTION))
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, RecordFragilitySettings):
@@ -385,6 +426,71 @@ def record_outcomes(dynamics, motion, factors) -> dict[str, np.ndarray]:
 
 
 
+def searched_record_outcomes(model, motion, factors, *, search: str = "screened",
+                             stride: int = 4, screen=None) -> dict[str, np.ndarray]:
+    """Outcomes of one arch under one record at increasing scale factors, both polarities,
+    by a search strategy along the levels (:func:`archquake.studies.strategies.search_grid`).
+
+    For a model whose analyses are single (the rigid blocks): each polarity's line of levels is
+    scanned coarsely and every change bisected; with ``"screened"`` the stretches whose outcome
+    is not smooth (module :mod:`~archquake.studies.strategies`: anything but rest and a collapse
+    during the record) are analysed level by level, and the screening model's changes refine the
+    coarse scan.
+
+    Parameters
+    ----------
+    model : StructuralModel
+        The arch's model.
+    motion : GroundMotion
+        The record [m/s^2].
+    factors : array_like of float
+        Increasing scale factors of the levels, > 0 [-].
+    search : {"exhaustive", "bisection", "screened"}
+        The strategy.
+    stride : int
+        Levels between coarse points [-].
+    screen : StructuralModel, optional
+        The screening model (the four-link model of the same arch), for ``"screened"``.
+
+    Returns
+    -------
+    dict of ndarray
+        As :func:`record_outcomes`, one per (level, polarity) in that order (polarities of
+        :data:`POLARITIES`); ``integrated`` is False where the outcome was inferred; ``impacts``
+        -1, ``max_phi`` nan and ``half_cycle`` 0 for a model that does not count them.
+    """
+    from .strategies import search_grid, smooth_outcomes
+
+    f = np.asarray(factors, dtype=float).ravel()
+    n = f.size * len(POLARITIES)
+    out = {"status": np.zeros(n, dtype=np.int8), "half_cycle": np.zeros(n, dtype=np.int16),
+           "impacts": np.full(n, -1, dtype=np.int32), "collapse_time": np.full(n, np.nan),
+           "max_phi": np.full(n, np.nan), "integrated": np.zeros(n, dtype=bool)}
+    for j, polarity in enumerate(POLARITIES):
+        rows = np.arange(f.size) * len(POLARITIES) + j
+        screen_keys = None
+        if search == "screened" and screen is not None:
+            screen_keys = record_outcomes(screen, motion, polarity * f)["status"].astype(
+                np.int64)
+
+        def classify(indices, polarity=polarity, rows=rows):
+            status = np.empty(len(indices), dtype=np.int64)
+            time = np.full(len(indices), np.nan)
+            for m, i in enumerate(indices):
+                outcome = model.outcome(motion.scaled(polarity * f[i]))
+                status[m], time[m] = int(outcome.status), outcome.collapse_time
+            out["collapse_time"][rows[indices]] = time
+            return status, smooth_outcomes({"status": status, "collapse_time": time},
+                                           motion.duration)
+
+        keys, analysed = search_grid(classify, f.size, search=search, stride=stride,
+                                     screen=screen_keys)
+        out["status"][rows] = keys
+        out["integrated"][rows] = analysed
+        out["collapse_time"][rows[~analysed]] = np.nan
+    return out
+
+
 # ---------------------------------------------------------------------------------------------
 # The study task (runs in the workers)
 # ---------------------------------------------------------------------------------------------
@@ -441,18 +547,33 @@ def record_fragility_task(chunk) -> dict[str, np.ndarray]:
         else:
             arch_id, label = NOMINAL_ARCH, "the nominal arch"
         try:
+            screen = None
             if arch_id == NOMINAL_ARCH:
                 model, excluded = nominal_model(settings.nominal, settings.restitution), ""
-                k, c = model.load_multipliers, model.restitution
+                k = model.load_multipliers
+                if settings.model != "four-link":
+                    from ..rigid_blocks import RigidBlockModel
+
+                    screen = model
+                    model = RigidBlockModel(settings.nominal, settings.block_settings)
             else:
-                member = sample.member(item, restitution=settings.restitution)
+                member = sample.member(item, restitution=settings.restitution,
+                                       model=settings.model,
+                                       block_settings=settings.block_settings)
                 model, excluded = member.model, member.excluded
                 k = member.load_multipliers
-                c = (math.nan, math.nan) if model is None else model.restitution
+                if model is not None and settings.model != "four-link":
+                    screen = sample.member(item, restitution=settings.restitution).model
+            c = getattr(model, "restitution", (math.nan, math.nan))
+            searched = settings.model != "four-link" or settings.search != "exhaustive"
             for r, motion in enumerate(motions):
                 signed = (factors[r][:, None] * np.array(POLARITIES, dtype=float)[None, :]).ravel()
                 n = signed.size
-                if model is not None:
+                if model is not None and searched:
+                    out = searched_record_outcomes(model, motion, factors[r],
+                                                   search=settings.search,
+                                                   stride=settings.stride, screen=screen)
+                elif model is not None:
                     out = record_outcomes(model, motion, signed)
                 else:
                     out = _outcomes_without_motion(n, STATUS_EXCLUDED if excluded else 0)
@@ -1029,7 +1150,7 @@ def run_record_fragility(
                          f"{type(settings).__name__}")
     # read every record and its IM here, so that a bad file stops the study before it starts
     settings.suite.intensities(settings.im)
-    check_nominal(settings.nominal, settings.restitution)
+    check_nominal(settings.nominal, settings.restitution, model=settings.model)
     out = None if out_dir is None else Path(out_dir)
     if resume and out is not None:
         _check_resume(out, settings)
