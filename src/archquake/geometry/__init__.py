@@ -62,7 +62,7 @@ Oppenheim's arch and a pointed arch of the same span and rise:
 (8, (9, 2, 2), True)
 """
 
-from ..constants import DEFAULT_DENSITY, GRAVITY
+from ..constants import DEFAULT_DENSITY, DEFAULT_FILL_DENSITY, GRAVITY
 from .arch import RADIUS_RANGE, CircularArch, circular_arch
 from .blocks import (
     FACES,
@@ -75,15 +75,20 @@ from .blocks import (
 )
 from .centrelines import CENTRELINES, SHAPES, Centreline, centreline
 from .files import arch_from_dict, load_arch
+from .fill import DEFAULT_FILL_INERTIA, FILL_INERTIA_MODELS, Fill
 from .irregular import irregular_arch, irregular_sample
+from .loads import BlockLoads
+from .piers import Pier
 from .shaped import VOUSSOIR_FACES, ShapedArch, shaped_arch
+from .structure import Structure, arch_on_piers
 from .survey import SurveyedArch, surveyed_arch
 
 __all__ = [
-    "CENTRELINES", "DEFAULT_DENSITY", "FACES", "GRAVITY", "LENGTH_RANGE",
+    "CENTRELINES", "DEFAULT_DENSITY", "DEFAULT_FILL_DENSITY", "DEFAULT_FILL_INERTIA",
+    "FACES", "FILL_INERTIA_MODELS", "GRAVITY", "LENGTH_RANGE",
     "MAX_GEOMETRY_FILE_BYTES", "MAX_VOUSSOIRS", "MIN_VOUSSOIRS", "RADIUS_RANGE", "SHAPES",
-    "VOUSSOIR_FACES", "BlockArch", "Centreline", "CircularArch", "Hinge", "ShapedArch",
-    "SurveyedArch",
-    "arch_from_dict", "centreline", "circular_arch", "irregular_arch", "irregular_sample",
-    "load_arch", "shaped_arch", "surveyed_arch",
+    "VOUSSOIR_FACES", "BlockArch", "BlockLoads", "Centreline", "CircularArch", "Fill", "Hinge",
+    "Pier", "ShapedArch", "Structure", "SurveyedArch",
+    "arch_from_dict", "arch_on_piers", "centreline", "circular_arch", "irregular_arch",
+    "irregular_sample", "load_arch", "shaped_arch", "surveyed_arch",
 ]
