@@ -22,7 +22,7 @@ fill over an arch changes them (:mod:`archquake.geometry.fill`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 
@@ -33,8 +33,6 @@ def _frozen(values, name: str, n: int | None = None) -> np.ndarray:
     arr = np.array(values, dtype=float)
     if arr.ndim != 1 or (n is not None and arr.size != n):
         raise ValueError(f"{name} must be one value per block ({n}), got shape {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must be finite numbers")
     arr.setflags(write=False)
     return arr
 
@@ -85,13 +83,17 @@ class BlockLoads:
         for name in ("passive", "passive_y", "passive_sign"):
             value = getattr(self, name)
             set_(self, name, _frozen(np.zeros(n) if value is None else value, name, n))
-        if np.any(vertical < 0) or not vertical.sum() > 0:
+        everything = np.concatenate([getattr(self, name) for name in (
+            "vertical", "vertical_x", "horizontal", "horizontal_y", "passive", "passive_y")])
+        if not np.isfinite(everything).all():
+            raise ValueError("loads and their lines of action must be finite numbers")
+        if vertical.min(initial=0.0) < 0 or not vertical.sum() > 0:
             raise ValueError("vertical loads must be >= 0 [N/m] with a positive total")
-        if np.any(self.horizontal < 0):
+        if self.horizontal.min(initial=0.0) < 0:
             raise ValueError("horizontal loads must be >= 0 [N/m]")
-        if np.any(self.passive < 0):
+        if self.passive.min(initial=0.0) < 0:
             raise ValueError("passive reactions must be >= 0 [N/m]")
-        if not np.all(np.isin(self.passive_sign, (-1.0, 0.0, 1.0))):
+        if np.any(np.abs(self.passive_sign) * (np.abs(self.passive_sign) - 1.0) != 0.0):
             raise ValueError("passive_sign must be -1, 0 or +1 for every block")
 
     @classmethod
@@ -108,7 +110,17 @@ class BlockLoads:
         """
         weight = np.asarray(masses, dtype=float) * GRAVITY
         c = np.asarray(centroids, dtype=float)
-        return cls(weight, c[:, 0], weight, c[:, 1])
+        if not (weight.ndim == 1 and c.shape == (weight.size, 2) and weight.min() > 0
+                and np.isfinite(c).all()):
+            return cls(weight, c[:, 0], weight, c[:, 1])  # the checks say what is wrong
+        # an arch's own mass properties are checked: no need to check them again
+        loads = object.__new__(cls)
+        zeros = np.zeros(weight.size)
+        arrays = (weight, c[:, 0].copy(), weight, c[:, 1].copy(), zeros, zeros, zeros)
+        for f, value in zip(fields(cls), arrays, strict=True):
+            value.setflags(write=False)
+            object.__setattr__(loads, f.name, value)
+        return loads
 
     @property
     def n_blocks(self) -> int:
