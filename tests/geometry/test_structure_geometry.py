@@ -180,3 +180,13 @@ def test_crown_and_thickness_scale_are_the_arch_s(nominal):
     block, point = s.crown()
     assert block == 2 + 3 and point == pytest.approx([0.0, 10.75])
     assert s.thickness_scale == 1.5
+
+
+def test_joint_names(nominal):
+    s = Structure(nominal, Pier(3.0, 6.0, 2), None)
+    names = [s.joint_name(j) for j in range(s.n_voussoirs + 1)]
+    assert names[:3] == ["left pier base", "left pier bed joint 1", "left springing"]
+    assert names[3] == "arch joint 1" and names[-1] == "right fixed springing"
+    right = Structure(nominal, None, Pier(3.0, 6.0, 3))
+    assert [right.joint_name(j) for j in range(7, 11)] == [
+        "right springing", "right pier bed joint 2", "right pier bed joint 1", "right pier base"]

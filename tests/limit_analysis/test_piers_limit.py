@@ -135,3 +135,41 @@ def test_min_pier_width_of_an_arch_that_cannot_stand():
         min_pier_width(circular_arch(10.0, math.radians(157.5), 0.3, 7), 6.0)
     with pytest.raises(ValueError, match="height must be"):
         min_pier_width(circular_arch(10.0, 2.0, 1.0, 7), -1.0)
+
+
+def test_irregular_arches_on_the_same_piers(nominal):
+    """An irregular draw perturbs the arch (its voussoirs' draws) and keeps the piers and the
+    fill; both methods agree on every arch of the sample."""
+    from archquake.geometry import Fill, irregular_sample
+    from archquake.limit_analysis import limit_sample
+
+    structure = arch_on_piers(nominal, 3.0, 6.0, fill=Fill(0.5, 1600.0))
+    sample = irregular_sample(structure, 0.1, 4, seed=0)
+    assert all(s.left == structure.left and s.fill == structure.fill for s in sample)
+    assert all(s.arch != nominal for s in sample)
+    static = limit_sample(structure, 0.1, 4, 0, "static")
+    kinematic = limit_sample(structure, 0.1, 4, 0, "kinematic")
+    assert static.load_multiplier == pytest.approx(kinematic.load_multiplier,
+                                                   abs=AGREEMENT_TOLERANCE)
+
+
+def test_plot_of_the_mechanism_through_a_pier(nominal, tmp_path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    from archquake.geometry import Fill
+    from archquake.plotting import plot_limit_analysis
+
+    structure = arch_on_piers(nominal, 3.0, 6.0, 2, fill=Fill(0.5, 1600.0))
+    result = both_directions(structure)[0]
+    ax = plot_limit_analysis(result)
+    assert [t.get_text() for t in ax.texts if len(t.get_text()) == 1] == ["A", "B", "C", "D"]
+    low, high = ax.get_ylim()  # the piers' bases and the fill's surface in view
+    assert low < structure.joints[0, 0, 1] and high > structure.fill_columns.level
+    assert len(ax.patches) == 7  # a fill column over every voussoir
+    ax.figure.savefig(tmp_path / "piers.png")
+    plt.close("all")
+    assert np.isfinite(result.funicular()).all()

@@ -308,7 +308,7 @@ def fill_columns(arch: BlockArch, fill: Fill) -> FillColumns:
     Parameters
     ----------
     arch : CircularArch, ShapedArch or SurveyedArch
-        The arch (its voussoirs' extrados, :meth:`extrados`).
+        The arch (its voussoirs' extrados, ``arch.extrados(i)``).
     fill : Fill
         The fill.
 

@@ -79,9 +79,9 @@ class Structure(BlockArch):
     ------
     ValueError
         If ``arch`` is not an arch (or is itself a Structure), a pier or the fill is of the
-        wrong type, or a pier does not fit its springing (:func:`~archquake.geometry.piers.
-        pier_blocks`: narrower than the springing joint, a springing joint that does not rise
-        outward).
+        wrong type, or a pier does not fit its springing
+        (:func:`~archquake.geometry.piers.pier_blocks`: narrower than the springing joint, a
+        springing joint that does not rise outward).
 
     Examples
     --------
@@ -169,6 +169,27 @@ class Structure(BlockArch):
     def fill_columns(self) -> FillColumns | None:
         """The fill over every voussoir of the arch (in the arch's own numbering), or None."""
         return self._cache.get("fill")
+
+    def joint_name(self, j: int) -> str:
+        """What joint ``j`` is, in words: ``"left pier base"``, ``"left pier bed joint 1"``
+        (counted from the ground up), ``"left springing"``, ``"arch joint 3"`` (the arch's own
+        numbering), ``"right springing"``, ``"right pier bed joint 1"``, ``"right pier base"``.
+        """
+        n_arch = self.arch.n_voussoirs
+        if not 0 <= j <= self.n_voussoirs:
+            raise ValueError(f"joint must be in [0, {self.n_voussoirs}], got {j}")
+        if j < self.n_left:
+            return "left pier base" if j == 0 else f"left pier bed joint {j}"
+        k = j - self.n_left
+        if k <= n_arch:
+            side = "left " if self.left is not None else "left fixed "
+            if k == 0:
+                return side + "springing"
+            if k == n_arch:
+                return ("right " if self.right is not None else "right fixed ") + "springing"
+            return f"arch joint {k}"
+        bed = self.n_right - (k - n_arch)
+        return "right pier base" if bed == 0 else f"right pier bed joint {bed}"
 
     def pier_polygon(self, i: int) -> np.ndarray:
         """Polygon of pier course ``i`` (a block index), counterclockwise [m]."""
@@ -291,7 +312,7 @@ class Structure(BlockArch):
         if self.left is not None and self.left == self.right:
             parts.append(f"on two {self.left.describe().replace('pier ', 'piers ', 1)}"
                          .replace("buttress ", "buttresses ", 1))
-        else:
+        elif self.left is not None or self.right is not None:
             for side in ("left", "right"):
                 pier = getattr(self, side)
                 parts.append(f"{side}: " + ("fixed springing" if pier is None
