@@ -25,6 +25,8 @@ from pathlib import Path
 from ..constants import DEFAULT_DENSITY
 from .arch import CircularArch
 from .blocks import BlockArch, read_json_file
+from .fill import Fill
+from .piers import Pier
 from .shaped import ShapedArch
 from .structure import Structure
 from .survey import SurveyedArch
@@ -70,8 +72,24 @@ def arch_from_dict(data, *, density: float = DEFAULT_DENSITY) -> BlockArch:
     if cls is ShapedArch:
         return ShapedArch.from_dict({"density": density, **data})
     if cls is Structure:
-        return Structure.from_dict(data, density=density)
+        return _structure_from_dict(data, density)
     return cls.from_dict(data, density=density)
+
+
+def _structure_from_dict(data: dict, density: float) -> Structure:
+    """The structure of :meth:`Structure.to_dict <archquake.geometry.Structure.to_dict>`:
+    ``arch`` any arch description, the other keys optional."""
+    keys = {"arch", "left_pier", "right_pier", "fill"}
+    unknown = sorted(set(data) - keys)
+    if unknown:
+        raise ValueError(f"a structure has unknown key(s) {unknown}; allowed: {sorted(keys)}")
+    arch = arch_from_dict(data["arch"], density=density)
+    if isinstance(arch, Structure):
+        raise ValueError("a structure's 'arch' must describe an arch, not a structure")
+    left, right, fill = (data.get(k) for k in ("left_pier", "right_pier", "fill"))
+    return Structure(arch, None if left is None else Pier.from_dict(left),
+                     None if right is None else Pier.from_dict(right),
+                     None if fill is None else Fill.from_dict(fill))
 
 
 def load_arch(path: str | Path, *, density: float = DEFAULT_DENSITY) -> BlockArch:

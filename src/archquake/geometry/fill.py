@@ -58,7 +58,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq, minimize_scalar
 
 from .._equality import value_equality
 from ..constants import DEFAULT_FILL_DENSITY, GRAVITY
@@ -257,6 +256,9 @@ def _piece_range(piece, axis: int = 1) -> tuple[float, float]:
                 trig = math.sin(extreme) if axis == 1 else math.cos(extreme)
                 values.append(piece.centre[axis] + piece.radius * trig)
         return min(values), max(values)
+    from scipy.optimize import minimize_scalar  # a smooth curve only (the command line's
+    # options import this module and stay free of scipy.optimize)
+
     u = np.linspace(piece.start_parameter, piece.end_parameter, 257)
     y = np.asarray(piece.path(u), dtype=float)[:, axis]
     out = []
@@ -292,6 +294,8 @@ def _height_at(pieces, x: float) -> float:
                 if a <= t1 + 1e-12:
                     return piece.centre[1] + piece.radius * math.sin(a)
             continue
+        from scipy.optimize import brentq
+
         u0, u1 = piece.start_parameter, piece.end_parameter
 
         def dx(u, piece=piece):

@@ -323,35 +323,11 @@ class Structure(BlockArch):
 
     def to_dict(self) -> dict:
         """``{"arch": {...}, "left_pier": {...} or None, "right_pier": ..., "fill": ...}``, as
-        read by :meth:`from_dict` and :func:`~archquake.geometry.arch_from_dict`."""
+        read by :func:`~archquake.geometry.arch_from_dict`."""
         return {"arch": self.arch.to_dict(),
                 "left_pier": None if self.left is None else self.left.to_dict(),
                 "right_pier": None if self.right is None else self.right.to_dict(),
                 "fill": None if self.fill is None else self.fill.to_dict()}
-
-    @classmethod
-    def from_dict(cls, data: dict, *, density: float | None = None) -> Structure:
-        """The structure of :meth:`to_dict`; ``arch`` is any arch description
-        (:func:`~archquake.geometry.arch_from_dict`), the other keys optional."""
-        from .files import arch_from_dict
-
-        if not isinstance(data, dict):
-            raise ValueError(f"a structure must be a JSON object, got {type(data).__name__}")
-        keys = {"arch", "left_pier", "right_pier", "fill"}
-        unknown = sorted(set(data) - keys)
-        if unknown:
-            raise ValueError(f"a structure has unknown key(s) {unknown}; allowed: "
-                             f"{sorted(keys)}")
-        if "arch" not in data:
-            raise ValueError("a structure needs 'arch': the description of its arch")
-        kwargs = {} if density is None else {"density": density}
-        arch = arch_from_dict(data["arch"], **kwargs)
-        if isinstance(arch, Structure):
-            raise ValueError("a structure's 'arch' must describe an arch, not a structure")
-        left, right, fill = (data.get(k) for k in ("left_pier", "right_pier", "fill"))
-        return cls(arch, None if left is None else Pier.from_dict(left),
-                   None if right is None else Pier.from_dict(right),
-                   None if fill is None else Fill.from_dict(fill))
 
 
 def arch_on_piers(arch: BlockArch, width: float | None = None, height: float | None = None,
