@@ -173,3 +173,12 @@ def test_plot_of_the_mechanism_through_a_pier(nominal, tmp_path):
     ax.figure.savefig(tmp_path / "piers.png")
     plt.close("all")
     assert np.isfinite(result.funicular()).all()
+
+
+def test_a_surveyed_arch_stands_on_piers_too(nominal):
+    """Piers under the springings of a surveyed arch: the circular arch's k on the same piers,
+    to the sampling of its arcs."""
+    survey = surveyed_arch([nominal.outline(i, 400)[:-1] for i in range(7)])
+    k_survey = both_directions(arch_on_piers(survey, 3.0, 6.0))[0].load_multiplier
+    k_circle = both_directions(arch_on_piers(nominal, 3.0, 6.0))[0].load_multiplier
+    assert k_survey == pytest.approx(k_circle, rel=1e-5)
