@@ -553,19 +553,11 @@ def _run_limit(args: argparse.Namespace) -> int:
 
 
 def describe_arch(arch: BlockArch) -> str:
-    """One line on the arch: its kind, size and voussoirs (units in brackets)."""
-    if hasattr(arch, "describe"):  # a structure: the arch, its piers and fill
-        return arch.describe()
-    n = arch.n_voussoirs
-    if hasattr(arch, "radii"):  # the paper's circular arch
-        return (f"n = {n} voussoirs, embrace = {math.degrees(arch.embrace):.4g} deg, mean radius "
-                f"= {float(arch.radii.mean()):.4g} m, mean thickness = "
-                f"{float(arch.thicknesses.mean()):.4g} m")
-    if hasattr(arch, "centreline"):
-        return (f"{arch.shape} arch, span = {arch.span:.4g} m, rise = {arch.rise:.4g} m, "
-                f"n = {n} voussoirs ({arch.faces} faces), mean thickness = "
-                f"{arch.thickness_scale:.4g} m")
-    return f"surveyed arch of {n} blocks, mean joint depth = {arch.thickness_scale:.4g} m"
+    """One line on the arch: its kind, size and voussoirs (units in brackets); a structure's
+    piers and fill too (:func:`archquake.geometry.structure.describe_arch`)."""
+    from .geometry.structure import describe_arch as describe
+
+    return describe(arch)
 
 
 def _print_min_pier_width(args: argparse.Namespace) -> None:
