@@ -74,6 +74,7 @@ def add_geometry_options(parser: argparse.ArgumentParser, *, sample: bool = Fals
         g = parser.add_argument_group("nominal arch geometry (defaults: Oppenheim's arch)")
     else:
         g = parser.add_argument_group("arch geometry (defaults: Oppenheim's arch)")
+    add_structure_options(g)
     g.add_argument("--shape", choices=SHAPES, default=None,
                    help="shape of the centreline (default: circular); every shape but the "
                         "circle is given by --span and --rise, with its springings on y = 0")
@@ -193,19 +194,170 @@ def _check_shape_options(args: argparse.Namespace) -> tuple[str, dict]:
 
 
 def nominal_arch_from_args(args: argparse.Namespace) -> BlockArch:
-    """The arch of the geometry options, before any irregular draw."""
+    """The arch of the geometry options, before any irregular draw (on piers and with fill if
+    the structure options say so: :func:`structure_from_args`)."""
+    density = _masonry_density(args)
     if args.geometry:
         given = _given(args, *SHAPE_OPTIONS)
         if given:
             raise ValueError(f"--geometry gives the whole arch; it cannot be combined with "
                              f"{', '.join(given)}")
-        return load_arch(args.geometry)
+        return structure_from_args(args, load_arch(args.geometry, density=density))
     shape, kwargs = _check_shape_options(args)
     thickness = _option(args, "thickness")
     if shape is None:
-        return circular_arch(kwargs["radius"], kwargs["embrace"], thickness,
-                             kwargs["voussoirs"])
-    return shaped_arch(shape, thickness=thickness, **kwargs)
+        arch = circular_arch(kwargs["radius"], kwargs["embrace"], thickness,
+                             kwargs["voussoirs"], density=density)
+    else:
+        arch = shaped_arch(shape, thickness=thickness, density=density, **kwargs)
+    return structure_from_args(args, arch)
+
+
+# ---------------------------------------------------------------- piers, buttresses and fill
+STRUCTURE_OPTIONS = ("piers", "pier_left", "pier_right", "fill_cover", "fill_density",
+                     "fill_inertia", "fill_passive")
+"""The options that put the arch on piers or under fill (``None`` when not given)."""
+
+
+def add_structure_options(group) -> None:
+    """The options of piers, fill and masonry density (in the geometry group)."""
+    from .constants import DEFAULT_FILL_DENSITY
+    from .geometry import DEFAULT_FILL_INERTIA, FILL_INERTIA_MODELS
+
+    pier = ("WIDTH [m] from the intrados springing point outward, HEIGHT [m] from the ground "
+            "up to it, COURSES of equal height (default 1)")
+    group.add_argument("--piers", metavar="WIDTH,HEIGHT[,COURSES]",
+                       help=f"put the arch on two equal rectangular piers: {pier}")
+    group.add_argument("--pier-left", metavar="WIDTH,HEIGHT[,COURSES]",
+                       help="the pier under the left springing only (with --pier-right: "
+                            "unequal piers)")
+    group.add_argument("--pier-right", metavar="WIDTH,HEIGHT[,COURSES]",
+                       help="the pier under the right springing only")
+    group.add_argument("--fill-cover", type=float, metavar="M",
+                       help="a level fill over the arch, this deep above the crown [m]")
+    group.add_argument("--fill-density", type=float, metavar="KG/M3",
+                       help=f"density of the fill [kg/m^3] (default: {DEFAULT_FILL_DENSITY:g})")
+    group.add_argument("--fill-inertia", choices=FILL_INERTIA_MODELS,
+                       help="where the fill's horizontal inertia force acts: none (dead load "
+                            "only), centroid (through each column's centroid: the fill moves "
+                            "with its voussoir; the dynamic models' one) or extrados (on the "
+                            f"extrados below it) (default: {DEFAULT_FILL_INERTIA})")
+    group.add_argument("--fill-passive", metavar="PHI,MOBILISATION",
+                       help="a passive reaction of the fill toward midspan on each voussoir: "
+                            "angle of friction PHI [deg] and mobilised fraction of Rankine's "
+                            "passive pressure in [0, 1]")
+    group.add_argument("--density", type=float, metavar="KG/M3",
+                       help="density of the masonry, arch and piers [kg/m^3] (default: 2000)")
+
+
+def _numbers(option: str, text: str, low: int, high: int, *, blank_first: bool = False):
+    """The comma-separated numbers of ``option`` (``low`` to ``high`` of them); the first may
+    be blank (None) when ``blank_first``."""
+    parts = text.split(",")
+    if not low <= len(parts) <= high:
+        raise ValueError(f"{option} takes {low} to {high} numbers separated by commas, got "
+                         f"{text!r}")
+    values = []
+    for k, part in enumerate(parts):
+        if k == 0 and blank_first and not part.strip():
+            values.append(None)
+            continue
+        try:
+            values.append(float(part))
+        except ValueError:
+            hint = (" (a blank WIDTH only with limit --min-pier-width)" if k == 0
+                    and not part.strip() else "")
+            raise ValueError(f"{option} takes numbers separated by commas, got "
+                             f"{text!r}{hint}") from None
+    return values
+
+
+def _pier(option: str, text: str, *, blank_width: bool = False):
+    """The :class:`~archquake.geometry.Pier` of ``--piers WIDTH,HEIGHT[,COURSES]`` (the width
+    None when blank and ``blank_width``), errors naming the option."""
+    from .geometry import Pier
+
+    width, height, *courses = _numbers(option, text, 2, 3, blank_first=blank_width)
+    courses = courses[0] if courses else 1
+    if not float(courses).is_integer() or courses < 1:
+        raise ValueError(f"{option}: COURSES must be an integer >= 1, got {courses:g}")
+    try:
+        if width is None:
+            Pier(1.0, height, int(courses))  # checks height and courses
+            return None, height, int(courses)
+        return Pier(width, height, int(courses))
+    except ValueError as exc:
+        raise ValueError(f"{option}: {exc}") from None
+
+
+def _masonry_density(args: argparse.Namespace) -> float:
+    from .geometry import DEFAULT_DENSITY
+
+    density = getattr(args, "density", None)
+    if density is None:
+        return DEFAULT_DENSITY
+    if not (math.isfinite(density) and density > 0):
+        raise ValueError(f"--density must be a finite number > 0 [kg/m^3], got {density:g}")
+    return density
+
+
+def structure_from_args(args: argparse.Namespace, arch: BlockArch) -> BlockArch:
+    """``arch`` on the piers and under the fill of the structure options (``arch`` itself
+    without them); every error names its option."""
+    from .constants import DEFAULT_FILL_DENSITY
+    from .geometry import DEFAULT_FILL_INERTIA, Fill, Structure
+
+    given = _given(args, *STRUCTURE_OPTIONS)
+    if not given:
+        return arch
+    if isinstance(arch, Structure):
+        raise ValueError(f"the geometry file describes a structure already; it cannot be "
+                         f"combined with {', '.join(given)}")
+    if args.piers and (args.pier_left or args.pier_right):
+        raise ValueError("--piers gives both piers; use --pier-left and --pier-right for "
+                         "unequal ones, not both")
+    if getattr(args, "min_pier_width", False):
+        left = right = None  # the piers are what --min-pier-width finds
+    elif args.piers:
+        left = right = _pier("--piers", args.piers)
+    else:
+        left = _pier("--pier-left", args.pier_left) if args.pier_left else None
+        right = _pier("--pier-right", args.pier_right) if args.pier_right else None
+    fill = None
+    fill_options = _given(args, "fill_density", "fill_inertia", "fill_passive")
+    if args.fill_cover is None and fill_options:
+        raise ValueError(f"{', '.join(fill_options)}: the fill needs --fill-cover M (its depth "
+                         "above the crown [m])")
+    if args.fill_cover is not None:
+        option = "--fill-cover"
+        try:
+            passive = (None, None)
+            if args.fill_passive:
+                option = "--fill-passive"
+                phi, mobilisation = _numbers(option, args.fill_passive, 2, 2)
+                if not 0 < phi < 90:
+                    raise ValueError(f"PHI must be in (0, 90) degrees, got {phi:g}")
+                passive = (math.radians(phi), mobilisation)
+            option = "--fill-cover"
+            fill = Fill(args.fill_cover,
+                        DEFAULT_FILL_DENSITY if args.fill_density is None else args.fill_density,
+                        args.fill_inertia or DEFAULT_FILL_INERTIA, *passive)
+        except ValueError as exc:
+            text = str(exc)
+            if text.startswith("fill density"):
+                option = "--fill-density"
+            raise ValueError(f"{option}: {text}") from None
+    if left is None and right is None and fill is None:
+        return arch
+    try:
+        return Structure(arch, left, right, fill)
+    except ValueError as exc:
+        text = str(exc)
+        option = "--fill-cover"
+        for side in ("left", "right"):
+            if text.startswith(f"{side} pier"):
+                option = f"--pier-{side}" if getattr(args, f"pier_{side}") else "--piers"
+        raise ValueError(f"{option}: {text}") from None
 
 
 def arch_from_args(args: argparse.Namespace) -> BlockArch:
@@ -330,6 +482,10 @@ def add_limit(subparsers) -> None:
                              "the shape options (its centreline and voussoirs kept, the "
                              "thickness scaled) instead, and its ratio to the radius (circular "
                              "arches) or to the span")
+    parser.add_argument("--min-pier-width", action="store_true",
+                        help="print the narrowest equal rectangular piers on which the arch "
+                             "(with its fill) stands under its own weight instead: give their "
+                             "height as --piers ,HEIGHT[,COURSES], the width left blank")
     parser.add_argument("--plot", metavar="FILE.png",
                         help="write a figure of both mechanisms (arch, hinges, line of thrust)")
     parser.add_argument("--json", action="store_true", help="machine-readable output")
@@ -339,6 +495,9 @@ def add_limit(subparsers) -> None:
 def _run_limit(args: argparse.Namespace) -> int:
     from .limit_analysis import both_directions
 
+    if args.min_pier_width:
+        _print_min_pier_width(args)
+        return 0
     if args.min_thickness:
         if (args.geometry or args.tolerance is not None or args.plot
                 or args.thickness is not None):
@@ -359,6 +518,9 @@ def _run_limit(args: argparse.Namespace) -> int:
         for r in results:
             entry = {"hinges": [{"joint": h.joint, "face": h.face, "beta": h.beta(r.arch)}
                                 for h in r.hinges]}
+            if hasattr(r.arch, "joint_name"):  # a structure: where each hinge is
+                for hinge, item in zip(r.hinges, entry["hinges"], strict=True):
+                    item["where"] = r.arch.joint_name(hinge.joint)
             if r.separation is not None:
                 entry["separation"] = r.separation
             mechanisms[r.direction] = entry
@@ -377,6 +539,8 @@ def _run_limit(args: argparse.Namespace) -> int:
             k_text = f"{r.load_multiplier:8.4f}" if i == 0 else " " * 8
             x, y = h.point(r.arch)
             where = f"{h.radius(r.arch):>8.4f}" if circle else f"{x:>8.4f} {y:>8.4f}"
+            if hasattr(r.arch, "joint_name"):  # a structure: where each hinge is
+                where += f"  {r.arch.joint_name(h.joint)}"
             print(f"{name if i == 0 else '':<10} {k_text} {labels[i]:>6} {h.joint:>6} "
                   f"{h.face:>9} {h.beta(r.arch):>11.4f} {where}")
         if r.separation is not None:
@@ -389,17 +553,37 @@ def _run_limit(args: argparse.Namespace) -> int:
 
 
 def describe_arch(arch: BlockArch) -> str:
-    """One line on the arch: its kind, size and voussoirs (units in brackets)."""
-    n = arch.n_voussoirs
-    if hasattr(arch, "radii"):  # the paper's circular arch
-        return (f"n = {n} voussoirs, embrace = {math.degrees(arch.embrace):.4g} deg, mean radius "
-                f"= {float(arch.radii.mean()):.4g} m, mean thickness = "
-                f"{float(arch.thicknesses.mean()):.4g} m")
-    if hasattr(arch, "centreline"):
-        return (f"{arch.shape} arch, span = {arch.span:.4g} m, rise = {arch.rise:.4g} m, "
-                f"n = {n} voussoirs ({arch.faces} faces), mean thickness = "
-                f"{arch.thickness_scale:.4g} m")
-    return f"surveyed arch of {n} blocks, mean joint depth = {arch.thickness_scale:.4g} m"
+    """One line on the arch: its kind, size and voussoirs (units in brackets); a structure's
+    piers and fill too (:func:`archquake.geometry.structure.describe_arch`)."""
+    from .geometry.structure import describe_arch as describe
+
+    return describe(arch)
+
+
+def _print_min_pier_width(args: argparse.Namespace) -> None:
+    """``limit --min-pier-width --piers ,HEIGHT[,COURSES]``: the narrowest piers that stand."""
+    from .limit_analysis import min_pier_width
+
+    if not args.piers or args.pier_left or args.pier_right:
+        raise ValueError("--min-pier-width finds the width of two equal piers: give their "
+                         "height as --piers ,HEIGHT[,COURSES] (the width left blank), without "
+                         "--pier-left or --pier-right")
+    given = _pier("--piers", args.piers, blank_width=True)
+    if not isinstance(given, tuple):
+        raise ValueError(f"--min-pier-width finds the width: leave it blank in --piers "
+                         f",HEIGHT[,COURSES], got {args.piers!r}")
+    if args.plot or args.min_thickness:
+        raise ValueError("--min-pier-width cannot be combined with --plot or --min-thickness")
+    _, height, courses = given
+    arch = arch_from_args(args)
+    with analysing(args):
+        width = min_pier_width(arch, height, courses)
+    if args.json:
+        print_json({"min_pier_width": width, "height": height, "courses": courses})
+    else:
+        print(f"narrowest piers on which the arch stands under its own weight: width = "
+              f"{width:.6g} m (height {height:g} m, {courses} course"
+              f"{'' if courses == 1 else 's'}; {describe_arch(arch)})")
 
 
 def _print_min_thickness(args: argparse.Namespace) -> None:

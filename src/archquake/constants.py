@@ -10,4 +10,8 @@ GRAVITY = 9.81
 DEFAULT_DENSITY = 2000.0
 """Default masonry density [kg/m^3]. It cancels from every result of the paper."""
 
-__all__ = ["DEFAULT_DENSITY", "GRAVITY"]
+DEFAULT_FILL_DENSITY = 1800.0
+"""Default density of the fill over an arch [kg/m^3] (a compacted granular fill, unit weight
+about 18 kN/m^3)."""
+
+__all__ = ["DEFAULT_DENSITY", "DEFAULT_FILL_DENSITY", "GRAVITY"]

@@ -8,43 +8,69 @@ the horizontal load multiplier :math:`k` at collapse is the activation threshold
 analysis of the arch mirrored about the vertical axis, and its hinges are reported in the mirrored
 frame (as Table 1 of [1]_).
 
+The same analysis holds for any chain of blocks between two supports
+(:class:`~archquake.geometry.BlockArch`): an arch on piers or buttresses
+(:class:`~archquake.geometry.Structure`), whose hinges may form at the piers' bed joints and
+bases, and an arch carrying fill, whose blocks carry loads other than their own weight
+(:class:`~archquake.geometry.BlockLoads`): a weight :math:`W_i` along the vertical
+:math:`x = a_i`, a horizontal load :math:`k H_i` along the horizontal :math:`y = b_i` and a
+passive reaction :math:`s_i P_i` along :math:`y = y_i`, bounded,
+:math:`0 \le P_i \le \bar P_i` (:mod:`archquake.geometry.fill`). For bare masonry
+:math:`W_i = H_i = m_i g`, :math:`(a_i, b_i)` the centroid and no :math:`P_i`: the paper's case.
+
 Two independent methods give the same :math:`k` (uniqueness theorem of limit analysis).
 
 **Static (lower bound): a linear program.** The unknowns are the force
 :math:`\mathbf F_j = (F_{x,j}, F_{y,j})` that the part of the arch left of joint :math:`j` exerts
-on the part right of it, its moment :math:`M_j` about the centre O, at every joint
-:math:`j = 0 \dots n`, and :math:`k`. With :math:`(c_{x,i}, c_{y,i})` the centroid of voussoir
-:math:`i`, :math:`\beta_j` the progressive angle of joint :math:`j`, its normal force
-:math:`N_j = F_{x,j} \sin\beta_j + F_{y,j} \cos\beta_j` and its contact
-:math:`[r_{\mathrm{in},j}, r_{\mathrm{out},j}]`:
+on the part right of it, its moment :math:`M_j` about a reference point, at every joint
+:math:`j = 0 \dots n`, the passive reactions :math:`P_i` and :math:`k`. With
+:math:`\mathbf p_{\mathrm{in},j}` the intrados end of joint :math:`j`, :math:`\mathbf e_j` the
+unit vector along it toward its extrados end, :math:`h_j` its depth and :math:`\mathbf n_j` its
+normal, the normal force is :math:`N_j = \mathbf n_j \cdot \mathbf F_j` and the pressure point
+:math:`\mathbf p_{\mathrm{in},j} + u_j \mathbf e_j` with
+:math:`u_j N_j = \mathbf p_{\mathrm{in},j} \times \mathbf F_j - M_j`:
 
 .. math::
 
     \max\ k \quad \text{subject to} \quad
     \begin{aligned}
-    & F_{x,i+1} = F_{x,i} + k\, m_i g, \quad F_{y,i+1} = F_{y,i} - m_i g, \\
-    & M_{i+1} = M_i - m_i g\, (c_{x,i} + k\, c_{y,i}), \qquad i = 0 \dots n-1, \\
-    & r_{\mathrm{in},j}\, N_j \le -M_j \le r_{\mathrm{out},j}\, N_j, \qquad j = 0 \dots n:
+    & F_{x,i+1} = F_{x,i} + k\, H_i + s_i P_i, \quad F_{y,i+1} = F_{y,i} - W_i, \\
+    & M_{i+1} = M_i - W_i\, a_i - k\, H_i\, b_i - s_i P_i\, y_i,
+      \quad 0 \le P_i \le \bar P_i, \qquad i = 0 \dots n-1, \\
+    & 0 \le u_j N_j \le h_j N_j, \qquad j = 0 \dots n:
     \end{aligned}
 
-equilibrium of every voussoir, and at every joint a compressive normal force whose pressure point
-:math:`r_j = -M_j / N_j` lies in the contact. It is solved by HiGHS (:func:`scipy.optimize.linprog`)
-in units of the total weight and the mean radius. The hinges are the joints where the pressure
-point is on a face (to :data:`HINGE_TOLERANCE` of the joint's depth).
+equilibrium of every block, and at every joint a compressive normal force whose pressure point
+lies in the contact. For the paper's circular arch (radial joints of progressive angle
+:math:`\beta_j`, contact :math:`[r_{\mathrm{in},j}, r_{\mathrm{out},j}]`, moments about the
+centre O) the last line reads :math:`r_{\mathrm{in},j} N_j \le -M_j \le r_{\mathrm{out},j} N_j`.
+It is solved by HiGHS (:func:`scipy.optimize.linprog`) in units of the total weight and the
+arch's length scale. The hinges are the joints where the pressure point is on a face (to
+:data:`HINGE_TOLERANCE` of the joint's depth).
 
 **Kinematic (upper bound): the least mechanism.** Every four-hinge mechanism with hinges
 :math:`A < B < C < D` at joints :math:`a < b < c < d` (for the paper's arches the admissible ones
-have alternating faces) has, by virtual work on a rigid-block displacement with centroid
-displacements :math:`(\delta x_i, \delta y_i)`, the multiplier
+have alternating faces) has, by virtual work on a rigid-block displacement of velocity
+:math:`(\delta x, \delta y)` at each load's line of action, the multiplier
 
 .. math::
 
-    k_{\mathrm{mech}} = -\frac{\sum_i m_i\, \delta y_i}{\sum_i m_i\, \delta x_i},
+    k_{\mathrm{mech}} = \frac{-\sum_i W_i\, \delta y_i(a_i)
+    + \sum_i \bar P_i \max\left(0, -s_i\, \delta x_i(y_i)\right)}{\sum_i H_i\, \delta x_i(b_i)}
 
-and the collapse multiplier is the least over the kinematically admissible mechanisms (every hinge
-opening the right way). For completeness the enumeration also holds the two-block mechanisms in
-which one joint opens over its whole depth; they govern only thick arches under loads k of order 1
-and more, and with them the two methods agree for every arch (checked on random arches).
+(for bare masonry :math:`-\sum_i m_i \delta y_i / \sum_i m_i \delta x_i` at the centroids: a
+passive reaction resists a block moving into the fill with its largest value and does no work
+on one moving away), and the collapse multiplier is the least over the kinematically admissible
+mechanisms (every hinge opening the right way). For completeness the enumeration also holds the
+two-block mechanisms in which one joint opens over its whole depth; they govern only thick
+arches under loads k of order 1 and more, and with them the two methods agree for every arch
+(checked on random arches), with fill and passive reactions as without (LP duality).
+
+**Standing.** A structure stands when a thrust line fits at k = 0 (:func:`self_weight_margin`
+>= 0). When it does not, :class:`CannotStandError` says why (:func:`standing`): the arch (it does
+not stand even on fixed springings) or its piers (it does, but not on them); an asymmetric
+structure that stands only under a push one way is refused too. :func:`min_pier_width` finds the
+narrowest piers on which an arch stands.
 
 Notes
 -----
@@ -67,7 +93,7 @@ import functools
 import itertools
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numba
 import numpy as np
@@ -77,10 +103,12 @@ from .defaults import DEFAULT_LIMIT_METHOD, LIMIT_METHODS
 from .errors import CannotStandError, NeverCollapsesError
 from .geometry import (
     FACES,
-    GRAVITY,
     BlockArch,
+    Fill,
     Hinge,
+    Pier,
     ShapedArch,
+    Structure,
     centreline,
     circular_arch,
     irregular_sample,
@@ -131,28 +159,39 @@ class ThrustLine:
         Force (F_x, F_y) that the part of the arch left of the joint exerts on the part right of
         it [N/m] (for joint 0: the left support on voussoir 0; for joint n: voussoir n-1 on the
         right support).
+    loads : array of float, shape (n, 2), or None
+        Resultant of the loads applied to every block at collapse [N/m]: its weight, its
+        horizontal load and its passive reaction (:class:`~archquake.geometry.BlockLoads`).
+    load_points : array of float, shape (n, 2), or None
+        A point of the line of action of every block's resultant load [m].
     """
 
     offsets: np.ndarray
     radii: np.ndarray | None
     points: np.ndarray
     forces: np.ndarray
+    loads: np.ndarray | None = None
+    load_points: np.ndarray | None = None
 
     def funicular(self, arch: BlockArch, load_multiplier: float) -> np.ndarray:
         """Vertices of the funicular polygon (line of action of the resultant) [m], (2n+1, 2).
 
         Inside voussoir ``i`` the resultant acts along ``F_i`` from the pressure point ``p_i``
-        until it meets the line of action of the voussoir's load ``m_i g (k, -1)`` through its
-        centroid, and along ``F_{i+1}`` from there to ``p_{i+1}``. The vertices are
-        ``p_0, q_0, p_1, q_1, ..., p_n``.
+        until it meets the line of action of the voussoir's load (:attr:`loads` through
+        :attr:`load_points`; without them ``m_i g (k, -1)`` through its centroid), and along
+        ``F_{i+1}`` from there to ``p_{i+1}``. The vertices are ``p_0, q_0, p_1, q_1, ...,
+        p_n``.
         """
         p, f = self.points[:-1], self.forces[:-1]
-        c = arch.centroids
-        load = np.array([load_multiplier, -1.0])
+        if self.loads is None:
+            c = arch.centroids
+            load = np.broadcast_to(np.array([load_multiplier, -1.0]), f.shape)
+        else:
+            c, load = self.load_points, self.loads
         # p + s f = c + u load  ->  s (f x load) = (c - p) x load
-        denom = f[:, 0] * load[1] - f[:, 1] * load[0]
+        denom = f[:, 0] * load[:, 1] - f[:, 1] * load[:, 0]
         d = c - p
-        s = (d[:, 0] * load[1] - d[:, 1] * load[0]) / np.where(denom == 0.0, np.nan, denom)
+        s = (d[:, 0] * load[:, 1] - d[:, 1] * load[:, 0]) / np.where(denom == 0.0, np.nan, denom)
         q = p + s[:, None] * f
         q = np.where(np.isfinite(q), q, 0.5 * (p + self.points[1:]))
         out = np.empty((2 * arch.n_voussoirs + 1, 2))
@@ -265,44 +304,67 @@ def _oriented(arch: BlockArch, direction: str) -> BlockArch:
 @dataclass(frozen=True)
 class _Scaled:
     """Dimensionless data of an arch: forces / total weight, lengths / the arch's length scale,
-    positions relative to its reference point."""
+    positions relative to its reference point (the loads: :class:`~archquake.geometry.
+    BlockLoads`)."""
 
-    weights: np.ndarray  # w_i = m_i / m (n,)
-    centroids: np.ndarray  # (n, 2)
+    vertical: np.ndarray  # W_i / W (n,)
+    vertical_x: np.ndarray  # a_i (n,)
+    horizontal: np.ndarray  # H_i / W (n,)
+    horizontal_y: np.ndarray  # b_i (n,)
+    passive: np.ndarray  # largest passive reaction / W (n,)
+    passive_y: np.ndarray  # its height (n,)
+    passive_sign: np.ndarray  # its direction, -1, 0, +1 (n,)
     start: np.ndarray  # intrados end of every joint (n+1, 2)
     direction: np.ndarray  # unit vector intrados -> extrados end (n+1, 2)
     normal: np.ndarray  # unit normal from voussoir j-1 into j (n+1, 2)
     depth: np.ndarray  # length of every joint's contact (n+1,)
     length: float  # L [m]
     reference: np.ndarray  # [m]
-    weight: float  # m g [N/m]
+    weight: float  # W = total weight [N/m]
+
+    @property
+    def passive_blocks(self) -> np.ndarray:
+        """Blocks with a passive reaction (an unknown of the static method each)."""
+        return np.flatnonzero((self.passive > 0) & (self.passive_sign != 0))
 
 
 def _scaled(arch: BlockArch) -> _Scaled:
     length, ref = arch.length_scale, arch.reference_point
+    loads = arch.loads
+    weight = loads.total_weight
     return _Scaled(
-        arch.masses / arch.total_mass, (arch.centroids - ref) / length,
+        loads.vertical / weight, (loads.vertical_x - ref[0]) / length,
+        loads.horizontal / weight, (loads.horizontal_y - ref[1]) / length,
+        loads.passive / weight, (loads.passive_y - ref[1]) / length, loads.passive_sign,
         (arch.joints[:, 0] - ref) / length, arch.joint_directions, arch.joint_normals,
-        arch.joint_lengths / length, length, ref, arch.total_mass * GRAVITY,
+        arch.joint_lengths / length, length, ref, weight,
     )
 
 
-def _joint_states(s: _Scaled, x0: np.ndarray, k: float):
+def _cumulative(values) -> np.ndarray:
+    return np.concatenate(([0.0], np.cumsum(values)))
+
+
+def _joint_states(s: _Scaled, x0: np.ndarray, k: float, passive: np.ndarray | None = None):
     """Joint forces and moments from the force (F_x, F_y) and moment M at joint 0 (scaled).
 
-    Equilibrium of voussoir i: F_{i+1} = F_i + w_i (k, -1), M_{i+1} = M_i - w_i (c_x + k c_y).
+    Equilibrium of block i under its weight W_i along x = a_i, its horizontal load k H_i along
+    y = b_i and its passive reaction s_i P_i along y = y_i: F_{i+1} = F_i + (k H_i + s_i P_i,
+    -W_i), M_{i+1} = M_i - W_i a_i - k H_i b_i - s_i P_i y_i.
     """
-    w, c = s.weights, s.centroids
-    fx = x0[0] + k * np.concatenate(([0.0], np.cumsum(w)))
-    fy = x0[1] - np.concatenate(([0.0], np.cumsum(w)))
-    m = x0[2] - np.concatenate(([0.0], np.cumsum(w * (c[:, 0] + k * c[:, 1]))))
+    push = np.zeros_like(s.vertical) if passive is None else s.passive_sign * passive
+    fx = x0[0] + _cumulative(k * s.horizontal + push)
+    fy = x0[1] - _cumulative(s.vertical)
+    m = x0[2] - _cumulative(s.vertical * s.vertical_x + k * s.horizontal * s.horizontal_y
+                            + push * s.passive_y)
     return fx, fy, m
 
 
-def _thrust_line(arch: BlockArch, s: _Scaled, fx, fy, m) -> ThrustLine:
+def _thrust_line(arch: BlockArch, s: _Scaled, fx, fy, m, k: float,
+                 passive: np.ndarray | None = None) -> ThrustLine:
     """The pressure point on joint j: where the line of action of F_j crosses the joint,
     ``p_in + u e`` with ``u N = p_in x F - M`` (``N = n . F``, ``M`` the moment of F about the
-    reference point)."""
+    reference point); and the resultant load on every block."""
     normal = s.normal[:, 0] * fx + s.normal[:, 1] * fy
     moment_in = s.start[:, 0] * fy - s.start[:, 1] * fx
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -311,46 +373,62 @@ def _thrust_line(arch: BlockArch, s: _Scaled, fx, fy, m) -> ThrustLine:
     offsets = u * s.length
     radii = arch.joint_extents()[0] + offsets if hasattr(arch, "joint_extents") else None
     forces = np.column_stack((fx, fy)) * s.weight
-    for arr in (offsets, points, forces) + (() if radii is None else (radii,)):
+    push = np.zeros_like(s.vertical) if passive is None else s.passive_sign * passive
+    horizontal = k * s.horizontal + push
+    with np.errstate(divide="ignore", invalid="ignore"):
+        height = np.where(horizontal != 0.0, (k * s.horizontal * s.horizontal_y
+                                              + push * s.passive_y) / horizontal,
+                          s.horizontal_y)
+    loads = np.column_stack((horizontal, -s.vertical)) * s.weight
+    load_points = s.reference + np.column_stack((s.vertical_x, height)) * s.length
+    arrays = (offsets, points, forces, loads, load_points) + (() if radii is None else (radii,))
+    for arr in arrays:
         arr.setflags(write=False)
-    return ThrustLine(offsets, radii, points, forces)
+    return ThrustLine(offsets, radii, points, forces, loads, load_points)
 
 
 # ---------------------------------------------------------------------------------- static
 def _lp_matrices(s: _Scaled, fixed_k: float | None = None):
     """Equality and inequality matrices of the static linear program, sparse (CSC).
 
-    Unknowns ``x = [F_x(0..n), F_y(0..n), M(0..n), k]`` (scaled); with ``fixed_k`` the last one
-    is a margin ``delta`` instead, the uniform distance (in units of weight x joint depth) by which
-    the pressure point stays inside every joint's contact. Every equation involves two
-    neighbouring joints and at most the last unknown, so the matrices have at most three
-    non-zeros per row: stored sparse, an arch of ten thousand voussoirs (30 004 unknowns) takes
-    a few megabytes where the dense matrices took seven gigabytes.
+    Unknowns ``x = [F_x(0..n), F_y(0..n), M(0..n), P(passive blocks), k]`` (scaled), with
+    ``P`` the passive reactions of the blocks that have one (bounded by :func:`_solve_lp`);
+    with ``fixed_k`` the last one is a margin ``delta`` instead, the uniform distance (in units
+    of weight x joint depth) by which the pressure point stays inside every joint's contact.
+    Every equation involves two neighbouring joints, at most one passive reaction and the last
+    unknown, so the matrices have at most four non-zeros per row: stored sparse, an arch of ten
+    thousand voussoirs (30 004 unknowns) takes a few megabytes where the dense matrices took
+    seven gigabytes.
     """
     from scipy.sparse import csc_array
 
-    w, c = s.weights, s.centroids
-    n = w.size
+    v, a, h, b = s.vertical, s.vertical_x, s.horizontal, s.horizontal_y
+    n = v.size
     nj = n + 1
-    nv = 3 * nj + 1
+    pushed = s.passive_blocks
+    nv = 3 * nj + pushed.size + 1
     rows = np.arange(n)
     ones = np.ones(n)
     eq = []  # (row indices, column indices, values) of the non-zeros
     b_eq = np.zeros(3 * n)
-    # horizontal: F_x,i - F_x,i+1 + k w_i = 0
+    # horizontal: F_x,i - F_x,i+1 + k H_i + s_i P_i = 0
     eq += [(rows, rows, ones), (rows, rows + 1, -ones)]
-    # vertical: F_y,i - F_y,i+1 = w_i
+    # vertical: F_y,i - F_y,i+1 = W_i
     eq += [(n + rows, nj + rows, ones), (n + rows, nj + rows + 1, -ones)]
-    b_eq[n : 2 * n] = w
-    # moment about O: M_i - M_i+1 - k w_i c_y,i = w_i c_x,i
+    b_eq[n : 2 * n] = v
+    # moment about O: M_i - M_i+1 - k H_i b_i - s_i P_i y_i = W_i a_i
     eq += [(2 * n + rows, 2 * nj + rows, ones), (2 * n + rows, 2 * nj + rows + 1, -ones)]
-    b_eq[2 * n :] = w * c[:, 0]
+    b_eq[2 * n :] = v * a
+    if pushed.size:
+        columns = 3 * nj + np.arange(pushed.size)
+        sign = s.passive_sign[pushed]
+        eq += [(pushed, columns, sign), (2 * n + pushed, columns, -sign * s.passive_y[pushed])]
     last = np.full(n, nv - 1)
     if fixed_k is None:
-        eq += [(rows, last, w), (2 * n + rows, last, -w * c[:, 1])]
+        eq += [(rows, last, h), (2 * n + rows, last, -h * b)]
     else:
-        b_eq[:n] = -fixed_k * w
-        b_eq[2 * n :] += fixed_k * w * c[:, 1]
+        b_eq[:n] = -fixed_k * h
+        b_eq[2 * n :] += fixed_k * h * b
     # the pressure point p_in + u e in the joint, 0 <= u N <= h N with u N = p_in x F - M and
     # N = n . F: -(p_in x F) + M <= 0 and p_in x F - M - h N <= 0
     j = np.arange(nj)
@@ -375,8 +453,14 @@ def _solve_lp(s: _Scaled, fixed_k: float | None = None):
     a_eq, b_eq, a_ub = _lp_matrices(s, fixed_k)
     cost = np.zeros(a_eq.shape[1])
     cost[-1] = -1.0
+    bounds = np.full((a_eq.shape[1], 2), np.nan)  # free, but for the passive reactions
+    pushed = s.passive_blocks
+    nj = s.depth.size
+    bounds[3 * nj:3 * nj + pushed.size] = np.column_stack((np.zeros(pushed.size),
+                                                           s.passive[pushed]))
+    bounds = [(None if np.isnan(lo) else lo, None if np.isnan(hi) else hi) for lo, hi in bounds]
     problem = {"A_ub": a_ub, "b_ub": np.zeros(a_ub.shape[0]), "A_eq": a_eq, "b_eq": b_eq,
-               "bounds": (None, None), "method": "highs"}
+               "bounds": bounds if pushed.size else (None, None), "method": "highs"}
     res = linprog(cost, **problem, options={"primal_feasibility_tolerance": LP_TOLERANCE,
                                             "dual_feasibility_tolerance": LP_TOLERANCE})
     if res.status == 4:
@@ -390,25 +474,42 @@ _UNBOUNDED = (
 )
 
 
-def _check_stands(k: float) -> None:
+def _original(arch: BlockArch, direction: str) -> BlockArch:
+    """The arch in its own frame, from the arch analysed in ``direction``."""
+    return arch if direction == "l" else arch.mirrored()
+
+
+def _check_stands(k: float, arch: BlockArch, direction: str) -> None:
     """Refuse a negative collapse multiplier: such an arch falls under its own weight (k = 0
     admits no thrust line inside it), so it has no activation threshold."""
     if k < 0.0:
-        raise CannotStandError(
-            f"the arch cannot stand under its own weight: its collapse load multiplier is "
-            f"k = {k:.4g} < 0 (it would need a horizontal push to stand), so no ground "
-            "acceleration threshold exists"
+        if not isinstance(arch, Structure):
+            raise CannotStandError(
+                f"the arch cannot stand under its own weight: its collapse load multiplier is "
+                f"k = {k:.4g} < 0 (it would need a horizontal push to stand), so no ground "
+                "acceleration threshold exists"
+            )
+        reason = standing(_original(arch, direction)).reason
+        raise CannotStandError(f"{reason} (its collapse load multiplier is k = {k:.4g} < 0: it "
+                               "would need a horizontal push to stand)")
+
+
+def _cannot_stand(arch: BlockArch, direction: str) -> CannotStandError:
+    """The error of an arch that admits no thrust line for any load multiplier, with its
+    reason."""
+    if not isinstance(arch, Structure):
+        return CannotStandError(
+            "the arch admits no thrust line inside its joints for any horizontal load multiplier "
+            "(it cannot stand; the thickness is below the minimum)"
         )
+    return CannotStandError(standing(_original(arch, direction)).reason)
 
 
 def _static(arch: BlockArch, direction: str) -> LimitAnalysis:
     s = _scaled(arch)
     res = _solve_lp(s)
     if res.status == 2:
-        raise CannotStandError(
-            "the arch admits no thrust line inside its joints for any horizontal load multiplier "
-            "(it cannot stand; the thickness is below the minimum)"
-        )
+        raise _cannot_stand(arch, direction)
     if res.status == 3:
         raise NeverCollapsesError(_UNBOUNDED)
     if res.status != 0:
@@ -416,9 +517,11 @@ def _static(arch: BlockArch, direction: str) -> LimitAnalysis:
     nj = arch.n_voussoirs + 1
     x = res.x
     k = float(x[-1])
-    _check_stands(k)
+    _check_stands(k, arch, direction)
     fx, fy, m = x[:nj], x[nj : 2 * nj], x[2 * nj : 3 * nj]
-    line = _thrust_line(arch, s, fx, fy, m)
+    passive = np.zeros(arch.n_voussoirs)
+    passive[s.passive_blocks] = x[3 * nj : -1]
+    line = _thrust_line(arch, s, fx, fy, m, k, passive)
     hinges, separation = _hinges_from_thrust_line(arch, line, res.ineqlin.marginals, k)
     return LimitAnalysis(k, hinges, line, direction, arch, "static", separation)
 
@@ -513,59 +616,78 @@ class _Geometry:
         self.dir_x = np.array([g.direction[:, 0] for g in scaled])
         self.dir_y = np.array([g.direction[:, 1] for g in scaled])
         self.depth = np.array([g.depth for g in scaled])
-        w = np.array([g.weights for g in scaled])  # (B, n)
-        cen = np.array([g.centroids for g in scaled])  # (B, n, 2)
         zero = np.zeros((len(arches), 1))
-        self.cm = np.hstack((zero, np.cumsum(w, axis=1)))
-        self.cmx = np.hstack((zero, np.cumsum(w * cen[..., 0], axis=1)))
-        self.cmy = np.hstack((zero, np.cumsum(w * cen[..., 1], axis=1)))
+
+        def cumulative(values):
+            return np.hstack((zero, np.cumsum(np.array(values), axis=1)))
+
+        self.cv = cumulative([g.vertical for g in scaled])  # (B, n+1)
+        self.cvx = cumulative([g.vertical * g.vertical_x for g in scaled])
+        self.ch = cumulative([g.horizontal for g in scaled])
+        self.chy = cumulative([g.horizontal * g.horizontal_y for g in scaled])
+        self.passive = np.array([g.passive * (g.passive_sign != 0) for g in scaled])  # (B, n)
+        self.passive_y = np.array([g.passive_y for g in scaled])
+        self.passive_sign = np.array([g.passive_sign for g in scaled])
+        self.has_passive = bool(np.any(self.passive > 0))
 
 
 @numba.njit(cache=True, inline="always")
-def _admissible_k(rel, required, count, vx, vy):
-    """Multiplier ``k = -W_gravity / W_horizontal = vy / vx`` if the mechanism is admissible,
-    else nan.
+def _admissible_sign(rel, required, count):
+    """The sense (+1 or -1) in which the mechanism is admissible, else 0.
 
     ``rel[:count]``: relative rotations (right minus left) at the active joints;
     ``required[:count]``: the sign each must have (-1: joint opens on the extrados side, i.e.
     hinge on the intrados; +1: the reverse; 0: impossible). The mechanism may run either way
-    (overall sign), and then the horizontal loads must do positive work.
+    (overall sign).
     """
     forward = True
     backward = True
     scale = 0.0
     for i in range(count):
         if not math.isfinite(rel[i]):
-            return np.nan
+            return 0.0
         forward = forward and rel[i] * required[i] > 0.0
         backward = backward and -rel[i] * required[i] > 0.0
         scale = max(scale, abs(rel[i]))
     for i in range(count):
         if not abs(rel[i]) > 1e-12 * scale:
-            return np.nan
-    sign = 1.0 if forward else (-1.0 if backward else 0.0)
-    if sign == 0.0 or not sign * vx > 1e-14:
-        return np.nan
-    return vy / vx
+            return 0.0
+    return 1.0 if forward else (-1.0 if backward else 0.0)
 
 
 @numba.njit(cache=True, inline="always")
-def _block(cm, cmx, cmy, b, j0, j1):
-    """Mass and first moments of the voussoirs between joints j0 and j1 of arch b (scaled)."""
-    return cm[b, j1] - cm[b, j0], cmx[b, j1] - cmx[b, j0], cmy[b, j1] - cmy[b, j0]
+def _sums(c, cw, b, j0, j1):
+    """Load and its first moment over the blocks between joints j0 and j1 of arch b."""
+    return c[b, j1] - c[b, j0], cw[b, j1] - cw[b, j0]
+
+
+@numba.njit(cache=True, inline="always")
+def _passive_work(passive, passive_y, passive_sign, b, j0, j1, vx0, rate, y0, sign):
+    r"""Largest work rate the passive reactions of blocks j0 .. j1-1 of arch b can absorb in a
+    motion whose horizontal velocity at height y is ``sign (vx0 - rate (y - y0))``:
+    :math:`\sum_i \bar P_i \max(0, -s_i u_i)` (a reaction resists a block that moves into the
+    fill, and does no work on one that moves away from it)."""
+    total = 0.0
+    for i in range(j0, j1):
+        if passive[b, i] > 0.0:
+            u = sign * (vx0 - rate * (passive_y[b, i] - y0))
+            total += passive[b, i] * max(0.0, -passive_sign[b, i] * u)
+    return total
 
 
 @numba.njit(cache=True)
-def _mechanism_multipliers(start_x, start_y, dir_x, dir_y, depth, cm, cmx, cmy, joints, faces,
-                           separating, out):
+def _mechanism_multipliers(start_x, start_y, dir_x, dir_y, depth, cv, cvx, ch, chy, passive,
+                           passive_y, passive_sign, has_passive, joints, faces, separating,
+                           out):
     """``out[b, q]``: the multiplier of mechanism ``q`` of arch ``b`` (nan if not admissible).
 
     Arrays of the arches (scaled, one row per arch): intrados ends ``start_x, start_y``, unit
     directions to the extrados end ``dir_x, dir_y`` and lengths ``depth`` of the joints'
-    contacts (B, n+1); cumulative mass and first moments ``cm, cmx, cmy`` (B, n+1).
-    Mechanism ``q``: active ``joints[q]`` and ``faces[q]`` (0 intrados, 1 extrados), and
-    ``separating[q]``: -1 for four face hinges, else the position (0-2) of the joint that opens
-    over its whole depth among three active joints.
+    contacts (B, n+1); cumulative vertical loads and their moments ``cv, cvx`` and horizontal
+    loads and their moments ``ch, chy`` (B, n+1); largest passive reactions, their heights and
+    directions (B, n), used when ``has_passive``. Mechanism ``q``: active ``joints[q]`` and
+    ``faces[q]`` (0 intrados, 1 extrados), and ``separating[q]``: -1 for four face hinges, else
+    the position (0-2) of the joint that opens over its whole depth among three active joints.
 
     Four face hinges A, B, C, D at joints a < b < c < d, three moving blocks: block AB
     (voussoirs a..b-1) rotates about A with rate 1, block CD about D with rate w3, block BC moves
@@ -582,8 +704,9 @@ def _mechanism_multipliers(start_x, start_y, dir_x, dir_y, depth, cm, cmx, cmy, 
     pole beyond the intrados end acts as an intrados hinge, beyond the extrados end as an
     extrados hinge, inside the contact it is not admissible.
 
-    Work rates per unit g of the loads ``m_i (k, -1)`` at the centroids: with the momentum
-    ``sum m_i v_i = (vx, vy)``, ``k = vy / vx``.
+    Work rates of the loads, run in the admissible sense: ``W_H`` of the horizontal loads per
+    unit k (> 0), ``W_V`` of the weights, and the largest work ``D`` the passive reactions can
+    absorb (:func:`_passive_work`); ``k = (D - W_V) / W_H``.
     """
     px = np.empty(4)
     py = np.empty(4)
@@ -611,13 +734,16 @@ def _mechanism_multipliers(start_x, start_y, dir_x, dir_y, depth, cm, cmx, cmy, 
                     continue
                 w2 = (rx * vy_ - ry * vx_) / det
                 w3 = (ux * ry - uy * rx) / det
-                m1, sx1, sy1 = _block(cm, cmx, cmy, b, ja, jb)
-                m2, sx2, sy2 = _block(cm, cmx, cmy, b, jb, jc)
-                m3, sx3, sy3 = _block(cm, cmx, cmy, b, jc, jd)
-                mx = (-(sy1 - m1 * py[0]) - m2 * (py[1] - py[0]) - w2 * (sy2 - m2 * py[1])
-                      - w3 * (sy3 - m3 * py[3]))
-                my = ((sx1 - m1 * px[0]) + m2 * (px[1] - px[0]) + w2 * (sx2 - m2 * px[1])
-                      + w3 * (sx3 - m3 * px[3]))
+                v1, vx1 = _sums(cv, cvx, b, ja, jb)
+                v2, vx2 = _sums(cv, cvx, b, jb, jc)
+                v3, vx3 = _sums(cv, cvx, b, jc, jd)
+                h1, hy1 = _sums(ch, chy, b, ja, jb)
+                h2, hy2 = _sums(ch, chy, b, jb, jc)
+                h3, hy3 = _sums(ch, chy, b, jc, jd)
+                mx = (-(hy1 - h1 * py[0]) - h2 * (py[1] - py[0]) - w2 * (hy2 - h2 * py[1])
+                      - w3 * (hy3 - h3 * py[3]))
+                my = ((vx1 - v1 * px[0]) + v2 * (px[1] - px[0]) + w2 * (vx2 - v2 * px[1])
+                      + w3 * (vx3 - v3 * px[3]))
                 rel[0], rel[1], rel[2], rel[3] = 1.0, w2 - 1.0, w3 - w2, -w3
             else:
                 o0 = 1 if s == 0 else 0
@@ -641,12 +767,30 @@ def _mechanism_multipliers(start_x, start_y, dir_x, dir_y, depth, cm, cmx, cmy, 
                 bcx, bcy = px[1] - px[2], py[1] - py[2]
                 norm = bcx * bcx + bcy * bcy
                 w2 = (bax * bcx + bay * bcy) / norm if norm > 1e-28 else np.nan
-                m1, sx1, sy1 = _block(cm, cmx, cmy, b, ja, jb)
-                m2, sx2, sy2 = _block(cm, cmx, cmy, b, jb, jc)
-                mx = -(sy1 - m1 * py[0]) - w2 * (sy2 - m2 * py[2])
-                my = (sx1 - m1 * px[0]) + w2 * (sx2 - m2 * px[2])
+                v1, vx1 = _sums(cv, cvx, b, ja, jb)
+                v2, vx2 = _sums(cv, cvx, b, jb, jc)
+                h1, hy1 = _sums(ch, chy, b, ja, jb)
+                h2, hy2 = _sums(ch, chy, b, jb, jc)
+                mx = -(hy1 - h1 * py[0]) - w2 * (hy2 - h2 * py[2])
+                my = (vx1 - v1 * px[0]) + w2 * (vx2 - v2 * px[2])
                 rel[0], rel[1], rel[2] = 1.0, w2 - 1.0, -w2
-            out[b, q] = _admissible_k(rel, required, count, mx, my)
+            sign = _admissible_sign(rel, required, count)
+            if sign == 0.0 or not sign * mx > 1e-14:
+                out[b, q] = np.nan
+                continue
+            absorbed = 0.0
+            if has_passive:
+                absorbed = _passive_work(passive, passive_y, passive_sign, b, ja, jb, 0.0, 1.0,
+                                         py[0], sign)
+                if s < 0:
+                    absorbed += _passive_work(passive, passive_y, passive_sign, b, jb, jc,
+                                              -(py[1] - py[0]), w2, py[1], sign)
+                    absorbed += _passive_work(passive, passive_y, passive_sign, b, jc,
+                                              joints[q, 3], 0.0, w3, py[3], sign)
+                else:
+                    absorbed += _passive_work(passive, passive_y, passive_sign, b, jb, jc, 0.0,
+                                              w2, py[2], sign)
+            out[b, q] = (sign * my + absorbed) / (sign * mx)
 
 
 def _four_hinge_family(combos: np.ndarray):
@@ -719,8 +863,9 @@ def _mechanism_families(arches: Sequence[BlockArch],
     joints, faces, separating = _family_arrays(tuple(pool.tolist()))
     geo = _Geometry(arches)
     k = np.empty((len(arches), joints.shape[0]))
-    _mechanism_multipliers(geo.start_x, geo.start_y, geo.dir_x, geo.dir_y, geo.depth, geo.cm,
-                           geo.cmx, geo.cmy, joints, faces, separating, k)
+    _mechanism_multipliers(geo.start_x, geo.start_y, geo.dir_x, geo.dir_y, geo.depth, geo.cv,
+                           geo.cvx, geo.ch, geo.chy, geo.passive, geo.passive_y,
+                           geo.passive_sign, geo.has_passive, joints, faces, separating, k)
     return joints, faces, k
 
 
@@ -742,24 +887,81 @@ def _kinematic_multipliers(arches: Sequence[BlockArch]) -> np.ndarray:
         return np.where(finite.any(axis=1), np.min(np.where(finite, k, np.inf), axis=1), np.inf)
 
 
+def _cross2(a, b) -> float:
+    return float(a[0] * b[1] - a[1] * b[0])
+
+
+def _mechanism_motion(s: _Scaled, hinges: tuple[Hinge, ...], separation: int | None):
+    """The moving blocks of a mechanism, as :func:`_mechanism_multipliers` sets them in motion:
+    ``(j0, j1, vx0, rate, y0)`` for the blocks j0 .. j1-1 moving together, whose horizontal
+    velocity at height y is ``vx0 - rate (y - y0)`` (scaled), and the sense (+1 or -1) in which
+    the horizontal loads do positive work."""
+    def point(joint: int, face: str) -> np.ndarray:
+        r = 0.0 if face == FACES[0] else s.depth[joint]
+        return s.start[joint] + r * s.direction[joint]
+
+    if separation is None:
+        a, b, c, d = (point(h.joint, h.face) for h in hinges)
+        det = _cross2(c - b, d - c)
+        w2, w3 = _cross2(a - b, d - c) / det, _cross2(c - b, a - b) / det
+        ja, jb, jc, jd = (h.joint for h in hinges)
+        blocks = [(ja, jb, 0.0, 1.0, a[1]), (jb, jc, -(b[1] - a[1]), w2, b[1]),
+                  (jc, jd, 0.0, w3, d[1])]
+    else:
+        faces = {h.joint: h.face for h in hinges}
+        joints = sorted([*faces, separation])
+        position = joints.index(separation)
+        poles = [None if j == separation else point(j, faces[j]) for j in joints]
+        p0, p1 = (poles[i] for i in range(3) if i != position)
+        e, start = s.direction[separation], s.start[separation]
+        rho = _cross2(p0 - start, p1 - p0) / _cross2(e, p1 - p0)
+        poles[position] = start + rho * e
+        ba, bc = poles[1] - poles[0], poles[1] - poles[2]
+        w2 = float(ba @ bc / (bc @ bc))
+        blocks = [(joints[0], joints[1], 0.0, 1.0, poles[0][1]),
+                  (joints[1], joints[2], 0.0, w2, poles[2][1])]
+    work = sum(float(np.sum(s.horizontal[j0:j1] * (vx0 - rate * (s.horizontal_y[j0:j1] - y0))))
+               for j0, j1, vx0, rate, y0 in blocks)
+    return blocks, (1.0 if work > 0 else -1.0)
+
+
+def _collapse_passive(s: _Scaled, hinges: tuple[Hinge, ...], separation: int | None
+                      ) -> np.ndarray:
+    """The passive reactions at collapse in a mechanism (scaled): the largest one on every
+    block that moves into the fill, none on the others (the work :func:`_passive_work`
+    counts)."""
+    passive = np.zeros_like(s.vertical)
+    if not np.any(s.passive > 0):
+        return passive
+    blocks, sense = _mechanism_motion(s, hinges, separation)
+    for j0, j1, vx0, rate, y0 in blocks:
+        u = sense * (vx0 - rate * (s.passive_y[j0:j1] - y0))
+        into = -s.passive_sign[j0:j1] * u > 0.0
+        passive[j0:j1] = np.where(into, s.passive[j0:j1], 0.0)
+    return passive
+
+
 def _mechanism_thrust_line(arch: BlockArch, hinges: tuple[Hinge, ...],
                            separation: int | None):
     """Multiplier and thrust line of the equilibrium through the mechanism's hinges.
 
-    Unknowns: force and moment at joint 0 and k. The thrust passes through each hinge point P:
+    Unknowns: force and moment at joint 0 and k; the passive reactions are those of the
+    collapse (:func:`_collapse_passive`). The thrust passes through each hinge point P:
     ``M_j = P x F_j``; a separating joint carries no normal force, ``n_j . F_j = 0``, and a
     force along its own line, ``M_j = p_in x F_j``.
     """
     s = _scaled(arch)
-    w, c = s.weights, s.centroids
-    cw = np.concatenate(([0.0], np.cumsum(w)))
-    cwx = np.concatenate(([0.0], np.cumsum(w * c[:, 0])))
-    cwy = np.concatenate(([0.0], np.cumsum(w * c[:, 1])))
+    passive = _collapse_passive(s, hinges, separation)
+    push = s.passive_sign * passive
+    cv, cvx = _cumulative(s.vertical), _cumulative(s.vertical * s.vertical_x)
+    ch, chy = _cumulative(s.horizontal), _cumulative(s.horizontal * s.horizontal_y)
+    cp, cpy = _cumulative(push), _cumulative(push * s.passive_y)
     rows = []
 
     def through(j: int, px: float, py: float):
-        # F_x = F_x0 + k cw, F_y = F_y0 - cw, M = M0 - cwx - k cwy; M - (px F_y - py F_x) = 0
-        return ([py, -px, 1.0, py * cw[j] - cwy[j]], cwx[j] - px * cw[j])
+        # F_x = F_x0 + k ch + cp, F_y = F_y0 - cv, M = M0 - cvx - k chy - cpy;
+        # M - (px F_y - py F_x) = 0
+        return ([py, -px, 1.0, py * ch[j] - chy[j]], cvx[j] + cpy[j] - px * cv[j] - py * cp[j])
 
     for h in hinges:
         px, py = s.start[h.joint] + (0.0 if h.face == FACES[0] else s.depth[h.joint]) \
@@ -768,14 +970,14 @@ def _mechanism_thrust_line(arch: BlockArch, hinges: tuple[Hinge, ...],
     if separation is not None:
         j = separation
         nx, ny = s.normal[j]
-        rows.append(([nx, ny, 0.0, nx * cw[j]], ny * cw[j]))
+        rows.append(([nx, ny, 0.0, nx * ch[j]], ny * cv[j] - nx * cp[j]))
         rows.append(through(j, *s.start[j]))
     mat = np.array([r[0] for r in rows])
     rhs = np.array([r[1] for r in rows])
     x = np.linalg.solve(mat, rhs)
     k = float(x[3])
-    fx, fy, m = _joint_states(s, x[:3], k)
-    return k, _thrust_line(arch, s, fx, fy, m)
+    fx, fy, m = _joint_states(s, x[:3], k, passive)
+    return k, _thrust_line(arch, s, fx, fy, m, k, passive)
 
 
 def _kinematic(arch: BlockArch, direction: str) -> LimitAnalysis:
@@ -783,7 +985,7 @@ def _kinematic(arch: BlockArch, direction: str) -> LimitAnalysis:
     if not np.any(np.isfinite(mech.k)):
         raise NeverCollapsesError(_UNBOUNDED)
     best = int(np.nanargmin(mech.k))
-    _check_stands(float(mech.k[best]))
+    _check_stands(float(mech.k[best]), arch, direction)
     hinges, separation = mech.hinges(best)
     _, line = _mechanism_thrust_line(arch, hinges, separation)
     return LimitAnalysis(float(mech.k[best]), hinges, line, direction, arch, "kinematic",
@@ -845,7 +1047,21 @@ def limit_analysis(arch: BlockArch, direction: str = "l",
         raise ValueError(f"arch must be a CircularArch, a ShapedArch or a SurveyedArch, got "
                          f"{type(arch).__name__}")
     method = _check_method(method)
-    return METHODS[method](_oriented(arch, direction), direction)
+    result = METHODS[method](_oriented(arch, direction), direction)
+    if not arch.is_symmetric():
+        _check_stands_at_rest(arch)
+    return result
+
+
+def _check_stands_at_rest(arch: BlockArch) -> None:
+    """Refuse an asymmetric structure that admits thrust lines only under a push in one
+    direction: its load multipliers in the two directions are then of opposite signs, and the
+    positive one alone does not show that it cannot stand (a symmetric one, whose k_l = k_r,
+    stands whenever k >= 0)."""
+    if _margin(arch) < 0.0:
+        verdict = standing(arch)
+        raise CannotStandError(f"{verdict.reason} (it stands only under a horizontal push: its "
+                               "load multiplier in the other direction is negative)")
 
 
 def both_directions(arch: BlockArch, method: str = DEFAULT_LIMIT_METHOD
@@ -865,7 +1081,13 @@ def both_directions(arch: BlockArch, method: str = DEFAULT_LIMIT_METHOD
         Mech-l in the frame of ``arch``, Mech-r in the frame of its mirror image; their load
         multipliers are the paper's :math:`\tilde k_l` and :math:`\tilde k_r` [-].
     """
-    return limit_analysis(arch, "l", method), limit_analysis(arch, "r", method)
+    if not isinstance(arch, BlockArch):
+        raise ValueError(f"arch must be a CircularArch, a ShapedArch or a SurveyedArch, got "
+                         f"{type(arch).__name__}")
+    method = _check_method(method)
+    # each direction refuses a negative multiplier: two non-negative ones bracket k = 0, so
+    # the arch stands at rest
+    return tuple(METHODS[method](_oriented(arch, d), d) for d in DIRECTIONS)
 
 
 def load_multipliers(arch: BlockArch, method: str = DEFAULT_LIMIT_METHOD) -> tuple[float, float]:
@@ -1104,3 +1326,166 @@ def shaped_min_thickness(
     ratio = _min_thickness_ratio(arch_of, largest, xtol,
                                  f"{shape} arch of {voussoirs} voussoirs")
     return float(ratio * line.span)
+
+
+# ---------------------------------------------------------------------------------- piers
+@dataclass(frozen=True)
+class Standing:
+    """Whether a structure stands under its own weight, and if not which part fails.
+
+    Attributes
+    ----------
+    stands : bool
+        True when a line of thrust in equilibrium with the self-weight (k = 0) fits inside
+        every joint (:func:`self_weight_margin` >= 0).
+    part : str or None
+        None when it stands; otherwise the part that cannot carry the thrust: ``"arch"`` (the
+        arch, with its fill, does not stand even on fixed springings), ``"piers"``,
+        ``"left pier"`` or ``"right pier"`` (the arch stands on fixed springings, but not on
+        these piers).
+    reason : str
+        One sentence saying so.
+    margin : float
+        The self-weight margin of the structure [-] (:func:`self_weight_margin`).
+    """
+
+    stands: bool
+    part: str | None
+    reason: str
+    margin: float
+
+
+def _margin(arch: BlockArch) -> float:
+    try:
+        return self_weight_margin(arch)
+    except ValueError:  # a degenerate linear program: no thrust line either
+        return -math.inf
+
+
+def standing(structure: BlockArch) -> Standing:
+    """The verdict on a structure under its own weight: does it stand, and if not, is it the
+    arch or the piers that cannot carry the thrust?
+
+    The structure stands when its self-weight margin is >= 0. If it does not, the arch (with its
+    fill) is analysed on fixed springings: if it does not stand there either the arch is the
+    cause; otherwise the piers are, and each pier is tried alone (the other springing fixed) to
+    name the one that fails (both, when neither fails alone or both do).
+
+    Parameters
+    ----------
+    structure : BlockArch
+        An arch or a :class:`~archquake.geometry.Structure`.
+
+    Returns
+    -------
+    Standing
+
+    Examples
+    --------
+    Oppenheim's arch stands on piers 3 m wide and 6 m high, not on piers 2 m wide:
+
+    >>> from archquake import oppenheim
+    >>> from archquake.geometry import arch_on_piers
+    >>> standing(arch_on_piers(oppenheim(), 3.0, 6.0)).stands
+    True
+    >>> standing(arch_on_piers(oppenheim(), 2.0, 6.0)).part
+    'piers'
+    """
+    if not isinstance(structure, BlockArch):
+        raise ValueError(f"structure must be an arch or a Structure, got "
+                         f"{type(structure).__name__}")
+    margin = _margin(structure)
+    if margin >= 0.0:
+        return Standing(True, None, "it stands under its own weight", margin)
+    piers = isinstance(structure, Structure) and (structure.left is not None
+                                                  or structure.right is not None)
+    if not piers or _margin(structure.without_piers()) < 0.0:
+        where = ", even on fixed springings" if piers else ""
+        return Standing(False, "arch", f"the arch cannot stand under its own weight{where}: no "
+                        "line of thrust fits inside it (its thickness is below the minimum)",
+                        margin)
+    failing = [side for side in ("left", "right") if getattr(structure, side) is not None
+               and _margin(replace(structure, **{("right" if side == "left" else "left"):
+                                                 None})) < 0.0]
+    if len(failing) == 1 and getattr(structure, "right" if failing[0] == "left" else "left"):
+        part = f"{failing[0]} pier"
+        piers_text = f"the {part} ({getattr(structure, failing[0]).describe()})"
+    else:
+        part = "piers"
+        sides = [getattr(structure, side) for side in ("left", "right")]
+        described = [p.describe() for p in sides if p is not None]
+        piers_text = ("the piers (" + (described[0] if len(set(described)) == 1
+                                       else " and ".join(described)) + ")")
+    return Standing(False, part, f"{piers_text} cannot carry the arch's thrust: the arch "
+                    "stands on fixed springings, but no line of thrust fits through these "
+                    "piers (too narrow for their height; see min_pier_width)", margin)
+
+
+def min_pier_width(arch: BlockArch, height: float, courses: int = 1, *,
+                   fill: Fill | None = None, xtol: float = 1e-9) -> float:
+    """Narrowest equal rectangular piers on which an arch stands under its own weight [m].
+
+    The piers (:class:`~archquake.geometry.Pier`, ``height`` high in ``courses`` courses) are
+    widened from the narrowest that fit the springing joints (their horizontal extent) until
+    :func:`self_weight_margin` of the structure turns >= 0: bracketed by doubling, then Brent's
+    method on the margin, as :func:`min_thickness` does on the thickness.
+
+    Parameters
+    ----------
+    arch : BlockArch
+        The arch (circular, shaped or surveyed; a :class:`~archquake.geometry.Structure` stands
+        for its arch and its fill, its own piers set aside).
+    height : float
+        Height of the piers from the ground to the intrados springing point [m].
+    courses : int, default 1
+        Courses of each pier [-].
+    fill : Fill, optional
+        Fill over the arch (default: a Structure's own, else none).
+    xtol : float, default 1e-9
+        Absolute tolerance on the width [m].
+
+    Returns
+    -------
+    float
+        The width [m] (the narrowest that fits when the arch stands on it already).
+
+    Raises
+    ------
+    CannotStandError
+        When the arch does not stand even on fixed springings (no pier helps).
+    ValueError
+        For a bad height or number of courses, or no width up to a thousand times the arch's
+        size that makes it stand.
+
+    Examples
+    --------
+    >>> from archquake import oppenheim
+    >>> round(min_pier_width(oppenheim(), 6.0), 3)
+    2.045
+    """
+    if isinstance(arch, Structure):
+        fill = arch.fill if fill is None else fill
+        arch = arch.arch
+    Pier(1.0, height, courses)  # checks height and courses
+    free = Structure(arch, fill=fill)
+    if _margin(free) < 0.0:
+        raise CannotStandError(standing(free).reason + "; no pier can make it stand")
+    joints = arch.joints
+    reach = max(float(joints[0, 0, 0] - joints[0, 1, 0]),
+                float(joints[-1, 1, 0] - joints[-1, 0, 0]), 0.0)
+    size = arch.length_scale
+
+    def margin(width: float) -> float:
+        pier = Pier(width, height, courses)
+        return min(max(_margin(Structure(arch, pier, pier, fill)), -1.0), 1.0)
+
+    lo = max(reach, 1e-6 * size)
+    if margin(lo) >= 0.0:
+        return lo
+    hi = max(2.0 * lo, 0.1 * size)
+    while margin(hi) < 0.0:
+        lo, hi = hi, 2.0 * hi
+        if hi > 1e3 * size:
+            raise ValueError(f"no pier width up to {hi:.4g} m makes this arch stand on piers "
+                             f"{height:g} m high")
+    return float(brentq(margin, lo, hi, xtol=xtol))

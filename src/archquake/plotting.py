@@ -24,17 +24,25 @@ def _axes(ax):
     return ax
 
 
-def plot_arch(arch: BlockArch, ax=None, *, label: str | None = None, **style):
-    """Outline of every voussoir of ``arch`` [m], in its own frame.
+FILL_COLOUR = "#e8d9b5"
+"""Colour of the fill over an arch."""
+
+
+def plot_arch(arch: BlockArch, ax=None, *, label: str | None = None, fill: bool = True,
+              **style):
+    """Outline of every block of ``arch`` [m], in its own frame; its fill and the ground under
+    its piers, if it has them (:class:`~archquake.geometry.Structure`).
 
     Parameters
     ----------
     arch : BlockArch
-        The arch (of any shape).
+        The arch (of any shape), or a structure: an arch on piers, with fill.
     ax : matplotlib.axes.Axes, optional
         Axes to draw on; a new figure when None.
     label : str, optional
         Legend label (given to the first voussoir only).
+    fill : bool, default True
+        Draw the fill columns (shaded, one per voussoir) and the fill's level surface.
     **style
         Line properties (default: black, 1 pt).
 
@@ -45,9 +53,21 @@ def plot_arch(arch: BlockArch, ax=None, *, label: str | None = None, **style):
     """
     ax = _axes(ax)
     style = {"color": "black", "linewidth": 1.0, **style}
+    columns = getattr(arch, "fill_columns", None)
+    if fill and columns is not None:
+        for k, outline in enumerate(columns.outlines):
+            ax.fill(outline[:, 0], outline[:, 1], facecolor=FILL_COLOUR, edgecolor="#c9b78f",
+                    linewidth=0.5, zorder=0, label="fill" if k == 0 else None)
     for i in range(arch.n_voussoirs):
         outline = arch.outline(i)
         ax.plot(outline[:, 0], outline[:, 1], label=label if i == 0 else None, **style)
+    for j, side in ((0, getattr(arch, "left", None)), (-1, getattr(arch, "right", None))):
+        if side is not None:  # the ground under a pier
+            base = arch.joints[j]
+            width = float(abs(base[1, 0] - base[0, 0]))
+            x = np.sort(base[:, 0]) + np.array([-0.3, 0.3]) * width
+            ax.plot(x, base[:, 1], color="#7a5c3a", linewidth=2.5, solid_capstyle="butt",
+                    zorder=0)
     ax.set_aspect("equal")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
@@ -102,8 +122,10 @@ def plot_limit_analysis(result: LimitAnalysis, ax=None, *, nominal: BlockArch | 
                     fontsize=11, fontweight="bold")
     ax.annotate("", xy=(0.16, 0.93), xytext=(0.03, 0.93), xycoords="axes fraction",
                 arrowprops={"arrowstyle": "-|>", "color": "tab:green", "linewidth": 1.5})
-    ax.text(0.03, 0.86, "horizontal forces k m$_i$ g", transform=ax.transAxes, fontsize=8,
-            color="tab:green")
+    fill = getattr(result.arch, "fill", None)
+    ax.text(0.03, 0.86, "horizontal forces k m$_i$ g" + (
+        "" if fill is None else f" (fill inertia: {fill.inertia})"),
+        transform=ax.transAxes, fontsize=8, color="tab:green")
     name = _MECHANISM_NAMES[result.direction]
     if result.direction == "r":
         name += " (mirrored arch)"
@@ -111,8 +133,12 @@ def plot_limit_analysis(result: LimitAnalysis, ax=None, *, nominal: BlockArch | 
     ax.legend(loc="lower center", fontsize=8, frameon=False, ncol=2)
     heights = np.concatenate([result.arch.outline(i)[:, 1]
                               for i in range(result.arch.n_voussoirs)])
+    columns = getattr(result.arch, "fill_columns", None)
     low, top = min(0.0, float(heights.min())), float(heights.max())
-    ax.set_ylim(low - 0.45 * (top - low), top + 0.12 * (top - low))
+    room = 0.12
+    if columns is not None:  # the fill's surface, and room above it for the forces' label
+        top, room = max(top, columns.level), 0.35
+    ax.set_ylim(low - 0.45 * (top - low), top + room * (top - low))
     return ax
 
 

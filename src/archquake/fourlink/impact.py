@@ -82,7 +82,14 @@ with annular-sector voussoirs and 0.8749 with flat-faced (trapezoidal) voussoirs
 computed model gives 0.6456 for that arch). The rule presumes that the pre-impact hinge A stands
 at the springing, on the joint of A': where the collapse mechanism has its hinge A one joint up
 (as for many pointed, elliptical and basket-handle arches), voussoirs of A'B' are at rest before
-the impact and the rule gives much lower values (0 when A'B' is a single voussoir at rest). It is
+the impact and the rule gives much lower values (0 when A'B' is a single voussoir at rest). On
+piers (:class:`~archquake.geometry.Structure`) the same holds: where the hinge A of the
+pre-impact mechanism is at a pier's base and A' at the same base's other toe, A'B' is the pier
+with what it carries and the rule is Housner's rule for that rocking body; where A is higher up
+(Oppenheim's arch on piers 3 m x 6 m: A one joint above the left springing, Mech-r's link A'B'
+the left pier and the first voussoir, both at rest in Mech-l) the rule gives 0 and does not
+apply. The models ``"computed"`` and ``"blocks"`` balance the momentum of every block of the
+chain, pier courses and fill included, and apply to any structure. It is
 not a consistent momentum balance of the arch: the impulse at B'
 is not negligible -- it is what sets the other two links of the post-impact mechanism in motion --,
 the momentum of those links is not accounted for, and the rate of one link is taken for the rate

@@ -53,6 +53,15 @@ with :math:`m_i` [kg/m], :math:`g_i` [m] and :math:`I_i` [kg m] the mass, centro
 inertia of voussoir i (per unit depth), so an irregular arch is treated as it is (Sect. 4.3 of
 [1]_).
 
+Nothing here assumes that the hinges stand on the arch or that a link is made of voussoirs only:
+the hinges are ends of any joints of the chain, and a link is the consecutive blocks between two
+of them. On a :class:`~archquake.geometry.Structure` (an arch on piers or buttresses) the limit
+analysis may put A or D at a pier's base or bed joint, and link AB or CD then holds pier courses
+and voussoirs, turning as one rigid body about the pier's toe. The fill over an arch rides on
+its voussoir: :math:`m_i, g_i, I_i` are then those of the voussoir and its fill column together
+(the fill's ``"centroid"`` inertia model, :mod:`archquake.geometry.fill`; the other models are
+refused, their fill being no mass).
+
 Potential energy and critical angle
 -----------------------------------
 The potential energy of the three blocks (Eq. (3) in [1]_, heights from A for blocks 1-2 and
@@ -98,6 +107,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from ..geometry import GRAVITY, BlockArch, Hinge
+from ..geometry.fill import check_dynamic_fill
 from .equations_of_motion import coefficients as _coefficients
 from .linkage import four_bar_closure, four_bar_rates, wrap_angle
 
@@ -245,8 +255,10 @@ class FourLinkMechanism:
     ------
     ValueError
         If ``arch`` is not a :class:`~archquake.geometry.BlockArch`, ``direction`` is not
-        ``"l"`` or ``"r"``, or ``hinges`` are not four :class:`~archquake.geometry.Hinge` on
-        joints ``0 <= j <= n`` strictly increasing from left to right.
+        ``"l"`` or ``"r"``, ``hinges`` are not four :class:`~archquake.geometry.Hinge` on
+        joints ``0 <= j <= n`` strictly increasing from left to right, or the arch carries a
+        fill whose inertia model is not ``"centroid"``
+        (:func:`archquake.geometry.fill.check_dynamic_fill`).
 
     References
     ----------
@@ -300,6 +312,7 @@ class FourLinkMechanism:
                              f"{type(self.arch).__name__}")
         if self.direction not in DIRECTIONS:
             raise ValueError(f"direction must be one of {DIRECTIONS}, got {self.direction!r}")
+        check_dynamic_fill(self.arch)
         hinges = _check_hinges(self.arch, self.hinges)
         set_ = object.__setattr__  # frozen dataclass: derived values are set once, here
         set_(self, "hinges", hinges)

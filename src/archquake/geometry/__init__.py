@@ -23,8 +23,8 @@ sequence of ``n + 1`` joints (:class:`BlockArch`):
 Three kinds of arch keep the contract:
 
 - :class:`CircularArch` (:mod:`.arch`): the paper's circular arch, voussoirs that are annular
-sectors
-  with radial joints, each with its own angle, thickness and mean radius [1]_; in the frame of
+  sectors with radial joints, each with its own angle, thickness and mean radius [1]_; in the
+  frame of
   the circle's centre O at the origin (the springings of a symmetric arch at
   :math:`y = R\cos\beta_0`). :func:`circular_arch` builds the nominal arch, as in the paper.
 - :class:`ShapedArch` (:mod:`.shaped`): any of the shapes of :mod:`.centrelines` (circular,
@@ -35,6 +35,12 @@ sectors
   offset curves) or ``"flat"`` (chords). :func:`shaped_arch` builds it.
 - :class:`SurveyedArch` (:mod:`.survey`): blocks given as polygons, joints found where
   neighbours touch; :func:`surveyed_arch` builds it.
+
+Any of them may stand on piers or buttresses and carry fill: a :class:`Structure`
+(:mod:`.structure`) is the chain of the piers' courses (:class:`Pier`, :mod:`.piers`) and the
+arch's voussoirs, each voussoir carrying its column of fill (:class:`Fill`, :mod:`.fill`), and
+keeps the same contract; :func:`arch_on_piers` builds it. Every block's loads in the limit
+analysis are a :class:`BlockLoads` (:mod:`.loads`).
 
 Irregular arches (:func:`irregular_arch`, :func:`irregular_sample`, :mod:`.irregular`) follow the
 paper's eq. (1) on a circular :class:`CircularArch` and its generalisation on any
@@ -75,15 +81,20 @@ from .blocks import (
 )
 from .centrelines import CENTRELINES, SHAPES, Centreline, centreline
 from .files import arch_from_dict, load_arch
+from .fill import DEFAULT_FILL_INERTIA, FILL_INERTIA_MODELS, Fill
 from .irregular import irregular_arch, irregular_sample
+from .loads import BlockLoads
+from .piers import Pier
 from .shaped import VOUSSOIR_FACES, ShapedArch, shaped_arch
+from .structure import Structure, arch_on_piers
 from .survey import SurveyedArch, surveyed_arch
 
 __all__ = [
-    "CENTRELINES", "DEFAULT_DENSITY", "FACES", "GRAVITY", "LENGTH_RANGE",
+    "CENTRELINES", "DEFAULT_DENSITY", "DEFAULT_FILL_INERTIA",
+    "FACES", "FILL_INERTIA_MODELS", "GRAVITY", "LENGTH_RANGE",
     "MAX_GEOMETRY_FILE_BYTES", "MAX_VOUSSOIRS", "MIN_VOUSSOIRS", "RADIUS_RANGE", "SHAPES",
-    "VOUSSOIR_FACES", "BlockArch", "Centreline", "CircularArch", "Hinge", "ShapedArch",
-    "SurveyedArch",
-    "arch_from_dict", "centreline", "circular_arch", "irregular_arch", "irregular_sample",
-    "load_arch", "shaped_arch", "surveyed_arch",
+    "VOUSSOIR_FACES", "BlockArch", "BlockLoads", "Centreline", "CircularArch", "Fill", "Hinge",
+    "Pier", "ShapedArch", "Structure", "SurveyedArch",
+    "arch_from_dict", "arch_on_piers", "centreline", "circular_arch", "irregular_arch",
+    "irregular_sample", "load_arch", "shaped_arch", "surveyed_arch",
 ]

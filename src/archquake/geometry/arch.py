@@ -55,6 +55,7 @@ from .blocks import (
     json_text,
     read_json_file,
 )
+from .mass import Arc
 
 RADIUS_RANGE = LENGTH_RANGE
 """Accepted mean radii of a voussoir [m]: :data:`~archquake.geometry.blocks.LENGTH_RANGE`,
@@ -498,6 +499,12 @@ class CircularArch(BlockArch):
         chi = eps * self.thicknesses / self.radii
         radii = self.radii * (1.0 + chi * p[2])
         return CircularArch(angles, thicknesses, radii, self.start_angle, self.density)
+
+    def extrados(self, i: int) -> list:
+        """The extrados of voussoir ``i``: one :class:`~archquake.geometry.mass.Arc` of radius
+        :math:`R_i + t_i/2` about O, from its left end to its right end [m]."""
+        b0, b1 = self.joint_angles[i], self.joint_angles[i + 1]
+        return [Arc((0.0, 0.0), float(self.outer_radii[i]), math.pi - b0, math.pi - b1)]
 
     def outline(self, i: int, points: int = 24) -> np.ndarray:
         """Closed polygon of voussoir ``i``'s outline, for drawing.

@@ -37,6 +37,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .loads import BlockLoads
+
 MIN_VOUSSOIRS = 4
 """Fewest voussoirs of an arch [-]: a four-hinge mechanism needs at least three blocks plus one
 hinge-free joint choice; with fewer than four voussoirs the hinges cannot form at four distinct
@@ -282,6 +284,17 @@ class BlockArch(ABC):
     def total_mass(self) -> float:
         """Mass of the whole arch per unit depth [kg/m]."""
         return float(self.masses.sum())
+
+    @property
+    def loads(self) -> BlockLoads:
+        r"""The loads of every block in the limit analysis (:mod:`archquake.geometry.loads`):
+        for an arch of bare masonry its weight :math:`m_i g` and the horizontal load
+        :math:`k\,m_i g`, both through the centroid; a structure with fill adds the fill's
+        (:class:`~archquake.geometry.Structure`)."""
+        return self._cached("loads", self._loads)
+
+    def _loads(self) -> BlockLoads:
+        return BlockLoads.of_masses(self.masses, self.centroids)
 
     # ------------------------------------------------------------------ scales
     @property

@@ -1,6 +1,6 @@
-"""Arch descriptions as dicts and JSON files, of any of the three kinds.
+"""Arch descriptions as dicts and JSON files, of any kind.
 
-Three JSON objects describe an arch (every length in m, angle in rad, density in kg/m^3; every
+Four JSON objects describe an arch (every length in m, angle in rad, density in kg/m^3; every
 value a JSON number):
 
 - the paper's circular arch voussoir by voussoir, ``{"angles": [...], "thicknesses": [...],
@@ -10,9 +10,12 @@ value a JSON number):
   (:mod:`archquake.geometry.survey`);
 - an arch of a shape voussoir by voussoir, ``{"shape": ..., "span": ..., "rise": ...,
   "faces": ..., "lengths": [...], "thicknesses": [...], "offsets": [...]}``
-  (:meth:`ShapedArch.to_dict <archquake.geometry.ShapedArch.to_dict>`).
+  (:meth:`ShapedArch.to_dict <archquake.geometry.ShapedArch.to_dict>`);
+- an arch on piers or with fill, ``{"arch": <one of the above>, "left_pier": ...,
+  "right_pier": ..., "fill": ...}`` (:meth:`Structure.to_dict
+  <archquake.geometry.Structure.to_dict>`).
 
-Each may hold a ``"density"``. The kind is told by the keys.
+Each arch may hold a ``"density"``. The kind is told by the keys.
 """
 
 from __future__ import annotations
@@ -22,15 +25,18 @@ from pathlib import Path
 from ..constants import DEFAULT_DENSITY
 from .arch import CircularArch
 from .blocks import BlockArch, read_json_file
+from .fill import Fill
+from .piers import Pier
 from .shaped import ShapedArch
+from .structure import Structure
 from .survey import SurveyedArch
 
-KINDS = {"angles": CircularArch, "blocks": SurveyedArch, "shape": ShapedArch}
+KINDS = {"angles": CircularArch, "blocks": SurveyedArch, "shape": ShapedArch, "arch": Structure}
 """The key that tells each kind of description."""
 
 
 def arch_from_dict(data, *, density: float = DEFAULT_DENSITY) -> BlockArch:
-    """The arch a dict describes (see the module for the three forms).
+    """The arch a dict describes (see the module for the four forms).
 
     Parameters
     ----------
@@ -41,12 +47,12 @@ def arch_from_dict(data, *, density: float = DEFAULT_DENSITY) -> BlockArch:
 
     Returns
     -------
-    CircularArch, SurveyedArch or ShapedArch
+    CircularArch, SurveyedArch, ShapedArch or Structure
 
     Raises
     ------
     ValueError
-        When ``data`` is not a dict of one of the three forms (the message says which keys were
+        When ``data`` is not a dict of one of the four forms (the message says which keys were
         expected) or describes no valid arch.
     """
     if not isinstance(data, dict):
@@ -65,7 +71,25 @@ def arch_from_dict(data, *, density: float = DEFAULT_DENSITY) -> BlockArch:
     cls = KINDS[kinds[0]]
     if cls is ShapedArch:
         return ShapedArch.from_dict({"density": density, **data})
+    if cls is Structure:
+        return _structure_from_dict(data, density)
     return cls.from_dict(data, density=density)
+
+
+def _structure_from_dict(data: dict, density: float) -> Structure:
+    """The structure of :meth:`Structure.to_dict <archquake.geometry.Structure.to_dict>`:
+    ``arch`` any arch description, the other keys optional."""
+    keys = {"arch", "left_pier", "right_pier", "fill"}
+    unknown = sorted(set(data) - keys)
+    if unknown:
+        raise ValueError(f"a structure has unknown key(s) {unknown}; allowed: {sorted(keys)}")
+    arch = arch_from_dict(data["arch"], density=density)
+    if isinstance(arch, Structure):
+        raise ValueError("a structure's 'arch' must describe an arch, not a structure")
+    left, right, fill = (data.get(k) for k in ("left_pier", "right_pier", "fill"))
+    return Structure(arch, None if left is None else Pier.from_dict(left),
+                     None if right is None else Pier.from_dict(right),
+                     None if fill is None else Fill.from_dict(fill))
 
 
 def load_arch(path: str | Path, *, density: float = DEFAULT_DENSITY) -> BlockArch:

@@ -265,19 +265,27 @@ class ShapedArch(BlockArch):
         the right joint, extrados right to left, the left joint (:mod:`archquake.geometry.mass`).
         """
         c = self._corners_of(i)
-        if self.faces == "flat":
-            return [Segment(c[k], c[(k + 1) % 4]) for k in range(4)]
-        _, u = self._extents()
-        (first, ua), (last, ub) = self._station(i, "right"), self._station(i + 1, "left")
-        faces = []
-        for face in range(2):
-            d = self.offsets[i] + (0.5 if face else -0.5) * self.thicknesses[i]
-            start = ua if np.isnan(u[i, 0, face]) else float(u[i, 0, face])
-            end = ub if np.isnan(u[i, 1, face]) else float(u[i, 1, face])
-            faces.append(self.centreline.offset_pieces(d, (first, start), (last, end)))
-        intrados, extrados = faces
+        intrados, extrados = self._face(i, 0), self._face(i, 1)
         return [*intrados, Segment(c[1], c[2]), *[_reversed(p) for p in extrados[::-1]],
                 Segment(c[3], c[0])]
+
+    def _face(self, i: int, face: int) -> list:
+        """The intrados (``face`` 0) or extrados (1) of voussoir ``i`` as pieces, left to
+        right."""
+        c = self._corners_of(i)
+        if self.faces == "flat":
+            return [Segment(c[0], c[1])] if face == 0 else [Segment(c[3], c[2])]
+        _, u = self._extents()
+        (first, ua), (last, ub) = self._station(i, "right"), self._station(i + 1, "left")
+        d = self.offsets[i] + (0.5 if face else -0.5) * self.thicknesses[i]
+        start = ua if np.isnan(u[i, 0, face]) else float(u[i, 0, face])
+        end = ub if np.isnan(u[i, 1, face]) else float(u[i, 1, face])
+        return list(self.centreline.offset_pieces(d, (first, start), (last, end)))
+
+    def extrados(self, i: int) -> list:
+        """The extrados of voussoir ``i`` as pieces (:mod:`archquake.geometry.mass`), from its
+        left end to its right end [m]: the offset curve (curved faces) or the chord (flat)."""
+        return self._face(i, 1)
 
     def _mass_properties(self):
         props = [region_properties(self.boundary(i), self.density, name=f"voussoir {i}",

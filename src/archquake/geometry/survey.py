@@ -42,7 +42,7 @@ from .blocks import (
     BlockArch,
     check_json_numbers,
 )
-from .mass import polygon_properties
+from .mass import Segment, polygon_properties
 
 SURVEY_TOLERANCE = 1e-9
 """Distance, as a fraction of the arch's size, within which two edges of neighbouring blocks
@@ -206,6 +206,38 @@ def _merge(segments, tol: float) -> tuple[np.ndarray, np.ndarray] | None:
     return p0 + spans[0][0] * t, p0 + reach * t
 
 
+def _boundary_path(v: np.ndarray, start, end, tol: float) -> np.ndarray:
+    """The points of the boundary of the counterclockwise polygon ``v`` from the boundary point
+    ``start`` to the boundary point ``end``, counterclockwise [m]."""
+    p, q = _edges(v)
+
+    def locate(point) -> tuple[int, float]:
+        e = q - p
+        ll = np.maximum(np.sum(e * e, axis=1), 1e-300)
+        t = np.clip(np.sum((point - p) * e, axis=1) / ll, 0.0, 1.0)
+        dist = np.hypot(*(point - p - t[:, None] * e).T)
+        k = int(np.argmin(dist))
+        if dist[k] > tol:
+            raise ValueError("a joint end does not lie on its block's boundary")
+        return k, float(t[k])
+
+    (ks, ts), (ke, te) = locate(np.asarray(start)), locate(np.asarray(end))
+    points = [np.asarray(start, dtype=float)]
+    if not (ke == ks and te >= ts):
+        k = ks
+        while True:
+            k = (k + 1) % len(v)
+            points.append(v[k])
+            if k == ke:
+                break
+    points.append(np.asarray(end, dtype=float))
+    out = [points[0]]
+    for point in points[1:]:
+        if np.hypot(*(point - out[-1])) > tol:
+            out.append(point)
+    return np.array(out)
+
+
 def _straight_edges(v: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
     """The polygon's edges with collinear consecutive edges merged (angle below 1e-9 rad)."""
     p, q = _edges(v)
@@ -289,6 +321,15 @@ class SurveyedArch(BlockArch):
         """Closed outline of block ``i`` [m] (its polygon, first vertex repeated)."""
         v = self.polygon(i)
         return np.vstack((v, v[:1]))
+
+    def extrados(self, i: int) -> list:
+        """The extrados of block ``i`` as segments (:class:`~archquake.geometry.mass.Segment`),
+        from its left end to its right end [m]: the part of its boundary between the extrados
+        ends of its two joints that does not hold its intrados."""
+        v = self.polygon(i)
+        start, end = self.joints[i + 1, 1], self.joints[i, 1]
+        path = _boundary_path(v, start, end, SURVEY_TOLERANCE * self.size)[::-1]
+        return [Segment(path[k], path[k + 1]) for k in range(len(path) - 1)]
 
     def _mass_properties(self):
         props = [polygon_properties(self.polygon(i), self.density, name=f"block {i}")

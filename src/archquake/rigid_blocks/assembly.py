@@ -38,7 +38,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..geometry import BlockArch
+from ..geometry import BlockArch, Structure
+from ..geometry.fill import check_dynamic_fill
 
 GROUND = -1
 """Body index of the ground (the supports) [-]; in the frame of the ground it does not move."""
@@ -232,6 +233,12 @@ def from_arch(arch: BlockArch) -> Assembly:
     the top of the extrados (:meth:`~archquake.geometry.BlockArch.crown`); the length scale is
     the arch's mean thickness (:attr:`~archquake.geometry.BlockArch.thickness_scale`).
 
+    A :class:`~archquake.geometry.Structure` is read the same way: its blocks are the courses of
+    its piers and its voussoirs, joint 0 is the left pier's base on the ground and joint ``n``
+    the right pier's, and a voussoir that carries fill carries it as part of its own mass,
+    centroid and moment of inertia (the fill's ``"centroid"`` model); its crown and thickness
+    are the arch's.
+
     Parameters
     ----------
     arch : BlockArch
@@ -241,13 +248,16 @@ def from_arch(arch: BlockArch) -> Assembly:
     Returns
     -------
     Assembly
-        ``n`` blocks and ``n + 1`` joints, named ``"arch of n voussoirs"``.
+        ``n`` blocks and ``n + 1`` joints, named ``"arch of n voussoirs"`` (a structure: its
+        description).
 
     Raises
     ------
     ValueError
-        If the arch's data do not make a valid :class:`Assembly`.
+        If the arch's data do not make a valid :class:`Assembly`, or it carries fill whose
+        inertia model is not ``"centroid"`` (the fill is then no mass).
     """
+    check_dynamic_fill(arch)
     n = arch.n_voussoirs
     bodies = np.column_stack((np.arange(-1, n), np.arange(0, n + 1)))
     bodies[-1, 1] = GROUND
@@ -257,7 +267,7 @@ def from_arch(arch: BlockArch) -> Assembly:
         joint_bodies=bodies, joint_points=arch.joints, joint_normals=arch.joint_normals,
         outlines=tuple(arch.outline(i) for i in range(n)),
         crown=(crown_block, crown_point), thickness=arch.thickness_scale,
-        name=f"arch of {n} voussoirs",
+        name=arch.describe() if isinstance(arch, Structure) else f"arch of {n} voussoirs",
     )
 
 
