@@ -214,12 +214,15 @@ def pulse_response(pulses, case: str):
     return fig
 
 
-def failure_domain(domain):
-    """The failure domain of the nominal arch with point Q (the paper's Fig. 16).
+def failure_domain(domain, point=None):
+    """A failure domain, with a point marked on it (the paper's Fig. 16 with its point Q).
 
     Parameters
     ----------
-    domain : FailureDomainPart
+    domain : FailureDomain
+        :func:`archquake.studies.failure_domain.domain_of`.
+    point : (float, float, str), optional
+        ``(t_p [s], amplitude [g], name)`` of a point to mark.
 
     Returns
     -------
@@ -230,11 +233,12 @@ def failure_domain(domain):
     from ..plotting import plot_failure_domain
 
     fig, ax = plt.subplots(figsize=(8.0, 5.6), constrained_layout=True)
-    plot_failure_domain(domain.domain, ax)
-    q = domain.summary["q_tp040"]["paper"]
-    ax.plot([0.4], [q], "s", color="black", markersize=7, zorder=6)
-    ax.annotate(f"Q (0.40 s, {q:.2f} g)", (0.4, q), textcoords="offset points", xytext=(8, 8),
-                fontsize=9, fontweight="bold")
+    plot_failure_domain(domain, ax)
+    if point is not None:
+        duration, amplitude, name = point
+        ax.plot([duration], [amplitude], "s", color="black", markersize=7, zorder=6)
+        ax.annotate(f"{name} ({duration:.2f} s, {amplitude:.2f} g)", (duration, amplitude),
+                    textcoords="offset points", xytext=(8, 8), fontsize=9, fontweight="bold")
     return fig
 
 

@@ -48,7 +48,8 @@ STEPS = ("limit analysis (Table 1)", "four-link mechanisms (Tables 2-3)",
          "free vibrations (Figs. 9-14)", "pulse responses (Fig. 15)", "failure domain (Fig. 16)",
          "fragility and k~ sample (Figs. 17-21)", "figures", "rigid blocks beside four links",
          "record-based fragility")
-"""The steps of the reproduction, in the order they run (the run-time table of the report)."""
+"""The steps of the reproduction, in the order they run (the rows of the report's run-time
+table)."""
 
 TITLE = "archquake: the paper, regenerated"
 """The title of the report's page."""
@@ -123,9 +124,9 @@ def paper_figures(directory, arches: parts.Arches, table1: dict, table3: dict,
                 "Fig. 15", text.pulse_response_caption(pulses.summary, case),
                 pulses.summary[case]["nominal_agrees"])
     q = domain.summary["q_tp040"]["paper"]
-    figures["fig16"] = _figure(out, "fig16_failure_domain.png", draw.failure_domain(domain),
-                               "Fig. 16", text.failure_domain_caption(domain.summary),
-                               parts.q_agrees(q))
+    figures["fig16"] = _figure(out, "fig16_failure_domain.png",
+                               draw.failure_domain(domain.domain, (0.4, q, "Q")), "Fig. 16",
+                               text.failure_domain_caption(domain.summary), parts.q_agrees(q))
     curves = []
     for j, curve in enumerate(fragility.curves):
         number = 17 + j
@@ -328,35 +329,35 @@ def reproduce(out_dir, settings: ReproductionSettings | None = None, *,
     env = environment()
     started = time.perf_counter()
     nominal = oppenheim()
-    steps = Steps(STEPS, progress, desc="reproduce")
+    steps = Steps(len(STEPS), progress, desc="reproduce")
     # the rigid-block curve and the record studies run on a second CPU meanwhile
     with Background.start(warm_up) as background:
         blocks = model_for(nominal, "rigid-blocks")
         curve = background.submit(parts.rigid_block_curve, blocks, settings)
-        with steps(STEPS[0]):
+        with steps("limit analysis (Table 1)"):
             arches = parts.paper_arches(settings, nominal)
             table1 = parts.limit_table(arches, paper)
-        with steps(STEPS[1]):
+        with steps("four-link mechanisms (Tables 2-3)"):
             table2, table3 = parts.mechanism_tables(arches, paper)
             cases = parts.restitution_cases(settings, arches)
             restitution = parts.restitution_summary(arches, cases)
-        with steps(STEPS[2]):
+        with steps("free vibrations (Figs. 9-14)"):
             free = parts.free_vibrations(settings, arches, cases, paper)
-        with steps(STEPS[3]):
+        with steps("pulse responses (Fig. 15)"):
             pulses = parts.pulse_responses(cases, paper)
-        with steps(STEPS[4]):
+        with steps("failure domain (Fig. 16)"):
             domain = parts.failure_domain(settings, arches, cases)
             # the four-link engine is compiled and cached by now: the second process loads it
             # instead of compiling it a second time
             records = background.submit(parts.record_studies, settings)
-        with steps(STEPS[5]):
+        with steps("fragility and k~ sample (Figs. 17-21)"):
             fragility = parts.fragility(settings, cases, progress)
-        with steps(STEPS[6]):
+        with steps("figures"):
             figures = paper_figures(out, arches, table1, table3, free, pulses, domain, fragility)
-        with steps(STEPS[7]):
+        with steps("rigid blocks beside four links"):
             comparison = parts.model_comparison(settings, arches.nominal, blocks, curve.result())
             comparison_fig = comparison_figure(out, comparison)
-        with steps(STEPS[8]):
+        with steps("record-based fragility"):
             record = parts.record_fragility(settings, records.result())
             record_fig = record_fragility_figure(out, record)
     figures = {**figures, "comparison": comparison_fig, "record_fragility": record_fig}

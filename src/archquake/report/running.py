@@ -20,7 +20,7 @@ import contextlib
 import os
 import sys
 import time
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from typing import Any
 
@@ -36,8 +36,8 @@ class Steps:
 
     Parameters
     ----------
-    names : sequence of str
-        The steps, in order (the bar's length).
+    total : int
+        How many steps there are (the bar's length).
     progress : bool
         Show the progress bar (on stderr).
     desc : str
@@ -50,7 +50,7 @@ class Steps:
 
     Examples
     --------
-    >>> steps = Steps(("one", "two"), progress=False)
+    >>> steps = Steps(2, progress=False)
     >>> with steps("one"):
     ...     pass
     >>> list(steps.timings)
@@ -58,11 +58,11 @@ class Steps:
     >>> steps.close()
     """
 
-    def __init__(self, names: Sequence[str], progress: bool = True, desc: str = "report"):
+    def __init__(self, total: int, progress: bool = True, desc: str = "report"):
         from tqdm.auto import tqdm
 
         self.timings: dict[str, float] = {}
-        self._bar = tqdm(total=len(names), desc=desc, unit="part", disable=not progress,
+        self._bar = tqdm(total=total, desc=desc, unit="part", disable=not progress,
                          file=sys.stderr)
 
     @contextlib.contextmanager
