@@ -4,9 +4,11 @@ import json
 
 import numpy as np
 import pytest
+from report_regression import assert_same, load_fixture
 
 from archquake.cli import main
-from archquake.paper_reproduction import ReproductionSettings
+from archquake.report import ReproductionSettings
+from archquake.report.paper import STEPS
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 EXPECTED_FIGURES = (
@@ -139,7 +141,7 @@ def test_runtime_and_environment_recorded(report):
     assert results["settings"]["quick"] is True
     assert results["environment"]["archquake"]
     timings = results["timings"]
-    assert len(timings) >= 9 and all(v >= 0 for v in timings.values())
+    assert list(timings) == [*STEPS, "report", "total"] and all(v >= 0 for v in timings.values())
     assert timings["total"] >= sum(v for k, v in timings.items() if k != "total") - 1e-6
 
 
@@ -217,36 +219,9 @@ def test_cli_reports_bad_restitution(tmp_path, capsys):
     assert "--restitution must be one of" in capsys.readouterr().err
 
 
-REGRESSION_FIXTURE = "regression_reproduce_quick_results.json"
-_VOLATILE = {"environment", "timings", "background", "rigid_block_seconds"}
-RENAMED = {"tolerance": "epsilon"}
-"""Keys renamed since the fixture was written (the names pass: epsilon of eq. (1))."""
-
-
-def _same(a, b, where="results"):
-    """Structures equal, strings and keys exactly, numbers to 1e-9 relative (the last bits of a
-    float may differ between processors; anything a refactoring changes differs by far more)."""
-    if isinstance(a, dict):
-        a = {RENAMED.get(k, k): v for k, v in a.items()}
-        keys = set(a) - _VOLATILE
-        assert keys == set(b) - _VOLATILE, f"{where}: keys {sorted(keys ^ (set(b) - _VOLATILE))}"
-        for key in keys:
-            _same(a[key], b[key], f"{where}.{key}")
-    elif isinstance(a, list):
-        assert isinstance(b, list) and len(a) == len(b), f"{where}: lengths differ"
-        for i, (x, y) in enumerate(zip(a, b, strict=True)):
-            _same(x, y, f"{where}[{i}]")
-    elif isinstance(a, float) and not isinstance(b, bool):
-        assert isinstance(b, int | float), f"{where}: {a!r} vs {b!r}"
-        assert b == pytest.approx(a, rel=1e-9, abs=1e-12), f"{where}: {a!r} vs {b!r}"
-    else:
-        assert a == b, f"{where}: {a!r} vs {b!r}"
-
-
 def test_regression_results_json_unchanged_by_restructuring(report, data_dir):
     """Every number of ``reproduce --quick`` is what it was before the package was reorganised:
     the fixture is that run's results.json (environment and timings removed). A change of a
     number here must be a deliberate change of physics, with the fixture regenerated."""
     _, results = report
-    before = json.loads((data_dir / REGRESSION_FIXTURE).read_text())
-    _same(before, results)
+    assert_same(load_fixture(data_dir), results)

@@ -1,0 +1,340 @@
+"""The figures of a report, each drawn from values.
+
+Every function takes what a part returned (:mod:`archquake.report.parts`) and returns a
+:class:`matplotlib.figure.Figure`; its caption is written by :mod:`archquake.report.text` and
+:func:`save` writes it beside the report. The axes are drawn by :mod:`archquake.plotting`, so
+a figure of the report is the figure a user draws with the library. matplotlib is imported when
+a figure is drawn.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..constants import GRAVITY
+from .settings import ARCH_COLOURS, ARCH_NAMES, PULSE_RECORD_TIME
+from .text import outcome_text, restitution_label
+
+DPI = 110
+"""Resolution of the report's PNG figures [dots per inch]."""
+
+
+def save(figure, directory, name: str) -> str:
+    """Write ``figure`` as PNG into ``directory`` and close it.
+
+    Parameters
+    ----------
+    figure : matplotlib.figure.Figure
+    directory : str or Path
+    name : str
+        File name.
+
+    Returns
+    -------
+    str
+        ``name``.
+    """
+    import matplotlib.pyplot as plt
+
+    figure.savefig(Path(directory) / name, dpi=DPI)
+    plt.close(figure)
+    return name
+
+
+def plot_history(history, ax, name: str, phi_limit: float):
+    """One arch's rotation history in its colour, its outcome in the legend.
+
+    Parameters
+    ----------
+    history : TimeHistory
+    ax : matplotlib.axes.Axes
+    name : str
+        The arch (:data:`~archquake.report.settings.ARCH_NAMES`).
+    phi_limit : float
+        Limit of the rotation axis [rad].
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    from ..plotting import plot_rotation_history
+
+    out = history.outcome
+    text = outcome_text(out.status.label, out.half_cycle)
+    plot_rotation_history(history, ax, label=f"{name}: {text}", color=ARCH_COLOURS[name],
+                          linewidth=1.2)
+    ax.set_ylim(-phi_limit, phi_limit)
+    ax.set_ylabel(r"$\phi$ (Mech-l), $-\phi'$ (Mech-r) [rad]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="upper right", fontsize=8)
+    return ax
+
+
+def nominal_arch(arches, table1: dict):
+    """The nominal arch's hinges and thrust line, Mech-l (the paper's Fig. 2).
+
+    Parameters
+    ----------
+    arches : Arches
+    table1 : dict
+        :func:`archquake.report.parts.limit_table`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib.pyplot as plt
+
+    from ..plotting import plot_limit_analysis
+
+    fig, ax = plt.subplots(figsize=(7.0, 4.6), constrained_layout=True)
+    plot_limit_analysis(arches.nominal.limit[0], ax)
+    ax.set_title(f"Oppenheim's arch NA, Mech-l: k = {table1['NA']['k']:.4f}")
+    return fig
+
+
+def irregular_arches(arches):
+    """The irregular arches' hinges and thrust lines over the nominal arch, both mechanisms
+    (the paper's Fig. 4).
+
+    Parameters
+    ----------
+    arches : Arches
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib.pyplot as plt
+
+    from ..plotting import plot_limit_analysis
+
+    fig, axes = plt.subplots(2, 2, figsize=(12.0, 8.6), constrained_layout=True)
+    nominal = arches.arch("NA")
+    for row, name in enumerate(("RA-1", "RA-2")):
+        for col, res in enumerate(arches.models[name].limit):
+            frame = nominal if res.direction == "l" else nominal.mirrored()
+            plot_limit_analysis(res, axes[row, col], nominal=frame)
+            mech = "Mech-l" if res.direction == "l" else "Mech-r (mirrored arch)"
+            axes[row, col].set_title(f"{name}, {mech}: k~ = {res.load_multiplier:.4f}")
+    return fig
+
+
+def potential_energy(arches):
+    """The potential energy of both mechanisms of the three arches (the paper's Figs. 6-8).
+
+    Parameters
+    ----------
+    arches : Arches
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib.pyplot as plt
+
+    from ..plotting import plot_potential_energy
+
+    fig, axes = plt.subplots(1, 3, figsize=(14.0, 4.2), constrained_layout=True)
+    for ax, name in zip(axes, ARCH_NAMES, strict=True):
+        mechs = arches.models[name].mechanisms
+        phi_max = 1.6 * max(m.phi_cr for m in mechs)
+        for mech, colour in zip(mechs, ("tab:blue", "tab:orange"), strict=True):
+            label = ("Mech-l" if mech.direction == "l" else "Mech-r")
+            plot_potential_energy(mech, ax, label=label, color=colour, phi_max=phi_max)
+        fig_no = {"NA": "Fig. 6", "RA-1": "Fig. 7", "RA-2": "Fig. 8"}[name]
+        ax.set_title(f"{name} ({fig_no} of the paper)")
+    return fig
+
+
+def free_vibration(free, case: str):
+    """Free vibrations of the three arches with one coefficient of restitution (the paper's
+    Figs. 9-14).
+
+    Parameters
+    ----------
+    free : FreeVibrations
+    case : str
+        ``"elastic"``, ``"paper"`` or ``"computed"``.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib.pyplot as plt
+
+    pair = free.summary[case]["restitution"]
+    fig, axes = plt.subplots(3, 1, figsize=(9.0, 8.0), sharex=True, constrained_layout=True)
+    for ax, name in zip(axes, ARCH_NAMES, strict=True):
+        plot_history(free.histories[case][name], ax, name, 0.03)
+        ax.set_title(rf"{name}: free vibration from $\phi_0$ = 0.02 rad, $c_v$ = {pair[0]:.3f}",
+                     fontsize=10)
+        if ax is not axes[-1]:
+            ax.set_xlabel("")
+    return fig
+
+
+def pulse_response(pulses, case: str):
+    """The ground acceleration of the paper's three pulses and the response of the three arches
+    to each, with one coefficient of restitution (the paper's Fig. 15).
+
+    Parameters
+    ----------
+    pulses : PulseResponses
+    case : str
+        ``"paper"`` or ``"computed"``.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib.pyplot as plt
+
+    from ..ground_motion import oppenheim_pulse
+    from ..plotting import plot_ground_motion
+
+    entry = pulses.summary[case]
+    rows = entry["cases"]
+    fig, axes = plt.subplots(len(rows) + 1, 1, figsize=(9.0, 10.5), sharex=True,
+                             constrained_layout=True)
+    for row, colour in zip(rows, ("0.1", "tab:purple", "tab:brown"), strict=True):
+        plot_ground_motion(oppenheim_pulse(row["amplitude"] * GRAVITY, row["duration"]),
+                           axes[0], t_end=PULSE_RECORD_TIME, color=colour,
+                           label=f"$t_p$ = {row['duration']:.2f} s")
+    axes[0].set_title(r"(a) ground acceleration: Oppenheim's pulse, $\ddot{x}_g/g = -1$ for $t_p$, "
+                      r"then $+1/2$ for $2 t_p$", fontsize=10)
+    axes[0].set_xlabel("")
+    for ax, row, letter in zip(axes[1:], rows, "bcd", strict=True):
+        for name in ARCH_NAMES:
+            plot_history(pulses.histories[case][(name, row["duration"])], ax, name, 0.35)
+        ax.set_title(rf"({letter}) $t_p$ = {row['duration']:.2f} s, "
+                     f"{restitution_label(case, entry['restitution'])}", fontsize=10)
+        if ax is not axes[-1]:
+            ax.set_xlabel("")
+    return fig
+
+
+def failure_domain(domain, point=None):
+    """A failure domain, with a point marked on it (the paper's Fig. 16 with its point Q).
+
+    Parameters
+    ----------
+    domain : FailureDomain
+        :func:`archquake.studies.failure_domain.domain_of`.
+    point : (float, float, str), optional
+        ``(t_p [s], amplitude [g], name)`` of a point to mark.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib.pyplot as plt
+
+    from ..plotting import plot_failure_domain
+
+    fig, ax = plt.subplots(figsize=(8.0, 5.6), constrained_layout=True)
+    plot_failure_domain(domain, ax)
+    if point is not None:
+        duration, amplitude, name = point
+        ax.plot([duration], [amplitude], "s", color="black", markersize=7, zorder=6)
+        ax.annotate(f"{name} ({duration:.2f} s, {amplitude:.2f} g)", (duration, amplitude),
+                    textcoords="offset points", xytext=(8, 8), fontsize=9, fontweight="bold")
+    return fig
+
+
+def fragility_curve(result, duration: float):
+    """The fragility curve of the irregular arches at one duration (the paper's Figs. 17-20).
+
+    Parameters
+    ----------
+    result : FragilityResult
+    duration : float
+        Pulse duration t_p [s].
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib.pyplot as plt
+
+    from ..plotting import plot_fragility_curve
+
+    fig, ax = plt.subplots(figsize=(7.5, 6.2), constrained_layout=True)
+    plot_fragility_curve(result, duration, ax)
+    return fig
+
+
+def fragility_surface(result):
+    """The fragility surface of the irregular arches and the nominal arch's step surface (the
+    paper's Fig. 21).
+
+    Parameters
+    ----------
+    result : FragilityResult
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib.pyplot as plt
+
+    from ..plotting import plot_fragility_surface
+
+    fig = plt.figure(figsize=(8.5, 6.4), constrained_layout=True)
+    ax = fig.add_subplot(projection="3d")
+    plot_fragility_surface(result, ax)
+    return fig
+
+
+def model_comparison(comparison):
+    """The failure accelerations of the rigid-block and four-link models (left) and their
+    relative differences (right).
+
+    Parameters
+    ----------
+    comparison : ModelComparison
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib.pyplot as plt
+
+    from ..plotting import plot_model_comparison, plot_model_differences
+
+    fig, (left, right) = plt.subplots(1, 2, figsize=(14.5, 5.6), constrained_layout=True,
+                                      width_ratios=(1.2, 1.0))
+    plot_model_comparison(comparison, left)
+    plot_model_differences(comparison, right)
+    return fig
+
+
+def record_fragility(results: dict):
+    """The record-based fragility, one panel per intensity measure.
+
+    Parameters
+    ----------
+    results : dict
+        By intensity measure: the study's result
+        (:attr:`archquake.report.parts.RecordFragilityPart.results`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib.pyplot as plt
+
+    from ..plotting import plot_record_fragility
+
+    fig, axes = plt.subplots(1, len(results), figsize=(13.0, 5.2), constrained_layout=True,
+                             squeeze=False)
+    for ax, (im, result) in zip(axes[0], results.items(), strict=True):
+        plot_record_fragility(result, ax)
+        ax.set_title(f"Record-based fragility in {im.upper()}, $\\varepsilon$ = "
+                     f"{result.settings.epsilon:g}")
+    return fig
+
+
+__all__ = ["DPI", "failure_domain", "fragility_curve", "fragility_surface", "free_vibration",
+           "irregular_arches", "model_comparison", "nominal_arch", "plot_history",
+           "potential_energy", "pulse_response", "record_fragility", "save"]

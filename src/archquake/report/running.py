@@ -1,0 +1,244 @@
+"""How a report runs: its steps timed under a progress bar, its long tasks on a second process.
+
+:class:`Steps` times every step of a report (the run-time table) and shows a progress bar over
+them. A report has parts that wait on one another (the four-link chain of the paper) and long tasks
+that need nothing of them (the rigid-block failure curve, the record-based fragility). On a
+machine with two processors or more, :class:`Background` starts one worker process and gives it
+those tasks, so that they cost a CPU instead of the report's time; on one processor a task runs
+here, when its result is first asked for. Either way a task's result comes back as a
+:class:`TaskRun`: the value, its run time and where it ran.
+
+>>> background = Background()            # no worker process: tasks run when asked
+>>> run = background.submit(sum, (1, 2, 3)).result()
+>>> run.result, run.ran_on
+(6, 'this process')
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import sys
+import time
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+from typing import Any
+
+HERE = "this process"
+"""Where a task ran, when it ran in the report's own process."""
+
+SECOND_PROCESS = "a second process"
+"""Where a task ran, when it ran on the worker process."""
+
+
+class Steps:
+    """The steps of a report, each timed, under a progress bar.
+
+    Parameters
+    ----------
+    total : int
+        How many steps there are (the bar's length).
+    progress : bool
+        Show the progress bar (on stderr).
+    desc : str
+        The bar's label.
+
+    Attributes
+    ----------
+    timings : dict of str to float
+        Wall time of every step run so far [s], in order.
+
+    Examples
+    --------
+    >>> steps = Steps(2, progress=False)
+    >>> with steps("one"):
+    ...     pass
+    >>> list(steps.timings)
+    ['one']
+    >>> steps.close()
+    """
+
+    def __init__(self, total: int, progress: bool = True, desc: str = "report"):
+        from tqdm.auto import tqdm
+
+        self.timings: dict[str, float] = {}
+        self._bar = tqdm(total=total, desc=desc, unit="part", disable=not progress,
+                         file=sys.stderr)
+
+    @contextlib.contextmanager
+    def __call__(self, name: str) -> Iterator[None]:
+        """Time the ``with`` block as the step ``name``."""
+        self._bar.set_postfix_str(name)
+        t0 = time.perf_counter()
+        yield
+        self.timings[name] = time.perf_counter() - t0
+        self._bar.update()
+
+    def close(self) -> None:
+        """Close the progress bar."""
+        self._bar.close()
+
+
+@dataclass(frozen=True)
+class TaskRun:
+    """A task's result and what it cost.
+
+    Attributes
+    ----------
+    result : object
+        What the task returned.
+    seconds : float
+        Run time of the task itself [s].
+    wall_seconds : float
+        From its submission to its end [s] (its waiting included).
+    ran_on : str
+        :data:`HERE` or :data:`SECOND_PROCESS`.
+    """
+
+    result: Any
+    seconds: float
+    wall_seconds: float
+    ran_on: str
+
+    def describe(self) -> dict:
+        """JSON-ready ``{"ran on", "seconds", "wall_seconds"}`` (the run-time table of a report).
+
+        Returns
+        -------
+        dict
+        """
+        return {"ran on": self.ran_on, "seconds": self.seconds, "wall_seconds": self.wall_seconds}
+
+
+def timed(function: Callable, *args) -> tuple[Any, float]:
+    """``(function(*args), its run time [s])`` (what a worker runs for a task).
+
+    Parameters
+    ----------
+    function : callable
+        A picklable function (module level).
+    *args
+        Its arguments.
+
+    Returns
+    -------
+    (object, float)
+    """
+    t0 = time.perf_counter()
+    result = function(*args)
+    return result, time.perf_counter() - t0
+
+
+def run_here(function: Callable, *args) -> TaskRun:
+    """Run a task in this process.
+
+    Parameters
+    ----------
+    function : callable
+        The task.
+    *args
+        Its arguments.
+
+    Returns
+    -------
+    TaskRun
+    """
+    result, seconds = timed(function, *args)
+    return TaskRun(result, seconds, seconds, HERE)
+
+
+class Task:
+    """A submitted task: on the worker process, or deferred until :meth:`result` runs it here."""
+
+    def __init__(self, function: Callable, args: tuple, pool=None):
+        self._function, self._args = function, args
+        self._future = None
+        self._submitted = time.perf_counter()
+        self._done: float | None = None
+        self._run: TaskRun | None = None
+        if pool is not None:
+            self._future = pool.submit(timed, function, *args)
+            self._future.add_done_callback(self._finished)
+
+    def _finished(self, _future) -> None:
+        if self._done is None:
+            self._done = time.perf_counter()
+
+    def result(self) -> TaskRun:
+        """The task's :class:`TaskRun` (waiting for the worker, or running the task here).
+
+        Returns
+        -------
+        TaskRun
+        """
+        if self._run is None:
+            if self._future is None:
+                self._run = run_here(self._function, *self._args)
+            else:
+                result, seconds = self._future.result()
+                done = time.perf_counter() if self._done is None else self._done
+                self._run = TaskRun(result, seconds, done - self._submitted, SECOND_PROCESS)
+        return self._run
+
+
+class Background:
+    """One worker process for a report's long independent tasks (or none: tasks run here).
+
+    Parameters
+    ----------
+    pool : WorkerPool, optional
+        The worker (:func:`archquake.execution.process_pool`); None runs every task here.
+        :meth:`start` makes one when the machine has a second processor.
+    """
+
+    def __init__(self, pool=None):
+        self._pool = pool
+
+    @property
+    def parallel(self) -> bool:
+        """Whether tasks run on a second process."""
+        return self._pool is not None
+
+    @classmethod
+    @contextlib.contextmanager
+    def start(cls, warm_up: Callable[[], Any] | None = None) -> Iterator[Background]:
+        """A :class:`Background` with one worker process on a machine with two processors or
+        more, without one on a single processor; the worker ends with the ``with`` block.
+
+        Parameters
+        ----------
+        warm_up : callable, optional
+            Picklable function the worker runs as it starts (e.g. loading a compiled solver).
+
+        Yields
+        ------
+        Background
+        """
+        if (os.cpu_count() or 1) < 2:
+            yield cls()
+            return
+        from ..execution import process_pool
+
+        with process_pool(1, warm_up=warm_up) as pool:
+            yield cls(pool)
+
+    def submit(self, function: Callable, *args) -> Task:
+        """Give the worker ``function(*args)`` (a picklable function and arguments).
+
+        Parameters
+        ----------
+        function : callable
+            The task, a module-level function.
+        *args
+            Its arguments.
+
+        Returns
+        -------
+        Task
+            Its handle; without a worker the task runs when :meth:`Task.result` is called.
+        """
+        return Task(function, args, self._pool)
+
+
+__all__ = ["HERE", "SECOND_PROCESS", "Background", "Steps", "Task", "TaskRun", "run_here",
+           "timed"]
