@@ -882,9 +882,17 @@ def warm_up() -> None:
     run_fragility(tiny, backend="serial", progress=False)
 
 
-def _nominal_domains(settings: FragilitySettings, resolution_g: float) -> tuple:
+NOMINAL_RESOLUTION_G = {"four-link": 1e-4, "rigid-blocks": 2e-3}
+"""Default bisection width of the nominal arch's failure acceleration per model [g]: the
+four-link model's analyses are cheap; a rigid-block one costs about a thousand of them, and a
+fifth of the paper's 0.01 g step is enough to place the step of eq. (10) on the grid."""
+
+
+def _nominal_domains(settings: FragilitySettings, resolution_g: float | None) -> tuple:
     """The nominal arch's failure domains over the study grid, directions l and r (point Q of
-    Fig. 16 per duration), to ``resolution_g`` [g]."""
+    Fig. 16 per duration), to ``resolution_g`` [g] (default :data:`NOMINAL_RESOLUTION_G`)."""
+    if resolution_g is None:
+        resolution_g = NOMINAL_RESOLUTION_G[settings.model]
     if settings.model == "four-link":
         model = nominal_model(settings.nominal, settings.restitution)
     else:
@@ -916,7 +924,7 @@ def run_fragility(
     progress: bool = True,
     chunk_size: int | None = None,
     limit_chunk_size: int = 50,
-    nominal_resolution_g: float = 1e-4,
+    nominal_resolution_g: float | None = None,
 ) -> FragilityResult:
     """Fragility study of irregular arches [paper, Sect. 5.3.3, eq. (9), Figs. 17-21].
 
@@ -951,8 +959,9 @@ def run_fragility(
         Arches per chunk of the dynamic study (default 2 with the four-link model, 1 with the
         rigid blocks, whose arch takes seconds) and of the limit sample (recorded; a resumed
         study must use the same).
-    nominal_resolution_g : float
-        Bisection width of the nominal failure acceleration [g].
+    nominal_resolution_g : float, optional
+        Bisection width of the nominal failure acceleration [g] (default
+        :data:`NOMINAL_RESOLUTION_G` of the model).
 
     Returns
     -------
@@ -1026,7 +1035,7 @@ def run_fragility(
 
 
 def load_fragility(out_dir: str | os.PathLike, *,
-                   nominal_resolution_g: float = 1e-4) -> FragilityResult:
+                   nominal_resolution_g: float | None = None) -> FragilityResult:
     """Reload a finished fragility study (:func:`run_fragility` with ``out_dir``) as a
     :class:`FragilityResult`.
 
