@@ -130,17 +130,20 @@ def _scan(amplitudes_g) -> np.ndarray:
 
 
 def _four_link(dynamics, model: str, settings):
-    """``dynamics`` with restitution ``model``; ``"blocks"`` measured with the rigid-block
-    model's ``settings`` (its friction and time step) when they are not the defaults."""
+    """``dynamics`` with restitution ``model``; ``"rigid-blocks"`` (or its former name
+    ``"blocks"``) measured with the rigid-block model's ``settings`` (its friction and time step)
+    when they are not the defaults."""
+    from ..fourlink.impact import canonical_restitution_model
     from ..rigid_blocks import BlockSettings
 
-    if model == "blocks" and settings is not None and settings != BlockSettings():
+    if (canonical_restitution_model(model) == "rigid-blocks" and settings is not None
+            and settings != BlockSettings()):
         from ..fourlink.impact import blocks_restitution
 
         mech_l, mech_r = dynamics.mechanisms
         pair = (blocks_restitution(mech_l, mech_r, settings),
                 blocks_restitution(mech_r, mech_l, settings))
-        return replace(dynamics, restitution=pair, restitution_model="blocks")
+        return replace(dynamics, restitution=pair, restitution_model=model)
     return dynamics.with_restitution(model)
 
 
