@@ -1612,7 +1612,7 @@ def run_record_fragility(
         (:func:`archquake.execution.run_study`).
     """
     from ..execution import StudyPlan, run_study
-    from ..results_io import atomic_path, save_study
+    from ..results_io import atomic_path, save_study, write_csv
 
     if not isinstance(settings, RecordFragilitySettings):
         raise ValueError(f"settings must be RecordFragilitySettings, got "
@@ -1632,8 +1632,7 @@ def run_record_fragility(
     if out is not None:
         with atomic_path(out / CURVES_CSV) as tmp:
             result.curves().to_csv(tmp, index=False)
-        with atomic_path(out / INCREMENTAL_CSV) as tmp:
-            result.incremental().to_csv(tmp, index=False)
+        write_csv(out / INCREMENTAL_CSV, result.incremental())  # record names: never formulas
         save_study(out, table, metadata=metadata, summary=result.summary())
     return result
 
