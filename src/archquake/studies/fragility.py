@@ -460,7 +460,7 @@ class FragilitySettings:
         d = np.atleast_1d(np.asarray(self.durations, dtype=float))
         if d.ndim != 1 or d.size == 0 or not np.all(np.isfinite(d)) or np.any(d <= 0):
             raise ValueError(f"durations must be a non-empty list of pulse durations > 0 [s], "
-                             f"got {list(np.ravel(self.durations))!r}")
+                             f"got {np.ravel(d).tolist()}")
         if np.unique(d).size != d.size:
             raise ValueError(f"durations must be distinct, got {d.tolist()}")
         a = np.atleast_1d(np.asarray(self.amplitudes_g, dtype=float))
