@@ -32,7 +32,7 @@ DEFAULT_MOTION = "oppenheim"
 """Ground motion of an analysis of one arch when none is named: Oppenheim's pulse [paper,
 Sect. 5.3.1]."""
 
-DEFAULT_PULSE_G = (-1.0, 0.27)
+DEFAULT_PULSE = (-1.0, 0.27)
 """``(amplitude [g], time scale [s])`` of the pulse of an analysis of one arch when none is
 given (``archquake simulate``, ``archquake rigid-blocks``): the paper's Fig. 15."""
 

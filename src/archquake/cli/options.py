@@ -27,7 +27,7 @@ from ..defaults import (
     DEFAULT_EPSILON,
     DEFAULT_FRICTION,
     DEFAULT_MOTION,
-    DEFAULT_PULSE_G,
+    DEFAULT_PULSE,
     DEFAULT_RESTITUTION,
     DEFAULT_SEED,
     DEFAULT_TIME_STEP,
@@ -525,10 +525,10 @@ def add_motion_options(parser: argparse.ArgumentParser) -> None:
     m.add_argument("--amplitude", type=float, default=None,
                    help=f"signed peak acceleration of a pulse [g], within "
                         f"+-{MAX_ACCELERATION_G:g}; -1 starts Mech-l "
-                        f"(default: {DEFAULT_PULSE_G[0]})")
+                        f"(default: {DEFAULT_PULSE[0]})")
     m.add_argument("--duration", type=float, default=None,
                    help="time scale of a pulse [s]: its duration t_p (oppenheim, rectangular) "
-                        f"or its period (the others) (default: {DEFAULT_PULSE_G[1]})")
+                        f"or its period (the others) (default: {DEFAULT_PULSE[1]})")
     m.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
                    help="a parameter of the chosen motion (repeatable): cycles (harmonic), n "
                         "(cycloidal-c), gamma and phase [rad] (mavroeidis-papageorgiou), seed "
@@ -611,8 +611,8 @@ def motion_from_args(args: argparse.Namespace):
         if args.scale_to is not None:
             raise ValueError("--scale-to applies to a recorded accelerogram (--record FILE) or "
                              "a stochastic motion; a pulse takes --amplitude")
-        amplitude = DEFAULT_PULSE_G[0] if args.amplitude is None else args.amplitude
-        duration = DEFAULT_PULSE_G[1] if args.duration is None else args.duration
+        amplitude = DEFAULT_PULSE[0] if args.amplitude is None else args.amplitude
+        duration = DEFAULT_PULSE[1] if args.duration is None else args.duration
         if not (math.isfinite(amplitude) and abs(amplitude) <= MAX_ACCELERATION_G):
             # in the option's unit: the library sees m/s^2
             raise ValueError(f"--amplitude must be a finite acceleration within "
