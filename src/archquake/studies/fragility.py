@@ -191,8 +191,9 @@ class FragilitySettings:
     search : {"exhaustive", "bisection", "screened"}, optional
         How each arch's amplitude lines are searched (:mod:`archquake.studies.strategies`;
         default :data:`archquake.defaults.DEFAULT_SEARCH` of the model).
-    stride : int
-        Grid steps between the coarse points of ``bisection`` and ``screened`` [-].
+    stride : int, optional
+        Grid steps between the coarse points of ``bisection`` and ``screened`` [-] (default
+        :data:`archquake.defaults.DEFAULT_STRIDE`).
     friction : float
         Coulomb friction coefficient of the rigid-block model's joints [-] (ignored by the
         four-link model).
@@ -216,7 +217,7 @@ class FragilitySettings:
     motion: str = "oppenheim"
     model: str = DEFAULT_MODEL
     search: str | None = None
-    stride: int = DEFAULT_STRIDE
+    stride: int | None = None
     friction: float = DEFAULT_FRICTION
 
     def __post_init__(self) -> None:
@@ -228,7 +229,8 @@ class FragilitySettings:
         object.__setattr__(self, "model", check_model(self.model))
         object.__setattr__(self, "search", check_search(
             DEFAULT_SEARCH[self.model] if self.search is None else self.search))
-        object.__setattr__(self, "stride", check_stride(self.stride))
+        object.__setattr__(self, "stride", check_stride(
+            DEFAULT_STRIDE if self.stride is None else self.stride))
         _ = self.block_settings  # checks the friction
         sample = ArchSample(self.nominal, self.epsilon, self.seed)  # nominal, epsilon, seed
         check_integer("sample_size", self.sample_size, maximum=MAX_SAMPLES)
@@ -236,7 +238,7 @@ class FragilitySettings:
         d = np.atleast_1d(np.asarray(self.durations, dtype=float))
         if d.ndim != 1 or d.size == 0 or not np.all(np.isfinite(d)) or np.any(d <= 0):
             raise ValueError(f"durations must be a non-empty list of pulse durations > 0 [s], "
-                             f"got {list(np.ravel(self.durations))!r}")
+                             f"got {np.ravel(d).tolist()}")
         if np.unique(d).size != d.size:
             raise ValueError(f"durations must be distinct, got {d.tolist()}")
         a = np.atleast_1d(np.asarray(self.amplitudes_g, dtype=float))
