@@ -378,13 +378,15 @@ class BlockHistory:
 
 
 def contact_arrays(assembly: Assembly) -> dict[str, np.ndarray]:
-    """Per-contact arrays of the compiled solver: contact ``2 j + k`` is end ``k`` of joint j.
+    """The packed arrays of the compiled solver: contact ``2 j + k`` is end ``k`` of joint j.
 
-    ``ca, cb``: bodies a and b; ``ra, rb``: the contact point relative to the centroid of a and
-    of b in the undeformed configuration (the absolute point for the ground) [m]; ``normal``,
-    ``tangent``: the joint's unit vectors [-]; ``offset``: position of the end along the joint
-    (0 or its length) [m]; ``face_lo, face_hi``: the face of body a along the joint [m];
-    ``length``: the joint's length [m].
+    ``bodies`` (nb, 4): mass [kg/m], inertia [kg m] and centroid [m] of every block
+    (:data:`archquake.rigid_blocks.solver.BODY_FIELDS`); ``contacts`` (nc, 12): the contact
+    point relative to the centroid of body a and of body b in the undeformed configuration (the
+    absolute point for the ground) [m], the joint's unit normal and tangent [-], the position of
+    the end along the joint (0 or its length), the face of body a along the joint and the joint's
+    length [m] (:data:`~archquake.rigid_blocks.solver.CONTACT_FIELDS`); ``contact_bodies``
+    (nc, 2) int: bodies a and b (:data:`GROUND` for a support).
 
     Parameters
     ----------
@@ -394,8 +396,8 @@ def contact_arrays(assembly: Assembly) -> dict[str, np.ndarray]:
     Returns
     -------
     dict of str to array
-        The arrays above, contiguous, of length ``nc = 2 nj`` (``(nc, 2)`` for points and
-        vectors); computed once and cached on the assembly.
+        The three arrays, contiguous and writable (one compiled signature whatever the
+        assembly's arrays are), ``nc = 2 nj``; computed once and cached on the assembly.
     """
     if "contacts" not in assembly._cache:
         nj = assembly.n_joints
@@ -405,8 +407,7 @@ def contact_arrays(assembly: Assembly) -> dict[str, np.ndarray]:
         centroid = np.vstack((assembly.centroids, np.zeros((1, 2))))  # index -1: the ground
         lengths = assembly.joint_lengths
         tangents = (assembly.joint_points[:, 1] - assembly.joint_points[:, 0]) / lengths[:, None]
-        arrays = {
-            "ca": ca, "cb": cb,
+        columns = {
             "ra": points - centroid[ca], "rb": points - centroid[cb],
             "normal": np.repeat(assembly.joint_normals, 2, axis=0),
             "tangent": np.repeat(tangents, 2, axis=0),
@@ -415,9 +416,14 @@ def contact_arrays(assembly: Assembly) -> dict[str, np.ndarray]:
             "face_hi": np.repeat(assembly.face_extents[:, 1], 2),
             "length": np.repeat(lengths, 2),
         }
-        for key, value in arrays.items():
-            arrays[key] = np.ascontiguousarray(value)
-        assembly._cache["contacts"] = arrays
+        contacts = np.column_stack([np.reshape(x, (2 * nj, -1)) for x in columns.values()])
+        assert contacts.shape[1] == len(solver.CONTACT_FIELDS)
+        bodies = np.column_stack((assembly.masses, assembly.inertias, assembly.centroids))
+        assembly._cache["contacts"] = {
+            "bodies": np.ascontiguousarray(bodies, dtype=float),
+            "contacts": np.ascontiguousarray(contacts, dtype=float),
+            "contact_bodies": np.ascontiguousarray(np.column_stack((ca, cb)), dtype=np.int64),
+        }
     return assembly._cache["contacts"]
 
 
@@ -487,27 +493,27 @@ def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None,
                          f"use a larger time step or a shorter t_end")
     thickness = assembly.thickness
     total_mass = assembly.total_mass
-    c = contact_arrays(assembly)
+    arrays = contact_arrays(assembly)
     # writeable copies: one compiled signature whether the arrays are frozen or unpickled
     kind, params, times, values = (np.array(x, dtype=float) if i else x
                                    for i, x in enumerate(motion.compiled()))
     crown_block, crown_point = assembly.crown
-    crown_r = np.array(crown_point - assembly.centroids[crown_block])
-    summary, records = solver.run(
-        np.array(assembly.masses), np.array(assembly.inertias), np.array(assembly.centroids),
-        c["ca"], c["cb"], c["ra"],
-        c["rb"], c["normal"], c["tangent"], c["offset"], c["face_lo"], c["face_hi"], c["length"],
-        crown_block, crown_r, q0, v0, kind, params, times, values,
-        h, float(settings.theta), float(settings.friction), float(settings.tolerance),
-        int(settings.max_iterations), GRAVITY, excitation_end, n_steps,
-        settings.collapse_drop * thickness,
-        0.5 * total_mass * (settings.rest_speed**2) * GRAVITY * thickness,
-        settings.closed_gap * thickness, max(1, int(round(settings.rest_window / h))),
-        max(1, int(round(settings.open_rest_window / h))),
-        settings.moved_opening * thickness,
-        settings.energy_margin * total_mass * GRAVITY * thickness,
-        int(record_every), tail_steps,
-    )
+    crown_r = crown_point - assembly.centroids[crown_block]
+    packed = solver.pack_settings(
+        time_step=h, theta=settings.theta, friction=settings.friction,
+        tolerance=settings.tolerance, max_iterations=settings.max_iterations, gravity=GRAVITY,
+        excitation_end=excitation_end, n_steps=n_steps,
+        drop_limit=settings.collapse_drop * thickness,
+        rest_energy=0.5 * total_mass * (settings.rest_speed**2) * GRAVITY * thickness,
+        closed_gap=settings.closed_gap * thickness,
+        rest_steps=max(1, int(round(settings.rest_window / h))),
+        open_rest_steps=max(1, int(round(settings.open_rest_window / h))),
+        moved_threshold=settings.moved_opening * thickness,
+        energy_margin=settings.energy_margin * total_mass * GRAVITY * thickness,
+        record_stride=int(record_every), tail_steps=tail_steps,
+        crown_block=crown_block, crown_x=crown_r[0], crown_y=crown_r[1])
+    summary, records = solver.run(arrays["bodies"], arrays["contacts"], arrays["contact_bodies"],
+                                  q0, v0, int(kind), params, times, values, packed)
     s = dict(zip(solver.SUMMARY_FIELDS, summary.tolist(), strict=True))
     status = int(s["status"])
     if status < 0:  # undecided: still open -> collapse, closed (but moving) -> recovery
@@ -609,9 +615,14 @@ def simulate_blocks(structure, motion: GroundMotion | None,
     assembly, settings, motion, outcome, records = _run(
         structure, motion, settings, initial=initial, record_every=int(record_every),
         t_end=t_end, tail=tail)
-    t, q, gap, slip, force, energy = records
-    nr, nj = t.size, assembly.n_joints
-    force = force.reshape(nr, nj, 2, 2)
+    energy, q, per_contact = records
+    nr, nb, nj = energy.shape[0], assembly.n_blocks, assembly.n_joints
+    q = q.reshape(nr, nb, 3)
+    nc = 2 * nj
+    gap, slip = per_contact[:, :nc], per_contact[:, nc:2 * nc]
+    force = per_contact[:, 2 * nc:].reshape(nr, nj, 2, 2)
+    t = energy[:, 0]
+    energy = energy[:, 1:]
     return BlockHistory(
         assembly=assembly, outcome=outcome, times=t, displacements=q[:, :, :2],
         rotations=q[:, :, 2], gaps=gap.reshape(nr, nj, 2), offsets=slip.reshape(nr, nj, 2),

@@ -1,8 +1,8 @@
 r"""Compiled Moreau-Jean time stepping of rigid blocks with unilateral Coulomb contacts.
 
 Everything here is ``numba``-compiled; :func:`run` is the one driver of an analysis, the other
-functions are its small helpers. :mod:`archquake.rigid_blocks.dynamics` prepares the arrays and
-reads the results.
+functions are its small helpers (section "The driver"). :mod:`archquake.rigid_blocks.dynamics`
+prepares the arrays and reads the results.
 
 Frame and unknowns
 ------------------
@@ -161,6 +161,29 @@ the configuration of the previous step) is not exactly zero, so the contact work
 positive by O(h^2) per step; for a rocking block this is 0.15 % of its energy over 3 s at
 h = 1 ms, halving with h (tested).
 
+The driver
+----------
+:func:`run` is a short loop over small compiled helpers; one loop is one step, in these phases
+(the code carries the same numbers)::
+
+    1. geometry     gap, offset, validity and Jacobian of every contact at q_k
+    2. measure      energies, drops, rotations and the joints at t_k
+    3. record       every record_stride-th state (recording only)
+    4. decide       the outcome tests (:func:`run`), until one holds
+    5. stop?        decided (and the record's tail done), or the last step
+    6. free         the impulse of the weight and of the ground over the step: v^f
+    7. active set   the valid contacts whose predicted gap closes
+    8. contacts     the contact problem: active-set method, else Gauss-Seidel
+    9. advance      energy bookkeeping and the positions q_{k+1}
+
+The structure reaches the driver as three packed arrays (the blocks, :data:`BODY_FIELDS`; the
+contacts, :data:`CONTACT_FIELDS`; the bodies of every contact) and the settings as one vector
+(:data:`SETTINGS_FIELDS`, :func:`pack_settings`): one compiled signature serves every structure
+and every analysis. How each part is compiled was chosen by measurement, as in the four-link
+engine's driver: the helpers of one step are inlined into the driver (``inline="always"``,
+numba copies their code there); the contact geometry and the contact problem, which loop over
+the contacts, are compiled on their own and called once per step.
+
 References
 ----------
 .. [1] M. Jean, "The non-smooth contact dynamics method", Comput. Methods Appl. Mech. Engrg. 177
@@ -213,7 +236,6 @@ decision times [s] (nan if none); largest block rotation [rad], crown drop, slip
 drop [m]; steps, linear solves or sweeps in all, most in one step, unconverged steps [-]; final
 time [s]; 1 if every joint was closed at the end; steps left to Gauss-Seidel [-]."""
 
-_N_SUMMARY = 16
 
 
 @numba.njit(cache=True)
@@ -333,15 +355,89 @@ def local_coulomb(ufn, uft, wnn, wnt, wtt, mu):
     return -ufn / wnn, 0.0
 
 
-@numba.njit(cache=True)
+# ---------------------------------------------------------------------------------------------
+# Layout of the packed arrays
+# ---------------------------------------------------------------------------------------------
+
+BODY_FIELDS = ("mass", "inertia", "centroid_x", "centroid_y")
+"""Columns of the body array ``bodies`` (nb, 4): mass [kg/m], polar moment of inertia [kg m] and
+undeformed centroid [m] of every block."""
+
+BODY_MASS, BODY_INERTIA, BODY_X, BODY_Y = range(4)
+
+CONTACT_FIELDS = ("ra_x", "ra_y", "rb_x", "rb_y", "normal_x", "normal_y", "tangent_x",
+                  "tangent_y", "offset", "face_lo", "face_hi", "length")
+"""Columns of the contact array ``contacts`` (nc, 12), contact ``2 j + k`` being end ``k`` of joint
+``j``: the undeformed contact point relative to the centroid of body a and of body b (absolute for
+the ground) [m], the joint's unit normal and tangent [-], the position of the end along the joint
+(0 or its length), the face of body a along the joint and the joint's length [m]. The bodies
+themselves are the int array ``contact_bodies`` (nc, 2): ``(a, b)``, -1 for the ground."""
+
+RA_X, RA_Y, RB_X, RB_Y, N_X, N_Y, T_X, T_Y, OFFSET, FACE_LO, FACE_HI, LENGTH = range(12)
+
+SETTINGS_FIELDS = (
+    "time_step", "theta", "friction", "tolerance", "max_iterations", "gravity",
+    "excitation_end", "n_steps", "drop_limit", "rest_energy", "closed_gap", "rest_steps",
+    "open_rest_steps", "moved_threshold", "energy_margin", "record_stride", "tail_steps",
+    "crown_block", "crown_x", "crown_y",
+)
+"""Entries of the settings vector of :func:`run` (:func:`pack_settings`; counts and indices stored
+as floats): time step h [s]; theta [-]; friction coefficient mu [-]; Gauss-Seidel tolerance as a
+fraction of ``m_mean g h`` [-]; largest number of Gauss-Seidel sweeps per step [-]; g [m/s^2];
+end of the excitation :math:`t_{exc}` [s]; largest number of steps [-]; drop of collapse
+:math:`\\delta_{lim}` [m]; kinetic energy of rest :math:`T_{rest}` [J/m]; largest gap of a closed
+contact [m]; steps of rest that decide with every joint closed, and with a joint open [-]; opening
+and slip at or below which the structure never moved [m]; :math:`E_{margin}` of the energy test
+of collapse [J/m]; ``record_stride`` (every ``record_stride``-th state recorded, 0: no record)
+and ``tail_steps`` (steps recorded after the decision, -1: to ``n_steps``) [-]; the block that
+carries the crown point and that point relative to its centroid [m]."""
+
+(S_TIME_STEP, S_THETA, S_FRICTION, S_TOLERANCE, S_MAX_ITERATIONS, S_GRAVITY, S_EXCITATION_END,
+ S_N_STEPS, S_DROP_LIMIT, S_REST_ENERGY, S_CLOSED_GAP, S_REST_STEPS, S_OPEN_REST_STEPS,
+ S_MOVED_THRESHOLD, S_ENERGY_MARGIN, S_RECORD_STRIDE, S_TAIL_STEPS, S_CROWN_BLOCK, S_CROWN_X,
+ S_CROWN_Y) = range(20)
+
+RECORD_ENERGY_FIELDS = ("t", "kinetic", "potential", "dissipated", "input")
+"""Columns of the record of times and energies: t [s], T, V, D, W [J/m]."""
+
+
+def pack_settings(**values) -> np.ndarray:
+    """The settings vector of :func:`run` from its entries by name (:data:`SETTINGS_FIELDS`).
+
+    Parameters
+    ----------
+    **values : float
+        Every name of :data:`SETTINGS_FIELDS`, in the units stated there.
+
+    Returns
+    -------
+    ndarray (len(SETTINGS_FIELDS),)
+
+    Raises
+    ------
+    ValueError
+        If a name is missing or unknown.
+    """
+    missing = set(SETTINGS_FIELDS) - set(values)
+    unknown = set(values) - set(SETTINGS_FIELDS)
+    if missing or unknown:
+        raise ValueError(f"settings: missing {sorted(missing)}, unknown {sorted(unknown)}")
+    return np.array([float(values[name]) for name in SETTINGS_FIELDS])
+
+
+# ---------------------------------------------------------------------------------------------
+# Contacts: geometry, relative velocities, impulses
+# ---------------------------------------------------------------------------------------------
+
+
+@numba.njit(cache=True, inline="always")
 def _rotate(c, s, x, y):
     """``(x, y)`` turned by the angle whose cosine and sine are ``c, s`` [-] (same units)."""
     return c * x - s * y, s * x + c * y
 
 
 @numba.njit(cache=True)
-def contact_geometry(q, centroids, ca, cb, ra, rb, normal, tangent, offset, face_lo, face_hi,
-                     gap, slip, valid, jac):
+def contact_geometry(q, bodies, contacts, contact_bodies, trig, gap, slip, valid, jac):
     r"""Gap [m], tangential offset [m], validity and Jacobian rows of every contact at ``q``.
 
     Evaluates, for every contact ``c`` (module docstring, "Contacts and their detection"),
@@ -364,17 +460,14 @@ def contact_geometry(q, centroids, ca, cb, ra, rb, normal, tangent, offset, face
     ----------
     q : array (nb, 3)
         Displacements ``(x, y, theta)`` of the blocks [m, m, rad].
-    centroids : array (nb, 2)
-        Undeformed centroids [m].
-    ca, cb : array of int (nc,)
+    bodies : array (nb, 4)
+        The blocks (:data:`BODY_FIELDS`).
+    contacts : array (nc, 12)
+        The contacts (:data:`CONTACT_FIELDS`).
+    contact_bodies : array of int (nc, 2)
         Bodies a and b of every contact (-1 for the ground).
-    ra, rb : array (nc, 2)
-        Undeformed contact point relative to the centroid of a and b (absolute for the
-        ground) [m].
-    normal, tangent : array (nc, 2)
-        Undeformed unit normal and tangent of the joint [-].
-    offset, face_lo, face_hi : array (nc,)
-        Position of the contact along its joint and the face of body a [m].
+    trig : array (nb, 2)
+        Work space: the cosine and sine of every block's rotation [-].
     gap, slip : array (nc,)
         Output: ``g`` and ``s`` [m].
     valid : array of bool (nc,)
@@ -382,33 +475,35 @@ def contact_geometry(q, centroids, ca, cb, ra, rb, normal, tangent, offset, face
     jac : array (nc, 12)
         Output: Jacobian rows [-, -, m] per body and direction.
     """
-    for c in range(ca.size):
-        a, b = ca[c], cb[c]
+    for i in range(q.shape[0]):
+        trig[i, 0] = math.cos(q[i, 2])
+        trig[i, 1] = math.sin(q[i, 2])
+    for c in range(contacts.shape[0]):
+        a, b = contact_bodies[c, 0], contact_bodies[c, 1]
         if a >= 0:
-            cos_a, sin_a = math.cos(q[a, 2]), math.sin(q[a, 2])
-            xa, ya = _rotate(cos_a, sin_a, ra[c, 0], ra[c, 1])
-            cax, cay = centroids[a, 0] + q[a, 0], centroids[a, 1] + q[a, 1]
+            cos_a, sin_a = trig[a, 0], trig[a, 1]
+            xa, ya = _rotate(cos_a, sin_a, contacts[c, RA_X], contacts[c, RA_Y])
+            cax, cay = bodies[a, BODY_X] + q[a, 0], bodies[a, BODY_Y] + q[a, 1]
             pax, pay = cax + xa, cay + ya
-            nx, ny = _rotate(cos_a, sin_a, normal[c, 0], normal[c, 1])
-            tx, ty = _rotate(cos_a, sin_a, tangent[c, 0], tangent[c, 1])
+            nx, ny = _rotate(cos_a, sin_a, contacts[c, N_X], contacts[c, N_Y])
+            tx, ty = _rotate(cos_a, sin_a, contacts[c, T_X], contacts[c, T_Y])
         else:
             cax = cay = 0.0
-            pax, pay = ra[c, 0], ra[c, 1]
-            nx, ny = normal[c, 0], normal[c, 1]
-            tx, ty = tangent[c, 0], tangent[c, 1]
+            pax, pay = contacts[c, RA_X], contacts[c, RA_Y]
+            nx, ny = contacts[c, N_X], contacts[c, N_Y]
+            tx, ty = contacts[c, T_X], contacts[c, T_Y]
         if b >= 0:
-            cos_b, sin_b = math.cos(q[b, 2]), math.sin(q[b, 2])
-            xb, yb = _rotate(cos_b, sin_b, rb[c, 0], rb[c, 1])
-            cbx, cby = centroids[b, 0] + q[b, 0], centroids[b, 1] + q[b, 1]
+            xb, yb = _rotate(trig[b, 0], trig[b, 1], contacts[c, RB_X], contacts[c, RB_Y])
+            cbx, cby = bodies[b, BODY_X] + q[b, 0], bodies[b, BODY_Y] + q[b, 1]
             pbx, pby = cbx + xb, cby + yb
         else:
             cbx = cby = 0.0
-            pbx, pby = rb[c, 0], rb[c, 1]
+            pbx, pby = contacts[c, RB_X], contacts[c, RB_Y]
         dx, dy = pbx - pax, pby - pay
         gap[c] = dx * nx + dy * ny
         slip[c] = dx * tx + dy * ty
-        along = offset[c] + slip[c]
-        valid[c] = face_lo[c] <= along <= face_hi[c]
+        along = contacts[c, OFFSET] + slip[c]
+        valid[c] = contacts[c, FACE_LO] <= along <= contacts[c, FACE_HI]
         # lever arms from each centroid to the contact point p_b
         rax, ray = pbx - cax, pby - cay
         rbx, rby = pbx - cbx, pby - cby
@@ -420,7 +515,8 @@ def contact_geometry(q, centroids, ca, cb, ra, rb, normal, tangent, offset, face
             jac[c, 4] = -ty
             jac[c, 5] = -(rax * ty - ray * tx)
         else:
-            jac[c, 0:6] = 0.0
+            for k in range(6):
+                jac[c, k] = 0.0
         if b >= 0:
             jac[c, 6] = nx
             jac[c, 7] = ny
@@ -429,10 +525,11 @@ def contact_geometry(q, centroids, ca, cb, ra, rb, normal, tangent, offset, face
             jac[c, 10] = ty
             jac[c, 11] = rbx * ty - rby * tx
         else:
-            jac[c, 6:12] = 0.0
+            for k in range(6, 12):
+                jac[c, k] = 0.0
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _relative_velocity(v, a, b, jac, c):
     """Normal and tangential relative velocity ``(u_n, u_t)`` [m/s] of contact ``c`` between
     bodies ``a`` and ``b`` (-1: the ground) for block velocities ``v`` (nb, 3) [m/s, m/s,
@@ -448,41 +545,45 @@ def _relative_velocity(v, a, b, jac, c):
     return un, ut
 
 
-@numba.njit(cache=True)
-def _apply_impulse(v, inv_mass, inv_inertia, a, b, jac, c, pn, pt):
+@numba.njit(cache=True, inline="always")
+def _apply_impulse(v, inv_mass, a, b, jac, c, pn, pt):
     """Add to the velocities ``v`` (nb, 3) [m/s, m/s, rad/s], in place, the change
     ``M^-1 H_c^T (pn, pt)`` that the impulses ``pn, pt`` [N s/m] of contact ``c`` give bodies
-    ``a`` and ``b``; ``inv_mass`` [m/kg], ``inv_inertia`` [1/(kg m)] per block."""
+    ``a`` and ``b``; ``inv_mass`` (nb, 2) holds the inverse mass [m/kg] and inertia
+    [1/(kg m)] of every block."""
     if a >= 0:
-        v[a, 0] += inv_mass[a] * (jac[c, 0] * pn + jac[c, 3] * pt)
-        v[a, 1] += inv_mass[a] * (jac[c, 1] * pn + jac[c, 4] * pt)
-        v[a, 2] += inv_inertia[a] * (jac[c, 2] * pn + jac[c, 5] * pt)
+        v[a, 0] += inv_mass[a, 0] * (jac[c, 0] * pn + jac[c, 3] * pt)
+        v[a, 1] += inv_mass[a, 0] * (jac[c, 1] * pn + jac[c, 4] * pt)
+        v[a, 2] += inv_mass[a, 1] * (jac[c, 2] * pn + jac[c, 5] * pt)
     if b >= 0:
-        v[b, 0] += inv_mass[b] * (jac[c, 6] * pn + jac[c, 9] * pt)
-        v[b, 1] += inv_mass[b] * (jac[c, 7] * pn + jac[c, 10] * pt)
-        v[b, 2] += inv_inertia[b] * (jac[c, 8] * pn + jac[c, 11] * pt)
+        v[b, 0] += inv_mass[b, 0] * (jac[c, 6] * pn + jac[c, 9] * pt)
+        v[b, 1] += inv_mass[b, 0] * (jac[c, 7] * pn + jac[c, 10] * pt)
+        v[b, 2] += inv_mass[b, 1] * (jac[c, 8] * pn + jac[c, 11] * pt)
 
 
-@numba.njit(cache=True)
-def _delassus(inv_mass, inv_inertia, a, b, jac, c, w):
-    """Write the 2 x 2 Delassus block ``H_c M^-1 H_c^T`` of contact ``c`` (bodies ``a``, ``b``)
-    into ``w[c] = (W_nn, W_nt, W_tt)`` [m/kg], from the inverse masses [m/kg] and
-    inertias [1/(kg m)] and the Jacobian rows ``jac[c]``."""
+@numba.njit(cache=True, inline="always")
+def _delassus(inv_mass, a, b, jac, c):
+    """The 2 x 2 Delassus block ``H_c M^-1 H_c^T`` of contact ``c`` (bodies ``a``, ``b``),
+    ``(W_nn, W_nt, W_tt)`` [m/kg], from the inverse masses and inertias ``inv_mass`` (nb, 2)
+    and the Jacobian rows ``jac[c]``."""
     wnn = wnt = wtt = 0.0
     for body, k in ((a, 0), (b, 6)):
         if body >= 0:
-            im, ii = inv_mass[body], inv_inertia[body]
+            im, ii = inv_mass[body, 0], inv_mass[body, 1]
             wnn += im * (jac[c, k] ** 2 + jac[c, k + 1] ** 2) + ii * jac[c, k + 2] ** 2
             wnt += (im * (jac[c, k] * jac[c, k + 3] + jac[c, k + 1] * jac[c, k + 4])
                     + ii * jac[c, k + 2] * jac[c, k + 5])
             wtt += im * (jac[c, k + 3] ** 2 + jac[c, k + 4] ** 2) + ii * jac[c, k + 5] ** 2
-    w[c, 0] = wnn
-    w[c, 1] = wnt
-    w[c, 2] = wtt
+    return wnn, wnt, wtt
+
+
+# ---------------------------------------------------------------------------------------------
+# The contact problem of a step
+# ---------------------------------------------------------------------------------------------
 
 
 @numba.njit(cache=True)
-def solve_contacts(v, inv_mass, inv_inertia, ca, cb, jac, w, active, impulse, mu, tol_impulse,
+def solve_contacts(v, inv_mass, contact_bodies, jac, w, active, impulse, mu, tol_impulse,
                    max_iterations):
     r"""Projected Gauss-Seidel on the active contacts; ``v`` enters free and leaves corrected.
 
@@ -504,14 +605,14 @@ def solve_contacts(v, inv_mass, inv_inertia, ca, cb, jac, w, active, impulse, mu
     ----------
     v : array (nb, 3)
         In: the free velocities; out: the velocities at the end of the step [m/s, m/s, rad/s].
-    inv_mass, inv_inertia : array (nb,)
+    inv_mass : array (nb, 2)
         Inverse masses [m/kg] and inertias [1/(kg m)].
-    ca, cb : array of int (nc,)
+    contact_bodies : array of int (nc, 2)
         Bodies of every contact (-1: the ground).
     jac : array (nc, 12)
         Jacobian rows (:func:`contact_geometry`).
     w : array (nc, 3)
-        Delassus blocks ``(W_nn, W_nt, W_tt)`` of the active contacts [m/kg].
+        Work space: the Delassus blocks ``(W_nn, W_nt, W_tt)`` of the active contacts [m/kg].
     active : array of bool (nc,)
         The active set.
     impulse : array (nc, 2)
@@ -535,11 +636,12 @@ def solve_contacts(v, inv_mass, inv_inertia, ca, cb, jac, w, active, impulse, mu
     .. [1] V. Acary, B. Brogliato, "Numerical methods for nonsmooth dynamical systems",
        Springer (2008), Ch. 13.
     """
-    nc = ca.size
+    nc = contact_bodies.shape[0]
     for c in range(nc):
         if active[c]:
-            _apply_impulse(v, inv_mass, inv_inertia, ca[c], cb[c], jac, c,
-                           impulse[c, 0], impulse[c, 1])
+            a, b = contact_bodies[c, 0], contact_bodies[c, 1]
+            w[c, 0], w[c, 1], w[c, 2] = _delassus(inv_mass, a, b, jac, c)
+            _apply_impulse(v, inv_mass, a, b, jac, c, impulse[c, 0], impulse[c, 1])
         else:
             impulse[c, 0] = 0.0
             impulse[c, 1] = 0.0
@@ -550,7 +652,7 @@ def solve_contacts(v, inv_mass, inv_inertia, ca, cb, jac, w, active, impulse, mu
             c = i if sweeps % 2 == 0 else nc - 1 - i
             if not active[c]:
                 continue
-            a, b = ca[c], cb[c]
+            a, b = contact_bodies[c, 0], contact_bodies[c, 1]
             un, ut = _relative_velocity(v, a, b, jac, c)
             pn, pt = impulse[c, 0], impulse[c, 1]
             ufn = un - (w[c, 0] * pn + w[c, 1] * pt)
@@ -558,7 +660,7 @@ def solve_contacts(v, inv_mass, inv_inertia, ca, cb, jac, w, active, impulse, mu
             new_pn, new_pt = local_coulomb(ufn, uft, w[c, 0], w[c, 1], w[c, 2], mu)
             dpn, dpt = new_pn - pn, new_pt - pt
             if dpn != 0.0 or dpt != 0.0:
-                _apply_impulse(v, inv_mass, inv_inertia, a, b, jac, c, dpn, dpt)
+                _apply_impulse(v, inv_mass, a, b, jac, c, dpn, dpt)
                 impulse[c, 0] = new_pn
                 impulse[c, 1] = new_pt
                 change = max(change, abs(dpn) + abs(dpt))
@@ -598,14 +700,14 @@ def _gauss_solve(a, b, m):
         b[k] = s / a[k, k]
 
 
-@numba.njit(cache=True)
-def _coupling(inv_mass, inv_inertia, jac, c, side_c, d, side_d, body, out, i, k):
+@numba.njit(cache=True, inline="always")
+def _coupling(inv_mass, jac, c, side_c, d, side_d, body, out, i, k):
     """Add body ``body``'s part of the Delassus block of contacts c, d,
     ``H_c,body M_body^-1 H_d,body^T`` [m/kg], to the 2 x 2 block ``out[2i:2i+2, 2k:2k+2]``;
     ``side_c``, ``side_d`` (0 or 6) say whether the body is a or b of each contact (the column
-    of its rows in ``jac``), ``inv_mass`` [m/kg] and ``inv_inertia`` [1/(kg m)] are per
-    block."""
-    im, ii = inv_mass[body], inv_inertia[body]
+    of its rows in ``jac``), ``inv_mass`` (nb, 2) holds the inverse masses [m/kg] and inertias
+    [1/(kg m)]."""
+    im, ii = inv_mass[body, 0], inv_mass[body, 1]
     for alpha in range(2):
         gc = side_c + 3 * alpha
         for beta in range(2):
@@ -616,15 +718,15 @@ def _coupling(inv_mass, inv_inertia, jac, c, side_c, d, side_d, body, out, i, k)
 
 
 @numba.njit(cache=True)
-def solve_active_set(v, inv_mass, inv_inertia, ca, cb, jac, active, impulse, state, mu,
-                     p_tol, u_tol, regularisation, max_iterations, idx, wmat, amat, rhs, uf):
+def solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse, state, mu, p_tol, u_tol,
+                     idx, wmat, amat, rhs, uf):
     r"""Contact problem of a step by a primal-dual active-set method; ``v`` enters free.
 
     Every active contact has a state (-1 for an inactive one): 0 open (``P = 0``), 1 stick
     (``u = 0``), 2 slide with ``P_t = +mu P_n`` and 3 slide with ``P_t = -mu P_n``
     (``u_n = 0``). For the current states the impulses solve one linear system in the
     Delassus matrix ``W = H M^-1 H^T`` (assembled once), with
-    ``u = u^f + W P`` and :math:`\rho` = ``regularisation``:
+    ``u = u^f + W P`` and :math:`\rho` = :data:`REGULARISATION`:
 
     .. math::
 
@@ -649,21 +751,22 @@ def solve_active_set(v, inv_mass, inv_inertia, ca, cb, jac, active, impulse, sta
         \text{slide } \sigma \to \text{stick if } \sigma u_t > \epsilon_u
 
     (``u`` evaluated without the compliance). After :data:`SINGLE_SWITCH_AFTER` solves only the
-    first contradicted state is switched per solve. The compliance picks the smallest impulses
-    among the statically indeterminate ones (the split of the friction force between the two
-    ends of a joint). The states start from the previous step's; a newly active contact starts
-    sticking. On convergence the impulses are written to ``impulse`` and applied to ``v``;
-    otherwise ``v`` and ``impulse`` keep their input values (the impulses of the previous step,
-    0 for an inactive contact) and the caller falls back to Gauss-Seidel.
+    first contradicted state is switched per solve; after :data:`ACTIVE_SET_SOLVES` the method
+    gives up. The compliance picks the smallest impulses among the statically indeterminate
+    ones (the split of the friction force between the two ends of a joint). The states start
+    from the previous step's; a newly active contact starts sticking. On convergence the
+    impulses are written to ``impulse`` and applied to ``v``; otherwise ``v`` and ``impulse``
+    keep their input values (the impulses of the previous step, 0 for an inactive contact) and
+    the caller falls back to Gauss-Seidel.
 
     Parameters
     ----------
     v : array (nb, 3)
         In: the free velocities; out (if converged): the velocities at the end of the step
         [m/s, m/s, rad/s].
-    inv_mass, inv_inertia : array (nb,)
+    inv_mass : array (nb, 2)
         Inverse masses [m/kg] and inertias [1/(kg m)].
-    ca, cb : array of int (nc,)
+    contact_bodies : array of int (nc, 2)
         Bodies of every contact (-1: the ground).
     jac : array (nc, 12)
         Jacobian rows (:func:`contact_geometry`).
@@ -678,10 +781,6 @@ def solve_active_set(v, inv_mass, inv_inertia, ca, cb, jac, active, impulse, sta
     p_tol, u_tol : float
         Tolerances :math:`\epsilon_P` [N s/m] and :math:`\epsilon_u` [m/s] of the switching
         tests.
-    regularisation : float
-        Compliance :math:`\rho` relative to the diagonal [-].
-    max_iterations : int
-        Largest number of linear solves.
     idx, wmat, amat, rhs, uf : arrays
         Work space: (nc,) int, (2 nc, 2 nc), (2 nc, 2 nc), (2 nc,), (2 nc,).
 
@@ -692,7 +791,7 @@ def solve_active_set(v, inv_mass, inv_inertia, ca, cb, jac, active, impulse, sta
     converged : bool
         Whether a consistent set of states was found.
     """
-    nc = ca.size
+    nc = contact_bodies.shape[0]
     m = 0
     for c in range(nc):
         if active[c]:
@@ -710,26 +809,28 @@ def solve_active_set(v, inv_mass, inv_inertia, ca, cb, jac, active, impulse, sta
     wmat[:size, :size] = 0.0
     for i in range(m):
         c = idx[i]
-        un, ut = _relative_velocity(v, ca[c], cb[c], jac, c)
+        ca, cb = contact_bodies[c, 0], contact_bodies[c, 1]
+        un, ut = _relative_velocity(v, ca, cb, jac, c)
         uf[2 * i] = un
         uf[2 * i + 1] = ut
         for k in range(i, m):
             d = idx[k]
+            da, db = contact_bodies[d, 0], contact_bodies[d, 1]
             for side_c in (0, 6):
-                body = ca[c] if side_c == 0 else cb[c]
+                body = ca if side_c == 0 else cb
                 if body < 0:
                     continue
-                if ca[d] == body:
-                    _coupling(inv_mass, inv_inertia, jac, c, side_c, d, 0, body, wmat, i, k)
-                if cb[d] == body:
-                    _coupling(inv_mass, inv_inertia, jac, c, side_c, d, 6, body, wmat, i, k)
+                if da == body:
+                    _coupling(inv_mass, jac, c, side_c, d, 0, body, wmat, i, k)
+                if db == body:
+                    _coupling(inv_mass, jac, c, side_c, d, 6, body, wmat, i, k)
         for k in range(i + 1, m):
             for alpha in range(2):
                 for beta in range(2):
                     wmat[2 * k + beta, 2 * i + alpha] = wmat[2 * i + alpha, 2 * k + beta]
     solves = 0
     converged = False
-    while solves < max_iterations:
+    while solves < ACTIVE_SET_SOLVES:
         amat[:size, :size] = 0.0
         for i in range(m):
             c = idx[i]
@@ -743,12 +844,12 @@ def solve_active_set(v, inv_mass, inv_inertia, ca, cb, jac, active, impulse, sta
                 continue
             for j in range(size):
                 amat[rn, j] = wmat[rn, j]
-            amat[rn, rn] += regularisation * wmat[rn, rn]
+            amat[rn, rn] += REGULARISATION * wmat[rn, rn]
             rhs[rn] = -uf[rn]
             if st == 1:
                 for j in range(size):
                     amat[rt, j] = wmat[rt, j]
-                amat[rt, rt] += regularisation * wmat[rt, rt]
+                amat[rt, rt] += REGULARISATION * wmat[rt, rt]
                 rhs[rt] = -uf[rt]
             else:
                 amat[rt, rt] = 1.0
@@ -791,27 +892,197 @@ def solve_active_set(v, inv_mass, inv_inertia, ca, cb, jac, active, impulse, sta
             c = idx[i]
             impulse[c, 0] = rhs[2 * i] if state[c] != 0 else 0.0
             impulse[c, 1] = rhs[2 * i + 1] if state[c] != 0 else 0.0
-            _apply_impulse(v, inv_mass, inv_inertia, ca[c], cb[c], jac, c,
+            _apply_impulse(v, inv_mass, contact_bodies[c, 0], contact_bodies[c, 1], jac, c,
                            impulse[c, 0], impulse[c, 1])
     return solves, converged
 
 
+# ---------------------------------------------------------------------------------------------
+# Parts of the driver loop
+# ---------------------------------------------------------------------------------------------
+
+
+@numba.njit(cache=True, inline="always")
+def _kinetic_energy(bodies, v):
+    """Kinetic energy :math:`T` of the blocks at velocities ``v`` (nb, 3) [J/m]."""
+    kinetic = 0.0
+    for i in range(bodies.shape[0]):
+        kinetic += 0.5 * (bodies[i, BODY_MASS] * (v[i, 0] ** 2 + v[i, 1] ** 2)
+                          + bodies[i, BODY_INERTIA] * v[i, 2] ** 2)
+    return kinetic
+
+
+@numba.njit(cache=True, inline="always")
+def _measure(q, bodies, gravity, crown_block, crown_x, crown_y):
+    """Potential energy [J/m], largest block rotation [rad], and the drops [m] at ``q``: the
+    largest downward displacement of a centroid or of the crown point, and the crown's.
+
+    Returns ``(potential, max_rotation, drop, crown_drop)``."""
+    potential = 0.0
+    drop = 0.0
+    rotation = 0.0
+    for i in range(bodies.shape[0]):
+        potential += bodies[i, BODY_MASS] * gravity * q[i, 1]
+        drop = max(drop, -q[i, 1])
+        rotation = max(rotation, abs(q[i, 2]))
+    cos_c, sin_c = math.cos(q[crown_block, 2]), math.sin(q[crown_block, 2])
+    _, cy = _rotate(cos_c, sin_c, crown_x, crown_y)
+    crown_drop = -(q[crown_block, 1] + cy - crown_y)
+    return potential, rotation, max(drop, crown_drop), crown_drop
+
+
+@numba.njit(cache=True, inline="always")
+def _joints(gap, slip, valid, closed_gap, max_slip, max_opening):
+    """The joints at the current step: the largest slip (at the more closed end of a joint)
+    and opening (of a valid contact) so far [m], and whether every joint is closed (both of
+    its contacts valid with a gap at most ``closed_gap`` [m]).
+
+    Returns ``(max_slip, max_opening, closed)``."""
+    closed = True
+    for j in range(gap.size // 2):
+        c0, c1 = 2 * j, 2 * j + 1
+        closer = c0 if gap[c0] <= gap[c1] else c1
+        max_slip = max(max_slip, abs(slip[closer]))
+        for c in (c0, c1):
+            if valid[c]:
+                max_opening = max(max_opening, gap[c])
+                if gap[c] > closed_gap:
+                    closed = False
+            else:
+                closed = False
+    return max_slip, max_opening, closed
+
+
+@numba.njit("float64[:, ::1](float64[:, ::1], int64)", cache=True)
+def _grow(buffer, n):
+    """``buffer`` (rows, k) with room for row ``n``: itself, or a copy twice as long.
+
+    Its signature is declared: numba would otherwise compile it once more for the literal first
+    row (0) of a record."""
+    if n < buffer.shape[0]:
+        return buffer
+    out = np.empty((2 * buffer.shape[0], buffer.shape[1]))
+    out[:buffer.shape[0]] = buffer
+    return out
+
+
+@numba.njit(cache=True, inline="always")
+def _record(n, t, q, gap, slip, impulse, h, energies, rec_energy, rec_q, rec_contacts):
+    """Record the state at ``t`` [s] as row ``n``: time and the energies ``(T, V, D, W)``
+    [J/m], the displacements [m, m, rad], and per contact the gap and offset [m] and the mean
+    forces ``P / h`` [N/m] of the step that ends here. The buffers grow as needed.
+
+    Returns ``(rec_energy, rec_q, rec_contacts)``."""
+    rec_energy = _grow(rec_energy, n)
+    rec_q = _grow(rec_q, n)
+    rec_contacts = _grow(rec_contacts, n)
+    rec_energy[n, 0] = t
+    for k in range(4):
+        rec_energy[n, 1 + k] = energies[k]
+    nb = q.shape[0]
+    for i in range(nb):
+        for k in range(3):
+            rec_q[n, 3 * i + k] = q[i, k]
+    nc = gap.size
+    for c in range(nc):
+        rec_contacts[n, c] = gap[c]
+        rec_contacts[n, nc + c] = slip[c]
+        rec_contacts[n, 2 * nc + 2 * c] = impulse[c, 0] / h
+        rec_contacts[n, 2 * nc + 2 * c + 1] = impulse[c, 1] / h
+    return rec_energy, rec_q, rec_contacts
+
+
+@numba.njit(cache=True, inline="always")
+def _decide(t, drop, kinetic, potential, closed, max_opening, max_slip, rest_count, settings):
+    r"""The outcome tests at ``t`` [s] (docstring of :func:`run`).
+
+    Returns ``(status, rest_count)``: :data:`COLLAPSE`, :data:`RECOVERY`, :data:`REST` or -1
+    (undecided), and the count of consecutive still steps."""
+    after = t >= settings[S_EXCITATION_END]
+    if drop >= settings[S_DROP_LIMIT] or (after and kinetic + potential
+                                          < -settings[S_ENERGY_MARGIN]):
+        return COLLAPSE, rest_count
+    if after and kinetic <= settings[S_REST_ENERGY]:
+        rest_count += 1
+        needed = settings[S_REST_STEPS] if closed else settings[S_OPEN_REST_STEPS]
+        if rest_count >= needed:
+            moved = (max_opening > settings[S_MOVED_THRESHOLD]
+                     or max_slip > settings[S_MOVED_THRESHOLD])
+            return (RECOVERY if moved else REST), rest_count
+        return -1, rest_count
+    return -1, 0
+
+
+@numba.njit(cache=True, inline="always")
+def _free_velocities(v, v_old, h, ag, gravity):
+    """Keep ``v`` (nb, 3) in ``v_old`` and make it the free velocity of the step: the impulse of
+    the weight and of the inertial force ``-m ag`` over ``h`` [s], ``ag`` the mean ground
+    acceleration [m/s^2]."""
+    for i in range(v.shape[0]):
+        v_old[i, 0] = v[i, 0]
+        v_old[i, 1] = v[i, 1]
+        v_old[i, 2] = v[i, 2]
+        v[i, 0] -= h * ag
+        v[i, 1] -= h * gravity
+
+
+@numba.njit(cache=True, inline="always")
+def _active_set(gap, valid, v_old, contact_bodies, contacts, jac, theta, h, active):
+    r"""The active set: the valid contacts whose predicted gap
+    :math:`g + \theta h u_n(v_k)` is at most :data:`ACTIVATION_GAP` times their joint's
+    length."""
+    for c in range(gap.size):
+        if valid[c]:
+            un, _ = _relative_velocity(v_old, contact_bodies[c, 0], contact_bodies[c, 1], jac, c)
+            active[c] = gap[c] + theta * h * un <= ACTIVATION_GAP * contacts[c, LENGTH]
+        else:
+            active[c] = False
+
+
+@numba.njit(cache=True, inline="always")
+def _contact_work(v_old, v, contact_bodies, jac, active, impulse):
+    r"""Work of the contact impulses over the step [J/m],
+    :math:`\sum_c P_c \cdot H_c (v_k + v_{k+1}) / 2`."""
+    work = 0.0
+    for c in range(active.size):
+        if active[c]:
+            a, b = contact_bodies[c, 0], contact_bodies[c, 1]
+            un0, ut0 = _relative_velocity(v_old, a, b, jac, c)
+            un1, ut1 = _relative_velocity(v, a, b, jac, c)
+            work += 0.5 * ((un0 + un1) * impulse[c, 0] + (ut0 + ut1) * impulse[c, 1])
+    return work
+
+
+@numba.njit(cache=True, inline="always")
+def _advance(q, v_old, v, bodies, h, theta, ag):
+    r"""Positions :math:`q_{k+1} = q_k + h ((1 - \theta) v_k + \theta v_{k+1})`, in place.
+
+    Returns the work of the inertial forces over the step and the kinetic energy at its end
+    [J/m]."""
+    work = 0.0
+    kinetic = 0.0
+    for i in range(q.shape[0]):
+        m = bodies[i, BODY_MASS]
+        work -= m * h * ag * 0.5 * (v_old[i, 0] + v[i, 0])
+        kinetic += 0.5 * (m * (v[i, 0] ** 2 + v[i, 1] ** 2)
+                          + bodies[i, BODY_INERTIA] * v[i, 2] ** 2)
+        for k in range(3):
+            q[i, k] += h * ((1.0 - theta) * v_old[i, k] + theta * v[i, k])
+    return work, kinetic
+
+
+# ---------------------------------------------------------------------------------------------
+# The driver
+# ---------------------------------------------------------------------------------------------
+
+
 @numba.njit(cache=True)
-def run(masses, inertias, centroids, ca, cb, ra, rb, normal, tangent, offset, face_lo, face_hi,
-        length,
-        crown_block, crown_point, q0, v0,
-        kind, params, times, values,
-        h, theta, mu, tolerance, max_iterations, gravity,
-        excitation_end, n_steps, drop_limit, rest_energy, closed_gap, rest_steps,
-        open_rest_steps, moved_threshold, energy_margin, record_stride, tail_steps):
+def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, settings):
     r"""Integrate the blocks from ``(q0, v0)`` under the ground motion; decide the outcome.
 
-    Every step first measures the state at :math:`t_k` (records it, if recording) and tests
-    the outcome, then makes one Moreau-Jean step (module docstring): free velocities, active
-    set, contact problem (:func:`solve_active_set`, else :func:`solve_contacts`), energy
-    bookkeeping, positions. With :math:`\delta` the largest downward displacement of a block
-    centroid or of the crown point [m], ``T`` and ``V`` the kinetic and potential energy
-    [J/m], the outcome is
+    One loop of the driver is one step, in the phases of the module docstring ("The driver").
+    With :math:`\delta` the largest downward displacement of a block centroid or of the crown
+    point [m], ``T`` and ``V`` the kinetic and potential energy [J/m], the outcome is
 
     .. math::
 
@@ -830,75 +1101,56 @@ def run(masses, inertias, centroids, ca, cb, ra, rb, normal, tangent, offset, fa
 
     Parameters
     ----------
-    masses, inertias : array (nb,)
-        Masses [kg/m] and polar moments of inertia [kg m].
-    centroids : array (nb, 2)
-        Undeformed centroids [m].
-    ca, cb, ra, rb, normal, tangent, offset, face_lo, face_hi, length : arrays
-        The contacts, from :func:`archquake.rigid_blocks.dynamics.contact_arrays` [m, -].
-    crown_block : int
-        Block that carries the crown point.
-    crown_point : array (2,)
-        Crown point relative to that block's centroid [m].
+    bodies : array (nb, 4)
+        The blocks (:data:`BODY_FIELDS`).
+    contacts : array (nc, 12)
+        The contacts (:data:`CONTACT_FIELDS`).
+    contact_bodies : array of int (nc, 2)
+        Bodies a and b of every contact (-1: the ground).
     q0, v0 : array (nb, 3)
         Initial displacements [m, m, rad] and velocities [m/s, m/s, rad/s].
     kind, params, times, values
-        The compiled ground motion (``GroundMotion.compiled()``;
-        accelerations [m/s^2], times [s]).
-    h : float
-        Time step [s].
-    theta : float
-        Parameter of the theta-method [-].
-    mu : float
-        Friction coefficient [-].
-    tolerance : float
-        Gauss-Seidel tolerance as a fraction of ``m_mean g h`` [-].
-    max_iterations : int
-        Largest number of Gauss-Seidel sweeps per step.
-    gravity : float
-        Acceleration of gravity g [m/s^2].
-    excitation_end : float
-        End of the excitation :math:`t_{exc}` [s].
-    n_steps : int
-        Largest number of steps.
-    drop_limit : float
-        Drop of collapse :math:`\delta_{lim}` [m].
-    rest_energy : float
-        Kinetic energy of rest :math:`T_{rest}` [J/m].
-    closed_gap : float
-        Largest gap of a closed contact [m].
-    rest_steps, open_rest_steps : int
-        Steps of rest that decide a recovery with every joint closed, and with a joint open.
-    moved_threshold : float
-        Opening and slip [m] at or below which the structure never moved.
-    energy_margin : float
-        :math:`E_{margin}` of the energy test of collapse [J/m].
-    record_stride : int
-        With ``record_stride > 0``, every ``record_stride``-th state is recorded and the run
-        goes on ``tail_steps`` steps after the outcome is decided (or to ``n_steps`` if
+        The compiled ground motion (``GroundMotion.compiled()``; accelerations [m/s^2], times
+        [s]).
+    settings : array
+        The settings vector (:data:`SETTINGS_FIELDS`, :func:`pack_settings`). With
+        ``record_stride > 0``, every ``record_stride``-th state is recorded and the run goes on
+        ``tail_steps`` steps after the outcome is decided (or to ``n_steps`` if
         ``tail_steps < 0``); with 0 it stops at the decision.
-    tail_steps : int
-        Steps run after the decision when recording.
 
     Returns
     -------
     summary : array (len(SUMMARY_FIELDS),)
         The fields of :data:`SUMMARY_FIELDS`, as floats.
     records : tuple of arrays
-        ``(t, q, gap, slip, impulse / h, energy)``: times [s] (nr,), displacements
-        [m, m, rad] (nr, nb, 3), gaps and tangential offsets [m] (nr, nc), mean contact forces
-        ``(normal, tangential)`` over the step that ends at each record [N/m] (nr, nc, 2), and
-        energy columns kinetic, potential, dissipated, input [J/m] (nr, 4); empty when not
-        recording.
+        ``(energies, q, contacts)`` over the records: (nr, 5) the columns of
+        :data:`RECORD_ENERGY_FIELDS`; (nr, 3 nb) the displacements ``(x, y, theta)`` of every
+        block [m, m, rad]; (nr, 4 nc) the gaps, then the tangential offsets [m], then the mean
+        contact forces ``(normal, tangential)`` of every contact over the step that ends at the
+        record [N/m]. Empty when not recording.
     """
-    nb = masses.size
-    nc = ca.size
-    inv_mass = 1.0 / masses
-    inv_inertia = 1.0 / inertias
-    tol_impulse = tolerance * masses.mean() * gravity * h
+    # -------- 0. set up
+    nb, nc = bodies.shape[0], contacts.shape[0]
+    h, theta, mu = settings[S_TIME_STEP], settings[S_THETA], settings[S_FRICTION]
+    gravity = settings[S_GRAVITY]
+    n_steps = int(settings[S_N_STEPS])
+    max_iterations = int(settings[S_MAX_ITERATIONS])
+    record_stride = int(settings[S_RECORD_STRIDE])
+    tail_steps = int(settings[S_TAIL_STEPS])
+    crown_block = int(settings[S_CROWN_BLOCK])
+    crown_x, crown_y = settings[S_CROWN_X], settings[S_CROWN_Y]
+    mean_mass = bodies[:, BODY_MASS].mean()
+    tol_impulse = settings[S_TOLERANCE] * mean_mass * gravity * h
+    p_tol = 1e-12 * mean_mass * gravity * h
+    u_tol = 1e-12 * gravity * h
+    inv_mass = np.empty((nb, 2))
+    for i in range(nb):
+        inv_mass[i, 0] = 1.0 / bodies[i, BODY_MASS]
+        inv_mass[i, 1] = 1.0 / bodies[i, BODY_INERTIA]
     q = q0.copy()
     v = v0.copy()
     v_old = np.empty_like(v)
+    trig = np.empty((nb, 2))
     gap = np.zeros(nc)
     slip = np.zeros(nc)
     valid = np.zeros(nc, dtype=np.bool_)
@@ -912,149 +1164,79 @@ def run(masses, inertias, centroids, ca, cb, ra, rb, normal, tangent, offset, fa
     amat = np.zeros((2 * nc, 2 * nc))
     rhs = np.zeros(2 * nc)
     uf = np.zeros(2 * nc)
-    p_tol = 1e-12 * masses.mean() * gravity * h
-    u_tol = 1e-12 * gravity * h
-    fallbacks = 0
     recording = record_stride > 0
-    n_records = n_steps // record_stride + 2 if recording else 0
-    rec_t = np.zeros(n_records)
-    rec_q = np.zeros((n_records, nb, 3))
-    rec_gap = np.zeros((n_records, nc))
-    rec_slip = np.zeros((n_records, nc))
-    rec_force = np.zeros((n_records, nc, 2))
-    rec_energy = np.zeros((n_records, 4))
+    capacity = min(n_steps // record_stride + 2, 1024) if recording else 1
+    rec_energy = np.zeros((capacity, 5))
+    rec_q = np.zeros((capacity, 3 * nb))
+    rec_contacts = np.zeros((capacity, 4 * nc))
     n_rec = 0
+    energies = np.zeros(4)  # kinetic, potential, dissipated, input [J/m]
 
-    kinetic = 0.0
-    for i in range(nb):
-        kinetic += 0.5 * (masses[i] * (v[i, 0] ** 2 + v[i, 1] ** 2) + inertias[i] * v[i, 2] ** 2)
-    dissipated = 0.0
-    work_input = 0.0
+    energies[0] = _kinetic_energy(bodies, v)
     status = -1
     decided = False
     collapse_time = math.nan
     decision_time = math.nan
-    max_rotation = 0.0
-    max_crown_drop = 0.0
-    max_slip = 0.0
-    max_opening = 0.0
-    max_drop = 0.0
+    max_rotation = max_crown_drop = max_slip = max_opening = max_drop = 0.0
     rest_count = 0
     closed = True
-    iterations = 0
-    max_used = 0
-    unconverged = 0
+    iterations = max_used = unconverged = fallbacks = 0
     stop_step = n_steps
     step = 0
-    t = 0.0
     while step < stop_step:
         t = step * h
-        contact_geometry(q, centroids, ca, cb, ra, rb, normal, tangent, offset, face_lo,
-                         face_hi, gap, slip, valid, jac)
-        # --- measurements of the state at t_k
-        potential = 0.0
-        drop = 0.0
-        for i in range(nb):
-            potential += masses[i] * gravity * q[i, 1]
-            drop = max(drop, -q[i, 1])
-            max_rotation = max(max_rotation, abs(q[i, 2]))
-        cos_c, sin_c = math.cos(q[crown_block, 2]), math.sin(q[crown_block, 2])
-        cx, cy = _rotate(cos_c, sin_c, crown_point[0], crown_point[1])
-        crown_drop = -(q[crown_block, 1] + cy - crown_point[1])
+        # -------- 1. geometry
+        contact_geometry(q, bodies, contacts, contact_bodies, trig, gap, slip, valid, jac)
+        # -------- 2. measure
+        energies[1], rotation, drop, crown_drop = _measure(q, bodies, gravity, crown_block,
+                                                           crown_x, crown_y)
+        max_rotation = max(max_rotation, rotation)
         max_crown_drop = max(max_crown_drop, crown_drop)
-        drop = max(drop, crown_drop)
         max_drop = max(max_drop, drop)
-        closed = True
-        for j in range(nc // 2):
-            c0, c1 = 2 * j, 2 * j + 1
-            closer = c0 if gap[c0] <= gap[c1] else c1
-            max_slip = max(max_slip, abs(slip[closer]))
-            for c in (c0, c1):
-                if valid[c]:
-                    max_opening = max(max_opening, gap[c])
-                    if gap[c] > closed_gap:
-                        closed = False
-                else:
-                    closed = False
+        max_slip, max_opening, closed = _joints(gap, slip, valid, settings[S_CLOSED_GAP],
+                                                max_slip, max_opening)
+        # -------- 3. record
         if recording and step % record_stride == 0:
-            rec_t[n_rec] = t
-            rec_q[n_rec] = q
-            rec_gap[n_rec] = gap
-            rec_slip[n_rec] = slip
-            for c in range(nc):
-                rec_force[n_rec, c, 0] = impulse[c, 0] / h
-                rec_force[n_rec, c, 1] = impulse[c, 1] / h
-            rec_energy[n_rec, 0] = kinetic
-            rec_energy[n_rec, 1] = potential
-            rec_energy[n_rec, 2] = dissipated
-            rec_energy[n_rec, 3] = work_input
+            rec_energy, rec_q, rec_contacts = _record(n_rec, t, q, gap, slip, impulse, h,
+                                                      energies, rec_energy, rec_q, rec_contacts)
             n_rec += 1
-        # --- decisions
+        # -------- 4. decide
         if not decided:
-            after = t >= excitation_end
-            if drop >= drop_limit or (after and kinetic + potential < -energy_margin):
-                status = COLLAPSE
+            status, rest_count = _decide(t, drop, energies[0], energies[1], closed, max_opening,
+                                         max_slip, rest_count, settings)
+            if status == COLLAPSE:
                 collapse_time = t
-            elif after and kinetic <= rest_energy:
-                rest_count += 1
-                if rest_count >= (rest_steps if closed else open_rest_steps):
-                    moved = max_opening > moved_threshold or max_slip > moved_threshold
-                    status = RECOVERY if moved else REST
-            else:
-                rest_count = 0
             if status >= 0:
                 decided = True
                 decision_time = t
+                # -------- 5. stop?
                 if not recording:
                     break
                 stop_step = n_steps if tail_steps < 0 else min(n_steps, step + tail_steps + 1)
                 if step + 1 >= stop_step:
                     break
-        # --- one Moreau-Jean step
+        # -------- 6. free velocities
         ag = mean_acceleration(t, t + h, kind, params, times, values)
-        for i in range(nb):
-            v_old[i, 0] = v[i, 0]
-            v_old[i, 1] = v[i, 1]
-            v_old[i, 2] = v[i, 2]
-            v[i, 0] -= h * ag
-            v[i, 1] -= h * gravity
-        for c in range(nc):
-            if valid[c]:
-                un, _ = _relative_velocity(v_old, ca[c], cb[c], jac, c)
-                active[c] = gap[c] + theta * h * un <= ACTIVATION_GAP * length[c]
-            else:
-                active[c] = False
-        sweeps, converged = solve_active_set(
-            v, inv_mass, inv_inertia, ca, cb, jac, active, impulse, state, mu, p_tol, u_tol,
-            REGULARISATION, ACTIVE_SET_SOLVES, idx, wmat, amat, rhs, uf)
+        _free_velocities(v, v_old, h, ag, gravity)
+        # -------- 7. active set
+        _active_set(gap, valid, v_old, contact_bodies, contacts, jac, theta, h, active)
+        # -------- 8. the contact problem
+        sweeps, converged = solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse,
+                                             state, mu, p_tol, u_tol, idx, wmat, amat, rhs, uf)
         if not converged:  # fall back to Gauss-Seidel from the last impulses
             fallbacks += 1
-            for c in range(nc):
-                if active[c]:
-                    _delassus(inv_mass, inv_inertia, ca[c], cb[c], jac, c, w)
-            sweeps, converged = solve_contacts(v, inv_mass, inv_inertia, ca, cb, jac, w, active,
+            sweeps, converged = solve_contacts(v, inv_mass, contact_bodies, jac, w, active,
                                                impulse, mu, tol_impulse, max_iterations)
         iterations += sweeps
         max_used = max(max_used, sweeps)
         if not converged:
             unconverged += 1
-        # --- energy bookkeeping (exact for theta = 1/2) and positions
-        contact_work = 0.0
-        for c in range(nc):
-            if active[c]:
-                un0, ut0 = _relative_velocity(v_old, ca[c], cb[c], jac, c)
-                un1, ut1 = _relative_velocity(v, ca[c], cb[c], jac, c)
-                contact_work += 0.5 * ((un0 + un1) * impulse[c, 0] + (ut0 + ut1) * impulse[c, 1])
-        dissipated -= contact_work
-        kinetic = 0.0
-        for i in range(nb):
-            work_input -= masses[i] * h * ag * 0.5 * (v_old[i, 0] + v[i, 0])
-            kinetic += 0.5 * (masses[i] * (v[i, 0] ** 2 + v[i, 1] ** 2)
-                              + inertias[i] * v[i, 2] ** 2)
-            for k in range(3):
-                q[i, k] += h * ((1.0 - theta) * v_old[i, k] + theta * v[i, k])
+        # -------- 9. advance: energy bookkeeping (exact for theta = 1/2) and positions
+        energies[2] -= _contact_work(v_old, v, contact_bodies, jac, active, impulse)
+        work, energies[0] = _advance(q, v_old, v, bodies, h, theta, ag)
+        energies[3] += work
         step += 1
-    summary = np.zeros(_N_SUMMARY)
+    summary = np.zeros(len(SUMMARY_FIELDS))
     summary[0] = status
     summary[1] = 1.0 if decided else 0.0
     summary[2] = collapse_time
@@ -1071,5 +1253,4 @@ def run(masses, inertias, centroids, ca, cb, ra, rb, normal, tangent, offset, fa
     summary[13] = step * h
     summary[14] = 1.0 if closed else 0.0
     summary[15] = fallbacks
-    return summary, (rec_t[:n_rec], rec_q[:n_rec], rec_gap[:n_rec], rec_slip[:n_rec],
-                     rec_force[:n_rec], rec_energy[:n_rec])
+    return summary, (rec_energy[:n_rec], rec_q[:n_rec], rec_contacts[:n_rec])
