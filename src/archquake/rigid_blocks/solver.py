@@ -118,10 +118,16 @@ the Delassus matrix:
 It is solved exactly (to round-off) by a primal-dual active-set method,
 :func:`solve_active_set`: guess the state of every contact (open, stick, slide either way; the
 previous step's states), solve the linear system in the impulses that the states define, switch
-the states that the solution contradicts, repeat (usually 1-2 solves of a system of at most
-2 x 2(n+1) unknowns; the normal rows of the contacts that stick or slide and the tangential
-rows of the sticking ones carry a compliance of :data:`REGULARISATION` times their diagonal,
-which picks the smallest of the statically indeterminate impulses). Should the states cycle
+the states that the solution contradicts, repeat (usually 1-2 solves; the normal rows of the
+contacts that stick or slide and the tangential rows of the sticking ones carry a compliance of
+:data:`REGULARISATION` times their diagonal, which picks the smallest of the statically
+indeterminate impulses). Two contacts couple only through a block they both touch, so with the
+contacts numbered joint by joint ``W`` is a band matrix (for an arch each joint couples with its
+two neighbours: half-bandwidth 7 in the impulses, whatever the number of blocks): it is
+assembled block by block and solved in band storage, by Cholesky's factorisation when no
+contact slides (the system is then symmetric positive definite), else by Gaussian elimination
+(:func:`band_cholesky_solve`, :func:`band_lu_solve`, :func:`band_solve`): a step costs time and
+memory linear in the number of blocks. Should the states cycle
 (a few steps of a collapse at large amplitude, where contacts slide and separate together;
 counted in the outcome), projected Gauss-Seidel takes over [2]_ (Ch. 13),
 :func:`solve_contacts`: sweeps forward and backward in turn, each contact's problem solved
@@ -238,7 +244,7 @@ time [s]; 1 if every joint was closed at the end; steps left to Gauss-Seidel [-]
 
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, _nrt=False)
 def mean_acceleration(t0, t1, kind, params, times, values):
     r"""Mean ground acceleration [m/s^2] over ``[t0, t1]`` [s]: its exact integral / (t1 - t0).
 
@@ -297,7 +303,7 @@ def mean_acceleration(t0, t1, kind, params, times, values):
     return total / (t1 - t0)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, _nrt=False)
 def local_coulomb(ufn, uft, wnn, wnt, wtt, mu):
     r"""Exact solution of one contact's problem: impulses ``(P_n, P_t)`` [N s/m].
 
@@ -436,7 +442,7 @@ def _rotate(c, s, x, y):
     return c * x - s * y, s * x + c * y
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, _nrt=False)
 def contact_geometry(q, bodies, contacts, contact_bodies, trig, gap, slip, valid, jac):
     r"""Gap [m], tangential offset [m], validity and Jacobian rows of every contact at ``q``.
 
@@ -533,15 +539,24 @@ def contact_geometry(q, bodies, contacts, contact_bodies, trig, gap, slip, valid
 def _relative_velocity(v, a, b, jac, c):
     """Normal and tangential relative velocity ``(u_n, u_t)`` [m/s] of contact ``c`` between
     bodies ``a`` and ``b`` (-1: the ground) for block velocities ``v`` (nb, 3) [m/s, m/s,
-    rad/s], through its Jacobian rows ``jac[c]`` (:func:`contact_geometry`)."""
+    rad/s], through its Jacobian rows ``jac[c]`` (:func:`contact_geometry`).
+
+    The indices are cast to unsigned integers once they are known to be >= 0: numba checks a
+    signed index for wrapping around (a negative index counts from the end) at every access,
+    which here cost as much as the arithmetic (so in the other helpers of every contact)."""
+    uc = np.uint64(c)
     un = 0.0
     ut = 0.0
     if a >= 0:
-        un += jac[c, 0] * v[a, 0] + jac[c, 1] * v[a, 1] + jac[c, 2] * v[a, 2]
-        ut += jac[c, 3] * v[a, 0] + jac[c, 4] * v[a, 1] + jac[c, 5] * v[a, 2]
+        ua = np.uint64(a)
+        va0, va1, va2 = v[ua, 0], v[ua, 1], v[ua, 2]
+        un += jac[uc, 0] * va0 + jac[uc, 1] * va1 + jac[uc, 2] * va2
+        ut += jac[uc, 3] * va0 + jac[uc, 4] * va1 + jac[uc, 5] * va2
     if b >= 0:
-        un += jac[c, 6] * v[b, 0] + jac[c, 7] * v[b, 1] + jac[c, 8] * v[b, 2]
-        ut += jac[c, 9] * v[b, 0] + jac[c, 10] * v[b, 1] + jac[c, 11] * v[b, 2]
+        ub = np.uint64(b)
+        vb0, vb1, vb2 = v[ub, 0], v[ub, 1], v[ub, 2]
+        un += jac[uc, 6] * vb0 + jac[uc, 7] * vb1 + jac[uc, 8] * vb2
+        ut += jac[uc, 9] * vb0 + jac[uc, 10] * vb1 + jac[uc, 11] * vb2
     return un, ut
 
 
@@ -549,22 +564,27 @@ def _relative_velocity(v, a, b, jac, c):
 def _apply_impulse(v, inv_mass, a, b, jac, c, pn, pt):
     """Add to the velocities ``v`` (nb, 3) [m/s, m/s, rad/s], in place, the change
     ``M^-1 H_c^T (pn, pt)`` that the impulses ``pn, pt`` [N s/m] of contact ``c`` give bodies
-    ``a`` and ``b``; ``inv_mass`` (nb, 2) holds the inverse mass [m/kg] and inertia
-    [1/(kg m)] of every block."""
+    ``a`` and ``b``; ``inv_mass`` (nb, >= 2) holds the inverse mass [m/kg] and inertia
+    [1/(kg m)] of every block (unsigned indices: :func:`_relative_velocity`)."""
+    uc = np.uint64(c)
     if a >= 0:
-        v[a, 0] += inv_mass[a, 0] * (jac[c, 0] * pn + jac[c, 3] * pt)
-        v[a, 1] += inv_mass[a, 0] * (jac[c, 1] * pn + jac[c, 4] * pt)
-        v[a, 2] += inv_mass[a, 1] * (jac[c, 2] * pn + jac[c, 5] * pt)
+        ua = np.uint64(a)
+        im, ii = inv_mass[ua, 0], inv_mass[ua, 1]
+        v[ua, 0] += im * (jac[uc, 0] * pn + jac[uc, 3] * pt)
+        v[ua, 1] += im * (jac[uc, 1] * pn + jac[uc, 4] * pt)
+        v[ua, 2] += ii * (jac[uc, 2] * pn + jac[uc, 5] * pt)
     if b >= 0:
-        v[b, 0] += inv_mass[b, 0] * (jac[c, 6] * pn + jac[c, 9] * pt)
-        v[b, 1] += inv_mass[b, 0] * (jac[c, 7] * pn + jac[c, 10] * pt)
-        v[b, 2] += inv_mass[b, 1] * (jac[c, 8] * pn + jac[c, 11] * pt)
+        ub = np.uint64(b)
+        im, ii = inv_mass[ub, 0], inv_mass[ub, 1]
+        v[ub, 0] += im * (jac[uc, 6] * pn + jac[uc, 9] * pt)
+        v[ub, 1] += im * (jac[uc, 7] * pn + jac[uc, 10] * pt)
+        v[ub, 2] += ii * (jac[uc, 8] * pn + jac[uc, 11] * pt)
 
 
 @numba.njit(cache=True, inline="always")
 def _delassus(inv_mass, a, b, jac, c):
     """The 2 x 2 Delassus block ``H_c M^-1 H_c^T`` of contact ``c`` (bodies ``a``, ``b``),
-    ``(W_nn, W_nt, W_tt)`` [m/kg], from the inverse masses and inertias ``inv_mass`` (nb, 2)
+    ``(W_nn, W_nt, W_tt)`` [m/kg], from the inverse masses and inertias ``inv_mass`` (nb, >= 2)
     and the Jacobian rows ``jac[c]``."""
     wnn = wnt = wtt = 0.0
     for body, k in ((a, 0), (b, 6)):
@@ -582,7 +602,7 @@ def _delassus(inv_mass, a, b, jac, c):
 # ---------------------------------------------------------------------------------------------
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, _nrt=False)
 def solve_contacts(v, inv_mass, contact_bodies, jac, w, active, impulse, mu, tol_impulse,
                    max_iterations):
     r"""Projected Gauss-Seidel on the active contacts; ``v`` enters free and leaves corrected.
@@ -605,7 +625,7 @@ def solve_contacts(v, inv_mass, contact_bodies, jac, w, active, impulse, mu, tol
     ----------
     v : array (nb, 3)
         In: the free velocities; out: the velocities at the end of the step [m/s, m/s, rad/s].
-    inv_mass : array (nb, 2)
+    inv_mass : array (nb, >= 2)
         Inverse masses [m/kg] and inertias [1/(kg m)].
     contact_bodies : array of int (nc, 2)
         Bodies of every contact (-1: the ground).
@@ -671,55 +691,415 @@ def solve_contacts(v, inv_mass, contact_bodies, jac, w, active, impulse, mu, tol
 
 
 @numba.njit(cache=True)
-def _gauss_solve(a, b, m):
-    """Solve ``a[:m, :m] x = b[:m]`` in place by Gaussian elimination with partial pivoting:
-    ``a`` (any units) is overwritten by its triangular factor and ``b`` receives ``x`` (in the
-    units of ``b`` over those of ``a``); no check for a singular matrix."""
-    for k in range(m):
+def incidence(contact_bodies, nb):
+    """The contacts of every block, and the half-bandwidth of the contact problem.
+
+    Parameters
+    ----------
+    contact_bodies : array of int (nc, 2)
+        Bodies a and b of every contact (-1: the ground).
+    nb : int
+        Number of blocks.
+
+    Returns
+    -------
+    pointer : array of int (nb + 1,)
+        The contacts of block ``i`` are the rows ``pointer[i]:pointer[i + 1]`` of
+        ``incident``.
+    incident : array of int (2 nc, 2)
+        Block by block, each of its contacts (increasing) and the block's side in it: 0 if it
+        is body a, 1 if body b.
+    half_bandwidth : int
+        The largest ``|c - d|`` [-] of two contacts that touch one block: the Delassus block
+        of ``c, d`` is zero beyond it (at least 1, the two ends of a joint).
+    """
+    nc = contact_bodies.shape[0]
+    pointer = np.zeros(nb + 1, dtype=np.int64)
+    for c in range(nc):
+        for side in range(2):
+            body = contact_bodies[c, side]
+            if body >= 0:
+                pointer[body + 1] += 1
+    for i in range(nb):
+        pointer[i + 1] += pointer[i]
+    fill = pointer[:nb].copy()
+    incident = np.zeros((max(pointer[nb], 1), 2), dtype=np.int64)
+    for c in range(nc):
+        for side in range(2):
+            body = contact_bodies[c, side]
+            if body >= 0:
+                incident[fill[body], 0] = c
+                incident[fill[body], 1] = side
+                fill[body] += 1
+    half_bandwidth = 1
+    for i in range(nb):
+        if pointer[i + 1] > pointer[i]:
+            half_bandwidth = max(half_bandwidth,
+                                 incident[pointer[i + 1] - 1, 0] - incident[pointer[i], 0])
+    return pointer, incident, half_bandwidth
+
+
+@numba.njit(cache=True, _nrt=False)
+def band_solve(ab, b, n, kl):
+    r"""Solve ``A x = b`` for a band matrix ``A`` (n x n, ``kl`` diagonals below and above the
+    main one) by Gaussian elimination with partial pivoting, in place.
+
+    ``A`` is stored by rows, :math:`A_{ij}` = ``ab[i, j - i + kl]`` for :math:`|j - i| \le kl`,
+    in an array of at least ``3 kl + 1`` columns whose last ``kl`` are zero: the row
+    interchanges widen the upper triangle of the factor to ``2 kl`` diagonals [1]_. The entries
+    outside the band are zero and never touched, so the elimination, the pivots and the
+    solution are those of the dense algorithm (the same operations in the same order, less the
+    ones on zeros): ``(n kl (2 kl))`` operations instead of :math:`n^3 / 3`.
+
+    Parameters
+    ----------
+    ab : array (>= n, >= 3 kl + 1)
+        The band of ``A`` (any units); overwritten by the factor.
+    b : array (>= n,)
+        Right-hand side; overwritten by ``x`` (in the units of ``b`` over those of ``A``).
+    n : int
+        Size of the system.
+    kl : int
+        Half-bandwidth, >= 0.
+
+    References
+    ----------
+    .. [1] G. H. Golub, C. F. Van Loan, "Matrix computations", 4th ed., Johns Hopkins (2013),
+       Sect. 4.3 (band Gaussian elimination with partial pivoting).
+    """
+    upper = 2 * kl
+    for k in range(n):
+        last = min(n - 1, k + kl)
         p = k
-        big = abs(a[k, k])
-        for i in range(k + 1, m):
-            if abs(a[i, k]) > big:
-                big = abs(a[i, k])
+        big = abs(ab[k, kl])
+        for i in range(k + 1, last + 1):
+            if abs(ab[i, k - i + kl]) > big:
+                big = abs(ab[i, k - i + kl])
                 p = i
+        right = min(n - 1, k + upper)
         if p != k:
-            for j in range(k, m):
-                a[k, j], a[p, j] = a[p, j], a[k, j]
+            for j in range(k, right + 1):
+                ab[k, j - k + kl], ab[p, j - p + kl] = ab[p, j - p + kl], ab[k, j - k + kl]
             b[k], b[p] = b[p], b[k]
-        pivot = a[k, k]
-        for i in range(k + 1, m):
-            f = a[i, k] / pivot
+        pivot = ab[k, kl]
+        for i in range(k + 1, last + 1):
+            f = ab[i, k - i + kl] / pivot
             if f != 0.0:
-                for j in range(k + 1, m):
-                    a[i, j] -= f * a[k, j]
+                for j in range(k + 1, right + 1):
+                    ab[i, j - i + kl] -= f * ab[k, j - k + kl]
                 b[i] -= f * b[k]
-    for k in range(m - 1, -1, -1):
+    for k in range(n - 1, -1, -1):
         s = b[k]
-        for j in range(k + 1, m):
-            s -= a[k, j] * b[j]
-        b[k] = s / a[k, k]
+        for j in range(k + 1, min(n - 1, k + upper) + 1):
+            s -= ab[k, j - k + kl] * b[j]
+        b[k] = s / ab[k, kl]
 
 
 @numba.njit(cache=True, inline="always")
-def _coupling(inv_mass, jac, c, side_c, d, side_d, body, out, i, k):
-    """Add body ``body``'s part of the Delassus block of contacts c, d,
-    ``H_c,body M_body^-1 H_d,body^T`` [m/kg], to the 2 x 2 block ``out[2i:2i+2, 2k:2k+2]``;
-    ``side_c``, ``side_d`` (0 or 6) say whether the body is a or b of each contact (the column
-    of its rows in ``jac``), ``inv_mass`` (nb, 2) holds the inverse masses [m/kg] and inertias
-    [1/(kg m)]."""
-    im, ii = inv_mass[body, 0], inv_mass[body, 1]
-    for alpha in range(2):
-        gc = side_c + 3 * alpha
-        for beta in range(2):
-            gd = side_d + 3 * beta
-            out[2 * i + alpha, 2 * k + beta] += (
-                im * (jac[c, gc] * jac[d, gd] + jac[c, gc + 1] * jac[d, gd + 1])
-                + ii * jac[c, gc + 2] * jac[d, gd + 2])
+def _coupling(scaled, c, side_c, d, side_d, wband, i, k):
+    """Add a block's part of the Delassus block of contacts c, d, ``H_c,b M_b^-1 H_d,b^T``
+    [m/kg], to rows ``2i, 2i+1`` and columns ``2k, 2k+1`` (``k >= i``; for ``k = i`` the upper
+    triangle only) of ``W`` in upper band storage ``wband`` (:func:`_assemble_delassus`), from
+    the rows of ``scaled``: the Jacobian rows of each contact scaled by ``M_b^-1/2``;
+    ``side_c``, ``side_d`` (0 or 6) say whether the block is body a or b of each contact."""
+    uc, ud = np.uint64(side_c), np.uint64(side_d)
+    rc, rd = np.uint64(c), np.uint64(d)
+    cnx, cny, cnr = scaled[rc, uc], scaled[rc, uc + 1], scaled[rc, uc + 2]
+    ctx, cty, ctr = scaled[rc, uc + 3], scaled[rc, uc + 4], scaled[rc, uc + 5]
+    dnx, dny, dnr = scaled[rd, ud], scaled[rd, ud + 1], scaled[rd, ud + 2]
+    dtx, dty, dtr = scaled[rd, ud + 3], scaled[rd, ud + 4], scaled[rd, ud + 5]
+    rn, rt = np.uint64(2 * i), np.uint64(2 * i + 1)
+    off = np.uint64(2 * (k - i))
+    wband[rn, off] += cnx * dnx + cny * dny + cnr * dnr
+    wband[rn, off + 1] += cnx * dtx + cny * dty + cnr * dtr
+    wband[rt, off] += ctx * dtx + cty * dty + ctr * dtr
+    if k > i:
+        wband[rt, off - 1] += ctx * dnx + cty * dny + ctr * dnr
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
+def _scaled_rows(inv_mass, body, jac, c, first, scaled):
+    """Jacobian rows ``first .. first + 5`` of contact ``c`` (of block ``body``) scaled by
+    ``M_body^-1/2``: ``(m^-1/2, m^-1/2, I^-1/2)`` per row of 3, into ``scaled[c]``."""
+    ub, uc, f = np.uint64(body), np.uint64(c), np.uint64(first)
+    sm, si = inv_mass[ub, 2], inv_mass[ub, 3]
+    scaled[uc, f] = sm * jac[uc, f]
+    scaled[uc, f + 1] = sm * jac[uc, f + 1]
+    scaled[uc, f + 2] = si * jac[uc, f + 2]
+    scaled[uc, f + 3] = sm * jac[uc, f + 3]
+    scaled[uc, f + 4] = sm * jac[uc, f + 4]
+    scaled[uc, f + 5] = si * jac[uc, f + 5]
+
+
+@numba.njit(cache=True, inline="always")
+def _assemble_delassus(v, inv_mass, contact_bodies, jac, m, idx, pos, pointer, incident, kl,
+                       wband, uf, scaled):
+    r"""The Delassus matrix :math:`W = H M^{-1} H^T = \sum_b H_b M_b^{-1} H_b^T` of the ``m``
+    active contacts ``idx[:m]`` and their free velocities :math:`u^f = H v` (into ``uf``), rows
+    ``2 i`` normal and ``2 i + 1`` tangential of the ``i``-th.
+
+    ``W`` is symmetric: its upper band is stored, ``wband[r, s]`` = :math:`W_{r, r + s}`
+    (``s = 0 .. kl``). Block by block (``pointer``, ``incident``: :func:`incidence`), every pair
+    of active contacts that touch it couples: the cost is linear in the number of contacts.
+    Each entry is a dot product of Jacobian rows scaled by :math:`M_b^{-1/2}` (``scaled``, work
+    space (nc, 12))."""
+    size = 2 * m
+    for r in range(size):
+        for off in range(kl + 1):
+            wband[r, off] = 0.0
+    for i in range(m):
+        c = idx[i]
+        a, b = contact_bodies[c, 0], contact_bodies[c, 1]
+        uf[2 * i], uf[2 * i + 1] = _relative_velocity(v, a, b, jac, c)
+        if a >= 0:
+            _scaled_rows(inv_mass, a, jac, c, 0, scaled)
+        if b >= 0:
+            _scaled_rows(inv_mass, b, jac, c, 6, scaled)
+    for body in range(pointer.size - 1):
+        end = pointer[body + 1]
+        for e in range(pointer[body], end):
+            c = incident[e, 0]
+            i = pos[c]
+            if i < 0:
+                continue
+            side_c = 6 * incident[e, 1]
+            for e2 in range(e, end):  # contacts in increasing order: k >= i
+                d = incident[e2, 0]
+                k = pos[d]
+                if k >= 0:
+                    _coupling(scaled, c, side_c, d, 6 * incident[e2, 1], wband, i, k)
+
+
+@numba.njit(cache=True, _nrt=False)
+def band_cholesky_solve(ab, b, n, kl):
+    r"""Solve ``A x = b`` for a symmetric positive definite band matrix ``A`` (n x n, ``kl``
+    diagonals on either side of the main one) by Cholesky's factorisation
+    :math:`A = U^T U` [1]_, in place.
+
+    ``A`` is stored by rows as for :func:`band_solve`, :math:`A_{ij}` =
+    ``ab[i, j - i + kl]``; only the upper half (``j >= i``) is read, and it is overwritten by
+    ``U``. About :math:`n\,kl^2 / 2` operations, no pivoting. Every loop runs along a row (the
+    factorisation right-looking, the substitutions by columns), so that the innermost
+    operations are independent of one another.
+
+    Parameters
+    ----------
+    ab : array (>= n, >= 2 kl + 1)
+        The band of ``A``; its upper half is overwritten by ``U``.
+    b : array (>= n,)
+        Right-hand side; overwritten by ``x``.
+    n : int
+        Size of the system.
+    kl : int
+        Half-bandwidth, >= 0.
+
+    Returns
+    -------
+    bool
+        False if a pivot is not positive (``A`` is not positive definite to round-off): ``ab``
+        and ``b`` are then spoilt.
+
+    References
+    ----------
+    .. [1] G. H. Golub, C. F. Van Loan, "Matrix computations", 4th ed., Johns Hopkins (2013),
+       Sect. 4.3.5 (band Cholesky).
+    """
+    # unsigned indices: numba checks a signed index for wrapping around (a negative index
+    # counts from the end), which keeps these short loops from being vectorised (measured:
+    # 1.7 times slower); the rows are padded with zeros (at least 3 kl + 1 columns), so that
+    # every update runs over kl + 1 entries whatever the row
+    ukl = np.uint64(kl)
+    for k in range(n):
+        uk = np.uint64(k)
+        d = ab[uk, ukl]
+        if not d > 0.0:
+            return False
+        inverse = 1.0 / math.sqrt(d)
+        ab[uk, ukl] = inverse  # the diagonal keeps 1 / U_kk: a product, not a division, below
+        for t in range(1, kl + 1):
+            ab[uk, ukl + np.uint64(t)] *= inverse
+        for s in range(1, min(kl, n - 1 - k) + 1):
+            us = np.uint64(s)
+            f = ab[uk, ukl + us]
+            if f != 0.0:
+                ui = uk + us
+                for t in range(kl + 1):
+                    ut = np.uint64(t)
+                    ab[ui, ukl + ut] -= f * ab[uk, ukl + us + ut]
+    for k in range(n):  # U^T y = b
+        uk = np.uint64(k)
+        b[uk] *= ab[uk, ukl]
+        yk = b[uk]
+        for s in range(1, min(kl, n - 1 - k) + 1):
+            us = np.uint64(s)
+            b[uk + us] -= ab[uk, ukl + us] * yk
+    for k in range(n - 1, -1, -1):  # U x = y, by columns
+        uk = np.uint64(k)
+        b[uk] *= ab[uk, ukl]
+        xk = b[uk]
+        for s in range(1, min(kl, k) + 1):
+            us = np.uint64(s)
+            b[uk - us] -= ab[uk - us, ukl + us] * xk
+    return True
+
+
+@numba.njit(cache=True, _nrt=False)
+def band_lu_solve(ab, b, n, kl, scale):
+    r"""Solve ``A x = b`` for a band matrix ``A`` (n x n, ``kl`` diagonals on either side of
+    the main one) by Gaussian elimination without pivoting, in place; False if a pivot falls
+    below ``1e-10`` times its row's ``scale`` (the caller then pivots, :func:`band_solve`).
+
+    ``A`` is stored by rows as for :func:`band_solve`, zero-padded to ``3 kl + 1`` columns;
+    ``ab`` and ``b`` are overwritten by the factors and by ``x``. About :math:`n\,kl^2`
+    operations, in loops of ``kl`` independent updates (see :func:`band_cholesky_solve`).
+
+    Parameters
+    ----------
+    ab : array (>= n, >= 3 kl + 1)
+        The band of ``A``; overwritten.
+    b : array (>= n,)
+        Right-hand side; overwritten by ``x``.
+    n : int
+        Size of the system.
+    kl : int
+        Half-bandwidth, >= 0.
+    scale : array (>= n,)
+        A positive size of every row (its diagonal) [units of ``A``].
+
+    Returns
+    -------
+    bool
+        Whether every pivot was large enough (if not, ``ab`` and ``b`` are spoilt).
+    """
+    ukl = np.uint64(kl)
+    for k in range(n):
+        uk = np.uint64(k)
+        pivot = ab[uk, ukl]
+        if not abs(pivot) > 1e-10 * scale[uk]:
+            return False
+        inverse = 1.0 / pivot
+        ab[uk, ukl] = inverse  # the diagonal keeps 1 / U_kk: a product, not a division, below
+        for s in range(1, min(kl, n - 1 - k) + 1):
+            us = np.uint64(s)
+            ui = uk + us
+            f = ab[ui, ukl - us] * inverse
+            if f != 0.0:
+                for t in range(1, kl + 1):
+                    ut = np.uint64(t)
+                    ab[ui, ukl - us + ut] -= f * ab[uk, ukl + ut]
+                b[ui] -= f * b[uk]
+    for k in range(n - 1, -1, -1):  # U x = y, by columns
+        uk = np.uint64(k)
+        b[uk] *= ab[uk, ukl]
+        xk = b[uk]
+        for s in range(1, min(kl, k) + 1):
+            us = np.uint64(s)
+            b[uk - us] -= ab[uk - us, ukl + us] * xk
+    return True
+
+
+@numba.njit(cache=True, inline="always")
+def _state_system(m, idx, state, mu, kl, wband, uf, aband, rhs, scale, full):
+    r"""The linear system of the active-set method for the current ``state`` of every active
+    contact (:func:`solve_active_set`), in the band ``aband`` (half-bandwidth ``kl``, rows
+    zero-padded to ``3 kl + 1`` columns, :func:`band_solve`), ``rhs`` and the size of every row,
+    ``scale``: ``W`` (from its upper band ``wband``) with the compliance on its diagonal; the
+    rows and columns of an open contact those of the identity (``P = 0``); the tangential row
+    of a sliding one ``P_t - sigma mu P_n = 0``.
+
+    Returns whether a contact slides. If none does, the system is symmetric positive definite
+    and only its upper half is written (what :func:`band_cholesky_solve` reads), unless
+    ``full``."""
+    size = 2 * m
+    sliding = False
+    for i in range(m):
+        sliding = sliding or state[idx[i]] >= 2
+    ukl = np.uint64(kl)
+    for r in range(size):
+        ur = np.uint64(r)
+        for off in range(kl):
+            aband[ur, np.uint64(off)] = 0.0
+        for off in range(kl + 1):
+            aband[ur, ukl + np.uint64(off)] = wband[ur, np.uint64(off)]
+        for off in range(2 * kl + 1, 3 * kl + 1):
+            aband[ur, np.uint64(off)] = 0.0
+        aband[ur, ukl] += REGULARISATION * wband[ur, 0]
+        rhs[ur] = -uf[ur]
+    if sliding or full:  # the lower half too
+        for r in range(size):
+            ur = np.uint64(r)
+            for s in range(1, min(kl, size - 1 - r) + 1):
+                us = np.uint64(s)
+                aband[ur + us, ukl - us] = wband[ur, us]
+    for i in range(m):
+        st = state[idx[i]]
+        if st == 0:
+            for r in (2 * i, 2 * i + 1):
+                for col in range(max(0, r - kl), min(size, r + kl + 1)):
+                    aband[r, col - r + kl] = 0.0
+                    aband[col, r - col + kl] = 0.0
+                aband[r, kl] = 1.0
+                rhs[r] = 0.0
+        elif st >= 2:
+            rt = 2 * i + 1
+            for off in range(2 * kl + 1):
+                aband[rt, off] = 0.0
+            aband[rt, kl] = 1.0
+            aband[rt, kl - 1] = -mu if st == 2 else mu
+            rhs[rt] = 0.0
+    for r in range(size):
+        scale[r] = abs(aband[r, kl])
+    return sliding
+
+
+@numba.njit(cache=True, inline="always")
+def _row_velocity(r, size, kl, wband, uf, impulses):
+    r"""Row ``r`` of :math:`u = u^f + W P` [m/s] from the upper band ``wband`` of ``W``."""
+    u = uf[r]
+    for s in range(min(kl, size - 1 - r) + 1):
+        u += wband[r, s] * impulses[r + s]
+    for s in range(1, min(kl, r) + 1):
+        u += wband[r - s, s] * impulses[r - s]
+    return u
+
+
+@numba.njit(cache=True, inline="always")
+def _switch_states(m, idx, state, mu, p_tol, u_tol, kl, wband, uf, impulses, solves):
+    """Switch the states that the impulses ``impulses`` (rows ``2 i``, ``2 i + 1`` of the
+    ``i``-th active contact) contradict (:func:`solve_active_set`); after
+    :data:`SINGLE_SWITCH_AFTER` solves only the first. The velocities ``u = u^f + W P`` are
+    computed where a test needs them: the normal one of an open contact, the tangential one of
+    a sliding contact (a sticking one has ``u = 0`` up to the compliance). Returns whether any
+    state changed."""
+    size = 2 * m
+    changed = False
+    for i in range(m):
+        c = idx[i]
+        pn, pt = impulses[2 * i], impulses[2 * i + 1]
+        st = state[c]
+        new = st
+        if st == 0:
+            if _row_velocity(2 * i, size, kl, wband, uf, impulses) < -u_tol:
+                new = 1
+        elif pn < -p_tol:
+            new = 0
+        elif st == 1:
+            if abs(pt) > mu * pn + p_tol:
+                new = 2 if pt > 0.0 else 3
+        elif st == 2:
+            if _row_velocity(2 * i + 1, size, kl, wband, uf, impulses) > u_tol:
+                new = 1
+        elif _row_velocity(2 * i + 1, size, kl, wband, uf, impulses) < -u_tol:
+            new = 1
+        if new != st and not (changed and solves > SINGLE_SWITCH_AFTER):
+            state[c] = new
+            changed = True
+    return changed
+
+
+@numba.njit(cache=True, _nrt=False)
 def solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse, state, mu, p_tol, u_tol,
-                     idx, wmat, amat, rhs, uf):
+                     work):
     r"""Contact problem of a step by a primal-dual active-set method; ``v`` enters free.
 
     Every active contact has a state (-1 for an inactive one): 0 open (``P = 0``), 1 stick
@@ -759,13 +1139,21 @@ def solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse, state, m
     keep their input values (the impulses of the previous step, 0 for an inactive contact) and
     the caller falls back to Gauss-Seidel.
 
+    Two contacts couple only through a block they both touch, so ``W`` is a band matrix when
+    the contacts are numbered along the structure (an arch: joint by joint, each coupled to its
+    two neighbours): it is assembled block by block in band storage
+    (:func:`_assemble_delassus`) and the system of the states solved by Cholesky's
+    factorisation if no contact slides (:func:`band_cholesky_solve`: it is then symmetric
+    positive definite), else by Gaussian elimination (:func:`band_lu_solve`, and with pivoting,
+    :func:`band_solve`, should a pivot be small), at a cost linear in the number of contacts.
+
     Parameters
     ----------
     v : array (nb, 3)
         In: the free velocities; out (if converged): the velocities at the end of the step
         [m/s, m/s, rad/s].
-    inv_mass : array (nb, 2)
-        Inverse masses [m/kg] and inertias [1/(kg m)].
+    inv_mass : array (nb, 4)
+        Inverse masses [m/kg] and inertias [1/(kg m)], and their square roots.
     contact_bodies : array of int (nc, 2)
         Bodies of every contact (-1: the ground).
     jac : array (nc, 12)
@@ -781,8 +1169,13 @@ def solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse, state, m
     p_tol, u_tol : float
         Tolerances :math:`\epsilon_P` [N s/m] and :math:`\epsilon_u` [m/s] of the switching
         tests.
-    idx, wmat, amat, rhs, uf : arrays
-        Work space: (nc,) int, (2 nc, 2 nc), (2 nc, 2 nc), (2 nc,), (2 nc,).
+    work : tuple
+        ``(idx, pos, pointer, incident, kl, wband, aband, rhs, uf, scale, scaled)``: the block
+        incidence ``pointer, incident`` of :func:`incidence` and the half-bandwidth of the
+        impulses ``kl = 2 b + 1`` (``b`` that of the contacts); work space: ``idx``, ``pos``
+        (nc,) int (the active contacts, and the position of each among them, -1 if inactive),
+        ``wband`` (2 nc, kl + 1), ``aband`` (2 nc, 3 kl + 1), ``rhs``, ``uf``, ``scale``
+        (2 nc,), ``scaled`` (nc, 12).
 
     Returns
     -------
@@ -791,100 +1184,38 @@ def solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse, state, m
     converged : bool
         Whether a consistent set of states was found.
     """
+    idx, pos, pointer, incident, kl, wband, aband, rhs, uf, scale, scaled = work
     nc = contact_bodies.shape[0]
     m = 0
     for c in range(nc):
         if active[c]:
             idx[m] = c
+            pos[c] = m
             m += 1
             if state[c] < 0:  # newly active: guess that it sticks
                 state[c] = 1
         else:
+            pos[c] = -1
             state[c] = -1
             impulse[c, 0] = 0.0
             impulse[c, 1] = 0.0
     if m == 0:
         return 0, True
-    size = 2 * m
-    wmat[:size, :size] = 0.0
-    for i in range(m):
-        c = idx[i]
-        ca, cb = contact_bodies[c, 0], contact_bodies[c, 1]
-        un, ut = _relative_velocity(v, ca, cb, jac, c)
-        uf[2 * i] = un
-        uf[2 * i + 1] = ut
-        for k in range(i, m):
-            d = idx[k]
-            da, db = contact_bodies[d, 0], contact_bodies[d, 1]
-            for side_c in (0, 6):
-                body = ca if side_c == 0 else cb
-                if body < 0:
-                    continue
-                if da == body:
-                    _coupling(inv_mass, jac, c, side_c, d, 0, body, wmat, i, k)
-                if db == body:
-                    _coupling(inv_mass, jac, c, side_c, d, 6, body, wmat, i, k)
-        for k in range(i + 1, m):
-            for alpha in range(2):
-                for beta in range(2):
-                    wmat[2 * k + beta, 2 * i + alpha] = wmat[2 * i + alpha, 2 * k + beta]
+    _assemble_delassus(v, inv_mass, contact_bodies, jac, m, idx, pos, pointer, incident, kl,
+                       wband, uf, scaled)
     solves = 0
     converged = False
     while solves < ACTIVE_SET_SOLVES:
-        amat[:size, :size] = 0.0
-        for i in range(m):
-            c = idx[i]
-            rn, rt = 2 * i, 2 * i + 1
-            st = state[c]
-            if st == 0:
-                amat[rn, rn] = 1.0
-                rhs[rn] = 0.0
-                amat[rt, rt] = 1.0
-                rhs[rt] = 0.0
-                continue
-            for j in range(size):
-                amat[rn, j] = wmat[rn, j]
-            amat[rn, rn] += REGULARISATION * wmat[rn, rn]
-            rhs[rn] = -uf[rn]
-            if st == 1:
-                for j in range(size):
-                    amat[rt, j] = wmat[rt, j]
-                amat[rt, rt] += REGULARISATION * wmat[rt, rt]
-                rhs[rt] = -uf[rt]
-            else:
-                amat[rt, rt] = 1.0
-                amat[rt, rn] = -mu if st == 2 else mu
-                rhs[rt] = 0.0
-        _gauss_solve(amat, rhs, size)
+        sliding = _state_system(m, idx, state, mu, kl, wband, uf, aband, rhs, scale, False)
+        if sliding:
+            solved = band_lu_solve(aband, rhs, 2 * m, kl, scale)
+        else:
+            solved = band_cholesky_solve(aband, rhs, 2 * m, kl)
+        if not solved:  # a small pivot: assemble again and pivot
+            _state_system(m, idx, state, mu, kl, wband, uf, aband, rhs, scale, True)
+            band_solve(aband, rhs, 2 * m, kl)
         solves += 1
-        changed = False
-        for i in range(m):
-            c = idx[i]
-            pn, pt = rhs[2 * i], rhs[2 * i + 1]
-            un = uf[2 * i]
-            ut = uf[2 * i + 1]
-            for j in range(size):
-                un += wmat[2 * i, j] * rhs[j]
-                ut += wmat[2 * i + 1, j] * rhs[j]
-            st = state[c]
-            new = st
-            if st == 0:
-                if un < -u_tol:
-                    new = 1
-            elif pn < -p_tol:
-                new = 0
-            elif st == 1:
-                if abs(pt) > mu * pn + p_tol:
-                    new = 2 if pt > 0.0 else 3
-            elif st == 2:
-                if ut > u_tol:
-                    new = 1
-            elif ut < -u_tol:
-                new = 1
-            if new != st and not (changed and solves > SINGLE_SWITCH_AFTER):
-                state[c] = new
-                changed = True
-        if not changed:
+        if not _switch_states(m, idx, state, mu, p_tol, u_tol, kl, wband, uf, rhs, solves):
             converged = True
             break
     if converged:
@@ -902,7 +1233,7 @@ def solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse, state, m
 # ---------------------------------------------------------------------------------------------
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True, _nrt=False)
 def _kinetic_energy(bodies, v):
     """Kinetic energy :math:`T` of the blocks at velocities ``v`` (nb, 3) [J/m]."""
     kinetic = 0.0
@@ -912,7 +1243,7 @@ def _kinetic_energy(bodies, v):
     return kinetic
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True, _nrt=False)
 def _measure(q, bodies, gravity, crown_block, crown_x, crown_y):
     """Potential energy [J/m], largest block rotation [rad], and the drops [m] at ``q``: the
     largest downward displacement of a centroid or of the crown point, and the crown's.
@@ -931,7 +1262,7 @@ def _measure(q, bodies, gravity, crown_block, crown_x, crown_y):
     return potential, rotation, max(drop, crown_drop), crown_drop
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True, _nrt=False)
 def _joints(gap, slip, valid, closed_gap, max_slip, max_opening):
     """The joints at the current step: the largest slip (at the more closed end of a joint)
     and opening (of a valid contact) so far [m], and whether every joint is closed (both of
@@ -1013,20 +1344,23 @@ def _decide(t, drop, kinetic, potential, closed, max_opening, max_slip, rest_cou
     return -1, 0
 
 
-@numba.njit(cache=True, inline="always")
-def _free_velocities(v, v_old, h, ag, gravity):
-    """Keep ``v`` (nb, 3) in ``v_old`` and make it the free velocity of the step: the impulse of
-    the weight and of the inertial force ``-m ag`` over ``h`` [s], ``ag`` the mean ground
-    acceleration [m/s^2]."""
+@numba.njit(cache=True, _nrt=False)
+def _free_velocities(v, v_old, v_free, h, ag, gravity):
+    """Keep ``v`` (nb, 3) in ``v_old`` and make it the free velocity of the step, also kept in
+    ``v_free``: the impulse of the weight and of the inertial force ``-m ag`` over ``h`` [s],
+    ``ag`` the mean ground acceleration [m/s^2]."""
     for i in range(v.shape[0]):
         v_old[i, 0] = v[i, 0]
         v_old[i, 1] = v[i, 1]
         v_old[i, 2] = v[i, 2]
         v[i, 0] -= h * ag
         v[i, 1] -= h * gravity
+        v_free[i, 0] = v[i, 0]
+        v_free[i, 1] = v[i, 1]
+        v_free[i, 2] = v[i, 2]
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True, _nrt=False)
 def _active_set(gap, valid, v_old, contact_bodies, contacts, jac, theta, h, active):
     r"""The active set: the valid contacts whose predicted gap
     :math:`g + \theta h u_n(v_k)` is at most :data:`ACTIVATION_GAP` times their joint's
@@ -1039,21 +1373,27 @@ def _active_set(gap, valid, v_old, contact_bodies, contacts, jac, theta, h, acti
             active[c] = False
 
 
-@numba.njit(cache=True, inline="always")
-def _contact_work(v_old, v, contact_bodies, jac, active, impulse):
+@numba.njit(cache=True, _nrt=False)
+def _contact_work(v_old, v, v_free, bodies):
     r"""Work of the contact impulses over the step [J/m],
-    :math:`\sum_c P_c \cdot H_c (v_k + v_{k+1}) / 2`."""
+
+    .. math::
+
+        \sum_c P_c \cdot H_c rac{v_k + v_{k+1}}{2}
+        = rac{v_k + v_{k+1}}{2} \cdot \mathbf{M} (v_{k+1} - v^f),
+
+    since :math:`\mathbf{M} (v_{k+1} - v^f) = H^T P`: a sum over the blocks, not the
+    contacts."""
     work = 0.0
-    for c in range(active.size):
-        if active[c]:
-            a, b = contact_bodies[c, 0], contact_bodies[c, 1]
-            un0, ut0 = _relative_velocity(v_old, a, b, jac, c)
-            un1, ut1 = _relative_velocity(v, a, b, jac, c)
-            work += 0.5 * ((un0 + un1) * impulse[c, 0] + (ut0 + ut1) * impulse[c, 1])
+    for i in range(v.shape[0]):
+        m, inertia = bodies[i, BODY_MASS], bodies[i, BODY_INERTIA]
+        work += 0.5 * (m * ((v_old[i, 0] + v[i, 0]) * (v[i, 0] - v_free[i, 0])
+                            + (v_old[i, 1] + v[i, 1]) * (v[i, 1] - v_free[i, 1]))
+                       + inertia * (v_old[i, 2] + v[i, 2]) * (v[i, 2] - v_free[i, 2]))
     return work
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True, _nrt=False)
 def _advance(q, v_old, v, bodies, h, theta, ag):
     r"""Positions :math:`q_{k+1} = q_k + h ((1 - \theta) v_k + \theta v_{k+1})`, in place.
 
@@ -1143,13 +1483,16 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     tol_impulse = settings[S_TOLERANCE] * mean_mass * gravity * h
     p_tol = 1e-12 * mean_mass * gravity * h
     u_tol = 1e-12 * gravity * h
-    inv_mass = np.empty((nb, 2))
+    inv_mass = np.empty((nb, 4))  # 1/m, 1/I, their square roots
     for i in range(nb):
         inv_mass[i, 0] = 1.0 / bodies[i, BODY_MASS]
         inv_mass[i, 1] = 1.0 / bodies[i, BODY_INERTIA]
+        inv_mass[i, 2] = math.sqrt(inv_mass[i, 0])
+        inv_mass[i, 3] = math.sqrt(inv_mass[i, 1])
     q = q0.copy()
     v = v0.copy()
     v_old = np.empty_like(v)
+    v_free = np.empty_like(v)
     trig = np.empty((nb, 2))
     gap = np.zeros(nc)
     slip = np.zeros(nc)
@@ -1159,11 +1502,11 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     w = np.zeros((nc, 3))
     impulse = np.zeros((nc, 2))
     state = -np.ones(nc, dtype=np.int64)
-    idx = np.zeros(nc, dtype=np.int64)
-    wmat = np.zeros((2 * nc, 2 * nc))
-    amat = np.zeros((2 * nc, 2 * nc))
-    rhs = np.zeros(2 * nc)
-    uf = np.zeros(2 * nc)
+    pointer, incident, half_bandwidth = incidence(contact_bodies, nb)
+    kl = 2 * half_bandwidth + 1  # of the unknowns: two per contact
+    problem = (np.zeros(nc, dtype=np.int64), np.zeros(nc, dtype=np.int64), pointer, incident,
+               kl, np.zeros((2 * nc, kl + 1)), np.zeros((2 * nc, 3 * kl + 1)),
+               np.zeros(2 * nc), np.zeros(2 * nc), np.zeros(2 * nc), np.zeros((nc, 12)))
     recording = record_stride > 0
     capacity = min(n_steps // record_stride + 2, 1024) if recording else 1
     rec_energy = np.zeros((capacity, 5))
@@ -1217,12 +1560,12 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
                     break
         # -------- 6. free velocities
         ag = mean_acceleration(t, t + h, kind, params, times, values)
-        _free_velocities(v, v_old, h, ag, gravity)
+        _free_velocities(v, v_old, v_free, h, ag, gravity)
         # -------- 7. active set
         _active_set(gap, valid, v_old, contact_bodies, contacts, jac, theta, h, active)
         # -------- 8. the contact problem
         sweeps, converged = solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse,
-                                             state, mu, p_tol, u_tol, idx, wmat, amat, rhs, uf)
+                                             state, mu, p_tol, u_tol, problem)
         if not converged:  # fall back to Gauss-Seidel from the last impulses
             fallbacks += 1
             sweeps, converged = solve_contacts(v, inv_mass, contact_bodies, jac, w, active,
@@ -1232,7 +1575,7 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
         if not converged:
             unconverged += 1
         # -------- 9. advance: energy bookkeeping (exact for theta = 1/2) and positions
-        energies[2] -= _contact_work(v_old, v, contact_bodies, jac, active, impulse)
+        energies[2] -= _contact_work(v_old, v, v_free, bodies)
         work, energies[0] = _advance(q, v_old, v, bodies, h, theta, ag)
         energies[3] += work
         step += 1
