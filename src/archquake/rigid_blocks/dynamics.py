@@ -96,6 +96,19 @@ from ..status import Status
 from . import solver
 from .assembly import GROUND, Assembly, from_arch
 
+MAX_BLOCKS = 100
+r"""Largest number of blocks of a structure that the rigid-block model analyses [-].
+
+The cost of a step grows linearly with the number of blocks (the contact problem is a band
+matrix: about 0.65 us per block and linear solve, ``benchmarks/rigid_blocks_scaling.py``) and so
+does the memory (kilobytes per block), but the number of linear solves per step grows too: the
+active-set method needs more of them when many joints open or slide at once (about 1.2 per step
+for Oppenheim's 7 voussoirs, 20 for 50, 75 for 100 under a 1 g pulse), and an analysis of
+100 blocks takes seconds to tens of seconds. A larger structure is refused before anything is
+built. Above about ten blocks the active-set method may also cycle at the onset of motion; the
+step is then left to Gauss-Seidel, which may not converge: such an outcome is reported
+undecided (:class:`BlockOutcome`)."""
+
 STATUS_NAMES = {solver.REST: Status.REST, solver.RECOVERY: Status.RECOVERY,
                 solver.COLLAPSE: Status.COLLAPSE}
 """Outcome code of :func:`archquake.rigid_blocks.solver.run` -> name."""
@@ -427,11 +440,40 @@ def contact_arrays(assembly: Assembly) -> dict[str, np.ndarray]:
     return assembly._cache["contacts"]
 
 
+def check_size(n_blocks: int) -> None:
+    """Refuse a structure of more than :data:`MAX_BLOCKS` blocks.
+
+    Parameters
+    ----------
+    n_blocks : int
+        Number of blocks of the structure (of voussoirs of an arch) [-].
+
+    Raises
+    ------
+    ValueError
+        If ``n_blocks > MAX_BLOCKS``.
+    """
+    if n_blocks > MAX_BLOCKS:
+        raise ValueError(f"the rigid-block model takes at most {MAX_BLOCKS} blocks (MAX_BLOCKS), "
+                         f"this structure has {n_blocks} (voussoirs or blocks): the solves per "
+                         f"step grow with the blocks that move at once, and an analysis would "
+                         f"take minutes; use fewer voussoirs")
+
+
 def structure_assembly(structure) -> Assembly:
-    """The :class:`Assembly` of an arch (converted once, cached on it) or an Assembly itself."""
+    """The :class:`Assembly` of an arch (converted once, cached on it) or an Assembly itself.
+
+    Raises
+    ------
+    ValueError
+        If ``structure`` is neither, or has more than :data:`MAX_BLOCKS` blocks (refused before
+        an arch is converted).
+    """
     if isinstance(structure, Assembly):
+        check_size(structure.n_blocks)
         return structure
     if isinstance(structure, BlockArch):
+        check_size(structure.n_voussoirs)
         key = "_rigid_block_assembly"
         if key not in structure._cache:
             structure._cache[key] = from_arch(structure)
@@ -657,5 +699,5 @@ def with_settings(settings: BlockSettings | None, **changes) -> BlockSettings:
     return replace(BlockSettings() if settings is None else settings, **changes)
 
 
-__all__ = ["GROUND", "BlockHistory", "BlockOutcome", "BlockSettings", "block_outcome",
-           "contact_arrays", "simulate_blocks", "with_settings"]
+__all__ = ["GROUND", "MAX_BLOCKS", "BlockHistory", "BlockOutcome", "BlockSettings",
+           "block_outcome", "check_size", "contact_arrays", "simulate_blocks", "with_settings"]
