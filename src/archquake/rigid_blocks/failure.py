@@ -59,7 +59,9 @@ class FailureCurve:
     ----------
     slices : tuple of DomainSlice
         One per duration: contiguous amplitude intervals [g] with status ``rest``,
-        ``recovery`` or ``collapse`` (half cycle 0: the block model does not count them).
+        ``recovery``, ``collapse`` or ``undecided`` (an analysis that did not decide, never
+        counted as a collapse: :class:`~archquake.rigid_blocks.dynamics.BlockOutcome`; half
+        cycle 0: the block model does not count them).
     direction : str
         ``"l"`` (first pulse ``-a g``) or ``"r"`` (``+a g``).
     motion : str

@@ -142,8 +142,9 @@ class RigidBlockModel:
         Returns
         -------
         dict of ndarray
-            ``status`` (:class:`archquake.status.Status` codes) and ``half_cycle`` (0: the
-            rigid-block model does not count half cycles), of the broadcast shape.
+            ``status`` (:class:`archquake.status.Status` codes, -1 for an analysis left
+            undecided) and ``half_cycle`` (0: the rigid-block model does not count half
+            cycles), of the broadcast shape.
         """
         from ..ground_motion import ground_motion
 

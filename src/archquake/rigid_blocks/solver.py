@@ -240,7 +240,9 @@ SUMMARY_FIELDS = (
 """Layout of the summary vector returned by :func:`run`: outcome code; 1 if decided; collapse and
 decision times [s] (nan if none); largest block rotation [rad], crown drop, slip, opening and
 drop [m]; steps, linear solves or sweeps in all, most in one step, unconverged steps [-]; final
-time [s]; 1 if every joint was closed at the end; steps left to Gauss-Seidel [-]."""
+time of the run [s]; 1 if every joint was closed; steps left to Gauss-Seidel [-]. Everything but
+the final time is that of the decision (of the last step if undecided): a recording that goes on
+after the decision changes nothing of it."""
 
 
 
@@ -1437,7 +1439,8 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     (a joint is closed when both its contacts are valid with gap <= ``closed_gap``; the count
     restarts at every step that is not still); rest if no valid contact ever opened, and no
     joint ever slipped at its more closed end, by more than ``moved_threshold``, recovery
-    otherwise. A run that reaches ``n_steps`` undecided returns status -1.
+    otherwise. A run that reaches ``n_steps`` undecided returns status -1. The summary is that
+    of the decision: a record's tail after it (``tail_steps``) changes nothing of it.
 
     Parameters
     ----------
@@ -1525,19 +1528,21 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     closed = True
     iterations = max_used = unconverged = fallbacks = 0
     stop_step = n_steps
-    step = 0
+    step = decision_step = 0
     while step < stop_step:
         t = step * h
         # -------- 1. geometry
         contact_geometry(q, bodies, contacts, contact_bodies, trig, gap, slip, valid, jac)
-        # -------- 2. measure
+        # -------- 2. measure (the outcome's maxima until the decision: a record's tail after
+        #             it changes nothing of the outcome)
         energies[1], rotation, drop, crown_drop = _measure(q, bodies, gravity, crown_block,
                                                            crown_x, crown_y)
-        max_rotation = max(max_rotation, rotation)
-        max_crown_drop = max(max_crown_drop, crown_drop)
-        max_drop = max(max_drop, drop)
-        max_slip, max_opening, closed = _joints(gap, slip, valid, settings[S_CLOSED_GAP],
-                                                max_slip, max_opening)
+        if not decided:
+            max_rotation = max(max_rotation, rotation)
+            max_crown_drop = max(max_crown_drop, crown_drop)
+            max_drop = max(max_drop, drop)
+            max_slip, max_opening, closed = _joints(gap, slip, valid, settings[S_CLOSED_GAP],
+                                                    max_slip, max_opening)
         # -------- 3. record
         if recording and step % record_stride == 0:
             rec_energy, rec_q, rec_contacts = _record(n_rec, t, q, gap, slip, impulse, h,
@@ -1552,6 +1557,7 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
             if status >= 0:
                 decided = True
                 decision_time = t
+                decision_step = step
                 # -------- 5. stop?
                 if not recording:
                     break
@@ -1567,13 +1573,14 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
         sweeps, converged = solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse,
                                              state, mu, p_tol, u_tol, problem)
         if not converged:  # fall back to Gauss-Seidel from the last impulses
-            fallbacks += 1
+            fallbacks += 0 if decided else 1
             sweeps, converged = solve_contacts(v, inv_mass, contact_bodies, jac, w, active,
                                                impulse, mu, tol_impulse, max_iterations)
-        iterations += sweeps
-        max_used = max(max_used, sweeps)
-        if not converged:
-            unconverged += 1
+        if not decided:  # the outcome's counts stop at the decision too
+            iterations += sweeps
+            max_used = max(max_used, sweeps)
+            if not converged:
+                unconverged += 1
         # -------- 9. advance: energy bookkeeping (exact for theta = 1/2) and positions
         energies[2] -= _contact_work(v_old, v, v_free, bodies)
         work, energies[0] = _advance(q, v_old, v, bodies, h, theta, ag)
@@ -1589,7 +1596,7 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     summary[6] = max_slip
     summary[7] = max_opening
     summary[8] = max_drop
-    summary[9] = step
+    summary[9] = decision_step if decided else step
     summary[10] = iterations
     summary[11] = max_used
     summary[12] = unconverged
