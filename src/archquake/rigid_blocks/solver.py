@@ -186,9 +186,13 @@ The structure reaches the driver as three packed arrays (the blocks, :data:`BODY
 contacts, :data:`CONTACT_FIELDS`; the bodies of every contact) and the settings as one vector
 (:data:`SETTINGS_FIELDS`, :func:`pack_settings`): one compiled signature serves every structure
 and every analysis. How each part is compiled was chosen by measurement, as in the four-link
-engine's driver: the helpers of one step are inlined into the driver (``inline="always"``,
-numba copies their code there); the contact geometry and the contact problem, which loop over
-the contacts, are compiled on their own and called once per step.
+engine's driver: the parts of a step that take arrays (the contact geometry, the contact
+problem, the active set, the bookkeeping) are compiled on their own without numba's reference
+counting (``_nrt=False``: they allocate nothing; counting the references of the arrays handed
+to a helper, at every call, cost as much as the arithmetic of the active set), and the small
+helpers they call for every contact are inlined into them (``inline="always"``). In the short
+loops of the band solvers the indices are unsigned: numba checks a signed index for wrapping
+around at every access, which kept them from being vectorised (1.7 times slower).
 
 References
 ----------
@@ -210,7 +214,7 @@ import math
 import numba
 import numpy as np
 
-from ..ground_motion import HARMONIC, STEP
+from ..ground_motion import HARMONIC, STEP, analytic_duration, evaluate
 
 REGULARISATION = 1e-9
 """Compliance of the rows of the contact problem that hold a velocity to zero (the normal row of a
@@ -246,29 +250,44 @@ after the decision changes nothing of it."""
 
 
 
+_G1, _G2 = math.sqrt(5.0 - 2.0 * math.sqrt(10.0 / 7.0)) / 3.0, math.sqrt(
+    5.0 + 2.0 * math.sqrt(10.0 / 7.0)) / 3.0
+GAUSS_NODES = (-_G2, -_G1, 0.0, _G1, _G2)
+GAUSS_WEIGHTS = ((322.0 - 13.0 * math.sqrt(70.0)) / 900.0, (322.0 + 13.0 * math.sqrt(70.0)) / 900.0,
+                 128.0 / 225.0, (322.0 + 13.0 * math.sqrt(70.0)) / 900.0,
+                 (322.0 - 13.0 * math.sqrt(70.0)) / 900.0)
+"""Nodes on [-1, 1] and weights of 5-point Gauss-Legendre quadrature [-] (exact for
+polynomials of degree 9)."""
+
+
 @numba.njit(cache=True, _nrt=False)
 def mean_acceleration(t0, t1, kind, params, times, values):
-    r"""Mean ground acceleration [m/s^2] over ``[t0, t1]`` [s]: its exact integral / (t1 - t0).
+    r"""Mean ground acceleration [m/s^2] over ``[t0, t1]`` [s]: its integral / (t1 - t0).
 
-    For the compiled representation of :mod:`archquake.ground_motion` (STEP, LINEAR, HARMONIC);
-    the same function as :func:`archquake.ground_motion.evaluate`, integrated in closed form:
+    For every kind of the compiled representation of :mod:`archquake.ground_motion`: the same
+    function as :func:`archquake.ground_motion.evaluate`, integrated in closed form,
 
     .. math::
 
         \bar a_g = \frac{1}{t_1 - t_0} \int_{t_0}^{t_1} a_g(t)\,dt, \qquad
-        \int_a^b A \sin(\omega t)\,dt = \frac{A}{\omega}\,(\cos\omega a - \cos\omega b)
+        \int_a^b A \sin(\omega t + \phi)\,dt
+        = \frac{A}{\omega}\,\bigl(\cos(\omega a + \phi) - \cos(\omega b + \phi)\bigr)
 
     for a harmonic motion (clipped to ``[0, cycles * period]``), the exact sum of rectangles
-    (STEP) or trapezoids (LINEAR) of the pieces of a tabulated one (0 outside its times).
+    (STEP) or trapezoids (LINEAR) of the pieces of a tabulated one (0 outside its times); the
+    other analytic pulses (Ricker's wavelets, Mavroeidis and Papageorgiou's pulse), smooth on
+    ``[0, duration)``, by 5-point Gauss-Legendre quadrature of the part of the interval inside
+    it (exact to round-off for a step much shorter than the pulse's period).
 
     Parameters
     ----------
     t0, t1 : float
         Interval [s], ``t1 > t0``.
     kind : int
-        ``STEP``, ``LINEAR`` or ``HARMONIC`` (codes of :mod:`archquake.ground_motion`).
+        A kind of :mod:`archquake.ground_motion` (``STEP``, ``LINEAR``, ``HARMONIC``, ...).
     params : array of float
-        For HARMONIC: amplitude [m/s^2], period [s], number of cycles [-].
+        For the analytic kinds: their parameters (for HARMONIC amplitude [m/s^2], period [s],
+        number of cycles [-] and phase [rad]).
     times, values : array of float
         For STEP and LINEAR: increasing times [s] and accelerations [m/s^2].
 
@@ -279,12 +298,22 @@ def mean_acceleration(t0, t1, kind, params, times, values):
     """
     total = 0.0
     if kind == HARMONIC:
-        amplitude, period, cycles = params[0], params[1], params[2]
+        amplitude, period, cycles, phase = params[0], params[1], params[2], params[3]
         a = max(t0, 0.0)
         b = min(t1, cycles * period)
         if b > a:
             w = 2.0 * math.pi / period
-            total = amplitude / w * (math.cos(w * a) - math.cos(w * b))
+            total = amplitude / w * (math.cos(w * a + phase) - math.cos(w * b + phase))
+        return total / (t1 - t0)
+    if kind > HARMONIC:  # smooth on [0, duration): Gauss-Legendre on the part inside it
+        a = max(t0, 0.0)
+        b = min(t1, analytic_duration(kind, params))
+        if b > a:
+            mid, half = 0.5 * (a + b), 0.5 * (b - a)
+            for k in range(5):
+                total += GAUSS_WEIGHTS[k] * evaluate(mid + half * GAUSS_NODES[k], kind, params,
+                                                     times, values)
+            total *= half
         return total / (t1 - t0)
     n = times.size
     if n < 2 or t1 <= times[0] or t0 >= times[n - 1]:
