@@ -16,6 +16,7 @@ on demand).
 
 from .assembly import GROUND, Assembly, from_arch, rectangular_block
 from .dynamics import (
+    MAX_BLOCKS,
     BlockHistory,
     BlockOutcome,
     BlockSettings,
@@ -25,6 +26,6 @@ from .dynamics import (
 from .model import RigidBlockModel
 
 __all__ = [
-    "GROUND", "Assembly", "BlockHistory", "BlockOutcome", "BlockSettings", "block_outcome",
-    "RigidBlockModel", "from_arch", "rectangular_block", "simulate_blocks",
+    "GROUND", "MAX_BLOCKS", "Assembly", "BlockHistory", "BlockOutcome", "BlockSettings",
+    "RigidBlockModel", "block_outcome", "from_arch", "rectangular_block", "simulate_blocks",
 ]

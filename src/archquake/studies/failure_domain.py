@@ -72,7 +72,8 @@ class Interval:
         Ends of the interval [g].
     status : str
         Label of the outcome (:attr:`archquake.status.Status.label`): ``"rest"``,
-        ``"recovery"`` or ``"collapse"``.
+        ``"recovery"`` or ``"collapse"``; ``"undecided"`` for amplitudes whose analyses the
+        model left undecided (the rigid-block model can): neither a collapse nor a recovery.
     half_cycle : int
         Half cycle of the collapse [-] (1: the first, with no impact); 0 unless a collapse.
     """
