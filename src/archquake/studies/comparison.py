@@ -201,8 +201,8 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
         Local worker processes of the rigid-block curve, one duration per task.
     progress : bool
         Progress bar over the rigid-block durations (the long part).
-    dynamics : ArchDynamics, optional
-        The arch's four-link dynamics, if already built.
+    dynamics : FourLinkModel, optional
+        The arch's four-link model, if already built.
     rigid_block : FailureDomain, optional
         The rigid-block model's failure domain, if already computed (e.g. on another process)
         with the same durations, direction, motion, settings, scan and resolution (checked).
