@@ -28,7 +28,8 @@ from archquake.geometry import GRAVITY
 from archquake.ground_motion import oppenheim_pulse, read_record
 from archquake.rigid_blocks import (block_outcome, from_arch, rectangular_block,
                                     simulate_blocks)
-from archquake.rigid_blocks.failure import failure_slice
+from archquake.rigid_blocks import RigidBlockModel
+from archquake.studies.failure_domain import domain_of
 from archquake.rigid_blocks.impacts import closing_impact
 
 arch = oppenheim()
@@ -37,7 +38,7 @@ block_outcome(arch, pulse)
 simulate_blocks(arch, pulse, t_end=0.05)
 block_outcome(arch, read_record({record!r}, scale_to=0.1))
 copy = pickle.loads(pickle.dumps(from_arch(arch)))  # as a worker process receives it
-failure_slice(copy, 0.2, amplitudes_g=[0.1, 0.2], resolution=0.1)
+domain_of(RigidBlockModel(copy), [0.2], [0.1, 0.2], resolution=0.1, extend_to_g=None)
 block_outcome(rectangular_block(0.4, 2.0), None)
 closing_impact(arch, np.ones((7, 3)))
 from archquake.rigid_blocks import solver

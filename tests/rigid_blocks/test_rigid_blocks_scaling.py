@@ -6,10 +6,10 @@ import math
 
 import numpy as np
 import pytest
-from archquake.rigid_blocks.failure import failure_slice
 
 from archquake.cli import main
 from archquake.geometry import circular_arch
+from archquake.models import model_for
 from archquake.rigid_blocks import MAX_BLOCKS, RigidBlockModel, block_outcome, from_arch
 from archquake.rigid_blocks.dynamics import contact_arrays, simulate_blocks
 from archquake.rigid_blocks.solver import (
@@ -92,7 +92,7 @@ def test_structure_beyond_the_block_limit_is_refused_up_front():
     before the arch is converted."""
     arch = circular_arch(10.0, math.radians(157.5), 1.5, MAX_BLOCKS + 1)
     for call in (lambda: block_outcome(arch, None), lambda: RigidBlockModel(arch),
-                 lambda: failure_slice(arch, 0.5, amplitudes_g=[0.3, 0.4])):
+                 lambda: model_for(arch, "rigid-blocks")):
         with pytest.raises(ValueError, match=f"at most {MAX_BLOCKS} blocks"):
             call()
     assert "_rigid_block_assembly" not in arch._cache

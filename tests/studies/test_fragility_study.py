@@ -15,10 +15,10 @@ from archquake.geometry import GRAVITY, irregular_sample
 from archquake.ground_motion import oppenheim_pulse
 from archquake.limit_analysis import limit_sample, load_multipliers
 from archquake.results_io import load_study
+from archquake.studies.arch_sample import STATUS_EXCLUDED
 from archquake.studies.failure_domain import inclusive_range
 from archquake.studies.fits import fit_lognormal
 from archquake.studies.fragility import (
-from archquake.studies.arch_sample import STATUS_EXCLUDED
     FragilitySettings,
     fragility_task,
     limit_task,
