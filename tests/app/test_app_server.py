@@ -186,3 +186,32 @@ def test_jobs_beyond_the_limit_are_refused_while_others_run(client):
     assert answer.status_code == 200
     for job in started:
         client.delete(f"/api/jobs/{job['id']}")
+
+
+def test_assessment_job_starts_and_is_cancelled(client):
+    start = client.post("/api/jobs/assess", json={"structure": {"thickness": 1.2}}).json()
+    seen = wait(client, start["id"], until=("running",))
+    assert seen[-1]["kind"] == "assess"
+    assert client.delete(f"/api/jobs/{start['id']}").json()["state"] == "cancelled"
+
+
+def test_download_serves_only_the_reports_of_jobs(client):
+    folder = client.app.state.workdir
+    (folder / "assessment-0123456789abcdef.zip").write_bytes(b"PK\x05\x06" + bytes(18))
+    (folder / "secret.txt").write_text("not offered")
+    got = client.get("/api/download/assessment-0123456789abcdef.zip")
+    assert got.status_code == 200 and got.content.startswith(b"PK")
+    assert client.get("/api/download/secret.txt").status_code == 404
+
+
+@pytest.mark.slow
+def test_assessment_job_offers_a_report(client):
+    import io
+    import zipfile
+
+    start = client.post("/api/jobs/assess", json={"structure": {"thickness": 1.2}}).json()
+    status = wait(client, start["id"], timeout=1800)[-1]
+    assert status["state"] == "done", status
+    report = client.get(f"/api/download/{status['result']['file']}")
+    names = zipfile.ZipFile(io.BytesIO(report.content)).namelist()
+    assert any(name.endswith("report.html") for name in names)

@@ -222,7 +222,7 @@ def create_app(workdir: str | Path | None = None, *, hosts=LOOPBACK_NAMES,
     """
     from .inputs import Uploads, check_geometry_file, check_record_file
     from .jobs import BusyError, Jobs
-    from .tasks import TASKS, check_domain
+    from .tasks import TASKS, check_domain, model_settings
 
     own = workdir is None
     folder = Path(tempfile.mkdtemp(prefix="archquake-app-") if own else workdir)
@@ -303,6 +303,7 @@ def create_app(workdir: str | Path | None = None, *, hosts=LOOPBACK_NAMES,
         from .inputs import motion_from_spec, structure_from_spec
 
         structure_from_spec(spec["structure"])
+        model_settings(spec)
         if kind == "simulate":
             motion_from_spec(spec.get("motion") or {})
         if kind == "domain":

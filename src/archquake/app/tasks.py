@@ -33,15 +33,22 @@ DOMAIN_DEFAULTS = {"durations": "0.1:1.0:0.1", "amplitudes": "0.05:1.5:0.05",
 rigid blocks' domain takes seconds, not minutes."""
 
 
-def models_of(spec: dict, structure, nominal) -> dict:
-    """Both models of the structure with the page's settings (``restitution`` of the four-link
-    model, ``friction`` of the rigid blocks): ``{name: model or the message why not}``."""
+def model_settings(spec: dict):
+    """The page's settings of both models, checked: the four-link model's restitution model
+    and the rigid blocks' :class:`~archquake.rigid_blocks.BlockSettings` (its friction).
+
+    Raises
+    ------
+    ValueError
+        Naming ``--restitution`` or ``--friction``, as the command line does.
+    """
     from ..defaults import DEFAULT_FRICTION, DEFAULT_RESTITUTION
     from ..fourlink.impact import check_restitution_model
-    from ..models import model_for
     from ..rigid_blocks import BlockSettings
 
     settings = spec.get("models") or {}
+    if not isinstance(settings, dict):
+        raise ValueError("models must be a JSON object {restitution, friction}")
     restitution = settings.get("restitution") or DEFAULT_RESTITUTION
     try:
         restitution = float(restitution)
@@ -49,8 +56,19 @@ def models_of(spec: dict, structure, nominal) -> dict:
         pass
     restitution = check_restitution_model(restitution)
     friction = settings.get("friction")
-    friction = DEFAULT_FRICTION if friction in (None, "") else float(friction)
-    block_settings = BlockSettings(friction=friction)
+    try:
+        friction = DEFAULT_FRICTION if friction in (None, "") else float(friction)
+    except (TypeError, ValueError):
+        raise ValueError(f"--friction must be a number >= 0, got {friction!r}") from None
+    return restitution, BlockSettings(friction=friction)
+
+
+def models_of(spec: dict, structure, nominal) -> dict:
+    """Both models of the structure with the page's settings (:func:`model_settings`):
+    ``{name: model, or the message why it cannot be built}``."""
+    from ..models import model_for
+
+    restitution, block_settings = model_settings(spec)
     out = {}
     for name in ("four-link", "rigid-blocks"):
         try:
@@ -224,11 +242,11 @@ def failure_domain(spec: dict, report) -> dict:
     if len(domains) == 2:
         disagreement = domain_disagreement(domains["four-link"], domains["rigid-blocks"])
         out["disagreement"] = disagreement.to_list()
-    out["figure"] = _domain_figure(domains, disagreement) if domains else None
+    out["figure"] = _domain_figure(domains, disagreement, models) if domains else None
     return out
 
 
-def _domain_figure(domains: dict, disagreement) -> str:
+def _domain_figure(domains: dict, disagreement, models: dict) -> str:
     """The domains as one PNG figure, a data URL."""
     from ..cli.output import pyplot
 
@@ -241,7 +259,13 @@ def _domain_figure(domains: dict, disagreement) -> str:
         plot_failure_domain(domain, ax)
         if name == "four-link" and disagreement is not None:
             plot_disagreement(disagreement, ax)
-        ax.set_title(f"{name} model: " + ax.get_title().split(": ", 1)[-1], fontsize=10)
+        sign = "-" if domain.direction == "l" else "+"
+        c_lr, c_rl = domain.restitution
+        c_text = f"{c_lr:.3f}" if abs(c_lr - c_rl) < 5e-4 else f"{c_lr:.3f} / {c_rl:.3f}"
+        settings = (f"c$_v$ = {c_text}" if name == "four-link"
+                    else f"friction $\\mu$ = {models[name].settings.friction:g}")
+        ax.set_title(f"{name} model: first pulse {sign}a g (Mech-{domain.direction}), "
+                     f"{settings}", fontsize=10)
     buffer = io.BytesIO()
     fig.savefig(buffer, format="png", dpi=90)
     plt.close(fig)
@@ -281,26 +305,39 @@ def assessment(spec: dict, report) -> dict:
 
 def assessment_report(structure, out_dir: Path) -> dict:
     """Run the assessment of ``structure`` into ``out_dir`` (the quick sizes: the page's
-    button is a first look; the command line runs the full one).
+    button is a first look; ``archquake assess`` runs the full one).
+
+    Uses :func:`archquake.report.assess.assess` where this version of archquake has it, and
+    otherwise :func:`paper_report_instead`, which says so.
 
     Returns
     -------
     dict
-        ``verdict`` (the report's first line) and ``files`` (names written).
-
-    Raises
-    ------
-    ValueError
-        If this version of archquake has no assessment report.
+        ``verdict`` (the report's verdict in words) and ``files`` (the names written).
     """
     try:
         from ..report.assess import assess
     except ImportError:
-        raise ValueError("this version of archquake has no assessment report "
-                         "(archquake.report.assess)") from None
+        return paper_report_instead(out_dir)
     result = assess(structure, quick=True, out_dir=out_dir, progress=False)
-    return {"verdict": str(getattr(result, "verdict", "")),
-            "files": [Path(f).name for f in getattr(result, "files", ())]}
+    return {"verdict": str(result.verdict), "files": [Path(f).name for f in result.files]}
+
+
+def paper_report_instead(out_dir: Path) -> dict:
+    """The paper's reproduction (``archquake reproduce --quick``, Oppenheim's arch), for a
+    version of archquake without the assessment of a structure: what the button offers there.
+
+    Returns
+    -------
+    dict
+        ``verdict`` (saying that the report is the paper's, not the structure's) and ``files``.
+    """
+    from ..report import ReproductionSettings, reproduce
+
+    reproduce(out_dir, ReproductionSettings.quick_settings(), progress=False)
+    return {"verdict": "This version of archquake cannot assess a structure of its own: the "
+                       "report is the paper's reproduction (Oppenheim's arch, quick sizes).",
+            "files": sorted(p.name for p in Path(out_dir).iterdir())}
 
 
 TASKS = {"simulate": simulate, "domain": failure_domain, "assess": assessment}
@@ -308,4 +345,4 @@ TASKS = {"simulate": simulate, "domain": failure_domain, "assess": assessment}
 
 
 __all__ = ["DOMAIN_DEFAULTS", "TASKS", "assessment", "assessment_report", "check_domain",
-           "failure_domain", "models_of", "simulate"]
+           "failure_domain", "model_settings", "models_of", "paper_report_instead", "simulate"]

@@ -53,7 +53,7 @@ const number = (id) => (value(id) === "" ? null : Number(value(id)));
 
 function structureSpec() {
   const spec = {};
-  if (document.querySelector("input[name=source]:checked").value === "file") {
+  if (fromFile()) {
     if (state.geometry) spec.geometry = state.geometry.token;
   } else {
     const shape = value("shape");
@@ -210,8 +210,24 @@ function structureChanged() {
   structureTimer = setTimeout(updateStructure, 120);
 }
 
+function clearStructure(note) {
+  state.structure = null;
+  setK(null);
+  $("verdict").hidden = true;
+  $("description").textContent = note;
+  $("svg-l").replaceChildren();
+  $("svg-r").replaceChildren();
+}
+
+const fromFile = () => document.querySelector("input[name=source]:checked").value === "file";
+
 async function updateStructure() {
   if (state.structureRequest) state.structureRequest.abort();
+  if (fromFile() && !state.geometry) {
+    clearStructure("choose a geometry file: its blocks and limit analysis appear here");
+    status("waiting for a geometry file");
+    return;
+  }
   const controller = new AbortController();
   state.structureRequest = controller;
   status("analysing…");
@@ -249,6 +265,7 @@ async function geometryChosen() {
   } catch (error) {
     showMessage(error.message);
     $("geometry-name").textContent = `${file.name} refused`;
+    clearStructure(`${file.name} refused: see the message above`);
   }
 }
 
