@@ -18,7 +18,7 @@ import urllib.request
 from pathlib import Path
 
 import pytest
-from conftest import BAD_GEOMETRY, ROOT, cli_error, cli_json
+from app_reference import BAD_GEOMETRY, ROOT, cli_error, cli_json
 
 sync_api = pytest.importorskip("playwright.sync_api",
                                reason="playwright is not installed (the test extra brings it)")

@@ -5,7 +5,7 @@ import json
 
 import numpy as np
 import pytest
-from conftest import BAD_GEOMETRY, cli_error, cli_json
+from app_reference import BAD_GEOMETRY, cli_error, cli_json
 
 from archquake.app.inputs import LIMITS, Uploads, motion_from_spec, structure_from_spec
 from archquake.limit_analysis import both_directions

@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import cli_json
+from app_reference import cli_json
 
 from archquake.app.inputs import structure_from_spec
 from archquake.app.views import (
@@ -13,7 +13,6 @@ from archquake.app.views import (
     four_link_motion,
     frame_times,
     limit_view,
-    mechanism_motion,
 )
 from archquake.geometry import GRAVITY
 from archquake.ground_motion import oppenheim_pulse

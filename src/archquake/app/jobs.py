@@ -16,7 +16,9 @@ from __future__ import annotations
 
 import json
 import multiprocessing
+import os
 import secrets
+import signal
 import threading
 import time
 from collections import OrderedDict
@@ -72,7 +74,9 @@ class Job:
         self._lock = threading.Lock()
         self._reader, writer = ctx.Pipe(duplex=False)
         text = json.dumps({**spec, "job": self.id})
-        self.process = ctx.Process(target=run_worker, args=(writer, kind, text), daemon=True,
+        # not a daemon: a task may start processes of its own (the report does), which a
+        # daemon may not; the worker leads a process group, which cancel() ends as a whole
+        self.process = ctx.Process(target=run_worker, args=(writer, kind, text), daemon=False,
                                    name=f"archquake-app-{kind}-{self.id}")
         self.process.start()
         writer.close()  # the worker's end: closed here so that its exit is seen as EOF
@@ -113,17 +117,33 @@ class Job:
         self.process.join(timeout=5)
 
     def cancel(self) -> None:
-        """End the worker process (a job already finished is left as it is)."""
+        """End the worker process and the processes it started (a job already finished is left
+        as it is)."""
         self.poll()
         with self._lock:
             if self.state != "running":
                 return
-            self.process.terminate()
+            self._signal(signal.SIGTERM)
             self.process.join(timeout=5)
             if self.process.is_alive():
-                self.process.kill()
+                self._signal(signal.SIGKILL)
                 self.process.join(timeout=5)
             self._finish("cancelled")
+
+    def _signal(self, number: int) -> None:
+        """Send a signal to the worker's process group (the worker and its children), or to
+        the worker alone before it has made its group."""
+        pid = self.process.pid
+        try:
+            if os.getpgid(pid) == pid:
+                os.killpg(pid, number)
+                return
+        except (ProcessLookupError, PermissionError):
+            pass
+        try:
+            os.kill(pid, number)
+        except ProcessLookupError:
+            pass
 
     def status(self, result: bool = True) -> dict:
         """JSON-ready state of the job: ``id``, ``kind``, ``state`` (``running``, ``done``,

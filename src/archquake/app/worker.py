@@ -11,6 +11,7 @@ server has them.
 from __future__ import annotations
 
 import json
+import os
 import signal
 import sys
 import traceback
@@ -65,6 +66,7 @@ def main(connection, kind: str, text: str) -> None:
     """
     from ..cli.options import option_message
 
+    os.setsid()  # a process group of its own: cancelling the job ends it with its children
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C stops the server, which ends us
 
     def send(message: dict) -> None:
