@@ -63,7 +63,6 @@ def take(out: Path) -> list[Path]:
                     page.locator(selector).screenshot(path=str(path))
                 written.append(path)
 
-            shot("overview")
             # a pointed arch on piers under a fill, its thrust lines
             page.select_option("#shape", "pointed")
             page.fill("#span", "12")
@@ -96,6 +95,8 @@ def take(out: Path) -> list[Path]:
                 slider.dispatchEvent(new Event('input')); }""")
             page.wait_for_timeout(300)
             shot("shake", "#shake-panel")
+            page.evaluate("window.scrollTo(0, 0)")
+            shot("overview")
             # the failure domain of both models
             page.fill("#domain-durations", "0.1:1.0:0.1")
             page.click("#domain-start")
