@@ -14,6 +14,15 @@ def pytest_collection_modifyitems(items):
                 "ignore:Using `httpx` with `starlette.testclient` is deprecated"))
 
 
+@pytest.fixture(scope="session", autouse=True)
+def compiled_library():
+    """The compiled functions the page's workers run, compiled (or loaded from numba's cache)
+    once here, before any test times a job: on a fresh clone the first compilation takes a
+    minute, which no job of a test should wait for. Importing the workers' module does it
+    (:func:`archquake.app.worker.warm_up`)."""
+    import archquake.app.worker  # noqa: F401
+
+
 @pytest.fixture()
 def client(tmp_path):
     """The page's application in a test client (its jobs' workers are real processes)."""
