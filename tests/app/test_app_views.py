@@ -9,8 +9,11 @@ from app_reference import cli_json
 
 from archquake.app.inputs import structure_from_spec
 from archquake.app.views import (
+    FRAME_RATE,
+    MAX_BLOCK_FRAMES,
     block_motion,
     four_link_motion,
+    frame_rate,
     frame_times,
     limit_view,
 )
@@ -120,6 +123,9 @@ def test_frame_times_run_to_the_later_end_at_the_frame_rate():
     assert times[0] == 0.0 and times[-1] == pytest.approx(3.0) and np.allclose(
         np.diff(times), 0.04)
     assert frame_times(1e6)[-1] == pytest.approx(60.0)
+    assert frame_rate(60.0, 7) == FRAME_RATE
+    rate = frame_rate(60.0, 200)  # many blocks for long: fewer frames
+    assert rate < FRAME_RATE and frame_times(60.0, rate=rate).size * 200 <= MAX_BLOCK_FRAMES + 200
 
 
 def test_limit_view_puts_mech_r_in_the_structures_frame():

@@ -26,8 +26,9 @@ from collections import OrderedDict
 MAX_RUNNING = 3
 """Jobs running at once; one more is refused until one ends (the machine's cores are shared)."""
 
-KEEP_FINISHED = 32
-"""Finished jobs kept for the page to read (the oldest are forgotten first)."""
+KEEP_FINISHED = 8
+"""Finished jobs kept for the page to read, with their results (the oldest are forgotten
+first): an animation of many blocks is megabytes."""
 
 
 class BusyError(RuntimeError):

@@ -94,17 +94,16 @@ def simulate(spec: dict, report) -> dict:
     -------
     dict
         ``structure`` (:func:`~archquake.app.views.structure_view`), ``motion``
-        (:func:`~archquake.app.views.motion_view`), ``times`` of the frames [s],
-        ``fps``, and per model (``"four-link"``, ``"rigid-blocks"``) its view
-        (:func:`~archquake.app.views.four_link_view`,
+        (:func:`~archquake.app.views.motion_view`), ``times`` of the frames [s] and their
+        rate ``fps`` [1/s] (:func:`~archquake.app.views.frame_rate`), and per model
+        (``"four-link"``, ``"rigid-blocks"``) its view (:func:`~archquake.app.views.four_link_view`,
         :func:`~archquake.app.views.rigid_block_view`) or ``{"error": message}``.
     """
     nominal, structure = structure_from_spec(spec.get("structure") or {})
     motion = motion_from_spec(spec.get("motion") or {})
     models = models_of(spec, structure, nominal)
     histories = {}
-    out = {"structure": views.structure_view(structure), "motion": views.motion_view(motion),
-           "fps": views.FRAME_RATE}
+    out = {"structure": views.structure_view(structure), "motion": views.motion_view(motion)}
     for k, (name, model) in enumerate(models.items()):
         report(k, 2, f"{name} model")
         if isinstance(model, str):
@@ -120,8 +119,9 @@ def simulate(spec: dict, report) -> dict:
             out[name] = {"error": f"{exc}"}
     ends = [float(h.t[-1]) if name == "four-link" else float(h.times[-1])
             for name, (_, h) in histories.items()]
-    times = views.frame_times(*ends)
-    out["times"] = views.rounded(times, 4)
+    rate = views.frame_rate(views.animation_end(*ends), structure.n_voussoirs)
+    times = views.frame_times(*ends, rate=rate)
+    out["fps"], out["times"] = rate, views.rounded(times, 4)
     for name, (model, history) in histories.items():
         out[name] = (views.four_link_view(model, history, times) if name == "four-link"
                      else views.rigid_block_view(history, times))

@@ -31,6 +31,10 @@ FRAME_RATE = 25.0
 MAX_ANIMATION_TIME = 60.0
 """Longest stretch of a time history animated [s]."""
 
+MAX_BLOCK_FRAMES = 150_000
+"""Most block positions of an animation (blocks times frames): a structure of many blocks under a
+long motion is animated at a lower frame rate, so that its answer stays a few megabytes."""
+
 SERIES_POINTS = 1200
 """Most points of a time series sent for a small plot [-]."""
 
@@ -136,11 +140,23 @@ def limit_view(results) -> dict:
 
 
 # ------------------------------------------------------------------------------ the motion
-def frame_times(*ends: float) -> np.ndarray:
-    """Times of the frames of an animation [s]: :data:`FRAME_RATE` per second from 0 to the
-    latest of ``ends`` (at most :data:`MAX_ANIMATION_TIME`)."""
-    end = min(max([e for e in ends if math.isfinite(e)], default=0.0), MAX_ANIMATION_TIME)
-    return np.arange(int(math.floor(end * FRAME_RATE)) + 1) / FRAME_RATE
+def animation_end(*ends: float) -> float:
+    """The end of an animation [s]: the latest of ``ends`` (at most
+    :data:`MAX_ANIMATION_TIME`)."""
+    return min(max([e for e in ends if math.isfinite(e)], default=0.0), MAX_ANIMATION_TIME)
+
+
+def frame_rate(end: float, blocks: int) -> float:
+    """Frames per second of an animation of ``blocks`` blocks lasting ``end`` seconds:
+    :data:`FRAME_RATE`, or fewer (at least one) to keep within :data:`MAX_BLOCK_FRAMES`."""
+    return float(min(FRAME_RATE, max(1.0, MAX_BLOCK_FRAMES / (max(blocks, 1) * max(end, 1e-9)))))
+
+
+def frame_times(*ends: float, rate: float = FRAME_RATE) -> np.ndarray:
+    """Times of the frames of an animation [s]: ``rate`` per second from 0 to
+    :func:`animation_end` of ``ends``."""
+    end = animation_end(*ends)
+    return np.arange(int(math.floor(end * rate + 1e-9)) + 1) / rate
 
 
 def _rotation(angle: float) -> np.ndarray:
@@ -304,7 +320,8 @@ def rigid_block_view(history, times) -> dict:
                                                                history.crown_drop)}
 
 
-__all__ = ["FRAME_RATE", "MAX_ANIMATION_TIME", "block_motion", "block_outcome", "finite",
+__all__ = ["FRAME_RATE", "MAX_ANIMATION_TIME", "MAX_BLOCK_FRAMES", "animation_end",
+           "block_motion", "block_outcome", "finite", "frame_rate",
            "four_link_motion", "four_link_outcome", "four_link_view", "frame_times", "json_ready",
            "limit_view", "mechanism_motion", "motion_view", "rigid_block_view", "rounded",
            "structure_view"]
