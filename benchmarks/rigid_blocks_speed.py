@@ -2,13 +2,18 @@
 
     python benchmarks/rigid_blocks_speed.py [--repeat 5] [--workers 2] [--lmgc90-python PY]
                                             [--lmgc90-runs 3] [--no-curve] [--no-four-link]
+                                            [--no-sweep]
 
 1. One analysis of Oppenheim's arch under Oppenheim's pulse (-0.5 g, t_p = 0.5 s): 4.5 s of
    motion at a 1 ms step, recorded (``simulate_blocks(t_end=4.5)``), and the outcome alone
    (``block_outcome``, which stops when the collapse is certain); then a recovery that is
    decided only after about 5 s (-0.6 g, t_p = 0.3 s). Median wall time of ``--repeat`` runs,
    JIT compilation excluded.
-2. The same 4.5 s in LMGC90 (3D, the compas_lmgc90 wheel: voussoirs as 1 m deep prisms with
+2. The cost of one analysis as the studies pay it (``block_outcome`` in-process, JIT excluded):
+   Oppenheim's pulse t_p = 0.4 s, -0.6 g (a collapse, certain at about 2.6 s), median of
+   ``--repeat`` runs; and a sweep of 78 pulses, t_p = 0.2 .. 0.7 s by 0.1 s x 0.3 .. 1.5 g by
+   0.1 g (rest, recovery and collapse), once each: mean and median time per analysis.
+3. The same 4.5 s in LMGC90 (3D, the compas_lmgc90 wheel: voussoirs as 1 m deep prisms with
    flat intrados and extrados between the joint corners, two support blocks driven with the
    ground velocity, IQS_CLB friction 0.8, theta = 1/2, 1 ms) when an interpreter that has it
    is given (``--lmgc90-python``) or this one has it; it is not a dependency of archquake.
@@ -17,7 +22,7 @@
        lmgc/bin/pip install "compas>=2" numpy
    Without it the reference figure stated for this analysis (a median of 15 s) is printed as
    stated, not measured.
-3. The failure curve of Oppenheim's arch at t_p = 0.2 .. 0.7 s (scan 0.10 .. 3.00 g by 0.05 g,
+4. The failure curve of Oppenheim's arch at t_p = 0.2 .. 0.7 s (scan 0.10 .. 3.00 g by 0.05 g,
    boundaries bisected to 0.005 g) on ``--workers`` processes, beside the four-link model's
    failure accelerations with the computed and the paper's restitution (0.001 g).
 """
@@ -52,6 +57,8 @@ STATED_LMGC90_SECONDS = 15.0
 """The reference time stated for this analysis in LMGC90 on this machine (median) [s]."""
 
 DURATIONS = (0.2, 0.3, 0.4, 0.5, 0.6, 0.7)
+SWEEP_DURATIONS = np.round(np.arange(0.2, 0.71, 0.1), 10)
+SWEEP_AMPLITUDES_G = np.round(np.arange(0.3, 1.51, 0.1), 10)
 SIMULATED = 4.5
 TIME_STEP = 1e-3
 
@@ -139,6 +146,31 @@ def run_lmgc90(python: str, spec: dict) -> dict:
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
+def per_analysis(arch, repeat: int, sweep: bool = True) -> None:
+    """Print the time of one analysis (t_p = 0.4 s, -0.6 g) and of a sweep of pulses."""
+    pulse = oppenheim_pulse(-0.6 * GRAVITY, 0.4)
+    one, outcome = _median_time(lambda: block_outcome(arch, pulse), repeat)
+    print(f"  -0.6 g, t_p = 0.4 s, outcome only ({outcome.status}, certain at "
+          f"{outcome.decision_time:.3f} s, {outcome.steps} steps): {1e3 * one:7.2f} ms per "
+          f"analysis  ({1e6 * one / outcome.steps:.2f} us per step)")
+    if not sweep:
+        return
+    times, counts = [], {}
+    for tp in SWEEP_DURATIONS:
+        for a in SWEEP_AMPLITUDES_G:
+            motion = oppenheim_pulse(-a * GRAVITY, float(tp))
+            start = time.perf_counter()
+            result = block_outcome(arch, motion)
+            times.append(time.perf_counter() - start)
+            counts[result.status.label] = counts.get(result.status.label, 0) + 1
+    times = np.array(times)
+    print(f"  sweep t_p = {SWEEP_DURATIONS[0]:g} .. {SWEEP_DURATIONS[-1]:g} s x "
+          f"{SWEEP_AMPLITUDES_G[0]:g} .. {SWEEP_AMPLITUDES_G[-1]:g} g ({times.size} analyses: "
+          + ", ".join(f"{n} {k}" for k, n in sorted(counts.items()))
+          + f"): mean {1e3 * times.mean():.2f} ms, median {1e3 * np.median(times):.2f} ms per "
+          f"analysis")
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=5)
@@ -149,6 +181,8 @@ def main(argv=None) -> int:
     parser.add_argument("--no-curve", action="store_true", help="skip the failure curve")
     parser.add_argument("--no-four-link", action="store_true",
                         help="skip the four-link failure accelerations")
+    parser.add_argument("--no-sweep", action="store_true",
+                        help="skip the sweep of 78 pulses")
     args = parser.parse_args(argv)
 
     arch = oppenheim()
@@ -172,6 +206,8 @@ def main(argv=None) -> int:
     print(f"  -0.6 g, t_p = 0.3 s, outcome only ({slow_outcome.status} decided at "
           f"{slow_outcome.decision_time:.2f} s, {slow_outcome.steps} steps): "
           f"{1e3 * slow:7.1f} ms  (target <= 150 ms)")
+
+    per_analysis(arch, args.repeat, sweep=not args.no_sweep)
 
     python = lmgc90_python(args.lmgc90_python)
     if python is None:

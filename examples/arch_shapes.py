@@ -27,7 +27,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from archquake import ArchDynamics, Status, oppenheim  # noqa: E402
+from archquake import FourLinkModel, Status, oppenheim  # noqa: E402
 from archquake.geometry import SHAPES, irregular_sample, shaped_arch  # noqa: E402
 from archquake.limit_analysis import both_directions  # noqa: E402
 from archquake.plotting import plot_arch  # noqa: E402
@@ -51,7 +51,7 @@ def arch_of(shape):
 
 def failures(arch, amplitudes):
     """Whether ``arch`` collapses under the pulse of each amplitude [g], in either direction."""
-    dynamics = ArchDynamics.from_arch(arch, RESTITUTION)
+    dynamics = FourLinkModel.from_arch(arch, RESTITUTION)
     failed = np.zeros(amplitudes.size, dtype=bool)
     for sign in (-1.0, 1.0):
         res = dynamics.outcomes(DURATION, sign * amplitudes)  # one compiled call
@@ -87,7 +87,7 @@ def main(argv=None):
     for shape in SHAPES:
         arch = arch_of(shape)
         colour = colours[shape]
-        dynamics = ArchDynamics.from_arch(arch, RESTITUTION)
+        dynamics = FourLinkModel.from_arch(arch, RESTITUTION)
         mech_l = dynamics.mechanisms[0]
         k = dynamics.load_multiplier
         domain = domain_of(dynamics, durations, amplitudes, extend_to_g=6.0)

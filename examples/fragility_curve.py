@@ -20,7 +20,7 @@ import matplotlib
 matplotlib.use("Agg")
 import numpy as np  # noqa: E402
 
-from archquake import ArchDynamics, Status, oppenheim  # noqa: E402
+from archquake import FourLinkModel, Status, oppenheim  # noqa: E402
 from archquake.geometry import irregular_sample  # noqa: E402
 from archquake.limit_analysis import limit_sample  # noqa: E402
 from archquake.plotting import plot_load_multiplier_cdf  # noqa: E402
@@ -32,7 +32,7 @@ RESTITUTION = 0.875  # the paper's c_v
 
 def failures(arch, amplitudes):
     """Whether ``arch`` collapses under the pulse of each amplitude [g], in either direction."""
-    dynamics = ArchDynamics.from_arch(arch, RESTITUTION)
+    dynamics = FourLinkModel.from_arch(arch, RESTITUTION)
     failed = np.zeros(amplitudes.size, dtype=bool)
     for sign in (-1.0, 1.0):
         res = dynamics.outcomes(DURATION, sign * amplitudes)  # one compiled call

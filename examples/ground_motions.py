@@ -21,7 +21,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from archquake import GRAVITY, ArchDynamics, oppenheim  # noqa: E402
+from archquake import GRAVITY, FourLinkModel, oppenheim  # noqa: E402
 from archquake.ground_motion import ground_motion, intensity_measures, scale_to_im  # noqa: E402
 from archquake.plotting import plot_ground_motion  # noqa: E402
 
@@ -50,7 +50,7 @@ def main(argv=None):
     parser.add_argument("--out", default=".", help="directory of the figure")
     args = parser.parse_args(argv)
 
-    dynamics = ArchDynamics.from_arch(oppenheim())  # computed restitution (the default)
+    dynamics = FourLinkModel.from_arch(oppenheim())  # computed restitution (the default)
     cases = motions(args.quick)
     fig, axes = plt.subplots(4, 2, figsize=(12, 10), constrained_layout=True)
     print(f"{'motion':26s} {'PGA [g]':>8s} {'PGV [m/s]':>10s} {'Sa(0.5) [g]':>12s}  outcome")

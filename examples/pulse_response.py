@@ -19,7 +19,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from archquake import GRAVITY, ArchDynamics, oppenheim  # noqa: E402
+from archquake import GRAVITY, FourLinkModel, oppenheim  # noqa: E402
 from archquake.ground_motion import oppenheim_pulse  # noqa: E402
 from archquake.plotting import plot_pulse_response  # noqa: E402
 from archquake.reference_arches import paper_values  # noqa: E402
@@ -34,7 +34,7 @@ def main(argv=None):
                         help="coefficient of restitution c_v (default: the paper's 0.875)")
     args = parser.parse_args(argv)
 
-    dynamics = ArchDynamics.from_arch(oppenheim(), args.restitution)
+    dynamics = FourLinkModel.from_arch(oppenheim(), args.restitution)
     cases = paper_values()["dynamics"]["NA"]["pulse_cases"]
     fig, axes = plt.subplots(1, len(cases), figsize=(16, 5.5), constrained_layout=True)
     for ax, (duration, amplitude, status, half_cycle) in zip(axes, cases, strict=True):

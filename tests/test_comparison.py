@@ -1,6 +1,6 @@
 """``archquake compare`` and :func:`archquake.studies.comparison.compare_models`: the two models'
 own failure curves side by side (the agreement for long pulses is checked in
-test_rigid_blocks_arch.py::test_long_pulse_failure_agrees_with_four_link_model)."""
+rigid_blocks/test_rigid_blocks_arch.py::test_long_pulse_failure_agrees_with_four_link_model)."""
 
 import json
 import math

@@ -57,13 +57,26 @@ def example_argv(gallery_conf, script_vars) -> list[str]:
     return ["--quick", "--out", os.path.relpath(EXAMPLE_OUTPUT, here)]
 
 
+def _is_alias(name: str, obj) -> bool:
+    """Whether ``obj`` is a class or function reached under a second name (a former name kept
+    for compatibility, ``ArchDynamics = FourLinkModel``): documented as a constant of its
+    module, whose docstring refers to the one documented object."""
+    own = getattr(getattr(obj, "py_func", obj), "__name__", name)
+    return (inspect.isclass(obj) or callable(obj)) and own != name
+
+
 def _defining_module(package: str, name: str, obj) -> tuple[str | None, list[str]]:
     """The module that defines ``obj``, exported by ``package`` as ``name``, and its docstring."""
-    if inspect.isclass(obj) or inspect.isfunction(obj) or hasattr(obj, "py_func"):
+    if ((inspect.isclass(obj) or inspect.isfunction(obj) or hasattr(obj, "py_func"))
+            and not _is_alias(name, obj)):
         return obj.__module__, (inspect.getdoc(obj) or "").splitlines()
-    # data: the submodule whose source documents the name (``NAME = ...`` and a docstring)
+    # data: the module whose source documents the name (``NAME = ...`` and a docstring), first
+    # among the package's own modules, then anywhere in archquake (a package re-exports a
+    # constant of :mod:`archquake.constants`)
     pkg = importlib.import_module(package)
-    for modname in sorted(_submodules(pkg)):
+    top = importlib.import_module(package.partition(".")[0])
+    own = sorted(_submodules(pkg))
+    for modname in [*own, *(m for m in sorted(_submodules(top)) if m not in own)]:
         module = importlib.import_module(modname)
         if getattr(module, name, None) is not obj:
             continue
@@ -112,7 +125,8 @@ class Exports(SphinxDirective):
                                  "(a constant needs a docstring where it is defined)")
             homes.append(home)
             summary = autosummary.extract_summary(doc, self.state.document.settings)
-            lines += [f"   * - :py:obj:`{name} <{home}.{getattr(obj, '__qualname__', name)}>`",
+            target = name if _is_alias(name, obj) else getattr(obj, "__qualname__", name)
+            lines += [f"   * - :py:obj:`{name} <{home}.{target}>`",
                       f"     - {summary}"]
         container = nodes.container()
         self.state.nested_parse(StringList(lines, source=f"exports of {package}"),

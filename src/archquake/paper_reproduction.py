@@ -1,4 +1,14 @@
-"""The former location of the paper's reproduction, now :mod:`archquake.report`."""
+"""The former location of the paper's reproduction, now :mod:`archquake.report`.
+
+Its names are re-exported from there, so that code written against this module keeps working:
+:func:`~archquake.report.paper.reproduce` and :class:`~archquake.report.paper.Reproduction`
+(:mod:`archquake.report.paper`), :class:`~archquake.report.settings.ReproductionSettings` and the
+report's fixed choices :data:`~archquake.report.settings.AGREEMENT_BAND`,
+:data:`~archquake.report.settings.ARCH_COLOURS`, :data:`~archquake.report.settings.ARCH_NAMES`,
+:data:`~archquake.report.settings.PHI_TOLERANCE` and
+:data:`~archquake.report.settings.RECORD_LEVELS` (:mod:`archquake.report.settings`). New code
+imports them from :mod:`archquake.report`.
+"""
 
 from .report.paper import Reproduction, reproduce
 from .report.settings import (

@@ -217,7 +217,7 @@ def plot_failure_domain(domain, ax=None):
     Parameters
     ----------
     domain : archquake.studies.failure_domain.FailureDomain
-        The domain (:meth:`archquake.fourlink.dynamics.ArchDynamics.failure_domain`).
+        The domain (:func:`archquake.studies.failure_domain.domain_of`).
     ax : matplotlib.axes.Axes, optional
         Axes to draw on; a new figure when None.
 

@@ -14,7 +14,7 @@ def paper_values() -> dict:
 
     Tables 1-3, the dynamic outcomes of Sect. 5 and the settings of its studies; units m, s,
     rad and accelerations in g. The test suite, :data:`OPPENHEIM` and
-    :mod:`archquake.paper_reproduction` all read them from this one file.
+    :mod:`archquake.report` all read them from this one file.
 
     Returns
     -------

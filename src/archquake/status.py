@@ -22,7 +22,9 @@ class Status(enum.IntEnum):
     ``-k_l g`` and ``k_r g``, eq. (2) of the paper); ``RECOVERY`` (1): the arch moved and came
     back (it rocks with less and less energy, or comes to rest); ``COLLAPSE`` (2): the linkage
     reaches its kinematic limit (the "ever-increasing" rotation of Sect. 5.3.1 of the paper).
-    ``UNDECIDED`` (-1) is the engine's code while an analysis runs; no result carries it.
+    ``UNDECIDED`` (-1) is the engine's code while an analysis runs; no four-link result carries
+    it, a rigid-block outcome does when its run ended undecided
+    (:class:`archquake.rigid_blocks.BlockOutcome`).
 
     Members are integers (the engine's codes, the tables' column); ``str()`` and formatting give
     the label. Comparing a member with a string raises ``TypeError`` instead of answering

@@ -65,3 +65,17 @@ def test_record_fragility_with_the_rigid_blocks(capsys, tmp_path):
     summary = json.loads(capsys.readouterr().out)
     assert summary["settings"]["model"] == "rigid-blocks"
     assert summary["settings"]["stride"] == 4  # the record study's default
+
+
+def test_compare_on_piers_leaves_out_the_restitution_rule_that_does_not_apply(capsys):
+    """On piers the paper's link rule gives c_v = 0 (the pier and the first voussoir are at
+    rest before the impact): the comparison says so and runs the other rules; the rigid blocks
+    decide at every duration."""
+    argv = ["compare", "--piers", "3,6", "--durations", "0.7", "--amplitudes", "0.1:0.5:0.1",
+            "--resolution", "0.01", "--no-progress"]
+    assert main(argv) == 0
+    text = capsys.readouterr().out
+    assert "restitution 'link' left out" in text
+    assert main([*argv, "--json"]) == 0
+    rows = json.loads(capsys.readouterr().out)
+    assert "link" not in rows[0]["four_link"] and rows[0]["rigid_block"] is not None

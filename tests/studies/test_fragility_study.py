@@ -15,6 +15,7 @@ from archquake.geometry import GRAVITY, irregular_sample
 from archquake.ground_motion import oppenheim_pulse
 from archquake.limit_analysis import limit_sample, load_multipliers
 from archquake.results_io import load_study
+from archquake.studies.arch_sample import STATUS_EXCLUDED
 from archquake.studies.failure_domain import inclusive_range
 from archquake.studies.fits import fit_lognormal
 from archquake.studies.fragility import (
@@ -313,7 +314,7 @@ def test_arches_that_cannot_be_analysed_are_excluded_and_counted(nominal, tmp_pa
     collapsed = (analysed.assign(c=analysed["status"] == 2)
                  .groupby(["amplitude_g", "arch"])["c"].any().groupby("amplitude_g").mean())
     assert np.array_equal(result.probability[0], collapsed.to_numpy())
-    assert set(table.loc[table["arch"].isin(list(dynamic)), "status"]) == {-1}
+    assert set(table.loc[table["arch"].isin(list(dynamic)), "status"]) == {STATUS_EXCLUDED}
     summary = result.summary()
     assert summary["arches"] == {
         "drawn": 10, "analysed": 10 - len(dynamic),

@@ -125,6 +125,8 @@ def run(args: argparse.Namespace) -> int:
     if bands:
         print("recovery above the failure acceleration [g]:")
         print("\n".join(bands))
+    for name, why in comparison.skipped.items():
+        print(f"restitution {name!r} left out: {why}")
     if args.plot:
         print(f"figure written to {args.plot}")
     return 0

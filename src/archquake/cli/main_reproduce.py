@@ -1,5 +1,5 @@
 """``archquake reproduce``: every table and figure of the paper beside the paper's values;
-:func:`archquake.paper_reproduction.reproduce`."""
+:func:`archquake.report.reproduce`."""
 
 from __future__ import annotations
 

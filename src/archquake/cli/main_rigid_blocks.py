@@ -80,13 +80,16 @@ def run(args: argparse.Namespace) -> int:
                "time_step": settings.time_step, "motion": motion.name}
         print_json(out)
         return 0
+    why = (f"the contact problem of {outcome.unconverged_steps} steps unsolved"
+           if outcome.unconverged_steps else "still moving")
     text = {"rest": "the arch never moves (it moves with the ground)",
             "recovery": "the arch rocks and comes back to rest",
-            "collapse": f"the arch collapses (certain at t = {outcome.collapse_time:.3f} s)"}
+            "collapse": f"the arch collapses (certain at t = {outcome.collapse_time:.3f} s)",
+            "undecided": f"undecided: not decided by t = "
+                         f"{outcome.steps * settings.time_step:.3f} s ({why})"}
     print(f"Rigid-block model, {motion.name}; friction {settings.friction:g}, time step "
           f"{settings.time_step:g} s")
-    undecided = "" if outcome.decided else " (not decided: still moving)"
-    print(f"{text[outcome.status.label]}{undecided}")
+    print(text[outcome.status.label])
     print(f"largest rotation {outcome.max_rotation:.4f} rad, crown drop "
           f"{outcome.max_crown_drop:.4f} m, slip {outcome.max_slip:.2e} m, joint opening "
           f"{outcome.max_opening:.4f} m; {outcome.steps} steps")

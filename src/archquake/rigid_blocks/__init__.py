@@ -6,16 +6,17 @@ shares with the rest of archquake only the geometry (any :class:`archquake.geome
 read by :func:`from_arch`) and the ground motions (:mod:`archquake.ground_motion`), not the
 four-link equations of motion, so that it can check them.
 
-:class:`RigidBlockModel` is the model's front door (the protocol of :mod:`archquake.models`).
-Modules: :mod:`.assembly` (blocks and joints), :mod:`.model` (the front door), :mod:`.solver` (the
-compiled scheme), :mod:`.dynamics` (analyses, their outcome criteria and results), :mod:`.failure`
-(failure accelerations of pulses), :mod:`.impacts` (the impact of a closing structure and its
-equivalent coefficient of restitution), :mod:`.plotting` (figures and animations; a leaf, imported
-on demand).
+:class:`RigidBlockModel` is the model's front door (the protocol of :mod:`archquake.models`);
+its failure domain and fragility studies are those of :mod:`archquake.studies`, as for the
+four-link model. Modules: :mod:`.assembly` (blocks and joints), :mod:`.model` (the front door),
+:mod:`.solver` (the compiled scheme), :mod:`.dynamics` (analyses, their outcome criteria and
+results), :mod:`.impacts` (the impact of a closing structure and its equivalent coefficient of
+restitution), :mod:`.plotting` (figures and animations; a leaf, imported on demand).
 """
 
 from .assembly import GROUND, Assembly, from_arch, rectangular_block
 from .dynamics import (
+    MAX_BLOCKS,
     BlockHistory,
     BlockOutcome,
     BlockSettings,
@@ -25,6 +26,6 @@ from .dynamics import (
 from .model import RigidBlockModel
 
 __all__ = [
-    "GROUND", "Assembly", "BlockHistory", "BlockOutcome", "BlockSettings", "block_outcome",
-    "RigidBlockModel", "from_arch", "rectangular_block", "simulate_blocks",
+    "GROUND", "MAX_BLOCKS", "Assembly", "BlockHistory", "BlockOutcome", "BlockSettings",
+    "RigidBlockModel", "block_outcome", "from_arch", "rectangular_block", "simulate_blocks",
 ]

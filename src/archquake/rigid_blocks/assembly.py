@@ -216,6 +216,19 @@ class Assembly:
         return float(self.masses.sum())
 
     @property
+    def height(self) -> float:
+        """Height of the highest block centroid above the lowest end of a joint with the
+        ground [m] (above the lowest centroid if no block rests on the ground), at least the
+        thickness: the length whose free-fall time ``sqrt(height / g)`` sets the time scale of
+        the structure's motion."""
+        on_ground = (self.joint_bodies == GROUND).any(axis=1)
+        if on_ground.any():
+            base = float(self.joint_points[on_ground][:, :, 1].min())
+        else:
+            base = float(self.centroids[:, 1].min())
+        return max(float(self.centroids[:, 1].max()) - base, self.thickness)
+
+    @property
     def joint_lengths(self) -> np.ndarray:
         """Length of every joint [m]."""
         return np.linalg.norm(self.joint_points[:, 1] - self.joint_points[:, 0], axis=1)

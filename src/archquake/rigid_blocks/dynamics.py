@@ -57,15 +57,23 @@ With ``t`` the thickness of the structure (:attr:`Assembly.thickness`) [m], ``M`
     displaced configuration (``BlockOutcome.closed`` False): blocks that slipped can wedge
     with a joint open, which the four-link model cannot represent. The longer window keeps a
     near-critical arch that passes slowly near an unstable equilibrium from being taken for
-    one at rest.
+    one at rest. Both windows are at least a tenth of, and one, period :math:`T_s =
+    \sqrt{H / g}` of the structure (``H`` its height): a tall structure turns slowly.
 ``rest``
     As recovery, but no joint ever opened, and none slipped at its more closed end, by more
     than ``moved_opening`` times the thickness during the whole run: the structure moved with
     the ground.
 
-If none is reached within ``settle_time`` seconds after the excitation, the run stops with
-``decided = False`` and the outcome is ``collapse`` when some joint is open (or a contact has
-slid off its face) at the last step and ``recovery`` otherwise.
+``undecided``
+    None of these within ``settle_time`` seconds after the excitation (at least 20 periods
+    :math:`T_s`: a tall structure rocks longer before it comes to rest; or by ``t_end``, for a
+    time history cut short), or a step whose contact problem was not solved before the
+    decision (the active-set method cycled and Gauss-Seidel did not converge: the motion after
+    it cannot be trusted): :attr:`Status.UNDECIDED <archquake.status.Status>`, ``decided =
+    False``, never a collapse nor a recovery by default.
+
+The outcome, its times and its maxima are those of the decision: a time history recorded on
+after it (:func:`simulate_blocks`) reports the same outcome as :func:`block_outcome`.
 
 References
 ----------
@@ -92,10 +100,42 @@ import numpy as np
 from ..checks import json_float
 from ..defaults import DEFAULT_FRICTION, DEFAULT_TIME_STEP, MAX_BLOCK_STEPS
 from ..geometry import GRAVITY, BlockArch
-from ..ground_motion import GroundMotion
+from ..ground_motion import LINEAR, STEP, GroundMotion
 from ..status import Status
 from . import solver
 from .assembly import GROUND, Assembly, from_arch
+
+MAX_BLOCKS = 100
+r"""Largest number of blocks of a structure that the rigid-block model analyses [-].
+
+The cost of a step grows linearly with the number of blocks (the contact problem is a band
+matrix: about 0.65 us per block and linear solve, ``benchmarks/rigid_blocks_scaling.py``) and so
+does the memory (kilobytes per block), but the number of linear solves per step grows too: the
+active-set method needs more of them when many joints open or slide at once (about 1.2 per step
+for Oppenheim's 7 voussoirs, 20 for 50, 75 for 100 under a 1 g pulse), and an analysis of
+100 blocks takes seconds to tens of seconds. A larger structure is refused before anything is
+built. Above about ten blocks the active-set method may also cycle at the onset of motion; the
+step is then left to Gauss-Seidel, which may not converge: such an outcome is reported
+undecided (:class:`BlockOutcome`)."""
+
+CONTACT_STEP_FRACTION = 0.02
+r"""Longest time step, as a fraction of :math:`\sqrt{t / g}` (``t`` the thickness of the
+structure) [-]: a contact closing at the speed of a fall through a thickness,
+:math:`\sqrt{g t}`, sinks by at most :math:`\theta h \sqrt{g t}` in its step, 1 % of the
+thickness for ``theta = 1/2`` (7.8 ms for Oppenheim's arch, 4 ms for a block 0.4 m wide)."""
+
+SETTLE_PERIODS, REST_PERIODS, OPEN_REST_PERIODS = 20.0, 0.1, 1.0
+r"""The windows of the outcome criteria in periods of the structure, :math:`T_s =
+\sqrt{H / g}` with ``H`` its height (:attr:`Assembly.height`) [-]: the time observed after
+the excitation is at least ``SETTLE_PERIODS`` periods, the windows of rest at least
+``REST_PERIODS`` (every joint closed) and ``OPEN_REST_PERIODS`` (a joint open) periods,
+whatever :class:`BlockSettings` says. A tall structure rocks slowly: it needs longer to come to
+rest, and its turning points last longer. For the arches of a few metres of the paper
+(Oppenheim's: ``H`` = 8.2 m, :math:`T_s` = 0.91 s) the settings' windows are the longer."""
+
+PULSE_STEPS = 20
+"""Fewest steps in the shortest piece of a pulse (the time scale of an analytic pulse, the
+shortest piece of a piecewise-constant one) [-]."""
 
 STATUS_NAMES = {solver.REST: Status.REST, solver.RECOVERY: Status.RECOVERY,
                 solver.COLLAPSE: Status.COLLAPSE}
@@ -135,14 +175,16 @@ class BlockSettings:
         Largest opening or slip of a structure that never moved, as a fraction of the
         thickness [-], > 0.
     rest_window : float
-        Time the structure must stay closed and still to be back at rest [s], > 0.
+        Time the structure must stay closed and still to be back at rest [s], > 0; at least
+        :data:`REST_PERIODS` periods of the structure.
     open_rest_window : float
         Time the structure must stay still with a joint open to be at rest in a displaced
         configuration (blocks that slipped and wedged) [s], > 0; longer than ``rest_window``
         so that an arch passing slowly near an unstable equilibrium is not taken for one at
-        rest.
+        rest; at least :data:`OPEN_REST_PERIODS` periods of the structure.
     settle_time : float
-        Longest time observed after the end of the excitation [s], > 0.
+        Longest time observed after the end of the excitation [s], > 0; at least
+        :data:`SETTLE_PERIODS` periods of the structure.
 
     Raises
     ------
@@ -162,8 +204,18 @@ class BlockSettings:
         d_{moved} = c_{moved}\,t,
 
     with :math:`c_{drop}, \epsilon_E, v_r, c_{gap}, c_{moved}` = ``collapse_drop``,
-    ``energy_margin``, ``rest_speed``, ``closed_gap``, ``moved_opening``; the windows are
-    rounded to whole steps (at least one).
+    ``energy_margin``, ``rest_speed``, ``closed_gap``, ``moved_opening``; the time windows are
+    scaled with the period of the structure :math:`T_s = \sqrt{H / g}` (``H`` its height,
+    :attr:`Assembly.height`),
+
+    .. math::
+
+        T_{settle} = \max(\text{settle\_time},\, 20\,T_s), \quad
+        T_{rest} = \max(\text{rest\_window},\, 0.1\,T_s), \quad
+        T_{open} = \max(\text{open\_rest\_window},\, T_s)
+
+    (:data:`SETTLE_PERIODS`, :data:`REST_PERIODS`, :data:`OPEN_REST_PERIODS`) and rounded to
+    whole steps (at least one).
     """
 
     friction: float = DEFAULT_FRICTION
@@ -208,12 +260,15 @@ class BlockOutcome:
     Attributes
     ----------
     status : Status
-        ``Status.REST``, ``Status.RECOVERY`` or ``Status.COLLAPSE`` (module docstring;
-        :class:`archquake.status.Status`, as the four-link model's outcomes carry it).
+        ``Status.REST``, ``Status.RECOVERY``, ``Status.COLLAPSE`` or, when the run did not decide
+        (:attr:`decided` False), ``Status.UNDECIDED`` (module docstring;
+        :class:`archquake.status.Status`, as the four-link model's outcomes carry it; its label
+        ``"undecided"`` in JSON and text).
     collapse_time : float
         Time at which the collapse became certain [s]; nan without collapse.
     max_rotation : float
-        Largest absolute rotation of a block [rad].
+        Largest absolute rotation of a block until the decision [rad] (as every maximum here:
+        until the last step if undecided).
     max_crown_drop : float
         Largest downward displacement of the crown point [m].
     max_slip : float
@@ -222,22 +277,24 @@ class BlockOutcome:
         Largest gap at a joint end whose contact is valid [m].
     decided : bool
         False if the run reached ``settle_time`` after the excitation undecided (or, for
-        :func:`simulate_blocks` with ``t_end``, reached ``t_end``).
+        :func:`simulate_blocks` with ``t_end``, reached ``t_end``), or if a step's contact
+        problem was not solved before the decision (``unconverged_steps``).
     closed : bool
         Every joint closed (both contacts valid with a gap at most ``closed_gap`` times the
-        thickness) at the last step measured; False for a recovery at rest in a displaced
-        configuration, and as a rule for a collapse.
+        thickness) at the decision (at the last step if undecided); False for a recovery at
+        rest in a displaced configuration, and as a rule for a collapse.
     decision_time : float
         Time at which the outcome was decided [s]; nan if undecided.
     steps : int
-        Time steps taken [-].
+        Time steps taken to the decision (to the end if undecided) [-].
     mean_iterations : float
         Mean number of linear solves of the active-set method per step [-]; a step left to
         Gauss-Seidel counts its sweeps instead.
     fallback_steps : int
         Steps whose contact problem the active-set method left to Gauss-Seidel [-].
     unconverged_steps : int
-        Of these, steps that did not meet the tolerance in ``max_iterations`` sweeps [-].
+        Of these, steps that did not meet the tolerance in ``max_iterations`` sweeps [-]; any
+        makes the outcome undecided.
     """
 
     status: Status
@@ -379,13 +436,15 @@ class BlockHistory:
 
 
 def contact_arrays(assembly: Assembly) -> dict[str, np.ndarray]:
-    """Per-contact arrays of the compiled solver: contact ``2 j + k`` is end ``k`` of joint j.
+    """The packed arrays of the compiled solver: contact ``2 j + k`` is end ``k`` of joint j.
 
-    ``ca, cb``: bodies a and b; ``ra, rb``: the contact point relative to the centroid of a and
-    of b in the undeformed configuration (the absolute point for the ground) [m]; ``normal``,
-    ``tangent``: the joint's unit vectors [-]; ``offset``: position of the end along the joint
-    (0 or its length) [m]; ``face_lo, face_hi``: the face of body a along the joint [m];
-    ``length``: the joint's length [m].
+    ``bodies`` (nb, 4): mass [kg/m], inertia [kg m] and centroid [m] of every block
+    (:data:`archquake.rigid_blocks.solver.BODY_FIELDS`); ``contacts`` (nc, 12): the contact
+    point relative to the centroid of body a and of body b in the undeformed configuration (the
+    absolute point for the ground) [m], the joint's unit normal and tangent [-], the position of
+    the end along the joint (0 or its length), the face of body a along the joint and the joint's
+    length [m] (:data:`~archquake.rigid_blocks.solver.CONTACT_FIELDS`); ``contact_bodies``
+    (nc, 2) int: bodies a and b (:data:`GROUND` for a support).
 
     Parameters
     ----------
@@ -395,8 +454,8 @@ def contact_arrays(assembly: Assembly) -> dict[str, np.ndarray]:
     Returns
     -------
     dict of str to array
-        The arrays above, contiguous, of length ``nc = 2 nj`` (``(nc, 2)`` for points and
-        vectors); computed once and cached on the assembly.
+        The three arrays, contiguous and writable (one compiled signature whatever the
+        assembly's arrays are), ``nc = 2 nj``; computed once and cached on the assembly.
     """
     if "contacts" not in assembly._cache:
         nj = assembly.n_joints
@@ -406,8 +465,7 @@ def contact_arrays(assembly: Assembly) -> dict[str, np.ndarray]:
         centroid = np.vstack((assembly.centroids, np.zeros((1, 2))))  # index -1: the ground
         lengths = assembly.joint_lengths
         tangents = (assembly.joint_points[:, 1] - assembly.joint_points[:, 0]) / lengths[:, None]
-        arrays = {
-            "ca": ca, "cb": cb,
+        columns = {
             "ra": points - centroid[ca], "rb": points - centroid[cb],
             "normal": np.repeat(assembly.joint_normals, 2, axis=0),
             "tangent": np.repeat(tangents, 2, axis=0),
@@ -416,22 +474,137 @@ def contact_arrays(assembly: Assembly) -> dict[str, np.ndarray]:
             "face_hi": np.repeat(assembly.face_extents[:, 1], 2),
             "length": np.repeat(lengths, 2),
         }
-        for key, value in arrays.items():
-            arrays[key] = np.ascontiguousarray(value)
-        assembly._cache["contacts"] = arrays
+        contacts = np.column_stack([np.reshape(x, (2 * nj, -1)) for x in columns.values()])
+        assert contacts.shape[1] == len(solver.CONTACT_FIELDS)
+        bodies = np.column_stack((assembly.masses, assembly.inertias, assembly.centroids))
+        assembly._cache["contacts"] = {
+            "bodies": np.ascontiguousarray(bodies, dtype=float),
+            "contacts": np.ascontiguousarray(contacts, dtype=float),
+            "contact_bodies": np.ascontiguousarray(np.column_stack((ca, cb)), dtype=np.int64),
+        }
     return assembly._cache["contacts"]
 
 
+def check_size(n_blocks: int) -> None:
+    """Refuse a structure of more than :data:`MAX_BLOCKS` blocks.
+
+    Parameters
+    ----------
+    n_blocks : int
+        Number of blocks of the structure (of voussoirs of an arch) [-].
+
+    Raises
+    ------
+    ValueError
+        If ``n_blocks > MAX_BLOCKS``.
+    """
+    if n_blocks > MAX_BLOCKS:
+        raise ValueError(f"the rigid-block model takes at most {MAX_BLOCKS} blocks (MAX_BLOCKS), "
+                         f"this structure has {n_blocks} (voussoirs or blocks): the solves per "
+                         f"step grow with the blocks that move at once, and an analysis would "
+                         f"take minutes; use fewer voussoirs")
+
+
 def structure_assembly(structure) -> Assembly:
-    """The :class:`Assembly` of an arch (converted once, cached on it) or an Assembly itself."""
+    """The :class:`Assembly` of an arch (converted once, cached on it) or an Assembly itself.
+
+    Raises
+    ------
+    ValueError
+        If ``structure`` is neither, or has more than :data:`MAX_BLOCKS` blocks (refused before
+        an arch is converted).
+    """
     if isinstance(structure, Assembly):
+        check_size(structure.n_blocks)
         return structure
     if isinstance(structure, BlockArch):
+        check_size(structure.n_voussoirs)
         key = "_rigid_block_assembly"
         if key not in structure._cache:
             structure._cache[key] = from_arch(structure)
         return structure._cache[key]
     raise ValueError(f"structure must be an arch or an Assembly, got {type(structure).__name__}")
+
+
+def check_time_step(time_step: float, motion: GroundMotion, thickness: float) -> None:
+    r"""Refuse a time step that cannot resolve the motion.
+
+    The step ``h`` must resolve the contact law and the ground motion:
+
+    .. math::
+
+        h \le c\,\sqrt{t / g}, \qquad h \le T_m / N \ \text{(a pulse)}, \qquad
+        h \le \Delta t \ \text{(a record)},
+
+    with ``t`` the thickness [m], :math:`c` = :data:`CONTACT_STEP_FRACTION`, :math:`T_m` the
+    time scale of an analytic pulse (its ``params[1]``: the period of a sine or Ricker pulse)
+    or the shortest piece in which a piecewise-constant one moves the ground (``t_p`` of
+    Oppenheim's or a rectangular pulse) [s], :math:`N` = :data:`PULSE_STEPS`, and
+    :math:`\Delta t` the (median) sample spacing of a record (a piecewise-linear table) [s];
+    a still ground sets no limit. A longer step averages the pulse away (a 1 s step leaves
+    Oppenheim's arch at rest under a -1 g pulse of 0.27 s that collapses it: the mean ground
+    acceleration of a step over the whole pulse is zero) or lets contacts sink into one
+    another. At the default step (1 ms), halving it leaves the outcomes 0.01 g on either side
+    of Oppenheim's failure accelerations unchanged (tested).
+
+    Parameters
+    ----------
+    time_step : float
+        The time step h [s].
+    motion : GroundMotion
+        The ground motion.
+    thickness : float
+        Thickness (length scale) of the structure [m].
+
+    Raises
+    ------
+    ValueError
+        Naming ``time_step``, the longest step allowed and why.
+    """
+    limits = [(CONTACT_STEP_FRACTION * math.sqrt(thickness / GRAVITY),
+               f"{CONTACT_STEP_FRACTION:g} sqrt(t/g) for a structure {thickness:g} m thick (a "
+               f"closing contact would sink by more than 1 % of it)")]
+    times, values = np.asarray(motion.times), np.asarray(motion.values)
+    if motion.is_analytic and motion.params[0] != 0.0:
+        limits.append((float(motion.params[1]) / PULSE_STEPS,
+                       f"1/{PULSE_STEPS} of the pulse's time scale {float(motion.params[1]):g} s"))
+    elif motion.kind == STEP and np.any(values != 0.0):
+        piece = float(np.min(np.diff(times)[values != 0.0]))
+        limits.append((piece / PULSE_STEPS,
+                       f"1/{PULSE_STEPS} of the pulse's shortest piece {piece:g} s"))
+    elif motion.kind == LINEAR and np.any(values != 0.0):
+        spacing = float(np.median(np.diff(times)))
+        limits.append((spacing, f"the record's sample spacing {spacing:g} s"))
+    longest, why = min(limits)
+    if time_step > longest * (1.0 + 1e-9):
+        name = motion.name or "the ground motion"
+        raise ValueError(f"time_step {time_step:g} s cannot resolve the motion ({name}): at most "
+                         f"{longest:.3g} s, {why}")
+
+
+def observation_windows(assembly: Assembly, settings: BlockSettings) -> tuple[float, float,
+                                                                              float]:
+    r"""The time observed after the excitation and the two windows of rest of an analysis [s]:
+    the settings' ``settle_time``, ``rest_window`` and ``open_rest_window``, or
+    :data:`SETTLE_PERIODS`, :data:`REST_PERIODS` and :data:`OPEN_REST_PERIODS` periods
+    :math:`T_s = \sqrt{H / g}` of the structure if longer.
+
+    Parameters
+    ----------
+    assembly : Assembly
+        The structure (its :attr:`~Assembly.height` [m]).
+    settings : BlockSettings
+        The settings.
+
+    Returns
+    -------
+    (float, float, float)
+        ``(settle, rest, open_rest)`` [s].
+    """
+    period = math.sqrt(assembly.height / GRAVITY)
+    return (max(settings.settle_time, SETTLE_PERIODS * period),
+            max(settings.rest_window, REST_PERIODS * period),
+            max(settings.open_rest_window, OPEN_REST_PERIODS * period))
 
 
 def _initial_state(assembly: Assembly, initial) -> tuple[np.ndarray, np.ndarray]:
@@ -472,6 +645,7 @@ def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None,
         raise ValueError(f"motion must be a GroundMotion, got {type(motion).__name__}")
     q0, v0 = _initial_state(assembly, initial)
     h = float(settings.time_step)
+    check_time_step(h, motion, assembly.thickness)
     excitation_end = motion.duration
     if t_end is not None:
         if not (math.isfinite(t_end) and t_end > 0):
@@ -479,7 +653,8 @@ def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None,
         n_steps = int(math.ceil(t_end / h - 1e-9))
         tail_steps = -1
     else:
-        n_steps = int(math.ceil((excitation_end + settings.settle_time) / h))
+        n_steps = int(math.ceil((excitation_end + observation_windows(assembly, settings)[0])
+                                / h))
         tail_steps = int(round(tail / h))
         n_steps += max(tail_steps, 0) if record_every else 0
     if n_steps > MAX_BLOCK_STEPS:
@@ -488,38 +663,39 @@ def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None,
                          f"use a larger time step or a shorter t_end")
     thickness = assembly.thickness
     total_mass = assembly.total_mass
-    c = contact_arrays(assembly)
+    windows = observation_windows(assembly, settings)
+    arrays = contact_arrays(assembly)
     # writeable copies: one compiled signature whether the arrays are frozen or unpickled
     kind, params, times, values = (np.array(x, dtype=float) if i else x
                                    for i, x in enumerate(motion.compiled()))
     crown_block, crown_point = assembly.crown
-    crown_r = np.array(crown_point - assembly.centroids[crown_block])
-    summary, records = solver.run(
-        np.array(assembly.masses), np.array(assembly.inertias), np.array(assembly.centroids),
-        c["ca"], c["cb"], c["ra"],
-        c["rb"], c["normal"], c["tangent"], c["offset"], c["face_lo"], c["face_hi"], c["length"],
-        crown_block, crown_r, q0, v0, kind, params, times, values,
-        h, float(settings.theta), float(settings.friction), float(settings.tolerance),
-        int(settings.max_iterations), GRAVITY, excitation_end, n_steps,
-        settings.collapse_drop * thickness,
-        0.5 * total_mass * (settings.rest_speed**2) * GRAVITY * thickness,
-        settings.closed_gap * thickness, max(1, int(round(settings.rest_window / h))),
-        max(1, int(round(settings.open_rest_window / h))),
-        settings.moved_opening * thickness,
-        settings.energy_margin * total_mass * GRAVITY * thickness,
-        int(record_every), tail_steps,
-    )
+    crown_r = crown_point - assembly.centroids[crown_block]
+    packed = solver.pack_settings(
+        time_step=h, theta=settings.theta, friction=settings.friction,
+        tolerance=settings.tolerance, max_iterations=settings.max_iterations, gravity=GRAVITY,
+        excitation_end=excitation_end, n_steps=n_steps,
+        drop_limit=settings.collapse_drop * thickness,
+        rest_energy=0.5 * total_mass * (settings.rest_speed**2) * GRAVITY * thickness,
+        closed_gap=settings.closed_gap * thickness,
+        rest_steps=max(1, int(round(windows[1] / h))),
+        open_rest_steps=max(1, int(round(windows[2] / h))),
+        moved_threshold=settings.moved_opening * thickness,
+        energy_margin=settings.energy_margin * total_mass * GRAVITY * thickness,
+        record_stride=int(record_every), tail_steps=tail_steps,
+        crown_block=crown_block, crown_x=crown_r[0], crown_y=crown_r[1])
+    summary, records = solver.run(arrays["bodies"], arrays["contacts"], arrays["contact_bodies"],
+                                  q0, v0, int(kind), params, times, values, packed)
     s = dict(zip(solver.SUMMARY_FIELDS, summary.tolist(), strict=True))
     status = int(s["status"])
-    if status < 0:  # undecided: still open -> collapse, closed (but moving) -> recovery
-        status = solver.RECOVERY if s["closed"] else solver.COLLAPSE
+    decided = bool(s["decided"]) and s["unconverged_steps"] == 0
     steps = int(s["steps"])
     outcome = BlockOutcome(
-        status=STATUS_NAMES[status], collapse_time=s["collapse_time"],
+        status=STATUS_NAMES[status] if decided else Status.UNDECIDED,
+        collapse_time=s["collapse_time"] if decided else math.nan,
         max_rotation=s["max_rotation"], max_crown_drop=s["max_crown_drop"],
-        max_slip=s["max_slip"], max_opening=s["max_opening"], decided=bool(s["decided"]),
+        max_slip=s["max_slip"], max_opening=s["max_opening"], decided=decided,
         closed=bool(s["closed"]),
-        decision_time=s["decision_time"], steps=steps,
+        decision_time=s["decision_time"] if decided else math.nan, steps=steps,
         mean_iterations=s["iterations"] / max(steps, 1), fallback_steps=int(s["fallbacks"]),
         unconverged_steps=int(s["unconverged_steps"]),
     )
@@ -546,14 +722,15 @@ def block_outcome(structure, motion: GroundMotion | None, settings: BlockSetting
     -------
     BlockOutcome
         The outcome (module docstring), decided within ``settle_time`` after the end of the
-        motion or reported undecided.
+        motion or reported undecided (``Status.UNDECIDED``).
 
     Raises
     ------
     ValueError
         If ``structure``, ``motion`` or ``settings`` has the wrong type, ``initial`` is not
-        two finite arrays of shape (nb, 3), or the analysis would take more than
-        :data:`archquake.defaults.MAX_BLOCK_STEPS` time steps.
+        two finite arrays of shape (nb, 3), the structure has more than :data:`MAX_BLOCKS`
+        blocks, the time step cannot resolve the motion (:func:`check_time_step`), or the
+        analysis would take more than :data:`archquake.defaults.MAX_BLOCK_STEPS` time steps.
 
     Examples
     --------
@@ -561,7 +738,7 @@ def block_outcome(structure, motion: GroundMotion | None, settings: BlockSetting
 
     >>> from archquake.rigid_blocks import rectangular_block
     >>> outcome = block_outcome(rectangular_block(0.2, 1.0), None,
-    ...                         BlockSettings(time_step=0.01, settle_time=0.5))
+    ...                         BlockSettings(time_step=0.002, settle_time=0.5))
     >>> outcome.status.label, outcome.decided
     ('rest', True)
     """
@@ -610,9 +787,14 @@ def simulate_blocks(structure, motion: GroundMotion | None,
     assembly, settings, motion, outcome, records = _run(
         structure, motion, settings, initial=initial, record_every=int(record_every),
         t_end=t_end, tail=tail)
-    t, q, gap, slip, force, energy = records
-    nr, nj = t.size, assembly.n_joints
-    force = force.reshape(nr, nj, 2, 2)
+    energy, q, per_contact = records
+    nr, nb, nj = energy.shape[0], assembly.n_blocks, assembly.n_joints
+    q = q.reshape(nr, nb, 3)
+    nc = 2 * nj
+    gap, slip = per_contact[:, :nc], per_contact[:, nc:2 * nc]
+    force = per_contact[:, 2 * nc:].reshape(nr, nj, 2, 2)
+    t = energy[:, 0]
+    energy = energy[:, 1:]
     return BlockHistory(
         assembly=assembly, outcome=outcome, times=t, displacements=q[:, :, :2],
         rotations=q[:, :, 2], gaps=gap.reshape(nr, nj, 2), offsets=slip.reshape(nr, nj, 2),
@@ -647,5 +829,7 @@ def with_settings(settings: BlockSettings | None, **changes) -> BlockSettings:
     return replace(BlockSettings() if settings is None else settings, **changes)
 
 
-__all__ = ["GROUND", "BlockHistory", "BlockOutcome", "BlockSettings", "block_outcome",
-           "contact_arrays", "simulate_blocks", "with_settings"]
+__all__ = ["CONTACT_STEP_FRACTION", "GROUND", "MAX_BLOCKS", "OPEN_REST_PERIODS", "PULSE_STEPS",
+           "REST_PERIODS", "SETTLE_PERIODS", "BlockHistory", "BlockOutcome", "BlockSettings",
+           "block_outcome", "check_size", "check_time_step", "contact_arrays",
+           "observation_windows", "simulate_blocks", "with_settings"]

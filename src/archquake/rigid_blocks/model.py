@@ -142,9 +142,10 @@ class RigidBlockModel:
         Returns
         -------
         dict of ndarray
-            ``status`` (:class:`archquake.status.Status` codes), ``half_cycle`` (0: the
-            rigid-block model does not count half cycles) and ``collapse_time`` (when the
-            collapse became certain [s], nan without one), of the broadcast shape.
+            ``status`` (:class:`archquake.status.Status` codes, -1 for an analysis left
+            undecided), ``half_cycle`` (0: the rigid-block model does not count half cycles)
+            and ``collapse_time`` (when the collapse became certain [s], nan without one), of
+            the broadcast shape.
         """
         from ..ground_motion import ground_motion
 

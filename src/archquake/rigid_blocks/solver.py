@@ -1,8 +1,8 @@
 r"""Compiled Moreau-Jean time stepping of rigid blocks with unilateral Coulomb contacts.
 
 Everything here is ``numba``-compiled; :func:`run` is the one driver of an analysis, the other
-functions are its small helpers. :mod:`archquake.rigid_blocks.dynamics` prepares the arrays and
-reads the results.
+functions are its small helpers (section "The driver"). :mod:`archquake.rigid_blocks.dynamics`
+prepares the arrays and reads the results.
 
 Frame and unknowns
 ------------------
@@ -118,10 +118,16 @@ the Delassus matrix:
 It is solved exactly (to round-off) by a primal-dual active-set method,
 :func:`solve_active_set`: guess the state of every contact (open, stick, slide either way; the
 previous step's states), solve the linear system in the impulses that the states define, switch
-the states that the solution contradicts, repeat (usually 1-2 solves of a system of at most
-2 x 2(n+1) unknowns; the normal rows of the contacts that stick or slide and the tangential
-rows of the sticking ones carry a compliance of :data:`REGULARISATION` times their diagonal,
-which picks the smallest of the statically indeterminate impulses). Should the states cycle
+the states that the solution contradicts, repeat (usually 1-2 solves; the normal rows of the
+contacts that stick or slide and the tangential rows of the sticking ones carry a compliance of
+:data:`REGULARISATION` times their diagonal, which picks the smallest of the statically
+indeterminate impulses). Two contacts couple only through a block they both touch, so with the
+contacts numbered joint by joint ``W`` is a band matrix (for an arch each joint couples with its
+two neighbours: half-bandwidth 7 in the impulses, whatever the number of blocks): it is
+assembled block by block and solved in band storage, by Cholesky's factorisation when no
+contact slides (the system is then symmetric positive definite), else by Gaussian elimination
+(:func:`band_cholesky_solve`, :func:`band_lu_solve`, :func:`band_solve`): a step costs time and
+memory linear in the number of blocks. Should the states cycle
 (a few steps of a collapse at large amplitude, where contacts slide and separate together;
 counted in the outcome), projected Gauss-Seidel takes over [2]_ (Ch. 13),
 :func:`solve_contacts`: sweeps forward and backward in turn, each contact's problem solved
@@ -161,6 +167,33 @@ the configuration of the previous step) is not exactly zero, so the contact work
 positive by O(h^2) per step; for a rocking block this is 0.15 % of its energy over 3 s at
 h = 1 ms, halving with h (tested).
 
+The driver
+----------
+:func:`run` is a short loop over small compiled helpers; one loop is one step, in these phases
+(the code carries the same numbers)::
+
+    1. geometry     gap, offset, validity and Jacobian of every contact at q_k
+    2. measure      energies, drops, rotations and the joints at t_k
+    3. record       every record_stride-th state (recording only)
+    4. decide       the outcome tests (:func:`run`), until one holds
+    5. stop?        decided (and the record's tail done), or the last step
+    6. free         the impulse of the weight and of the ground over the step: v^f
+    7. active set   the valid contacts whose predicted gap closes
+    8. contacts     the contact problem: active-set method, else Gauss-Seidel
+    9. advance      energy bookkeeping and the positions q_{k+1}
+
+The structure reaches the driver as three packed arrays (the blocks, :data:`BODY_FIELDS`; the
+contacts, :data:`CONTACT_FIELDS`; the bodies of every contact) and the settings as one vector
+(:data:`SETTINGS_FIELDS`, :func:`pack_settings`): one compiled signature serves every structure
+and every analysis. How each part is compiled was chosen by measurement, as in the four-link
+engine's driver: the parts of a step that take arrays (the contact geometry, the contact
+problem, the active set, the bookkeeping) are compiled on their own without numba's reference
+counting (``_nrt=False``: they allocate nothing; counting the references of the arrays handed
+to a helper, at every call, cost as much as the arithmetic of the active set), and the small
+helpers they call for every contact are inlined into them (``inline="always"``). In the short
+loops of the band solvers the indices are unsigned: numba checks a signed index for wrapping
+around at every access, which kept them from being vectorised (1.7 times slower).
+
 References
 ----------
 .. [1] M. Jean, "The non-smooth contact dynamics method", Comput. Methods Appl. Mech. Engrg. 177
@@ -181,7 +214,7 @@ import math
 import numba
 import numpy as np
 
-from ..ground_motion import HARMONIC, STEP
+from ..ground_motion import HARMONIC, STEP, analytic_duration, evaluate
 
 REGULARISATION = 1e-9
 """Compliance of the rows of the contact problem that hold a velocity to zero (the normal row of a
@@ -211,34 +244,50 @@ SUMMARY_FIELDS = (
 """Layout of the summary vector returned by :func:`run`: outcome code; 1 if decided; collapse and
 decision times [s] (nan if none); largest block rotation [rad], crown drop, slip, opening and
 drop [m]; steps, linear solves or sweeps in all, most in one step, unconverged steps [-]; final
-time [s]; 1 if every joint was closed at the end; steps left to Gauss-Seidel [-]."""
+time of the run [s]; 1 if every joint was closed; steps left to Gauss-Seidel [-]. Everything but
+the final time is that of the decision (of the last step if undecided): a recording that goes on
+after the decision changes nothing of it."""
 
-_N_SUMMARY = 16
 
 
-@numba.njit(cache=True)
+_G1, _G2 = math.sqrt(5.0 - 2.0 * math.sqrt(10.0 / 7.0)) / 3.0, math.sqrt(
+    5.0 + 2.0 * math.sqrt(10.0 / 7.0)) / 3.0
+GAUSS_NODES = (-_G2, -_G1, 0.0, _G1, _G2)
+GAUSS_WEIGHTS = ((322.0 - 13.0 * math.sqrt(70.0)) / 900.0, (322.0 + 13.0 * math.sqrt(70.0)) / 900.0,
+                 128.0 / 225.0, (322.0 + 13.0 * math.sqrt(70.0)) / 900.0,
+                 (322.0 - 13.0 * math.sqrt(70.0)) / 900.0)
+"""Nodes on [-1, 1] and weights of 5-point Gauss-Legendre quadrature [-] (exact for
+polynomials of degree 9)."""
+
+
+@numba.njit(cache=True, _nrt=False)
 def mean_acceleration(t0, t1, kind, params, times, values):
-    r"""Mean ground acceleration [m/s^2] over ``[t0, t1]`` [s]: its exact integral / (t1 - t0).
+    r"""Mean ground acceleration [m/s^2] over ``[t0, t1]`` [s]: its integral / (t1 - t0).
 
-    For the compiled representation of :mod:`archquake.ground_motion` (STEP, LINEAR, HARMONIC);
-    the same function as :func:`archquake.ground_motion.evaluate`, integrated in closed form:
+    For every kind of the compiled representation of :mod:`archquake.ground_motion`: the same
+    function as :func:`archquake.ground_motion.evaluate`, integrated in closed form,
 
     .. math::
 
         \bar a_g = \frac{1}{t_1 - t_0} \int_{t_0}^{t_1} a_g(t)\,dt, \qquad
-        \int_a^b A \sin(\omega t)\,dt = \frac{A}{\omega}\,(\cos\omega a - \cos\omega b)
+        \int_a^b A \sin(\omega t + \phi)\,dt
+        = \frac{A}{\omega}\,\bigl(\cos(\omega a + \phi) - \cos(\omega b + \phi)\bigr)
 
     for a harmonic motion (clipped to ``[0, cycles * period]``), the exact sum of rectangles
-    (STEP) or trapezoids (LINEAR) of the pieces of a tabulated one (0 outside its times).
+    (STEP) or trapezoids (LINEAR) of the pieces of a tabulated one (0 outside its times); the
+    other analytic pulses (Ricker's wavelets, Mavroeidis and Papageorgiou's pulse), smooth on
+    ``[0, duration)``, by 5-point Gauss-Legendre quadrature of the part of the interval inside
+    it (exact to round-off for a step much shorter than the pulse's period).
 
     Parameters
     ----------
     t0, t1 : float
         Interval [s], ``t1 > t0``.
     kind : int
-        ``STEP``, ``LINEAR`` or ``HARMONIC`` (codes of :mod:`archquake.ground_motion`).
+        A kind of :mod:`archquake.ground_motion` (``STEP``, ``LINEAR``, ``HARMONIC``, ...).
     params : array of float
-        For HARMONIC: amplitude [m/s^2], period [s], number of cycles [-].
+        For the analytic kinds: their parameters (for HARMONIC amplitude [m/s^2], period [s],
+        number of cycles [-] and phase [rad]).
     times, values : array of float
         For STEP and LINEAR: increasing times [s] and accelerations [m/s^2].
 
@@ -249,12 +298,22 @@ def mean_acceleration(t0, t1, kind, params, times, values):
     """
     total = 0.0
     if kind == HARMONIC:
-        amplitude, period, cycles = params[0], params[1], params[2]
+        amplitude, period, cycles, phase = params[0], params[1], params[2], params[3]
         a = max(t0, 0.0)
         b = min(t1, cycles * period)
         if b > a:
             w = 2.0 * math.pi / period
-            total = amplitude / w * (math.cos(w * a) - math.cos(w * b))
+            total = amplitude / w * (math.cos(w * a + phase) - math.cos(w * b + phase))
+        return total / (t1 - t0)
+    if kind > HARMONIC:  # smooth on [0, duration): Gauss-Legendre on the part inside it
+        a = max(t0, 0.0)
+        b = min(t1, analytic_duration(kind, params))
+        if b > a:
+            mid, half = 0.5 * (a + b), 0.5 * (b - a)
+            for k in range(5):
+                total += GAUSS_WEIGHTS[k] * evaluate(mid + half * GAUSS_NODES[k], kind, params,
+                                                     times, values)
+            total *= half
         return total / (t1 - t0)
     n = times.size
     if n < 2 or t1 <= times[0] or t0 >= times[n - 1]:
@@ -275,7 +334,7 @@ def mean_acceleration(t0, t1, kind, params, times, values):
     return total / (t1 - t0)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, _nrt=False)
 def local_coulomb(ufn, uft, wnn, wnt, wtt, mu):
     r"""Exact solution of one contact's problem: impulses ``(P_n, P_t)`` [N s/m].
 
@@ -333,15 +392,89 @@ def local_coulomb(ufn, uft, wnn, wnt, wtt, mu):
     return -ufn / wnn, 0.0
 
 
-@numba.njit(cache=True)
+# ---------------------------------------------------------------------------------------------
+# Layout of the packed arrays
+# ---------------------------------------------------------------------------------------------
+
+BODY_FIELDS = ("mass", "inertia", "centroid_x", "centroid_y")
+"""Columns of the body array ``bodies`` (nb, 4): mass [kg/m], polar moment of inertia [kg m] and
+undeformed centroid [m] of every block."""
+
+BODY_MASS, BODY_INERTIA, BODY_X, BODY_Y = range(4)
+
+CONTACT_FIELDS = ("ra_x", "ra_y", "rb_x", "rb_y", "normal_x", "normal_y", "tangent_x",
+                  "tangent_y", "offset", "face_lo", "face_hi", "length")
+"""Columns of the contact array ``contacts`` (nc, 12), contact ``2 j + k`` being end ``k`` of joint
+``j``: the undeformed contact point relative to the centroid of body a and of body b (absolute for
+the ground) [m], the joint's unit normal and tangent [-], the position of the end along the joint
+(0 or its length), the face of body a along the joint and the joint's length [m]. The bodies
+themselves are the int array ``contact_bodies`` (nc, 2): ``(a, b)``, -1 for the ground."""
+
+RA_X, RA_Y, RB_X, RB_Y, N_X, N_Y, T_X, T_Y, OFFSET, FACE_LO, FACE_HI, LENGTH = range(12)
+
+SETTINGS_FIELDS = (
+    "time_step", "theta", "friction", "tolerance", "max_iterations", "gravity",
+    "excitation_end", "n_steps", "drop_limit", "rest_energy", "closed_gap", "rest_steps",
+    "open_rest_steps", "moved_threshold", "energy_margin", "record_stride", "tail_steps",
+    "crown_block", "crown_x", "crown_y",
+)
+"""Entries of the settings vector of :func:`run` (:func:`pack_settings`; counts and indices stored
+as floats): time step h [s]; theta [-]; friction coefficient mu [-]; Gauss-Seidel tolerance as a
+fraction of ``m_mean g h`` [-]; largest number of Gauss-Seidel sweeps per step [-]; g [m/s^2];
+end of the excitation :math:`t_{exc}` [s]; largest number of steps [-]; drop of collapse
+:math:`\\delta_{lim}` [m]; kinetic energy of rest :math:`T_{rest}` [J/m]; largest gap of a closed
+contact [m]; steps of rest that decide with every joint closed, and with a joint open [-]; opening
+and slip at or below which the structure never moved [m]; :math:`E_{margin}` of the energy test
+of collapse [J/m]; ``record_stride`` (every ``record_stride``-th state recorded, 0: no record)
+and ``tail_steps`` (steps recorded after the decision, -1: to ``n_steps``) [-]; the block that
+carries the crown point and that point relative to its centroid [m]."""
+
+(S_TIME_STEP, S_THETA, S_FRICTION, S_TOLERANCE, S_MAX_ITERATIONS, S_GRAVITY, S_EXCITATION_END,
+ S_N_STEPS, S_DROP_LIMIT, S_REST_ENERGY, S_CLOSED_GAP, S_REST_STEPS, S_OPEN_REST_STEPS,
+ S_MOVED_THRESHOLD, S_ENERGY_MARGIN, S_RECORD_STRIDE, S_TAIL_STEPS, S_CROWN_BLOCK, S_CROWN_X,
+ S_CROWN_Y) = range(20)
+
+RECORD_ENERGY_FIELDS = ("t", "kinetic", "potential", "dissipated", "input")
+"""Columns of the record of times and energies: t [s], T, V, D, W [J/m]."""
+
+
+def pack_settings(**values) -> np.ndarray:
+    """The settings vector of :func:`run` from its entries by name (:data:`SETTINGS_FIELDS`).
+
+    Parameters
+    ----------
+    **values : float
+        Every name of :data:`SETTINGS_FIELDS`, in the units stated there.
+
+    Returns
+    -------
+    ndarray (len(SETTINGS_FIELDS),)
+
+    Raises
+    ------
+    ValueError
+        If a name is missing or unknown.
+    """
+    missing = set(SETTINGS_FIELDS) - set(values)
+    unknown = set(values) - set(SETTINGS_FIELDS)
+    if missing or unknown:
+        raise ValueError(f"settings: missing {sorted(missing)}, unknown {sorted(unknown)}")
+    return np.array([float(values[name]) for name in SETTINGS_FIELDS])
+
+
+# ---------------------------------------------------------------------------------------------
+# Contacts: geometry, relative velocities, impulses
+# ---------------------------------------------------------------------------------------------
+
+
+@numba.njit(cache=True, inline="always")
 def _rotate(c, s, x, y):
     """``(x, y)`` turned by the angle whose cosine and sine are ``c, s`` [-] (same units)."""
     return c * x - s * y, s * x + c * y
 
 
-@numba.njit(cache=True)
-def contact_geometry(q, centroids, ca, cb, ra, rb, normal, tangent, offset, face_lo, face_hi,
-                     gap, slip, valid, jac):
+@numba.njit(cache=True, _nrt=False)
+def contact_geometry(q, bodies, contacts, contact_bodies, trig, gap, slip, valid, jac):
     r"""Gap [m], tangential offset [m], validity and Jacobian rows of every contact at ``q``.
 
     Evaluates, for every contact ``c`` (module docstring, "Contacts and their detection"),
@@ -364,17 +497,14 @@ def contact_geometry(q, centroids, ca, cb, ra, rb, normal, tangent, offset, face
     ----------
     q : array (nb, 3)
         Displacements ``(x, y, theta)`` of the blocks [m, m, rad].
-    centroids : array (nb, 2)
-        Undeformed centroids [m].
-    ca, cb : array of int (nc,)
+    bodies : array (nb, 4)
+        The blocks (:data:`BODY_FIELDS`).
+    contacts : array (nc, 12)
+        The contacts (:data:`CONTACT_FIELDS`).
+    contact_bodies : array of int (nc, 2)
         Bodies a and b of every contact (-1 for the ground).
-    ra, rb : array (nc, 2)
-        Undeformed contact point relative to the centroid of a and b (absolute for the
-        ground) [m].
-    normal, tangent : array (nc, 2)
-        Undeformed unit normal and tangent of the joint [-].
-    offset, face_lo, face_hi : array (nc,)
-        Position of the contact along its joint and the face of body a [m].
+    trig : array (nb, 2)
+        Work space: the cosine and sine of every block's rotation [-].
     gap, slip : array (nc,)
         Output: ``g`` and ``s`` [m].
     valid : array of bool (nc,)
@@ -382,33 +512,35 @@ def contact_geometry(q, centroids, ca, cb, ra, rb, normal, tangent, offset, face
     jac : array (nc, 12)
         Output: Jacobian rows [-, -, m] per body and direction.
     """
-    for c in range(ca.size):
-        a, b = ca[c], cb[c]
+    for i in range(q.shape[0]):
+        trig[i, 0] = math.cos(q[i, 2])
+        trig[i, 1] = math.sin(q[i, 2])
+    for c in range(contacts.shape[0]):
+        a, b = contact_bodies[c, 0], contact_bodies[c, 1]
         if a >= 0:
-            cos_a, sin_a = math.cos(q[a, 2]), math.sin(q[a, 2])
-            xa, ya = _rotate(cos_a, sin_a, ra[c, 0], ra[c, 1])
-            cax, cay = centroids[a, 0] + q[a, 0], centroids[a, 1] + q[a, 1]
+            cos_a, sin_a = trig[a, 0], trig[a, 1]
+            xa, ya = _rotate(cos_a, sin_a, contacts[c, RA_X], contacts[c, RA_Y])
+            cax, cay = bodies[a, BODY_X] + q[a, 0], bodies[a, BODY_Y] + q[a, 1]
             pax, pay = cax + xa, cay + ya
-            nx, ny = _rotate(cos_a, sin_a, normal[c, 0], normal[c, 1])
-            tx, ty = _rotate(cos_a, sin_a, tangent[c, 0], tangent[c, 1])
+            nx, ny = _rotate(cos_a, sin_a, contacts[c, N_X], contacts[c, N_Y])
+            tx, ty = _rotate(cos_a, sin_a, contacts[c, T_X], contacts[c, T_Y])
         else:
             cax = cay = 0.0
-            pax, pay = ra[c, 0], ra[c, 1]
-            nx, ny = normal[c, 0], normal[c, 1]
-            tx, ty = tangent[c, 0], tangent[c, 1]
+            pax, pay = contacts[c, RA_X], contacts[c, RA_Y]
+            nx, ny = contacts[c, N_X], contacts[c, N_Y]
+            tx, ty = contacts[c, T_X], contacts[c, T_Y]
         if b >= 0:
-            cos_b, sin_b = math.cos(q[b, 2]), math.sin(q[b, 2])
-            xb, yb = _rotate(cos_b, sin_b, rb[c, 0], rb[c, 1])
-            cbx, cby = centroids[b, 0] + q[b, 0], centroids[b, 1] + q[b, 1]
+            xb, yb = _rotate(trig[b, 0], trig[b, 1], contacts[c, RB_X], contacts[c, RB_Y])
+            cbx, cby = bodies[b, BODY_X] + q[b, 0], bodies[b, BODY_Y] + q[b, 1]
             pbx, pby = cbx + xb, cby + yb
         else:
             cbx = cby = 0.0
-            pbx, pby = rb[c, 0], rb[c, 1]
+            pbx, pby = contacts[c, RB_X], contacts[c, RB_Y]
         dx, dy = pbx - pax, pby - pay
         gap[c] = dx * nx + dy * ny
         slip[c] = dx * tx + dy * ty
-        along = offset[c] + slip[c]
-        valid[c] = face_lo[c] <= along <= face_hi[c]
+        along = contacts[c, OFFSET] + slip[c]
+        valid[c] = contacts[c, FACE_LO] <= along <= contacts[c, FACE_HI]
         # lever arms from each centroid to the contact point p_b
         rax, ray = pbx - cax, pby - cay
         rbx, rby = pbx - cbx, pby - cby
@@ -420,7 +552,8 @@ def contact_geometry(q, centroids, ca, cb, ra, rb, normal, tangent, offset, face
             jac[c, 4] = -ty
             jac[c, 5] = -(rax * ty - ray * tx)
         else:
-            jac[c, 0:6] = 0.0
+            for k in range(6):
+                jac[c, k] = 0.0
         if b >= 0:
             jac[c, 6] = nx
             jac[c, 7] = ny
@@ -429,60 +562,79 @@ def contact_geometry(q, centroids, ca, cb, ra, rb, normal, tangent, offset, face
             jac[c, 10] = ty
             jac[c, 11] = rbx * ty - rby * tx
         else:
-            jac[c, 6:12] = 0.0
+            for k in range(6, 12):
+                jac[c, k] = 0.0
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _relative_velocity(v, a, b, jac, c):
     """Normal and tangential relative velocity ``(u_n, u_t)`` [m/s] of contact ``c`` between
     bodies ``a`` and ``b`` (-1: the ground) for block velocities ``v`` (nb, 3) [m/s, m/s,
-    rad/s], through its Jacobian rows ``jac[c]`` (:func:`contact_geometry`)."""
+    rad/s], through its Jacobian rows ``jac[c]`` (:func:`contact_geometry`).
+
+    The indices are cast to unsigned integers once they are known to be >= 0: numba checks a
+    signed index for wrapping around (a negative index counts from the end) at every access,
+    which here cost as much as the arithmetic (so in the other helpers of every contact)."""
+    uc = np.uint64(c)
     un = 0.0
     ut = 0.0
     if a >= 0:
-        un += jac[c, 0] * v[a, 0] + jac[c, 1] * v[a, 1] + jac[c, 2] * v[a, 2]
-        ut += jac[c, 3] * v[a, 0] + jac[c, 4] * v[a, 1] + jac[c, 5] * v[a, 2]
+        ua = np.uint64(a)
+        va0, va1, va2 = v[ua, 0], v[ua, 1], v[ua, 2]
+        un += jac[uc, 0] * va0 + jac[uc, 1] * va1 + jac[uc, 2] * va2
+        ut += jac[uc, 3] * va0 + jac[uc, 4] * va1 + jac[uc, 5] * va2
     if b >= 0:
-        un += jac[c, 6] * v[b, 0] + jac[c, 7] * v[b, 1] + jac[c, 8] * v[b, 2]
-        ut += jac[c, 9] * v[b, 0] + jac[c, 10] * v[b, 1] + jac[c, 11] * v[b, 2]
+        ub = np.uint64(b)
+        vb0, vb1, vb2 = v[ub, 0], v[ub, 1], v[ub, 2]
+        un += jac[uc, 6] * vb0 + jac[uc, 7] * vb1 + jac[uc, 8] * vb2
+        ut += jac[uc, 9] * vb0 + jac[uc, 10] * vb1 + jac[uc, 11] * vb2
     return un, ut
 
 
-@numba.njit(cache=True)
-def _apply_impulse(v, inv_mass, inv_inertia, a, b, jac, c, pn, pt):
+@numba.njit(cache=True, inline="always")
+def _apply_impulse(v, inv_mass, a, b, jac, c, pn, pt):
     """Add to the velocities ``v`` (nb, 3) [m/s, m/s, rad/s], in place, the change
     ``M^-1 H_c^T (pn, pt)`` that the impulses ``pn, pt`` [N s/m] of contact ``c`` give bodies
-    ``a`` and ``b``; ``inv_mass`` [m/kg], ``inv_inertia`` [1/(kg m)] per block."""
+    ``a`` and ``b``; ``inv_mass`` (nb, >= 2) holds the inverse mass [m/kg] and inertia
+    [1/(kg m)] of every block (unsigned indices: :func:`_relative_velocity`)."""
+    uc = np.uint64(c)
     if a >= 0:
-        v[a, 0] += inv_mass[a] * (jac[c, 0] * pn + jac[c, 3] * pt)
-        v[a, 1] += inv_mass[a] * (jac[c, 1] * pn + jac[c, 4] * pt)
-        v[a, 2] += inv_inertia[a] * (jac[c, 2] * pn + jac[c, 5] * pt)
+        ua = np.uint64(a)
+        im, ii = inv_mass[ua, 0], inv_mass[ua, 1]
+        v[ua, 0] += im * (jac[uc, 0] * pn + jac[uc, 3] * pt)
+        v[ua, 1] += im * (jac[uc, 1] * pn + jac[uc, 4] * pt)
+        v[ua, 2] += ii * (jac[uc, 2] * pn + jac[uc, 5] * pt)
     if b >= 0:
-        v[b, 0] += inv_mass[b] * (jac[c, 6] * pn + jac[c, 9] * pt)
-        v[b, 1] += inv_mass[b] * (jac[c, 7] * pn + jac[c, 10] * pt)
-        v[b, 2] += inv_inertia[b] * (jac[c, 8] * pn + jac[c, 11] * pt)
+        ub = np.uint64(b)
+        im, ii = inv_mass[ub, 0], inv_mass[ub, 1]
+        v[ub, 0] += im * (jac[uc, 6] * pn + jac[uc, 9] * pt)
+        v[ub, 1] += im * (jac[uc, 7] * pn + jac[uc, 10] * pt)
+        v[ub, 2] += ii * (jac[uc, 8] * pn + jac[uc, 11] * pt)
 
 
-@numba.njit(cache=True)
-def _delassus(inv_mass, inv_inertia, a, b, jac, c, w):
-    """Write the 2 x 2 Delassus block ``H_c M^-1 H_c^T`` of contact ``c`` (bodies ``a``, ``b``)
-    into ``w[c] = (W_nn, W_nt, W_tt)`` [m/kg], from the inverse masses [m/kg] and
-    inertias [1/(kg m)] and the Jacobian rows ``jac[c]``."""
+@numba.njit(cache=True, inline="always")
+def _delassus(inv_mass, a, b, jac, c):
+    """The 2 x 2 Delassus block ``H_c M^-1 H_c^T`` of contact ``c`` (bodies ``a``, ``b``),
+    ``(W_nn, W_nt, W_tt)`` [m/kg], from the inverse masses and inertias ``inv_mass`` (nb, >= 2)
+    and the Jacobian rows ``jac[c]``."""
     wnn = wnt = wtt = 0.0
     for body, k in ((a, 0), (b, 6)):
         if body >= 0:
-            im, ii = inv_mass[body], inv_inertia[body]
+            im, ii = inv_mass[body, 0], inv_mass[body, 1]
             wnn += im * (jac[c, k] ** 2 + jac[c, k + 1] ** 2) + ii * jac[c, k + 2] ** 2
             wnt += (im * (jac[c, k] * jac[c, k + 3] + jac[c, k + 1] * jac[c, k + 4])
                     + ii * jac[c, k + 2] * jac[c, k + 5])
             wtt += im * (jac[c, k + 3] ** 2 + jac[c, k + 4] ** 2) + ii * jac[c, k + 5] ** 2
-    w[c, 0] = wnn
-    w[c, 1] = wnt
-    w[c, 2] = wtt
+    return wnn, wnt, wtt
 
 
-@numba.njit(cache=True)
-def solve_contacts(v, inv_mass, inv_inertia, ca, cb, jac, w, active, impulse, mu, tol_impulse,
+# ---------------------------------------------------------------------------------------------
+# The contact problem of a step
+# ---------------------------------------------------------------------------------------------
+
+
+@numba.njit(cache=True, _nrt=False)
+def solve_contacts(v, inv_mass, contact_bodies, jac, w, active, impulse, mu, tol_impulse,
                    max_iterations):
     r"""Projected Gauss-Seidel on the active contacts; ``v`` enters free and leaves corrected.
 
@@ -504,14 +656,14 @@ def solve_contacts(v, inv_mass, inv_inertia, ca, cb, jac, w, active, impulse, mu
     ----------
     v : array (nb, 3)
         In: the free velocities; out: the velocities at the end of the step [m/s, m/s, rad/s].
-    inv_mass, inv_inertia : array (nb,)
+    inv_mass : array (nb, >= 2)
         Inverse masses [m/kg] and inertias [1/(kg m)].
-    ca, cb : array of int (nc,)
+    contact_bodies : array of int (nc, 2)
         Bodies of every contact (-1: the ground).
     jac : array (nc, 12)
         Jacobian rows (:func:`contact_geometry`).
     w : array (nc, 3)
-        Delassus blocks ``(W_nn, W_nt, W_tt)`` of the active contacts [m/kg].
+        Work space: the Delassus blocks ``(W_nn, W_nt, W_tt)`` of the active contacts [m/kg].
     active : array of bool (nc,)
         The active set.
     impulse : array (nc, 2)
@@ -535,11 +687,12 @@ def solve_contacts(v, inv_mass, inv_inertia, ca, cb, jac, w, active, impulse, mu
     .. [1] V. Acary, B. Brogliato, "Numerical methods for nonsmooth dynamical systems",
        Springer (2008), Ch. 13.
     """
-    nc = ca.size
+    nc = contact_bodies.shape[0]
     for c in range(nc):
         if active[c]:
-            _apply_impulse(v, inv_mass, inv_inertia, ca[c], cb[c], jac, c,
-                           impulse[c, 0], impulse[c, 1])
+            a, b = contact_bodies[c, 0], contact_bodies[c, 1]
+            w[c, 0], w[c, 1], w[c, 2] = _delassus(inv_mass, a, b, jac, c)
+            _apply_impulse(v, inv_mass, a, b, jac, c, impulse[c, 0], impulse[c, 1])
         else:
             impulse[c, 0] = 0.0
             impulse[c, 1] = 0.0
@@ -550,7 +703,7 @@ def solve_contacts(v, inv_mass, inv_inertia, ca, cb, jac, w, active, impulse, mu
             c = i if sweeps % 2 == 0 else nc - 1 - i
             if not active[c]:
                 continue
-            a, b = ca[c], cb[c]
+            a, b = contact_bodies[c, 0], contact_bodies[c, 1]
             un, ut = _relative_velocity(v, a, b, jac, c)
             pn, pt = impulse[c, 0], impulse[c, 1]
             ufn = un - (w[c, 0] * pn + w[c, 1] * pt)
@@ -558,7 +711,7 @@ def solve_contacts(v, inv_mass, inv_inertia, ca, cb, jac, w, active, impulse, mu
             new_pn, new_pt = local_coulomb(ufn, uft, w[c, 0], w[c, 1], w[c, 2], mu)
             dpn, dpt = new_pn - pn, new_pt - pt
             if dpn != 0.0 or dpt != 0.0:
-                _apply_impulse(v, inv_mass, inv_inertia, a, b, jac, c, dpn, dpt)
+                _apply_impulse(v, inv_mass, a, b, jac, c, dpn, dpt)
                 impulse[c, 0] = new_pn
                 impulse[c, 1] = new_pt
                 change = max(change, abs(dpn) + abs(dpt))
@@ -569,62 +722,422 @@ def solve_contacts(v, inv_mass, inv_inertia, ca, cb, jac, w, active, impulse, mu
 
 
 @numba.njit(cache=True)
-def _gauss_solve(a, b, m):
-    """Solve ``a[:m, :m] x = b[:m]`` in place by Gaussian elimination with partial pivoting:
-    ``a`` (any units) is overwritten by its triangular factor and ``b`` receives ``x`` (in the
-    units of ``b`` over those of ``a``); no check for a singular matrix."""
-    for k in range(m):
+def incidence(contact_bodies, nb):
+    """The contacts of every block, and the half-bandwidth of the contact problem.
+
+    Parameters
+    ----------
+    contact_bodies : array of int (nc, 2)
+        Bodies a and b of every contact (-1: the ground).
+    nb : int
+        Number of blocks.
+
+    Returns
+    -------
+    pointer : array of int (nb + 1,)
+        The contacts of block ``i`` are the rows ``pointer[i]:pointer[i + 1]`` of
+        ``incident``.
+    incident : array of int (2 nc, 2)
+        Block by block, each of its contacts (increasing) and the block's side in it: 0 if it
+        is body a, 1 if body b.
+    half_bandwidth : int
+        The largest ``|c - d|`` [-] of two contacts that touch one block: the Delassus block
+        of ``c, d`` is zero beyond it (at least 1, the two ends of a joint).
+    """
+    nc = contact_bodies.shape[0]
+    pointer = np.zeros(nb + 1, dtype=np.int64)
+    for c in range(nc):
+        for side in range(2):
+            body = contact_bodies[c, side]
+            if body >= 0:
+                pointer[body + 1] += 1
+    for i in range(nb):
+        pointer[i + 1] += pointer[i]
+    fill = pointer[:nb].copy()
+    incident = np.zeros((max(pointer[nb], 1), 2), dtype=np.int64)
+    for c in range(nc):
+        for side in range(2):
+            body = contact_bodies[c, side]
+            if body >= 0:
+                incident[fill[body], 0] = c
+                incident[fill[body], 1] = side
+                fill[body] += 1
+    half_bandwidth = 1
+    for i in range(nb):
+        if pointer[i + 1] > pointer[i]:
+            half_bandwidth = max(half_bandwidth,
+                                 incident[pointer[i + 1] - 1, 0] - incident[pointer[i], 0])
+    return pointer, incident, half_bandwidth
+
+
+@numba.njit(cache=True, _nrt=False)
+def band_solve(ab, b, n, kl):
+    r"""Solve ``A x = b`` for a band matrix ``A`` (n x n, ``kl`` diagonals below and above the
+    main one) by Gaussian elimination with partial pivoting, in place.
+
+    ``A`` is stored by rows, :math:`A_{ij}` = ``ab[i, j - i + kl]`` for :math:`|j - i| \le kl`,
+    in an array of at least ``3 kl + 1`` columns whose last ``kl`` are zero: the row
+    interchanges widen the upper triangle of the factor to ``2 kl`` diagonals [1]_. The entries
+    outside the band are zero and never touched, so the elimination, the pivots and the
+    solution are those of the dense algorithm (the same operations in the same order, less the
+    ones on zeros): ``(n kl (2 kl))`` operations instead of :math:`n^3 / 3`.
+
+    Parameters
+    ----------
+    ab : array (>= n, >= 3 kl + 1)
+        The band of ``A`` (any units); overwritten by the factor.
+    b : array (>= n,)
+        Right-hand side; overwritten by ``x`` (in the units of ``b`` over those of ``A``).
+    n : int
+        Size of the system.
+    kl : int
+        Half-bandwidth, >= 0.
+
+    References
+    ----------
+    .. [1] G. H. Golub, C. F. Van Loan, "Matrix computations", 4th ed., Johns Hopkins (2013),
+       Sect. 4.3 (band Gaussian elimination with partial pivoting).
+    """
+    upper = 2 * kl
+    for k in range(n):
+        last = min(n - 1, k + kl)
         p = k
-        big = abs(a[k, k])
-        for i in range(k + 1, m):
-            if abs(a[i, k]) > big:
-                big = abs(a[i, k])
+        big = abs(ab[k, kl])
+        for i in range(k + 1, last + 1):
+            if abs(ab[i, k - i + kl]) > big:
+                big = abs(ab[i, k - i + kl])
                 p = i
+        right = min(n - 1, k + upper)
         if p != k:
-            for j in range(k, m):
-                a[k, j], a[p, j] = a[p, j], a[k, j]
+            for j in range(k, right + 1):
+                ab[k, j - k + kl], ab[p, j - p + kl] = ab[p, j - p + kl], ab[k, j - k + kl]
             b[k], b[p] = b[p], b[k]
-        pivot = a[k, k]
-        for i in range(k + 1, m):
-            f = a[i, k] / pivot
+        pivot = ab[k, kl]
+        for i in range(k + 1, last + 1):
+            f = ab[i, k - i + kl] / pivot
             if f != 0.0:
-                for j in range(k + 1, m):
-                    a[i, j] -= f * a[k, j]
+                for j in range(k + 1, right + 1):
+                    ab[i, j - i + kl] -= f * ab[k, j - k + kl]
                 b[i] -= f * b[k]
-    for k in range(m - 1, -1, -1):
+    for k in range(n - 1, -1, -1):
         s = b[k]
-        for j in range(k + 1, m):
-            s -= a[k, j] * b[j]
-        b[k] = s / a[k, k]
+        for j in range(k + 1, min(n - 1, k + upper) + 1):
+            s -= ab[k, j - k + kl] * b[j]
+        b[k] = s / ab[k, kl]
 
 
-@numba.njit(cache=True)
-def _coupling(inv_mass, inv_inertia, jac, c, side_c, d, side_d, body, out, i, k):
-    """Add body ``body``'s part of the Delassus block of contacts c, d,
-    ``H_c,body M_body^-1 H_d,body^T`` [m/kg], to the 2 x 2 block ``out[2i:2i+2, 2k:2k+2]``;
-    ``side_c``, ``side_d`` (0 or 6) say whether the body is a or b of each contact (the column
-    of its rows in ``jac``), ``inv_mass`` [m/kg] and ``inv_inertia`` [1/(kg m)] are per
-    block."""
-    im, ii = inv_mass[body], inv_inertia[body]
-    for alpha in range(2):
-        gc = side_c + 3 * alpha
-        for beta in range(2):
-            gd = side_d + 3 * beta
-            out[2 * i + alpha, 2 * k + beta] += (
-                im * (jac[c, gc] * jac[d, gd] + jac[c, gc + 1] * jac[d, gd + 1])
-                + ii * jac[c, gc + 2] * jac[d, gd + 2])
+@numba.njit(cache=True, inline="always")
+def _coupling(scaled, c, side_c, d, side_d, wband, i, k):
+    """Add a block's part of the Delassus block of contacts c, d, ``H_c,b M_b^-1 H_d,b^T``
+    [m/kg], to rows ``2i, 2i+1`` and columns ``2k, 2k+1`` (``k >= i``; for ``k = i`` the upper
+    triangle only) of ``W`` in upper band storage ``wband`` (:func:`_assemble_delassus`), from
+    the rows of ``scaled``: the Jacobian rows of each contact scaled by ``M_b^-1/2``;
+    ``side_c``, ``side_d`` (0 or 6) say whether the block is body a or b of each contact."""
+    uc, ud = np.uint64(side_c), np.uint64(side_d)
+    rc, rd = np.uint64(c), np.uint64(d)
+    cnx, cny, cnr = scaled[rc, uc], scaled[rc, uc + 1], scaled[rc, uc + 2]
+    ctx, cty, ctr = scaled[rc, uc + 3], scaled[rc, uc + 4], scaled[rc, uc + 5]
+    dnx, dny, dnr = scaled[rd, ud], scaled[rd, ud + 1], scaled[rd, ud + 2]
+    dtx, dty, dtr = scaled[rd, ud + 3], scaled[rd, ud + 4], scaled[rd, ud + 5]
+    rn, rt = np.uint64(2 * i), np.uint64(2 * i + 1)
+    off = np.uint64(2 * (k - i))
+    wband[rn, off] += cnx * dnx + cny * dny + cnr * dnr
+    wband[rn, off + 1] += cnx * dtx + cny * dty + cnr * dtr
+    wband[rt, off] += ctx * dtx + cty * dty + ctr * dtr
+    if k > i:
+        wband[rt, off - 1] += ctx * dnx + cty * dny + ctr * dnr
 
 
-@numba.njit(cache=True)
-def solve_active_set(v, inv_mass, inv_inertia, ca, cb, jac, active, impulse, state, mu,
-                     p_tol, u_tol, regularisation, max_iterations, idx, wmat, amat, rhs, uf):
+@numba.njit(cache=True, inline="always")
+def _scaled_rows(inv_mass, body, jac, c, first, scaled):
+    """Jacobian rows ``first .. first + 5`` of contact ``c`` (of block ``body``) scaled by
+    ``M_body^-1/2``: ``(m^-1/2, m^-1/2, I^-1/2)`` per row of 3, into ``scaled[c]``."""
+    ub, uc, f = np.uint64(body), np.uint64(c), np.uint64(first)
+    sm, si = inv_mass[ub, 2], inv_mass[ub, 3]
+    scaled[uc, f] = sm * jac[uc, f]
+    scaled[uc, f + 1] = sm * jac[uc, f + 1]
+    scaled[uc, f + 2] = si * jac[uc, f + 2]
+    scaled[uc, f + 3] = sm * jac[uc, f + 3]
+    scaled[uc, f + 4] = sm * jac[uc, f + 4]
+    scaled[uc, f + 5] = si * jac[uc, f + 5]
+
+
+@numba.njit(cache=True, inline="always")
+def _assemble_delassus(v, inv_mass, contact_bodies, jac, m, idx, pos, pointer, incident, kl,
+                       wband, uf, scaled):
+    r"""The Delassus matrix :math:`W = H M^{-1} H^T = \sum_b H_b M_b^{-1} H_b^T` of the ``m``
+    active contacts ``idx[:m]`` and their free velocities :math:`u^f = H v` (into ``uf``), rows
+    ``2 i`` normal and ``2 i + 1`` tangential of the ``i``-th.
+
+    ``W`` is symmetric: its upper band is stored, ``wband[r, s]`` = :math:`W_{r, r + s}`
+    (``s = 0 .. kl``). Block by block (``pointer``, ``incident``: :func:`incidence`), every pair
+    of active contacts that touch it couples: the cost is linear in the number of contacts.
+    Each entry is a dot product of Jacobian rows scaled by :math:`M_b^{-1/2}` (``scaled``, work
+    space (nc, 12))."""
+    size = 2 * m
+    for r in range(size):
+        for off in range(kl + 1):
+            wband[r, off] = 0.0
+    for i in range(m):
+        c = idx[i]
+        a, b = contact_bodies[c, 0], contact_bodies[c, 1]
+        uf[2 * i], uf[2 * i + 1] = _relative_velocity(v, a, b, jac, c)
+        if a >= 0:
+            _scaled_rows(inv_mass, a, jac, c, 0, scaled)
+        if b >= 0:
+            _scaled_rows(inv_mass, b, jac, c, 6, scaled)
+    for body in range(pointer.size - 1):
+        end = pointer[body + 1]
+        for e in range(pointer[body], end):
+            c = incident[e, 0]
+            i = pos[c]
+            if i < 0:
+                continue
+            side_c = 6 * incident[e, 1]
+            for e2 in range(e, end):  # contacts in increasing order: k >= i
+                d = incident[e2, 0]
+                k = pos[d]
+                if k >= 0:
+                    _coupling(scaled, c, side_c, d, 6 * incident[e2, 1], wband, i, k)
+
+
+@numba.njit(cache=True, _nrt=False)
+def band_cholesky_solve(ab, b, n, kl):
+    r"""Solve ``A x = b`` for a symmetric positive definite band matrix ``A`` (n x n, ``kl``
+    diagonals on either side of the main one) by Cholesky's factorisation
+    :math:`A = U^T U` [1]_, in place.
+
+    ``A`` is stored by rows as for :func:`band_solve`, :math:`A_{ij}` =
+    ``ab[i, j - i + kl]``; only the upper half (``j >= i``) is read, and it is overwritten by
+    ``U``. About :math:`n\,kl^2 / 2` operations, no pivoting. Every loop runs along a row (the
+    factorisation right-looking, the substitutions by columns), so that the innermost
+    operations are independent of one another.
+
+    Parameters
+    ----------
+    ab : array (>= n, >= 2 kl + 1)
+        The band of ``A``; its upper half is overwritten by ``U``.
+    b : array (>= n,)
+        Right-hand side; overwritten by ``x``.
+    n : int
+        Size of the system.
+    kl : int
+        Half-bandwidth, >= 0.
+
+    Returns
+    -------
+    bool
+        False if a pivot is not positive (``A`` is not positive definite to round-off): ``ab``
+        and ``b`` are then spoilt.
+
+    References
+    ----------
+    .. [1] G. H. Golub, C. F. Van Loan, "Matrix computations", 4th ed., Johns Hopkins (2013),
+       Sect. 4.3.5 (band Cholesky).
+    """
+    # unsigned indices: numba checks a signed index for wrapping around (a negative index
+    # counts from the end), which keeps these short loops from being vectorised (measured:
+    # 1.7 times slower); the rows are padded with zeros (at least 3 kl + 1 columns), so that
+    # every update runs over kl + 1 entries whatever the row
+    ukl = np.uint64(kl)
+    for k in range(n):
+        uk = np.uint64(k)
+        d = ab[uk, ukl]
+        if not d > 0.0:
+            return False
+        inverse = 1.0 / math.sqrt(d)
+        ab[uk, ukl] = inverse  # the diagonal keeps 1 / U_kk: a product, not a division, below
+        for t in range(1, kl + 1):
+            ab[uk, ukl + np.uint64(t)] *= inverse
+        for s in range(1, min(kl, n - 1 - k) + 1):
+            us = np.uint64(s)
+            f = ab[uk, ukl + us]
+            if f != 0.0:
+                ui = uk + us
+                for t in range(kl + 1):
+                    ut = np.uint64(t)
+                    ab[ui, ukl + ut] -= f * ab[uk, ukl + us + ut]
+    for k in range(n):  # U^T y = b
+        uk = np.uint64(k)
+        b[uk] *= ab[uk, ukl]
+        yk = b[uk]
+        for s in range(1, min(kl, n - 1 - k) + 1):
+            us = np.uint64(s)
+            b[uk + us] -= ab[uk, ukl + us] * yk
+    for k in range(n - 1, -1, -1):  # U x = y, by columns
+        uk = np.uint64(k)
+        b[uk] *= ab[uk, ukl]
+        xk = b[uk]
+        for s in range(1, min(kl, k) + 1):
+            us = np.uint64(s)
+            b[uk - us] -= ab[uk - us, ukl + us] * xk
+    return True
+
+
+@numba.njit(cache=True, _nrt=False)
+def band_lu_solve(ab, b, n, kl, scale):
+    r"""Solve ``A x = b`` for a band matrix ``A`` (n x n, ``kl`` diagonals on either side of
+    the main one) by Gaussian elimination without pivoting, in place; False if a pivot falls
+    below ``1e-10`` times its row's ``scale`` (the caller then pivots, :func:`band_solve`).
+
+    ``A`` is stored by rows as for :func:`band_solve`, zero-padded to ``3 kl + 1`` columns;
+    ``ab`` and ``b`` are overwritten by the factors and by ``x``. About :math:`n\,kl^2`
+    operations, in loops of ``kl`` independent updates (see :func:`band_cholesky_solve`).
+
+    Parameters
+    ----------
+    ab : array (>= n, >= 3 kl + 1)
+        The band of ``A``; overwritten.
+    b : array (>= n,)
+        Right-hand side; overwritten by ``x``.
+    n : int
+        Size of the system.
+    kl : int
+        Half-bandwidth, >= 0.
+    scale : array (>= n,)
+        A positive size of every row (its diagonal) [units of ``A``].
+
+    Returns
+    -------
+    bool
+        Whether every pivot was large enough (if not, ``ab`` and ``b`` are spoilt).
+    """
+    ukl = np.uint64(kl)
+    for k in range(n):
+        uk = np.uint64(k)
+        pivot = ab[uk, ukl]
+        if not abs(pivot) > 1e-10 * scale[uk]:
+            return False
+        inverse = 1.0 / pivot
+        ab[uk, ukl] = inverse  # the diagonal keeps 1 / U_kk: a product, not a division, below
+        for s in range(1, min(kl, n - 1 - k) + 1):
+            us = np.uint64(s)
+            ui = uk + us
+            f = ab[ui, ukl - us] * inverse
+            if f != 0.0:
+                for t in range(1, kl + 1):
+                    ut = np.uint64(t)
+                    ab[ui, ukl - us + ut] -= f * ab[uk, ukl + ut]
+                b[ui] -= f * b[uk]
+    for k in range(n - 1, -1, -1):  # U x = y, by columns
+        uk = np.uint64(k)
+        b[uk] *= ab[uk, ukl]
+        xk = b[uk]
+        for s in range(1, min(kl, k) + 1):
+            us = np.uint64(s)
+            b[uk - us] -= ab[uk - us, ukl + us] * xk
+    return True
+
+
+@numba.njit(cache=True, inline="always")
+def _state_system(m, idx, state, mu, kl, wband, uf, aband, rhs, scale, full):
+    r"""The linear system of the active-set method for the current ``state`` of every active
+    contact (:func:`solve_active_set`), in the band ``aband`` (half-bandwidth ``kl``, rows
+    zero-padded to ``3 kl + 1`` columns, :func:`band_solve`), ``rhs`` and the size of every row,
+    ``scale``: ``W`` (from its upper band ``wband``) with the compliance on its diagonal; the
+    rows and columns of an open contact those of the identity (``P = 0``); the tangential row
+    of a sliding one ``P_t - sigma mu P_n = 0``.
+
+    Returns whether a contact slides. If none does, the system is symmetric positive definite
+    and only its upper half is written (what :func:`band_cholesky_solve` reads), unless
+    ``full``."""
+    size = 2 * m
+    sliding = False
+    for i in range(m):
+        sliding = sliding or state[idx[i]] >= 2
+    ukl = np.uint64(kl)
+    for r in range(size):
+        ur = np.uint64(r)
+        for off in range(kl):
+            aband[ur, np.uint64(off)] = 0.0
+        for off in range(kl + 1):
+            aband[ur, ukl + np.uint64(off)] = wband[ur, np.uint64(off)]
+        for off in range(2 * kl + 1, 3 * kl + 1):
+            aband[ur, np.uint64(off)] = 0.0
+        aband[ur, ukl] += REGULARISATION * wband[ur, 0]
+        rhs[ur] = -uf[ur]
+    if sliding or full:  # the lower half too
+        for r in range(size):
+            ur = np.uint64(r)
+            for s in range(1, min(kl, size - 1 - r) + 1):
+                us = np.uint64(s)
+                aband[ur + us, ukl - us] = wband[ur, us]
+    for i in range(m):
+        st = state[idx[i]]
+        if st == 0:
+            for r in (2 * i, 2 * i + 1):
+                for col in range(max(0, r - kl), min(size, r + kl + 1)):
+                    aband[r, col - r + kl] = 0.0
+                    aband[col, r - col + kl] = 0.0
+                aband[r, kl] = 1.0
+                rhs[r] = 0.0
+        elif st >= 2:
+            rt = 2 * i + 1
+            for off in range(2 * kl + 1):
+                aband[rt, off] = 0.0
+            aband[rt, kl] = 1.0
+            aband[rt, kl - 1] = -mu if st == 2 else mu
+            rhs[rt] = 0.0
+    for r in range(size):
+        scale[r] = abs(aband[r, kl])
+    return sliding
+
+
+@numba.njit(cache=True, inline="always")
+def _row_velocity(r, size, kl, wband, uf, impulses):
+    r"""Row ``r`` of :math:`u = u^f + W P` [m/s] from the upper band ``wband`` of ``W``."""
+    u = uf[r]
+    for s in range(min(kl, size - 1 - r) + 1):
+        u += wband[r, s] * impulses[r + s]
+    for s in range(1, min(kl, r) + 1):
+        u += wband[r - s, s] * impulses[r - s]
+    return u
+
+
+@numba.njit(cache=True, inline="always")
+def _switch_states(m, idx, state, mu, p_tol, u_tol, kl, wband, uf, impulses, solves):
+    """Switch the states that the impulses ``impulses`` (rows ``2 i``, ``2 i + 1`` of the
+    ``i``-th active contact) contradict (:func:`solve_active_set`); after
+    :data:`SINGLE_SWITCH_AFTER` solves only the first. The velocities ``u = u^f + W P`` are
+    computed where a test needs them: the normal one of an open contact, the tangential one of
+    a sliding contact (a sticking one has ``u = 0`` up to the compliance). Returns whether any
+    state changed."""
+    size = 2 * m
+    changed = False
+    for i in range(m):
+        c = idx[i]
+        pn, pt = impulses[2 * i], impulses[2 * i + 1]
+        st = state[c]
+        new = st
+        if st == 0:
+            if _row_velocity(2 * i, size, kl, wband, uf, impulses) < -u_tol:
+                new = 1
+        elif pn < -p_tol:
+            new = 0
+        elif st == 1:
+            if abs(pt) > mu * pn + p_tol:
+                new = 2 if pt > 0.0 else 3
+        elif st == 2:
+            if _row_velocity(2 * i + 1, size, kl, wband, uf, impulses) > u_tol:
+                new = 1
+        elif _row_velocity(2 * i + 1, size, kl, wband, uf, impulses) < -u_tol:
+            new = 1
+        if new != st and not (changed and solves > SINGLE_SWITCH_AFTER):
+            state[c] = new
+            changed = True
+    return changed
+
+
+@numba.njit(cache=True, _nrt=False)
+def solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse, state, mu, p_tol, u_tol,
+                     work):
     r"""Contact problem of a step by a primal-dual active-set method; ``v`` enters free.
 
     Every active contact has a state (-1 for an inactive one): 0 open (``P = 0``), 1 stick
     (``u = 0``), 2 slide with ``P_t = +mu P_n`` and 3 slide with ``P_t = -mu P_n``
     (``u_n = 0``). For the current states the impulses solve one linear system in the
     Delassus matrix ``W = H M^-1 H^T`` (assembled once), with
-    ``u = u^f + W P`` and :math:`\rho` = ``regularisation``:
+    ``u = u^f + W P`` and :math:`\rho` = :data:`REGULARISATION`:
 
     .. math::
 
@@ -649,21 +1162,30 @@ def solve_active_set(v, inv_mass, inv_inertia, ca, cb, jac, active, impulse, sta
         \text{slide } \sigma \to \text{stick if } \sigma u_t > \epsilon_u
 
     (``u`` evaluated without the compliance). After :data:`SINGLE_SWITCH_AFTER` solves only the
-    first contradicted state is switched per solve. The compliance picks the smallest impulses
-    among the statically indeterminate ones (the split of the friction force between the two
-    ends of a joint). The states start from the previous step's; a newly active contact starts
-    sticking. On convergence the impulses are written to ``impulse`` and applied to ``v``;
-    otherwise ``v`` and ``impulse`` keep their input values (the impulses of the previous step,
-    0 for an inactive contact) and the caller falls back to Gauss-Seidel.
+    first contradicted state is switched per solve; after :data:`ACTIVE_SET_SOLVES` the method
+    gives up. The compliance picks the smallest impulses among the statically indeterminate
+    ones (the split of the friction force between the two ends of a joint). The states start
+    from the previous step's; a newly active contact starts sticking. On convergence the
+    impulses are written to ``impulse`` and applied to ``v``; otherwise ``v`` and ``impulse``
+    keep their input values (the impulses of the previous step, 0 for an inactive contact) and
+    the caller falls back to Gauss-Seidel.
+
+    Two contacts couple only through a block they both touch, so ``W`` is a band matrix when
+    the contacts are numbered along the structure (an arch: joint by joint, each coupled to its
+    two neighbours): it is assembled block by block in band storage
+    (:func:`_assemble_delassus`) and the system of the states solved by Cholesky's
+    factorisation if no contact slides (:func:`band_cholesky_solve`: it is then symmetric
+    positive definite), else by Gaussian elimination (:func:`band_lu_solve`, and with pivoting,
+    :func:`band_solve`, should a pivot be small), at a cost linear in the number of contacts.
 
     Parameters
     ----------
     v : array (nb, 3)
         In: the free velocities; out (if converged): the velocities at the end of the step
         [m/s, m/s, rad/s].
-    inv_mass, inv_inertia : array (nb,)
-        Inverse masses [m/kg] and inertias [1/(kg m)].
-    ca, cb : array of int (nc,)
+    inv_mass : array (nb, 4)
+        Inverse masses [m/kg] and inertias [1/(kg m)], and their square roots.
+    contact_bodies : array of int (nc, 2)
         Bodies of every contact (-1: the ground).
     jac : array (nc, 12)
         Jacobian rows (:func:`contact_geometry`).
@@ -678,12 +1200,13 @@ def solve_active_set(v, inv_mass, inv_inertia, ca, cb, jac, active, impulse, sta
     p_tol, u_tol : float
         Tolerances :math:`\epsilon_P` [N s/m] and :math:`\epsilon_u` [m/s] of the switching
         tests.
-    regularisation : float
-        Compliance :math:`\rho` relative to the diagonal [-].
-    max_iterations : int
-        Largest number of linear solves.
-    idx, wmat, amat, rhs, uf : arrays
-        Work space: (nc,) int, (2 nc, 2 nc), (2 nc, 2 nc), (2 nc,), (2 nc,).
+    work : tuple
+        ``(idx, pos, pointer, incident, kl, wband, aband, rhs, uf, scale, scaled)``: the block
+        incidence ``pointer, incident`` of :func:`incidence` and the half-bandwidth of the
+        impulses ``kl = 2 b + 1`` (``b`` that of the contacts); work space: ``idx``, ``pos``
+        (nc,) int (the active contacts, and the position of each among them, -1 if inactive),
+        ``wband`` (2 nc, kl + 1), ``aband`` (2 nc, 3 kl + 1), ``rhs``, ``uf``, ``scale``
+        (2 nc,), ``scaled`` (nc, 12).
 
     Returns
     -------
@@ -692,98 +1215,38 @@ def solve_active_set(v, inv_mass, inv_inertia, ca, cb, jac, active, impulse, sta
     converged : bool
         Whether a consistent set of states was found.
     """
-    nc = ca.size
+    idx, pos, pointer, incident, kl, wband, aband, rhs, uf, scale, scaled = work
+    nc = contact_bodies.shape[0]
     m = 0
     for c in range(nc):
         if active[c]:
             idx[m] = c
+            pos[c] = m
             m += 1
             if state[c] < 0:  # newly active: guess that it sticks
                 state[c] = 1
         else:
+            pos[c] = -1
             state[c] = -1
             impulse[c, 0] = 0.0
             impulse[c, 1] = 0.0
     if m == 0:
         return 0, True
-    size = 2 * m
-    wmat[:size, :size] = 0.0
-    for i in range(m):
-        c = idx[i]
-        un, ut = _relative_velocity(v, ca[c], cb[c], jac, c)
-        uf[2 * i] = un
-        uf[2 * i + 1] = ut
-        for k in range(i, m):
-            d = idx[k]
-            for side_c in (0, 6):
-                body = ca[c] if side_c == 0 else cb[c]
-                if body < 0:
-                    continue
-                if ca[d] == body:
-                    _coupling(inv_mass, inv_inertia, jac, c, side_c, d, 0, body, wmat, i, k)
-                if cb[d] == body:
-                    _coupling(inv_mass, inv_inertia, jac, c, side_c, d, 6, body, wmat, i, k)
-        for k in range(i + 1, m):
-            for alpha in range(2):
-                for beta in range(2):
-                    wmat[2 * k + beta, 2 * i + alpha] = wmat[2 * i + alpha, 2 * k + beta]
+    _assemble_delassus(v, inv_mass, contact_bodies, jac, m, idx, pos, pointer, incident, kl,
+                       wband, uf, scaled)
     solves = 0
     converged = False
-    while solves < max_iterations:
-        amat[:size, :size] = 0.0
-        for i in range(m):
-            c = idx[i]
-            rn, rt = 2 * i, 2 * i + 1
-            st = state[c]
-            if st == 0:
-                amat[rn, rn] = 1.0
-                rhs[rn] = 0.0
-                amat[rt, rt] = 1.0
-                rhs[rt] = 0.0
-                continue
-            for j in range(size):
-                amat[rn, j] = wmat[rn, j]
-            amat[rn, rn] += regularisation * wmat[rn, rn]
-            rhs[rn] = -uf[rn]
-            if st == 1:
-                for j in range(size):
-                    amat[rt, j] = wmat[rt, j]
-                amat[rt, rt] += regularisation * wmat[rt, rt]
-                rhs[rt] = -uf[rt]
-            else:
-                amat[rt, rt] = 1.0
-                amat[rt, rn] = -mu if st == 2 else mu
-                rhs[rt] = 0.0
-        _gauss_solve(amat, rhs, size)
+    while solves < ACTIVE_SET_SOLVES:
+        sliding = _state_system(m, idx, state, mu, kl, wband, uf, aband, rhs, scale, False)
+        if sliding:
+            solved = band_lu_solve(aband, rhs, 2 * m, kl, scale)
+        else:
+            solved = band_cholesky_solve(aband, rhs, 2 * m, kl)
+        if not solved:  # a small pivot: assemble again and pivot
+            _state_system(m, idx, state, mu, kl, wband, uf, aband, rhs, scale, True)
+            band_solve(aband, rhs, 2 * m, kl)
         solves += 1
-        changed = False
-        for i in range(m):
-            c = idx[i]
-            pn, pt = rhs[2 * i], rhs[2 * i + 1]
-            un = uf[2 * i]
-            ut = uf[2 * i + 1]
-            for j in range(size):
-                un += wmat[2 * i, j] * rhs[j]
-                ut += wmat[2 * i + 1, j] * rhs[j]
-            st = state[c]
-            new = st
-            if st == 0:
-                if un < -u_tol:
-                    new = 1
-            elif pn < -p_tol:
-                new = 0
-            elif st == 1:
-                if abs(pt) > mu * pn + p_tol:
-                    new = 2 if pt > 0.0 else 3
-            elif st == 2:
-                if ut > u_tol:
-                    new = 1
-            elif ut < -u_tol:
-                new = 1
-            if new != st and not (changed and solves > SINGLE_SWITCH_AFTER):
-                state[c] = new
-                changed = True
-        if not changed:
+        if not _switch_states(m, idx, state, mu, p_tol, u_tol, kl, wband, uf, rhs, solves):
             converged = True
             break
     if converged:
@@ -791,27 +1254,206 @@ def solve_active_set(v, inv_mass, inv_inertia, ca, cb, jac, active, impulse, sta
             c = idx[i]
             impulse[c, 0] = rhs[2 * i] if state[c] != 0 else 0.0
             impulse[c, 1] = rhs[2 * i + 1] if state[c] != 0 else 0.0
-            _apply_impulse(v, inv_mass, inv_inertia, ca[c], cb[c], jac, c,
+            _apply_impulse(v, inv_mass, contact_bodies[c, 0], contact_bodies[c, 1], jac, c,
                            impulse[c, 0], impulse[c, 1])
     return solves, converged
 
 
+# ---------------------------------------------------------------------------------------------
+# Parts of the driver loop
+# ---------------------------------------------------------------------------------------------
+
+
+@numba.njit(cache=True, _nrt=False)
+def _kinetic_energy(bodies, v):
+    """Kinetic energy :math:`T` of the blocks at velocities ``v`` (nb, 3) [J/m]."""
+    kinetic = 0.0
+    for i in range(bodies.shape[0]):
+        kinetic += 0.5 * (bodies[i, BODY_MASS] * (v[i, 0] ** 2 + v[i, 1] ** 2)
+                          + bodies[i, BODY_INERTIA] * v[i, 2] ** 2)
+    return kinetic
+
+
+@numba.njit(cache=True, _nrt=False)
+def _measure(q, bodies, gravity, crown_block, crown_x, crown_y):
+    """Potential energy [J/m], largest block rotation [rad], and the drops [m] at ``q``: the
+    largest downward displacement of a centroid or of the crown point, and the crown's.
+
+    Returns ``(potential, max_rotation, drop, crown_drop)``."""
+    potential = 0.0
+    drop = 0.0
+    rotation = 0.0
+    for i in range(bodies.shape[0]):
+        potential += bodies[i, BODY_MASS] * gravity * q[i, 1]
+        drop = max(drop, -q[i, 1])
+        rotation = max(rotation, abs(q[i, 2]))
+    cos_c, sin_c = math.cos(q[crown_block, 2]), math.sin(q[crown_block, 2])
+    _, cy = _rotate(cos_c, sin_c, crown_x, crown_y)
+    crown_drop = -(q[crown_block, 1] + cy - crown_y)
+    return potential, rotation, max(drop, crown_drop), crown_drop
+
+
+@numba.njit(cache=True, _nrt=False)
+def _joints(gap, slip, valid, closed_gap, max_slip, max_opening):
+    """The joints at the current step: the largest slip (at the more closed end of a joint)
+    and opening (of a valid contact) so far [m], and whether every joint is closed (both of
+    its contacts valid with a gap at most ``closed_gap`` [m]).
+
+    Returns ``(max_slip, max_opening, closed)``."""
+    closed = True
+    for j in range(gap.size // 2):
+        c0, c1 = 2 * j, 2 * j + 1
+        closer = c0 if gap[c0] <= gap[c1] else c1
+        max_slip = max(max_slip, abs(slip[closer]))
+        for c in (c0, c1):
+            if valid[c]:
+                max_opening = max(max_opening, gap[c])
+                if gap[c] > closed_gap:
+                    closed = False
+            else:
+                closed = False
+    return max_slip, max_opening, closed
+
+
+@numba.njit("float64[:, ::1](float64[:, ::1], int64)", cache=True)
+def _grow(buffer, n):
+    """``buffer`` (rows, k) with room for row ``n``: itself, or a copy twice as long.
+
+    Its signature is declared: numba would otherwise compile it once more for the literal first
+    row (0) of a record."""
+    if n < buffer.shape[0]:
+        return buffer
+    out = np.empty((2 * buffer.shape[0], buffer.shape[1]))
+    out[:buffer.shape[0]] = buffer
+    return out
+
+
+@numba.njit(cache=True, inline="always")
+def _record(n, t, q, gap, slip, impulse, h, energies, rec_energy, rec_q, rec_contacts):
+    """Record the state at ``t`` [s] as row ``n``: time and the energies ``(T, V, D, W)``
+    [J/m], the displacements [m, m, rad], and per contact the gap and offset [m] and the mean
+    forces ``P / h`` [N/m] of the step that ends here. The buffers grow as needed.
+
+    Returns ``(rec_energy, rec_q, rec_contacts)``."""
+    rec_energy = _grow(rec_energy, n)
+    rec_q = _grow(rec_q, n)
+    rec_contacts = _grow(rec_contacts, n)
+    rec_energy[n, 0] = t
+    for k in range(4):
+        rec_energy[n, 1 + k] = energies[k]
+    nb = q.shape[0]
+    for i in range(nb):
+        for k in range(3):
+            rec_q[n, 3 * i + k] = q[i, k]
+    nc = gap.size
+    for c in range(nc):
+        rec_contacts[n, c] = gap[c]
+        rec_contacts[n, nc + c] = slip[c]
+        rec_contacts[n, 2 * nc + 2 * c] = impulse[c, 0] / h
+        rec_contacts[n, 2 * nc + 2 * c + 1] = impulse[c, 1] / h
+    return rec_energy, rec_q, rec_contacts
+
+
+@numba.njit(cache=True, inline="always")
+def _decide(t, drop, kinetic, potential, closed, max_opening, max_slip, rest_count, settings):
+    r"""The outcome tests at ``t`` [s] (docstring of :func:`run`).
+
+    Returns ``(status, rest_count)``: :data:`COLLAPSE`, :data:`RECOVERY`, :data:`REST` or -1
+    (undecided), and the count of consecutive still steps."""
+    after = t >= settings[S_EXCITATION_END]
+    if drop >= settings[S_DROP_LIMIT] or (after and kinetic + potential
+                                          < -settings[S_ENERGY_MARGIN]):
+        return COLLAPSE, rest_count
+    if after and kinetic <= settings[S_REST_ENERGY]:
+        rest_count += 1
+        needed = settings[S_REST_STEPS] if closed else settings[S_OPEN_REST_STEPS]
+        if rest_count >= needed:
+            moved = (max_opening > settings[S_MOVED_THRESHOLD]
+                     or max_slip > settings[S_MOVED_THRESHOLD])
+            return (RECOVERY if moved else REST), rest_count
+        return -1, rest_count
+    return -1, 0
+
+
+@numba.njit(cache=True, _nrt=False)
+def _free_velocities(v, v_old, v_free, h, ag, gravity):
+    """Keep ``v`` (nb, 3) in ``v_old`` and make it the free velocity of the step, also kept in
+    ``v_free``: the impulse of the weight and of the inertial force ``-m ag`` over ``h`` [s],
+    ``ag`` the mean ground acceleration [m/s^2]."""
+    for i in range(v.shape[0]):
+        v_old[i, 0] = v[i, 0]
+        v_old[i, 1] = v[i, 1]
+        v_old[i, 2] = v[i, 2]
+        v[i, 0] -= h * ag
+        v[i, 1] -= h * gravity
+        v_free[i, 0] = v[i, 0]
+        v_free[i, 1] = v[i, 1]
+        v_free[i, 2] = v[i, 2]
+
+
+@numba.njit(cache=True, _nrt=False)
+def _active_set(gap, valid, v_old, contact_bodies, contacts, jac, theta, h, active):
+    r"""The active set: the valid contacts whose predicted gap
+    :math:`g + \theta h u_n(v_k)` is at most :data:`ACTIVATION_GAP` times their joint's
+    length."""
+    for c in range(gap.size):
+        if valid[c]:
+            un, _ = _relative_velocity(v_old, contact_bodies[c, 0], contact_bodies[c, 1], jac, c)
+            active[c] = gap[c] + theta * h * un <= ACTIVATION_GAP * contacts[c, LENGTH]
+        else:
+            active[c] = False
+
+
+@numba.njit(cache=True, _nrt=False)
+def _contact_work(v_old, v, v_free, bodies):
+    r"""Work of the contact impulses over the step [J/m],
+
+    .. math::
+
+        \sum_c P_c \cdot H_c rac{v_k + v_{k+1}}{2}
+        = rac{v_k + v_{k+1}}{2} \cdot \mathbf{M} (v_{k+1} - v^f),
+
+    since :math:`\mathbf{M} (v_{k+1} - v^f) = H^T P`: a sum over the blocks, not the
+    contacts."""
+    work = 0.0
+    for i in range(v.shape[0]):
+        m, inertia = bodies[i, BODY_MASS], bodies[i, BODY_INERTIA]
+        work += 0.5 * (m * ((v_old[i, 0] + v[i, 0]) * (v[i, 0] - v_free[i, 0])
+                            + (v_old[i, 1] + v[i, 1]) * (v[i, 1] - v_free[i, 1]))
+                       + inertia * (v_old[i, 2] + v[i, 2]) * (v[i, 2] - v_free[i, 2]))
+    return work
+
+
+@numba.njit(cache=True, _nrt=False)
+def _advance(q, v_old, v, bodies, h, theta, ag):
+    r"""Positions :math:`q_{k+1} = q_k + h ((1 - \theta) v_k + \theta v_{k+1})`, in place.
+
+    Returns the work of the inertial forces over the step and the kinetic energy at its end
+    [J/m]."""
+    work = 0.0
+    kinetic = 0.0
+    for i in range(q.shape[0]):
+        m = bodies[i, BODY_MASS]
+        work -= m * h * ag * 0.5 * (v_old[i, 0] + v[i, 0])
+        kinetic += 0.5 * (m * (v[i, 0] ** 2 + v[i, 1] ** 2)
+                          + bodies[i, BODY_INERTIA] * v[i, 2] ** 2)
+        for k in range(3):
+            q[i, k] += h * ((1.0 - theta) * v_old[i, k] + theta * v[i, k])
+    return work, kinetic
+
+
+# ---------------------------------------------------------------------------------------------
+# The driver
+# ---------------------------------------------------------------------------------------------
+
+
 @numba.njit(cache=True)
-def run(masses, inertias, centroids, ca, cb, ra, rb, normal, tangent, offset, face_lo, face_hi,
-        length,
-        crown_block, crown_point, q0, v0,
-        kind, params, times, values,
-        h, theta, mu, tolerance, max_iterations, gravity,
-        excitation_end, n_steps, drop_limit, rest_energy, closed_gap, rest_steps,
-        open_rest_steps, moved_threshold, energy_margin, record_stride, tail_steps):
+def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, settings):
     r"""Integrate the blocks from ``(q0, v0)`` under the ground motion; decide the outcome.
 
-    Every step first measures the state at :math:`t_k` (records it, if recording) and tests
-    the outcome, then makes one Moreau-Jean step (module docstring): free velocities, active
-    set, contact problem (:func:`solve_active_set`, else :func:`solve_contacts`), energy
-    bookkeeping, positions. With :math:`\delta` the largest downward displacement of a block
-    centroid or of the crown point [m], ``T`` and ``V`` the kinetic and potential energy
-    [J/m], the outcome is
+    One loop of the driver is one step, in the phases of the module docstring ("The driver").
+    With :math:`\delta` the largest downward displacement of a block centroid or of the crown
+    point [m], ``T`` and ``V`` the kinetic and potential energy [J/m], the outcome is
 
     .. math::
 
@@ -826,79 +1468,64 @@ def run(masses, inertias, centroids, ca, cb, ra, rb, normal, tangent, offset, fa
     (a joint is closed when both its contacts are valid with gap <= ``closed_gap``; the count
     restarts at every step that is not still); rest if no valid contact ever opened, and no
     joint ever slipped at its more closed end, by more than ``moved_threshold``, recovery
-    otherwise. A run that reaches ``n_steps`` undecided returns status -1.
+    otherwise. A run that reaches ``n_steps`` undecided returns status -1. The summary is that
+    of the decision: a record's tail after it (``tail_steps``) changes nothing of it.
 
     Parameters
     ----------
-    masses, inertias : array (nb,)
-        Masses [kg/m] and polar moments of inertia [kg m].
-    centroids : array (nb, 2)
-        Undeformed centroids [m].
-    ca, cb, ra, rb, normal, tangent, offset, face_lo, face_hi, length : arrays
-        The contacts, from :func:`archquake.rigid_blocks.dynamics.contact_arrays` [m, -].
-    crown_block : int
-        Block that carries the crown point.
-    crown_point : array (2,)
-        Crown point relative to that block's centroid [m].
+    bodies : array (nb, 4)
+        The blocks (:data:`BODY_FIELDS`).
+    contacts : array (nc, 12)
+        The contacts (:data:`CONTACT_FIELDS`).
+    contact_bodies : array of int (nc, 2)
+        Bodies a and b of every contact (-1: the ground).
     q0, v0 : array (nb, 3)
         Initial displacements [m, m, rad] and velocities [m/s, m/s, rad/s].
     kind, params, times, values
-        The compiled ground motion (``GroundMotion.compiled()``;
-        accelerations [m/s^2], times [s]).
-    h : float
-        Time step [s].
-    theta : float
-        Parameter of the theta-method [-].
-    mu : float
-        Friction coefficient [-].
-    tolerance : float
-        Gauss-Seidel tolerance as a fraction of ``m_mean g h`` [-].
-    max_iterations : int
-        Largest number of Gauss-Seidel sweeps per step.
-    gravity : float
-        Acceleration of gravity g [m/s^2].
-    excitation_end : float
-        End of the excitation :math:`t_{exc}` [s].
-    n_steps : int
-        Largest number of steps.
-    drop_limit : float
-        Drop of collapse :math:`\delta_{lim}` [m].
-    rest_energy : float
-        Kinetic energy of rest :math:`T_{rest}` [J/m].
-    closed_gap : float
-        Largest gap of a closed contact [m].
-    rest_steps, open_rest_steps : int
-        Steps of rest that decide a recovery with every joint closed, and with a joint open.
-    moved_threshold : float
-        Opening and slip [m] at or below which the structure never moved.
-    energy_margin : float
-        :math:`E_{margin}` of the energy test of collapse [J/m].
-    record_stride : int
-        With ``record_stride > 0``, every ``record_stride``-th state is recorded and the run
-        goes on ``tail_steps`` steps after the outcome is decided (or to ``n_steps`` if
+        The compiled ground motion (``GroundMotion.compiled()``; accelerations [m/s^2], times
+        [s]).
+    settings : array
+        The settings vector (:data:`SETTINGS_FIELDS`, :func:`pack_settings`). With
+        ``record_stride > 0``, every ``record_stride``-th state is recorded and the run goes on
+        ``tail_steps`` steps after the outcome is decided (or to ``n_steps`` if
         ``tail_steps < 0``); with 0 it stops at the decision.
-    tail_steps : int
-        Steps run after the decision when recording.
 
     Returns
     -------
     summary : array (len(SUMMARY_FIELDS),)
         The fields of :data:`SUMMARY_FIELDS`, as floats.
     records : tuple of arrays
-        ``(t, q, gap, slip, impulse / h, energy)``: times [s] (nr,), displacements
-        [m, m, rad] (nr, nb, 3), gaps and tangential offsets [m] (nr, nc), mean contact forces
-        ``(normal, tangential)`` over the step that ends at each record [N/m] (nr, nc, 2), and
-        energy columns kinetic, potential, dissipated, input [J/m] (nr, 4); empty when not
-        recording.
+        ``(energies, q, contacts)`` over the records: (nr, 5) the columns of
+        :data:`RECORD_ENERGY_FIELDS`; (nr, 3 nb) the displacements ``(x, y, theta)`` of every
+        block [m, m, rad]; (nr, 4 nc) the gaps, then the tangential offsets [m], then the mean
+        contact forces ``(normal, tangential)`` of every contact over the step that ends at the
+        record [N/m]. Empty when not recording.
     """
-    nb = masses.size
-    nc = ca.size
-    inv_mass = 1.0 / masses
-    inv_inertia = 1.0 / inertias
-    tol_impulse = tolerance * masses.mean() * gravity * h
+    # -------- 0. set up
+    nb, nc = bodies.shape[0], contacts.shape[0]
+    h, theta, mu = settings[S_TIME_STEP], settings[S_THETA], settings[S_FRICTION]
+    gravity = settings[S_GRAVITY]
+    n_steps = int(settings[S_N_STEPS])
+    max_iterations = int(settings[S_MAX_ITERATIONS])
+    record_stride = int(settings[S_RECORD_STRIDE])
+    tail_steps = int(settings[S_TAIL_STEPS])
+    crown_block = int(settings[S_CROWN_BLOCK])
+    crown_x, crown_y = settings[S_CROWN_X], settings[S_CROWN_Y]
+    mean_mass = bodies[:, BODY_MASS].mean()
+    tol_impulse = settings[S_TOLERANCE] * mean_mass * gravity * h
+    p_tol = 1e-12 * mean_mass * gravity * h
+    u_tol = 1e-12 * gravity * h
+    inv_mass = np.empty((nb, 4))  # 1/m, 1/I, their square roots
+    for i in range(nb):
+        inv_mass[i, 0] = 1.0 / bodies[i, BODY_MASS]
+        inv_mass[i, 1] = 1.0 / bodies[i, BODY_INERTIA]
+        inv_mass[i, 2] = math.sqrt(inv_mass[i, 0])
+        inv_mass[i, 3] = math.sqrt(inv_mass[i, 1])
     q = q0.copy()
     v = v0.copy()
     v_old = np.empty_like(v)
+    v_free = np.empty_like(v)
+    trig = np.empty((nb, 2))
     gap = np.zeros(nc)
     slip = np.zeros(nc)
     valid = np.zeros(nc, dtype=np.bool_)
@@ -907,154 +1534,88 @@ def run(masses, inertias, centroids, ca, cb, ra, rb, normal, tangent, offset, fa
     w = np.zeros((nc, 3))
     impulse = np.zeros((nc, 2))
     state = -np.ones(nc, dtype=np.int64)
-    idx = np.zeros(nc, dtype=np.int64)
-    wmat = np.zeros((2 * nc, 2 * nc))
-    amat = np.zeros((2 * nc, 2 * nc))
-    rhs = np.zeros(2 * nc)
-    uf = np.zeros(2 * nc)
-    p_tol = 1e-12 * masses.mean() * gravity * h
-    u_tol = 1e-12 * gravity * h
-    fallbacks = 0
+    pointer, incident, half_bandwidth = incidence(contact_bodies, nb)
+    kl = 2 * half_bandwidth + 1  # of the unknowns: two per contact
+    problem = (np.zeros(nc, dtype=np.int64), np.zeros(nc, dtype=np.int64), pointer, incident,
+               kl, np.zeros((2 * nc, kl + 1)), np.zeros((2 * nc, 3 * kl + 1)),
+               np.zeros(2 * nc), np.zeros(2 * nc), np.zeros(2 * nc), np.zeros((nc, 12)))
     recording = record_stride > 0
-    n_records = n_steps // record_stride + 2 if recording else 0
-    rec_t = np.zeros(n_records)
-    rec_q = np.zeros((n_records, nb, 3))
-    rec_gap = np.zeros((n_records, nc))
-    rec_slip = np.zeros((n_records, nc))
-    rec_force = np.zeros((n_records, nc, 2))
-    rec_energy = np.zeros((n_records, 4))
+    capacity = min(n_steps // record_stride + 2, 1024) if recording else 1
+    rec_energy = np.zeros((capacity, 5))
+    rec_q = np.zeros((capacity, 3 * nb))
+    rec_contacts = np.zeros((capacity, 4 * nc))
     n_rec = 0
+    energies = np.zeros(4)  # kinetic, potential, dissipated, input [J/m]
 
-    kinetic = 0.0
-    for i in range(nb):
-        kinetic += 0.5 * (masses[i] * (v[i, 0] ** 2 + v[i, 1] ** 2) + inertias[i] * v[i, 2] ** 2)
-    dissipated = 0.0
-    work_input = 0.0
+    energies[0] = _kinetic_energy(bodies, v)
     status = -1
     decided = False
     collapse_time = math.nan
     decision_time = math.nan
-    max_rotation = 0.0
-    max_crown_drop = 0.0
-    max_slip = 0.0
-    max_opening = 0.0
-    max_drop = 0.0
+    max_rotation = max_crown_drop = max_slip = max_opening = max_drop = 0.0
     rest_count = 0
     closed = True
-    iterations = 0
-    max_used = 0
-    unconverged = 0
+    iterations = max_used = unconverged = fallbacks = 0
     stop_step = n_steps
-    step = 0
-    t = 0.0
+    step = decision_step = 0
     while step < stop_step:
         t = step * h
-        contact_geometry(q, centroids, ca, cb, ra, rb, normal, tangent, offset, face_lo,
-                         face_hi, gap, slip, valid, jac)
-        # --- measurements of the state at t_k
-        potential = 0.0
-        drop = 0.0
-        for i in range(nb):
-            potential += masses[i] * gravity * q[i, 1]
-            drop = max(drop, -q[i, 1])
-            max_rotation = max(max_rotation, abs(q[i, 2]))
-        cos_c, sin_c = math.cos(q[crown_block, 2]), math.sin(q[crown_block, 2])
-        cx, cy = _rotate(cos_c, sin_c, crown_point[0], crown_point[1])
-        crown_drop = -(q[crown_block, 1] + cy - crown_point[1])
-        max_crown_drop = max(max_crown_drop, crown_drop)
-        drop = max(drop, crown_drop)
-        max_drop = max(max_drop, drop)
-        closed = True
-        for j in range(nc // 2):
-            c0, c1 = 2 * j, 2 * j + 1
-            closer = c0 if gap[c0] <= gap[c1] else c1
-            max_slip = max(max_slip, abs(slip[closer]))
-            for c in (c0, c1):
-                if valid[c]:
-                    max_opening = max(max_opening, gap[c])
-                    if gap[c] > closed_gap:
-                        closed = False
-                else:
-                    closed = False
-        if recording and step % record_stride == 0:
-            rec_t[n_rec] = t
-            rec_q[n_rec] = q
-            rec_gap[n_rec] = gap
-            rec_slip[n_rec] = slip
-            for c in range(nc):
-                rec_force[n_rec, c, 0] = impulse[c, 0] / h
-                rec_force[n_rec, c, 1] = impulse[c, 1] / h
-            rec_energy[n_rec, 0] = kinetic
-            rec_energy[n_rec, 1] = potential
-            rec_energy[n_rec, 2] = dissipated
-            rec_energy[n_rec, 3] = work_input
-            n_rec += 1
-        # --- decisions
+        # -------- 1. geometry
+        contact_geometry(q, bodies, contacts, contact_bodies, trig, gap, slip, valid, jac)
+        # -------- 2. measure (the outcome's maxima until the decision: a record's tail after
+        #             it changes nothing of the outcome)
+        energies[1], rotation, drop, crown_drop = _measure(q, bodies, gravity, crown_block,
+                                                           crown_x, crown_y)
         if not decided:
-            after = t >= excitation_end
-            if drop >= drop_limit or (after and kinetic + potential < -energy_margin):
-                status = COLLAPSE
+            max_rotation = max(max_rotation, rotation)
+            max_crown_drop = max(max_crown_drop, crown_drop)
+            max_drop = max(max_drop, drop)
+            max_slip, max_opening, closed = _joints(gap, slip, valid, settings[S_CLOSED_GAP],
+                                                    max_slip, max_opening)
+        # -------- 3. record
+        if recording and step % record_stride == 0:
+            rec_energy, rec_q, rec_contacts = _record(n_rec, t, q, gap, slip, impulse, h,
+                                                      energies, rec_energy, rec_q, rec_contacts)
+            n_rec += 1
+        # -------- 4. decide
+        if not decided:
+            status, rest_count = _decide(t, drop, energies[0], energies[1], closed, max_opening,
+                                         max_slip, rest_count, settings)
+            if status == COLLAPSE:
                 collapse_time = t
-            elif after and kinetic <= rest_energy:
-                rest_count += 1
-                if rest_count >= (rest_steps if closed else open_rest_steps):
-                    moved = max_opening > moved_threshold or max_slip > moved_threshold
-                    status = RECOVERY if moved else REST
-            else:
-                rest_count = 0
             if status >= 0:
                 decided = True
                 decision_time = t
+                decision_step = step
+                # -------- 5. stop?
                 if not recording:
                     break
                 stop_step = n_steps if tail_steps < 0 else min(n_steps, step + tail_steps + 1)
                 if step + 1 >= stop_step:
                     break
-        # --- one Moreau-Jean step
+        # -------- 6. free velocities
         ag = mean_acceleration(t, t + h, kind, params, times, values)
-        for i in range(nb):
-            v_old[i, 0] = v[i, 0]
-            v_old[i, 1] = v[i, 1]
-            v_old[i, 2] = v[i, 2]
-            v[i, 0] -= h * ag
-            v[i, 1] -= h * gravity
-        for c in range(nc):
-            if valid[c]:
-                un, _ = _relative_velocity(v_old, ca[c], cb[c], jac, c)
-                active[c] = gap[c] + theta * h * un <= ACTIVATION_GAP * length[c]
-            else:
-                active[c] = False
-        sweeps, converged = solve_active_set(
-            v, inv_mass, inv_inertia, ca, cb, jac, active, impulse, state, mu, p_tol, u_tol,
-            REGULARISATION, ACTIVE_SET_SOLVES, idx, wmat, amat, rhs, uf)
+        _free_velocities(v, v_old, v_free, h, ag, gravity)
+        # -------- 7. active set
+        _active_set(gap, valid, v_old, contact_bodies, contacts, jac, theta, h, active)
+        # -------- 8. the contact problem
+        sweeps, converged = solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse,
+                                             state, mu, p_tol, u_tol, problem)
         if not converged:  # fall back to Gauss-Seidel from the last impulses
-            fallbacks += 1
-            for c in range(nc):
-                if active[c]:
-                    _delassus(inv_mass, inv_inertia, ca[c], cb[c], jac, c, w)
-            sweeps, converged = solve_contacts(v, inv_mass, inv_inertia, ca, cb, jac, w, active,
+            fallbacks += 0 if decided else 1
+            sweeps, converged = solve_contacts(v, inv_mass, contact_bodies, jac, w, active,
                                                impulse, mu, tol_impulse, max_iterations)
-        iterations += sweeps
-        max_used = max(max_used, sweeps)
-        if not converged:
-            unconverged += 1
-        # --- energy bookkeeping (exact for theta = 1/2) and positions
-        contact_work = 0.0
-        for c in range(nc):
-            if active[c]:
-                un0, ut0 = _relative_velocity(v_old, ca[c], cb[c], jac, c)
-                un1, ut1 = _relative_velocity(v, ca[c], cb[c], jac, c)
-                contact_work += 0.5 * ((un0 + un1) * impulse[c, 0] + (ut0 + ut1) * impulse[c, 1])
-        dissipated -= contact_work
-        kinetic = 0.0
-        for i in range(nb):
-            work_input -= masses[i] * h * ag * 0.5 * (v_old[i, 0] + v[i, 0])
-            kinetic += 0.5 * (masses[i] * (v[i, 0] ** 2 + v[i, 1] ** 2)
-                              + inertias[i] * v[i, 2] ** 2)
-            for k in range(3):
-                q[i, k] += h * ((1.0 - theta) * v_old[i, k] + theta * v[i, k])
+        if not decided:  # the outcome's counts stop at the decision too
+            iterations += sweeps
+            max_used = max(max_used, sweeps)
+            if not converged:
+                unconverged += 1
+        # -------- 9. advance: energy bookkeeping (exact for theta = 1/2) and positions
+        energies[2] -= _contact_work(v_old, v, v_free, bodies)
+        work, energies[0] = _advance(q, v_old, v, bodies, h, theta, ag)
+        energies[3] += work
         step += 1
-    summary = np.zeros(_N_SUMMARY)
+    summary = np.zeros(len(SUMMARY_FIELDS))
     summary[0] = status
     summary[1] = 1.0 if decided else 0.0
     summary[2] = collapse_time
@@ -1064,12 +1625,11 @@ def run(masses, inertias, centroids, ca, cb, ra, rb, normal, tangent, offset, fa
     summary[6] = max_slip
     summary[7] = max_opening
     summary[8] = max_drop
-    summary[9] = step
+    summary[9] = decision_step if decided else step
     summary[10] = iterations
     summary[11] = max_used
     summary[12] = unconverged
     summary[13] = step * h
     summary[14] = 1.0 if closed else 0.0
     summary[15] = fallbacks
-    return summary, (rec_t[:n_rec], rec_q[:n_rec], rec_gap[:n_rec], rec_slip[:n_rec],
-                     rec_force[:n_rec], rec_energy[:n_rec])
+    return summary, (rec_energy[:n_rec], rec_q[:n_rec], rec_contacts[:n_rec])

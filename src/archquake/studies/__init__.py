@@ -6,6 +6,8 @@
 that cannot be analysed, the nominal arch's model), :mod:`.fragility` (Monte Carlo fragility of
 irregular arches under pulses, Figs. 17-21), :mod:`.record_fragility` (record-based fragility,
 multiple-stripe analysis), :mod:`.fits` (the statistics of both: P_F, lognormal fits, bootstrap,
-dispersions) and :mod:`.comparison` (the two models side by side). Each module is imported on
-demand.
+dispersions), :mod:`.comparison` (the two models side by side: :func:`.comparison.compare_models`,
+:func:`.comparison.domain_disagreement`) and :mod:`.strategies` (how a study searches a grid of
+amplitudes or levels: every point, or a coarse scan and bisection; the rigid-block model's studies
+owe their speed to it). Each module is imported on demand.
 """

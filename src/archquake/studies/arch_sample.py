@@ -72,9 +72,10 @@ from ..defaults import DEFAULT_RESTITUTION
 from ..geometry import BlockArch, arch_from_dict, irregular_arch
 from ..models import DEFAULT_MODEL, check_model
 
-STATUS_EXCLUDED = -1
+STATUS_EXCLUDED = -2
 """``status`` of the rows of an excluded arch in a study table (not analysed; see
-:data:`EXCLUSIONS`)."""
+:data:`EXCLUSIONS`); -1 is :attr:`archquake.status.Status.UNDECIDED`, an analysis the
+rigid-block model could not decide."""
 
 EXCLUSIONS = {
     "not an arch": "the draw of eq. (1) separates neighbouring voussoirs (their radial "

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -61,6 +61,9 @@ class ModelComparison:
         Bisection width of every boundary of both models [g].
     settings : BlockSettings
         Friction, time step and outcome criteria of the rigid-block model.
+    skipped : dict
+        ``{restitution model: why}`` of the restitution models left out because they give no
+        positive coefficient for this structure (the paper's link rule on piers).
     """
 
     arch: BlockArch
@@ -69,6 +72,7 @@ class ModelComparison:
     amplitudes_g: np.ndarray
     resolution: float
     settings: object = None
+    skipped: dict = field(default_factory=dict)
 
     @property
     def durations(self) -> np.ndarray:
@@ -201,8 +205,8 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
         Local worker processes of the rigid-block curve, one duration per task.
     progress : bool
         Progress bar over the rigid-block durations (the long part).
-    dynamics : ArchDynamics, optional
-        The arch's four-link dynamics, if already built.
+    dynamics : FourLinkModel, optional
+        The arch's four-link model, if already built.
     rigid_block : FailureDomain, optional
         The rigid-block model's failure domain, if already computed (e.g. on another process)
         with the same durations, direction, motion, settings, scan and resolution (checked).
@@ -250,12 +254,22 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
                                 workers=workers, progress=progress)
     else:
         _check_curve(rigid_block, d, direction, motion, settings, float(resolution), grid)
-    four_link = {}
+    four_link, skipped = {}, {}
     for name in names:
-        four_link[name] = domain_of(_four_link(dynamics, name, settings),
-            d, grid, direction=direction, resolution=float(resolution), extend_to_g=None,
-            motion=motion)
-    return ModelComparison(arch, rigid_block, four_link, grid, float(resolution), settings)
+        model = _four_link(dynamics, name, settings)
+        c = np.asarray(model.restitution, dtype=float)
+        if not np.all(np.isfinite(c) & (c > 0)):  # e.g. the paper's link rule on piers
+            skipped[name] = (f"its coefficients of restitution are {c[0]:.4g} and {c[1]:.4g}: "
+                             f"the rule does not apply to this structure's mechanisms")
+            continue
+        four_link[name] = domain_of(model, d, grid, direction=direction,
+                                    resolution=float(resolution), extend_to_g=None,
+                                    motion=motion)
+    if not four_link:
+        raise ValueError("no restitution model applies to this structure: "
+                         + "; ".join(f"{n}: {why}" for n, why in skipped.items()))
+    return ModelComparison(arch, rigid_block, four_link, grid, float(resolution), settings,
+                           skipped)
 
 
 @dataclass(frozen=True)

@@ -20,11 +20,15 @@ class appear inside an edge); a boundary is reported at the middle of its last b
 half the resolution of the class change.
 
 The search is written against any ``classify(amplitude) -> (status, half_cycle)`` callable, so it
-is independent of how the outcome is computed; :func:`domain_of` plugs in an arch's
-:class:`~archquake.fourlink.dynamics.ArchDynamics` (its mechanisms, tables and coefficients of
-restitution, built once): the whole (duration x amplitude) scan is one compiled call, and only the
-bisection steps are single analyses. ``ArchDynamics.from_arch(arch,
-restitution).failure_domain(...)`` is the way in.
+is independent of how the outcome is computed; :func:`domain_of` plugs in a model of the
+structure (:class:`archquake.models.StructuralModel`). For the four-link model
+(:class:`~archquake.fourlink.FourLinkModel`: its mechanisms, tables and coefficients of
+restitution, built once) the whole (duration x amplitude) scan is one compiled call, and only the
+bisection steps are single analyses; the rigid-block model
+(:class:`~archquake.rigid_blocks.RigidBlockModel`) answers one analysis at a time, and the search
+strategy (:mod:`archquake.studies.strategies`) decides which grid points are analysed.
+``domain_of(model_for(arch, "four-link"), ...)`` is the way in
+(:func:`archquake.models.model_for`).
 
 Direction of the pulse
 ----------------------
@@ -72,7 +76,8 @@ class Interval:
         Ends of the interval [g].
     status : str
         Label of the outcome (:attr:`archquake.status.Status.label`): ``"rest"``,
-        ``"recovery"`` or ``"collapse"``.
+        ``"recovery"`` or ``"collapse"``; ``"undecided"`` for amplitudes whose analyses the
+        model left undecided (the rigid-block model can): neither a collapse nor a recovery.
     half_cycle : int
         Half cycle of the collapse [-] (1: the first, with no impact); 0 unless a collapse.
     """
@@ -452,8 +457,7 @@ def domain_of(model, durations=None, amplitudes_g=None, *, direction: str = "l",
     does not count half cycles) is found at every amplitude of ``amplitudes_g`` by the strategy
     ``search`` (:mod:`archquake.studies.strategies`), and every change of outcome class is then
     bisected to ``resolution`` (:func:`domain_slice`). With its defaults and the four-link model
-    it is ``archquake domain`` with its defaults (what
-    :meth:`archquake.fourlink.FourLinkModel.failure_domain` runs).
+    it is ``archquake domain`` with its defaults.
 
     Parameters
     ----------

@@ -347,7 +347,7 @@ class FragilitySettings:
 def arch_outcomes(arch: BlockArch, durations, amplitudes_g, *, restitution=DEFAULT_RESTITUTION,
                   nominal=None, motion: str = "oppenheim") -> dict[str, np.ndarray]:
     """Outcomes of one arch over the (duration x amplitude) grid, for both pulse directions:
-    :func:`model_outcomes` of its :class:`~archquake.fourlink.dynamics.ArchDynamics`.
+    :func:`model_outcomes` of its :class:`~archquake.fourlink.FourLinkModel`.
 
     Parameters
     ----------
@@ -359,7 +359,7 @@ def arch_outcomes(arch: BlockArch, durations, amplitudes_g, *, restitution=DEFAU
         Pulse amplitudes a > 0 [g]; direction ``"l"`` applies ``-a g`` first, ``"r"`` ``+a g``.
     restitution : str or float
         Restitution model (:func:`archquake.fourlink.impact.check_restitution_model`).
-    nominal : BlockArch or ArchDynamics, optional
+    nominal : BlockArch or FourLinkModel, optional
         The nominal arch, for ``restitution="nominal"``.
     motion : str
         Pulse shape (:data:`archquake.ground_motion.ANALYTIC_GROUND_MOTIONS`).
@@ -372,7 +372,7 @@ def arch_outcomes(arch: BlockArch, durations, amplitudes_g, *, restitution=DEFAU
     Raises
     ------
     ValueError
-        If the arch cannot be analysed (:meth:`archquake.fourlink.dynamics.ArchDynamics.from_arch`).
+        If the arch cannot be analysed (:meth:`archquake.fourlink.FourLinkModel.from_arch`).
     """
     from ..fourlink.dynamics import ArchDynamics
 

@@ -379,8 +379,8 @@ def record_outcomes(dynamics, motion, factors) -> dict[str, np.ndarray]:
 
     Parameters
     ----------
-    dynamics : ArchDynamics
-        The arch's :class:`~archquake.fourlink.dynamics.ArchDynamics`.
+    dynamics : FourLinkModel
+        The arch's four-link model (:class:`~archquake.fourlink.FourLinkModel`).
     motion : GroundMotion
         A ``LINEAR`` record [m/s^2].
     factors : array_like of float
