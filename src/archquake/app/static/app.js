@@ -342,8 +342,8 @@ function describeOutcome(name, view) {
       (o.collapse_time !== null ? `; point of no return at t = ${o.collapse_time.toFixed(3)} s` : "") +
       `; c_v = ${view.restitution.map((c) => c.toFixed(3)).join(" / ")}`;
   } else {
-    detail = `largest block rotation ${o.max_rotation.toFixed(4)} rad; crown drop ` +
-      `${o.max_crown_drop.toFixed(4)} m` +
+    detail = `up to the decision: largest block rotation ${o.max_rotation.toFixed(4)} rad, ` +
+      `crown drop ${o.max_crown_drop.toFixed(4)} m` +
       (o.collapse_time !== null ? `; collapse certain at t = ${o.collapse_time.toFixed(3)} s` : "") +
       (o.decided ? "" : " (undecided at the end of the run)");
   }
