@@ -12,7 +12,7 @@ DOC_OUTPUTS := docs/_build docs/api/generated docs/auto_examples docs/sg_executi
 OQ_VENV := .venv-openquake
 OQ := $(OQ_VENV)/.installed
 
-.PHONY: run test docs lint bench clean openquake
+.PHONY: run test docs lint bench clean openquake chromium app-screenshots
 
 $(BASE): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -40,10 +40,25 @@ $(OQ): pyproject.toml
 
 openquake: $(OQ)
 
+# Chromium, in which the page's tests (tests/app/test_app_browser.py) drive `archquake app`:
+# Debian's package, installed when missing if this runs as root with apt-get (as CI does).
+# Where it cannot be installed, make goes on and those tests are skipped with the reason.
+chromium:
+	@if command -v chromium >/dev/null 2>&1; then :; \
+	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+		echo "installing Chromium (apt-get) for the browser tests of archquake app"; \
+		{ apt-get update -qq && DEBIAN_FRONTEND=noninteractive \
+			apt-get install -y -qq chromium >/dev/null; } \
+		|| echo "Chromium could not be installed: the browser tests will be skipped"; \
+	else \
+		echo "Chromium is missing and cannot be installed here (apt-get as root): the browser" \
+			"tests will be skipped"; \
+	fi
+
 run: $(BASE)
 	$(BIN)/archquake reproduce --out report
 
-test: $(TEST) $(OQ)
+test: $(TEST) $(OQ) chromium
 	ARCHQUAKE_OPENQUAKE_PYTHON=$(CURDIR)/$(OQ_VENV)/bin/python $(BIN)/python -m pytest -q
 
 # The site in docs/_build/html, built from scratch (every example runs) and offline; a warning
@@ -51,6 +66,11 @@ test: $(TEST) $(OQ)
 docs: $(DOCS)
 	rm -rf $(DOC_OUTPUTS)
 	$(BIN)/python -m sphinx -b html -n -W --keep-going docs docs/_build/html
+
+# The screenshots of the user guide's page on archquake app, taken from the running app in
+# headless Chromium (docs/user_guide/images/app-*.png).
+app-screenshots: $(TEST) chromium
+	$(BIN)/python docs/app_screenshots.py docs/user_guide/images
 
 lint: $(TEST)
 	$(BIN)/ruff check src tests benchmarks examples docs

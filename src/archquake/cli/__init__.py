@@ -80,6 +80,10 @@ COMMANDS = {
         "main_compare",
         "failure acceleration of the arch per pulse duration in the rigid-block model beside "
         "the four-link model with each restitution model"),
+    "app": Command(
+        "main_app",
+        "interactive page in the browser: shape the structure, see its thrust line and k, "
+        "shake it with both models, its failure domain (needs archquake[app])"),
 }
 """The commands: name -> :class:`Command`, in the order ``archquake --help`` lists them."""
 

@@ -1,0 +1,399 @@
+"""What the page sends, turned into the library's values: the structure, the ground motion, the
+uploaded files, and the page's limits on their sizes.
+
+The page describes a structure by the options of the command line (``{"thickness": 1.2,
+"voussoirs": 9, "piers": "1.5,4,3", ...}``: each key an option of ``archquake limit`` without
+its dashes, ``_`` for ``-``) and a ground motion by those of ``archquake simulate``. They are
+parsed by the command line's own option groups and read by its own functions
+(:func:`archquake.cli.options.arches_from_args`, :func:`archquake.cli.options.motion_from_args`),
+so the page builds the structure ``archquake limit`` builds from the same values and refuses
+bad input with the same message, which names the option (``--thickness must be ...``).
+
+Uploaded files are kept in the server's temporary folder under a random token
+(:class:`Uploads`); a description names a file by its token, and :meth:`Uploads.resolve` puts the
+file's path in its place before the description is built here or sent to a worker process. A
+message about a file names it as the user did, as the command line names the path it was given.
+
+The limits of :data:`LIMITS` keep one request from occupying the server: they are the page's, on
+top of the library's own (which are meant for batch studies).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import re
+import secrets
+import threading
+from collections import OrderedDict
+from pathlib import Path, PurePath
+
+LIMITS = {
+    "blocks": 200,
+    "geometry_bytes": 2 * 2**20,
+    "record_bytes": 8 * 2**20,
+    "record_samples": 200_000,
+    "motion_duration": 120.0,
+    "amplitude_g": 10.0,
+    "request_bytes": 256 * 2**10,
+    "uploads": 64,
+    "domain_durations": 25,
+    "domain_amplitudes": 80,
+}
+"""The page's limits: blocks of a structure (voussoirs and pier courses) [-], size of a geometry
+file and of a record file [bytes], samples of a record [-], duration of any ground motion [s],
+amplitude of a pulse [g], size of a request's JSON body [bytes], uploaded files kept [-], and
+pulse durations and amplitudes of a failure domain [-]."""
+
+STRUCTURE_KEYS = ("shape", "span", "rise", "radius", "embrace", "thickness", "voussoirs",
+                  "faces", "piers", "pier_left", "pier_right", "fill_cover", "fill_density",
+                  "fill_inertia", "fill_passive", "density", "epsilon", "seed", "geometry")
+"""Keys of a structure's description: the options of ``archquake limit`` that describe it
+(``geometry`` an uploaded file's token, resolved to its path by :meth:`Uploads.resolve`)."""
+
+MOTION_KEYS = ("motion", "amplitude", "duration", "cycles", "params", "record", "scale_to",
+               "reverse", "suite", "suite_record")
+"""Keys of a ground motion's description: the options of ``archquake simulate`` (``params``
+``{name: value}`` for its repeated ``--param``, ``record`` an uploaded file's token), or
+``suite`` and ``suite_record``: a record of a built-in suite by name and index."""
+
+TOKEN = re.compile(r"^[0-9a-f]{16}$")
+
+
+class _Parser(argparse.ArgumentParser):
+    """An option parser whose errors are :class:`ValueError` (the server answers them)."""
+
+    def error(self, message):
+        raise ValueError(message)
+
+
+def _parser(group: str) -> _Parser:
+    from ..cli import options
+
+    parser = _Parser(prog="archquake", add_help=False)
+    if group == "structure":
+        options.add_arch_options(parser)
+    else:
+        options.add_motion_options(parser)
+    return parser
+
+
+def _argv(spec: dict, keys, group: str) -> list[str]:
+    """The command line of a description: ``--key value`` for every key given."""
+    if not isinstance(spec, dict):
+        raise ValueError(f"the {group} must be described by a JSON object, got "
+                         f"{type(spec).__name__}")
+    unknown = sorted(set(spec) - set(keys))
+    if unknown:
+        raise ValueError(f"unknown {group} field(s) {unknown}; known: {list(keys)}")
+    argv = []
+    for key in keys:
+        value = spec.get(key)
+        if value is None or value == "" or value is False or key in ("params", "geometry",
+                                                                     "record"):
+            continue
+        option = "--" + key.replace("_", "-")
+        if value is True:
+            argv.append(option)
+        elif isinstance(value, int | float | str) and not isinstance(value, bool):
+            argv.append(f"{option}={value}")
+        else:
+            raise ValueError(f"{option} must be a number or a word, got {value!r}")
+    return argv
+
+
+def _file_message(message: str, file: dict | None) -> str:
+    """A message of the library about a file, naming the file as the user named it."""
+    if file:
+        message = message.replace(file["path"], file["name"])
+    return message
+
+
+def structure_from_spec(spec: dict):
+    """The structure of a description (the arch after its irregular draw, if any) and the
+    arch before it.
+
+    Parameters
+    ----------
+    spec : dict
+        Options of ``archquake limit`` by name (:data:`STRUCTURE_KEYS`); ``geometry``, when
+        given, is ``{"path": ..., "name": ...}`` (:meth:`Uploads.resolve`).
+
+    Returns
+    -------
+    (BlockArch, BlockArch)
+        ``(nominal, structure)``, as :func:`archquake.cli.options.arches_from_args`.
+
+    Raises
+    ------
+    ValueError
+        With the command line's message for the same options, or when the structure has more
+        blocks than ``LIMITS["blocks"]``.
+    """
+    from ..cli import options
+
+    argv = _argv(spec, STRUCTURE_KEYS, "structure")
+    file = spec.get("geometry")
+    if file:
+        argv.append(f"--geometry={file['path']}")
+    voussoirs = spec.get("voussoirs")
+    if voussoirs not in (None, "") and _number(voussoirs) > LIMITS["blocks"]:
+        raise ValueError(f"--voussoirs must be at most {LIMITS['blocks']} on this page (the "
+                         f"command line takes more), got {voussoirs}")
+    args = _parser("structure").parse_args(argv)
+    try:
+        nominal, structure = options.arches_from_args(args)
+    except ValueError as exc:
+        raise ValueError(_file_message(options.option_message(str(exc)), file)) from None
+    if structure.n_voussoirs > LIMITS["blocks"]:
+        raise ValueError(f"the structure has {structure.n_voussoirs} blocks (voussoirs and pier "
+                         f"courses); this page takes at most {LIMITS['blocks']}")
+    return nominal, structure
+
+
+def _number(value) -> float:
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        return math.nan
+
+
+def motion_from_spec(spec: dict):
+    """The ground motion of a description.
+
+    Parameters
+    ----------
+    spec : dict
+        Options of ``archquake simulate`` by name (:data:`MOTION_KEYS`): ``motion``,
+        ``amplitude`` [g], ``duration`` [s], ``cycles``, ``params`` ``{name: value}``,
+        ``record`` (``{"path", "name"}``, :meth:`Uploads.resolve`), ``scale_to`` [g],
+        ``reverse``; or ``suite`` and ``suite_record`` (with ``scale_to`` and ``reverse``).
+
+    Returns
+    -------
+    GroundMotion
+
+    Raises
+    ------
+    ValueError
+        With the command line's message for the same options; for a motion longer than
+        ``LIMITS["motion_duration"]`` or a pulse stronger than ``LIMITS["amplitude_g"]``.
+    """
+    from ..cli import options
+
+    if isinstance(spec, dict) and spec.get("suite"):
+        motion = _suite_motion(spec)
+    else:
+        argv = _argv(spec, MOTION_KEYS, "ground motion")
+        params = spec.get("params") or {}
+        if not isinstance(params, dict):
+            raise ValueError("params must be a JSON object {name: value}")
+        argv += [f"--param={name}={value}" for name, value in params.items()]
+        file = spec.get("record")
+        if file:
+            argv.append(f"--record={file['path']}")
+        amplitude = _number(spec.get("amplitude"))
+        if abs(amplitude) > LIMITS["amplitude_g"]:
+            raise ValueError(f"--amplitude must be within +-{LIMITS['amplitude_g']:g} g on this "
+                             f"page, got {spec.get('amplitude')}")
+        args = _parser("motion").parse_args(argv)
+        try:
+            motion = options.motion_from_args(args)
+        except ValueError as exc:
+            raise ValueError(_file_message(options.option_message(str(exc)), file)) from None
+    if not motion.duration <= LIMITS["motion_duration"]:
+        raise ValueError(f"the ground motion lasts {motion.duration:.4g} s; this page takes at "
+                         f"most {LIMITS['motion_duration']:g} s")
+    if motion.times.size > LIMITS["record_samples"]:
+        raise ValueError(f"the record has {motion.times.size} samples; this page takes at most "
+                         f"{LIMITS['record_samples']}")
+    return motion
+
+
+def _suite_motion(spec: dict):
+    """A record of a built-in suite (the ``records`` extra), scaled and reversed as asked."""
+    from ..geometry import GRAVITY
+    from ..ground_motion import BUILTIN_SUITES, builtin_suite
+
+    unknown = sorted(set(spec) - {"suite", "suite_record", "scale_to", "reverse", "motion"})
+    if unknown:
+        raise ValueError(f"a record of a built-in suite takes suite, suite_record, scale_to and "
+                         f"reverse, not {unknown}")
+    name = spec["suite"]
+    if name not in BUILTIN_SUITES:
+        raise ValueError(f"suite must be one of {list(BUILTIN_SUITES)}, got {name!r}")
+    records = builtin_suite(name)
+    index = spec.get("suite_record", 0)
+    if isinstance(index, bool) or not isinstance(index, int) or not 0 <= index < len(records):
+        raise ValueError(f"suite_record must be an integer in [0, {len(records) - 1}], got "
+                         f"{index!r}")
+    motion = records[index].motion
+    scale_to = spec.get("scale_to")
+    if scale_to not in (None, ""):
+        scale_to = _number(scale_to)
+        if not (math.isfinite(scale_to) and 0 < scale_to <= LIMITS["amplitude_g"]):
+            raise ValueError(f"--scale-to must be a peak ground acceleration in (0, "
+                             f"{LIMITS['amplitude_g']:g}] g, got {spec['scale_to']}")
+        motion = motion.scaled(scale_to * GRAVITY / float(abs(motion.values).max()))
+    return motion.reversed() if spec.get("reverse") else motion
+
+
+def suites() -> list[dict]:
+    """The built-in record suites and their records, if the ``records`` extra is installed.
+
+    Returns
+    -------
+    list of dict
+        ``name``, ``description`` and ``records`` (the name of every ground motion, in the
+        suite's order); empty without the extra.
+    """
+    from ..ground_motion import BUILTIN_SUITES
+
+    out = []
+    for name, suite in BUILTIN_SUITES.items():
+        try:
+            records = [r.name for r in _suite_records(name)]
+        except ImportError:
+            return []
+        out.append({"name": name, "description": suite.description, "records": records})
+    return out
+
+
+def _suite_records(name: str):
+    from ..ground_motion import builtin_suite
+
+    return builtin_suite(name)
+
+
+class Uploads:
+    """Uploaded files in the server's temporary folder, by random token.
+
+    Parameters
+    ----------
+    folder : pathlib.Path
+        The folder (created if missing); nothing is written elsewhere.
+    keep : int
+        Files kept: the oldest is deleted when one more is uploaded.
+    """
+
+    KINDS = {"geometry": (".json",), "record": (".at2", ".csv", ".asc")}
+    """Kinds of upload and the file extensions each takes."""
+
+    def __init__(self, folder: Path, keep: int = LIMITS["uploads"]):
+        self.folder = Path(folder)
+        self.folder.mkdir(parents=True, exist_ok=True)
+        self.keep = keep
+        self._files: OrderedDict[str, dict] = OrderedDict()
+        self._lock = threading.Lock()
+
+    def save(self, kind: str, name: str, data: bytes) -> dict:
+        """Keep an uploaded file.
+
+        Parameters
+        ----------
+        kind : {"geometry", "record"}
+            What the file holds.
+        name : str
+            Its name on the user's machine (only its last part is kept, for messages).
+        data : bytes
+            Its content.
+
+        Returns
+        -------
+        dict
+            ``{"token", "kind", "name", "path"}``.
+
+        Raises
+        ------
+        ValueError
+            For an unknown kind, or an extension the kind does not take.
+        """
+        if kind not in self.KINDS:
+            raise ValueError(f"kind must be one of {list(self.KINDS)}, got {kind!r}")
+        shown = PurePath(str(name).replace("\\", "/")).name[-120:] or f"{kind} file"
+        suffix = PurePath(shown).suffix.lower()
+        if suffix not in self.KINDS[kind]:
+            raise ValueError(f"{shown!r}: a {kind} file is one of "
+                             f"{', '.join(self.KINDS[kind])}")
+        token = secrets.token_hex(8)
+        path = self.folder / f"{kind}-{token}{suffix}"
+        path.write_bytes(data)
+        entry = {"token": token, "kind": kind, "name": shown, "path": str(path)}
+        with self._lock:
+            self._files[token] = entry
+            while len(self._files) > self.keep:
+                _, old = self._files.popitem(last=False)
+                Path(old["path"]).unlink(missing_ok=True)
+        return entry
+
+    def forget(self, token: str) -> None:
+        """Delete an uploaded file (one the server refused)."""
+        with self._lock:
+            entry = self._files.pop(token, None)
+        if entry is not None:
+            Path(entry["path"]).unlink(missing_ok=True)
+
+    def file(self, token, kind: str) -> dict:
+        """``{"path", "name"}`` of the file of ``token``.
+
+        Raises
+        ------
+        ValueError
+            For a token that names no file of this kind (or one no longer kept).
+        """
+        if not isinstance(token, str) or not TOKEN.match(token):
+            raise ValueError(f"{kind}: not the token of an uploaded file: {token!r}")
+        with self._lock:
+            entry = self._files.get(token)
+        if entry is None or entry["kind"] != kind:
+            raise ValueError(f"the uploaded {kind} file is no longer kept by the server: upload "
+                             f"it again")
+        return {"path": entry["path"], "name": entry["name"]}
+
+    def resolve(self, spec: dict, key: str, kind: str) -> dict:
+        """``spec`` with the token under ``key`` replaced by ``{"path", "name"}`` of its file."""
+        if not isinstance(spec, dict) or not spec.get(key):
+            return spec
+        return {**spec, key: self.file(spec[key], kind)}
+
+
+def check_geometry_file(entry: dict):
+    """The structure of an uploaded geometry file, checked as ``archquake limit --geometry``
+    checks it; the message names the file as the user did.
+
+    Returns
+    -------
+    BlockArch
+
+    Raises
+    ------
+    ValueError
+        The command line's message for the same file.
+    """
+    return structure_from_spec({"geometry": {"path": entry["path"], "name": entry["name"]}})[1]
+
+
+def check_record_file(entry: dict) -> dict:
+    """A summary of an uploaded record (its duration, samples and peak), read as ``archquake
+    simulate --record`` reads it.
+
+    Returns
+    -------
+    dict
+        ``name``, ``duration`` [s], ``samples`` [-] and ``pga_g`` [g].
+
+    Raises
+    ------
+    ValueError
+        The command line's message for the same file, or one of the page's limits.
+    """
+    from ..geometry import GRAVITY
+
+    motion = motion_from_spec({"record": {"path": entry["path"], "name": entry["name"]}})
+    return {"name": entry["name"], "duration": float(motion.duration),
+            "samples": int(motion.times.size),
+            "pga_g": float(abs(motion.values).max() / GRAVITY)}
+
+
+__all__ = ["LIMITS", "MOTION_KEYS", "STRUCTURE_KEYS", "Uploads", "check_geometry_file",
+           "check_record_file", "motion_from_spec", "structure_from_spec", "suites"]

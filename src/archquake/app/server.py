@@ -1,0 +1,451 @@
+"""The page's server: a Starlette application (:func:`create_app`) served by uvicorn
+(:func:`serve`).
+
+Routes (JSON in and out unless said otherwise; a refused input is answered with status 400 and
+``{"error": message}``, the command line's message for the same input):
+
+- ``GET /``: the page; ``GET /static/...``: its script and style sheet;
+- ``GET /api/options``: the choices the page offers (shapes, faces, motions and their
+  parameters, the defaults and the page's limits); ``GET /api/suites``: the built-in record
+  suites and their records when the ``records`` extra is installed (read once, seconds);
+- ``POST /api/structure``: ``{"structure": {...}}`` -> the blocks, both limit analyses (k_l,
+  k_r, hinges, thrust lines) or why the structure cannot stand; answered in the server's threads
+  (a limit analysis takes milliseconds);
+- ``POST /api/figure``: the same structure -> a PNG of both mechanisms
+  (:func:`archquake.plotting.plot_limit_analysis`);
+- ``POST /api/upload/geometry``, ``POST /api/upload/record``: the file as the request body, its
+  name in the header ``X-File-Name`` -> a token, once the file has been read as the command line
+  reads it;
+- ``POST /api/jobs/simulate``, ``/api/jobs/domain``, ``/api/jobs/assess``: start a job
+  (:mod:`.jobs`) -> its id; ``GET /api/jobs/{id}``: its progress and, once done, its result;
+  ``DELETE /api/jobs/{id}``: cancel it;
+- ``GET /api/download/{name}``: a file a job wrote (the assessment report, zipped).
+
+The server writes only in its temporary folder (uploads, reports), removed when it stops; it
+answers only requests whose ``Host`` is the address it serves (so that a web site cannot drive
+it from the user's browser), and reads no request body larger than its limits.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import io
+import json
+import os
+import re
+import shutil
+import socket
+import sys
+import tempfile
+import threading
+import webbrowser
+from contextlib import asynccontextmanager
+from pathlib import Path
+
+from starlette.applications import Starlette
+from starlette.concurrency import run_in_threadpool
+from starlette.middleware import Middleware
+from starlette.middleware.trustedhost import TrustedHostMiddleware
+from starlette.requests import Request
+from starlette.responses import FileResponse, HTMLResponse, JSONResponse, Response
+from starlette.routing import Mount, Route
+from starlette.staticfiles import StaticFiles
+
+from .inputs import LIMITS
+
+STATIC = Path(__file__).parent / "static"
+"""The page's files."""
+
+LOOPBACK_NAMES = ("127.0.0.1", "localhost", "::1", "[::1]")
+"""Host names that a server on loopback answers."""
+
+_DOWNLOAD = re.compile(r"^assessment-[0-9a-f]{16}\.zip$")
+
+
+class RequestError(Exception):
+    """A request the server refuses: its status and message."""
+
+    def __init__(self, status: int, message: str):
+        super().__init__(message)
+        self.status = status
+
+
+def _error(status: int, message: str) -> JSONResponse:
+    return JSONResponse({"error": message}, status_code=status)
+
+
+async def _body(request: Request, limit: int) -> bytes:
+    """The request's body, refused past ``limit`` bytes without reading the rest."""
+    length = request.headers.get("content-length")
+    if length is not None and length.isdigit() and int(length) > limit:
+        raise RequestError(413, f"the request has {int(length)} bytes; this page takes at most "
+                                f"{limit}")
+    chunks, size = [], 0
+    async for chunk in request.stream():
+        size += len(chunk)
+        if size > limit:
+            raise RequestError(413, f"the request has more than {limit} bytes; this page takes "
+                                    f"at most {limit}")
+        chunks.append(chunk)
+    return b"".join(chunks)
+
+
+async def _json(request: Request) -> dict:
+    data = await _body(request, LIMITS["request_bytes"])
+    try:
+        value = json.loads(data.decode("utf-8"))
+    except (UnicodeDecodeError, json.JSONDecodeError) as exc:
+        raise RequestError(400, f"the request is not JSON: {exc}") from None
+    if not isinstance(value, dict):
+        raise RequestError(400, "the request must be a JSON object")
+    return value
+
+
+def _handler(function):
+    """An endpoint whose refusals are answers: a :class:`ValueError` is status 400 with the
+    command line's wording (the option named), a :class:`RequestError` its own status."""
+    from ..cli.options import option_message
+
+    async def endpoint(request: Request):
+        try:
+            return await function(request)
+        except RequestError as exc:
+            return _error(exc.status, str(exc))
+        except ValueError as exc:
+            return _error(400, option_message(str(exc)))
+
+    endpoint.__name__ = function.__name__
+    endpoint.__doc__ = function.__doc__
+    return endpoint
+
+
+# ------------------------------------------------------------------------------ computations
+def structure_answer(spec: dict) -> dict:
+    """What the page shows of a structure: its blocks and both limit analyses.
+
+    Parameters
+    ----------
+    spec : dict
+        The structure's description (:func:`archquake.app.inputs.structure_from_spec`, files
+        resolved).
+
+    Returns
+    -------
+    dict
+        ``structure`` (:func:`~archquake.app.views.structure_view`), and ``limit``
+        (:func:`~archquake.app.views.limit_view`) or, when the structure cannot stand or never
+        collapses, ``verdict`` (``"cannot stand"`` or ``"never collapses"``) and ``message``
+        (the library's, which names the part).
+    """
+    from ..errors import CannotStandError, NeverCollapsesError
+    from ..limit_analysis import both_directions
+    from .inputs import structure_from_spec
+    from .views import json_ready, limit_view, structure_view
+
+    _, structure = structure_from_spec(spec)
+    out = {"structure": structure_view(structure), "limit": None}
+    try:
+        out["limit"] = limit_view(both_directions(structure))
+    except CannotStandError as exc:
+        out.update(verdict="cannot stand", message=str(exc))
+    except NeverCollapsesError as exc:
+        out.update(verdict="never collapses", message=str(exc))
+    return json_ready(out)
+
+
+def limit_figure(spec: dict) -> bytes:
+    """PNG of both mechanisms of the structure (:func:`archquake.plotting.plot_limit_analysis`,
+    as ``archquake limit --plot`` draws them)."""
+    from ..cli.output import pyplot
+    from ..limit_analysis import both_directions
+    from .inputs import structure_from_spec
+
+    plt = pyplot()
+    from ..plotting import plot_limit_analysis
+
+    _, structure = structure_from_spec(spec)
+    results = both_directions(structure)
+    fig, axes = plt.subplots(1, 2, figsize=(13, 5.0), constrained_layout=True)
+    for ax, result in zip(axes, results, strict=True):
+        plot_limit_analysis(result, ax)
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", dpi=110)
+    plt.close(fig)
+    return buffer.getvalue()
+
+
+def options_answer() -> dict:
+    """The choices the page offers, its defaults and limits."""
+    from ..cli.options import circular_defaults
+    from ..defaults import (
+        ANALYTIC_GROUND_MOTIONS,
+        DEFAULT_FILL_INERTIA,
+        DEFAULT_FRICTION,
+        DEFAULT_PULSE,
+        DEFAULT_RESTITUTION,
+        FILL_INERTIA_MODELS,
+        SHAPES,
+        VOUSSOIR_FACES,
+    )
+    from ..ground_motion import shape_parameters
+    from .tasks import DOMAIN_DEFAULTS
+
+    return {"shapes": list(SHAPES), "faces": list(VOUSSOIR_FACES),
+            "fill_inertia": list(FILL_INERTIA_MODELS), "default_fill_inertia":
+                DEFAULT_FILL_INERTIA,
+            "circular": circular_defaults(),
+            "motions": {name: shape_parameters(name) for name in ANALYTIC_GROUND_MOTIONS},
+            "pulse": {"amplitude": DEFAULT_PULSE[0], "duration": DEFAULT_PULSE[1]},
+            "restitution": DEFAULT_RESTITUTION, "friction": DEFAULT_FRICTION,
+            "domain": DOMAIN_DEFAULTS, "limits": LIMITS}
+
+
+# ------------------------------------------------------------------------------ the application
+def create_app(workdir: str | Path | None = None, *, hosts=LOOPBACK_NAMES,
+               warm: bool = True) -> Starlette:
+    """The page's application.
+
+    Parameters
+    ----------
+    workdir : str or Path, optional
+        The folder the server writes in (uploads, reports); default a new temporary folder,
+        removed when the application stops (a given folder is left in place).
+    hosts : sequence of str
+        Host names the server answers (``"*"``: any); default loopback's.
+    warm : bool
+        Start the fork server of the jobs and import the limit analysis when the application
+        starts, in the background (the page is served meanwhile).
+
+    Returns
+    -------
+    starlette.applications.Starlette
+    """
+    from .inputs import Uploads, check_geometry_file, check_record_file
+    from .jobs import BusyError, Jobs
+    from .tasks import TASKS, check_domain, model_settings
+
+    own = workdir is None
+    folder = Path(tempfile.mkdtemp(prefix="archquake-app-") if own else workdir)
+    uploads = Uploads(folder / "uploads")
+    jobs = Jobs()
+    suite_list: list = []
+    suite_lock = threading.Lock()
+
+    def read_suites() -> list:
+        from .inputs import suites
+
+        with suite_lock:
+            if not suite_list:
+                suite_list.append(suites())
+            return suite_list[0]
+
+    @asynccontextmanager
+    async def lifespan(app):
+        if warm:
+            threading.Thread(target=_warm_up, args=(read_suites,), name="archquake-app-warm-up",
+                             daemon=True).start()
+        try:
+            yield
+        finally:
+            await run_in_threadpool(jobs.shutdown)
+            if own:
+                shutil.rmtree(folder, ignore_errors=True)
+
+    async def page(request: Request):
+        return HTMLResponse((STATIC / "index.html").read_text(encoding="utf-8"))
+
+    async def options(request: Request):
+        return JSONResponse(await run_in_threadpool(options_answer))
+
+    async def suite_names(request: Request):
+        return JSONResponse(await run_in_threadpool(read_suites))
+
+    async def structure(request: Request):
+        spec = uploads.resolve((await _json(request)).get("structure") or {}, "geometry",
+                               "geometry")
+        return JSONResponse(await run_in_threadpool(structure_answer, spec))
+
+    async def figure(request: Request):
+        spec = uploads.resolve((await _json(request)).get("structure") or {}, "geometry",
+                               "geometry")
+        png = await run_in_threadpool(limit_figure, spec)
+        return Response(png, media_type="image/png")
+
+    async def upload(request: Request):
+        kind = request.path_params["kind"]
+        if kind not in uploads.KINDS:
+            raise RequestError(404, f"no upload of kind {kind!r}")
+        data = await _body(request, LIMITS[f"{kind}_bytes"])
+        entry = uploads.save(kind, request.headers.get("x-file-name", ""), data)
+        check = check_geometry_file if kind == "geometry" else check_record_file
+        try:
+            summary = await run_in_threadpool(check, entry)
+        except ValueError:
+            uploads.forget(entry["token"])
+            raise
+        out = {"token": entry["token"], "name": entry["name"]}
+        if kind == "record":
+            out.update(summary)
+        return JSONResponse(out)
+
+    def _job_spec(body: dict) -> dict:
+        spec = {key: body.get(key) for key in ("structure", "motion", "models", "domain")
+                if body.get(key) is not None}
+        spec["structure"] = uploads.resolve(spec.get("structure") or {}, "geometry",
+                                            "geometry")
+        if "motion" in spec:
+            spec["motion"] = uploads.resolve(spec["motion"], "record", "record")
+        spec["workdir"] = str(folder)
+        return spec
+
+    def _check(kind: str, spec: dict) -> None:
+        """Refuse bad input before a worker is started (the worker checks it again)."""
+        from .inputs import motion_from_spec, structure_from_spec
+
+        structure_from_spec(spec["structure"])
+        model_settings(spec)
+        if kind == "simulate":
+            motion_from_spec(spec.get("motion") or {})
+        if kind == "domain":
+            check_domain(spec)
+
+    async def start_job(request: Request):
+        kind = request.path_params["kind"]
+        if kind not in TASKS:
+            raise RequestError(404, f"no job of kind {kind!r}; kinds: {list(TASKS)}")
+        spec = _job_spec(await _json(request))
+        await run_in_threadpool(_check, kind, spec)
+        try:
+            job = await run_in_threadpool(jobs.start, kind, spec)
+        except BusyError as exc:
+            raise RequestError(429, str(exc)) from None
+        return JSONResponse(job.status(result=False))
+
+    def _job(request: Request):
+        try:
+            return jobs.get(request.path_params["job"])
+        except KeyError:
+            raise RequestError(404, "no such job (or no longer kept)") from None
+
+    async def job_status(request: Request):
+        job = _job(request)
+        return JSONResponse(await run_in_threadpool(job.status))
+
+    async def job_cancel(request: Request):
+        job = _job(request)
+        await run_in_threadpool(job.cancel)
+        return JSONResponse(job.status(result=False))
+
+    async def download(request: Request):
+        name = request.path_params["name"]
+        path = folder / name
+        if not _DOWNLOAD.match(name) or not path.is_file():
+            raise RequestError(404, "no such file")
+        return FileResponse(path, media_type="application/zip", filename=name)
+
+    routes = [
+        Route("/", page),
+        Route("/api/options", _handler(options)),
+        Route("/api/suites", _handler(suite_names)),
+        Route("/api/structure", _handler(structure), methods=["POST"]),
+        Route("/api/figure", _handler(figure), methods=["POST"]),
+        Route("/api/upload/{kind}", _handler(upload), methods=["POST"]),
+        Route("/api/jobs/{kind}", _handler(start_job), methods=["POST"]),
+        Route("/api/jobs/{job}", _handler(job_status), methods=["GET"]),
+        Route("/api/jobs/{job}", _handler(job_cancel), methods=["DELETE"]),
+        Route("/api/download/{name}", _handler(download)),
+        Mount("/static", StaticFiles(directory=STATIC), name="static"),
+    ]
+    middleware = [Middleware(TrustedHostMiddleware, allowed_hosts=list(hosts))]
+    app = Starlette(routes=routes, middleware=middleware, lifespan=lifespan)
+    app.state.workdir = folder
+    app.state.jobs = jobs
+    app.state.uploads = uploads
+    return app
+
+
+def _warm_up(read_suites) -> None:
+    """Start the jobs' fork server, import the limit analysis and read the names of the
+    built-in record suites (in the background)."""
+    from .jobs import start_fork_server
+
+    try:
+        start_fork_server()
+        structure_answer({"voussoirs": 4})
+        read_suites()
+    except Exception as exc:  # the page works without: the first request then waits
+        print(f"archquake app: warning: warm-up failed: {exc}", file=sys.stderr)
+
+
+def _listen(host: str, port: int) -> socket.socket:
+    family = socket.AF_INET6 if ":" in host else socket.AF_INET
+    sock = socket.socket(family, socket.SOCK_STREAM)
+    sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+    try:
+        sock.bind((host.strip("[]"), port))
+    except OSError as exc:
+        sock.close()
+        raise ValueError(f"--port {port}: cannot listen on {host}: "
+                         f"{exc.strerror or exc}") from None
+    sock.listen(128)
+    return sock
+
+
+def serve(host: str = "127.0.0.1", port: int = 8050, *, open_browser: bool = True,
+          log=None) -> int:
+    """Serve the page until interrupted (Ctrl-C or SIGTERM).
+
+    Parameters
+    ----------
+    host : str
+        Address to listen on (default loopback only).
+    port : int
+        TCP port; 0 picks a free one.
+    open_browser : bool
+        Open the page in the user's browser (when there is a display); the address is printed
+        on standard output in any case.
+    log : file, optional
+        Where the server's warnings go (default standard error).
+
+    Returns
+    -------
+    int
+        0 once stopped.
+
+    Raises
+    ------
+    ValueError
+        If the address cannot be listened on (the port in use, an unknown host).
+    """
+    import uvicorn
+
+    sock = _listen(host, port)
+    shown = host if ":" not in host else f"[{host.strip('[]')}]"
+    url = f"http://{shown}:{sock.getsockname()[1]}/"
+    loopback = host.strip("[]") in ("127.0.0.1", "localhost", "::1")
+    hosts = LOOPBACK_NAMES if loopback else ("*",)
+    app = create_app(hosts=hosts)
+    config = uvicorn.Config(app, log_level="warning", lifespan="on", timeout_graceful_shutdown=5)
+    server = uvicorn.Server(config)
+    print(f"archquake app: serving on {url} (Ctrl-C stops)", flush=True)
+    if not loopback:
+        print("archquake app: warning: the page is served beyond this machine, with no "
+              "authentication", file=log or sys.stderr, flush=True)
+    if open_browser:
+        if sys.platform.startswith("linux") and not (os.environ.get("DISPLAY")
+                                                     or os.environ.get("WAYLAND_DISPLAY")):
+            print("archquake app: no display to open a browser on: open the address above",
+                  flush=True)
+        else:
+            threading.Timer(0.3, webbrowser.open, [url]).start()
+    try:
+        asyncio.run(server.serve(sockets=[sock]))
+    except KeyboardInterrupt:
+        pass
+    finally:
+        sock.close()
+    return 0
+
+
+__all__ = ["LOOPBACK_NAMES", "RequestError", "create_app", "limit_figure", "options_answer",
+           "serve", "structure_answer"]

@@ -1,0 +1,706 @@
+// archquake app: the page. It sends the form to the server's JSON API and draws what comes back
+// (SVG); long computations are jobs that it polls. No library, no build step.
+"use strict";
+
+const $ = (id) => document.getElementById(id);
+const SVG = "http://www.w3.org/2000/svg";
+const state = {
+  options: null, geometry: null, record: null, structure: null, structureRequest: null,
+  shake: null, domain: null, assess: null, anim: null,
+};
+
+// ---------------------------------------------------------------------------- the API
+async function api(path, body, init = {}) {
+  const options = { ...init };
+  if (body !== undefined) {
+    options.method = options.method || "POST";
+    if (body instanceof Blob) {
+      options.body = body;
+    } else {
+      options.body = JSON.stringify(body);
+      options.headers = { "Content-Type": "application/json", ...(options.headers || {}) };
+    }
+  }
+  const response = await fetch(path, options);
+  const type = response.headers.get("content-type") || "";
+  const data = type.includes("json") ? await response.json() : await response.blob();
+  if (!response.ok) {
+    const error = new Error((data && data.error) || `${response.status} ${response.statusText}`);
+    error.status = response.status;
+    throw error;
+  }
+  return data;
+}
+
+function status(text) { $("status").textContent = text; }
+
+function showMessage(text) {
+  const box = $("message");
+  document.querySelectorAll(".invalid").forEach((el) => el.classList.remove("invalid"));
+  if (!text) { box.hidden = true; box.textContent = ""; return; }
+  box.hidden = false;
+  box.textContent = text;
+  const named = /--([a-z][a-z0-9-]*)/.exec(text);
+  if (named) {
+    const key = named[1].replace(/-/g, "_");
+    document.querySelectorAll(`[data-option="${key}"]`).forEach((el) => el.classList.add("invalid"));
+  }
+}
+
+// ---------------------------------------------------------------------------- the form
+const value = (id) => $(id).value.trim();
+const number = (id) => (value(id) === "" ? null : Number(value(id)));
+
+function structureSpec() {
+  const spec = {};
+  if (fromFile()) {
+    if (state.geometry) spec.geometry = state.geometry.token;
+  } else {
+    const shape = value("shape");
+    if (shape !== "circular") spec.shape = shape;
+    if (shape === "circular" && value("circle-by") === "angle") {
+      spec.radius = number("radius");
+      spec.embrace = number("embrace");
+    } else {
+      spec.span = number("span");
+      spec.rise = number("rise");
+    }
+    spec.thickness = number("thickness");
+    spec.voussoirs = number("voussoirs");
+    if (value("faces") !== "curved") spec.faces = value("faces");
+  }
+  if ($("piers-on").checked) {
+    spec.piers = [value("pier-width"), value("pier-height"), value("pier-courses")].join(",");
+  }
+  if ($("fill-on").checked) {
+    spec.fill_cover = number("fill-cover");
+    spec.fill_density = number("fill-density");
+    spec.fill_inertia = value("fill-inertia");
+  }
+  for (const key of ["density", "epsilon", "seed"]) {
+    if (value(key) !== "") spec[key] = number(key);
+  }
+  return spec;
+}
+
+function motionSpec() {
+  const source = value("motion-source");
+  const spec = { reverse: $("reverse").checked };
+  if (source === "pulse") {
+    spec.motion = value("pulse");
+    spec.amplitude = number("amplitude");
+    spec.duration = number("duration");
+    const params = {};
+    document.querySelectorAll("#pulse-params input").forEach((el) => {
+      if (el.value.trim() !== "") params[el.dataset.param] = Number(el.value);
+    });
+    spec.params = params;
+  } else if (source === "record") {
+    if (!state.record) throw new Error("choose a record file first");
+    spec.record = state.record.token;
+    spec.scale_to = number("scale-to");
+  } else {
+    spec.suite = value("suite");
+    spec.suite_record = Number(value("suite-record"));
+    spec.scale_to = number("scale-to");
+  }
+  return spec;
+}
+
+function modelsSpec() {
+  return { restitution: value("restitution") || null, friction: number("friction") };
+}
+
+// ---------------------------------------------------------------------------- drawing
+function el(tag, attrs = {}, parent = null) {
+  const node = document.createElementNS(SVG, tag);
+  for (const [k, v] of Object.entries(attrs)) node.setAttribute(k, v);
+  if (parent) parent.appendChild(node);
+  return node;
+}
+
+const pointsText = (pts) => pts.map((p) => `${p[0]},${p[1]}`).join(" ");
+
+// An SVG in metres, y up: returns the group to draw in and a function placing text.
+function scene(svg, bounds, margin = 0.08) {
+  svg.replaceChildren();
+  let [x0, x1, y0, y1] = bounds;
+  const pad = margin * Math.max(x1 - x0, y1 - y0, 1e-6);
+  x0 -= pad; x1 += pad; y0 -= pad; y1 += pad;
+  svg.setAttribute("viewBox", `${x0} ${-y1} ${x1 - x0} ${y1 - y0}`);
+  const world = el("g", { transform: "scale(1,-1)" }, svg);
+  const scale = (y1 - y0) / 300;
+  const text = (x, y, label, cls = "label") => {
+    const t = el("text", { x, y: -y, class: cls, "text-anchor": "middle",
+                           "dominant-baseline": "middle",
+                           "font-size": 13 * scale }, svg);
+    t.textContent = label;
+    return t;
+  };
+  return { world, text, scale };
+}
+
+function drawBlocks(world, structure, blocks = structure.blocks) {
+  const polygons = [];
+  const columns = [];
+  if (structure.fill) {
+    structure.fill.outlines.forEach((outline, k) => {
+      columns.push([el("polygon", { points: pointsText(outline), class: "column" }, world),
+                    structure.fill.blocks[k]]);
+    });
+  }
+  blocks.forEach((outline, i) => {
+    const kind = structure.kinds[i] === "pier" ? "block pier" : "block";
+    polygons.push(el("polygon", { points: pointsText(outline), class: kind }, world));
+  });
+  for (const segment of structure.ground) {
+    const [a, b] = segment;
+    const w = Math.abs(b[0] - a[0]) || 1;
+    const xs = [Math.min(a[0], b[0]) - 0.3 * w, Math.max(a[0], b[0]) + 0.3 * w];
+    el("line", { x1: xs[0], y1: a[1], x2: xs[1], y2: b[1], class: "ground" }, world);
+  }
+  return { polygons, columns };
+}
+
+function drawMechanism(svg, answer, direction) {
+  const s = answer.structure;
+  const { world, text, scale } = scene(svg, s.bounds);
+  drawBlocks(world, s);
+  const limit = answer.limit && answer.limit[direction];
+  if (!limit) return;
+  el("polyline", { points: pointsText(limit.funicular), class: "thrust" }, world);
+  for (const p of limit.pressure_points) {
+    el("circle", { cx: p[0], cy: p[1], r: 3 * scale, class: "point" }, world);
+  }
+  const span = s.bounds[1] - s.bounds[0];
+  for (const h of limit.hinges) {
+    el("circle", { cx: h.x, cy: h.y, r: 6 * scale, class: "hinge" }, world);
+    const up = h.face === "extrados" ? 1 : -1;
+    text(h.x, h.y + up * 0.05 * span, h.label);
+  }
+}
+
+function setK(answer) {
+  const fmt = (k) => (k === null || k === undefined ? "–" : k.toFixed(4));
+  const limit = answer && answer.limit;
+  $("k-l").textContent = limit ? fmt(limit.k_l) : "–";
+  $("k-r").textContent = limit ? fmt(limit.k_r) : "–";
+  $("k-value").textContent = limit ? fmt(limit.k) : "–";
+}
+
+function showStructure(answer) {
+  state.structure = answer;
+  setK(answer);
+  $("description").textContent = answer.structure.description;
+  const verdict = $("verdict");
+  if (answer.verdict) {
+    verdict.hidden = false;
+    verdict.textContent = `${answer.verdict[0].toUpperCase()}${answer.verdict.slice(1)}: ${answer.message}`;
+  } else {
+    verdict.hidden = true;
+  }
+  drawMechanism($("svg-l"), answer, "l");
+  drawMechanism($("svg-r"), answer, "r");
+}
+
+// ---------------------------------------------------------------------------- live structure
+let structureTimer = null;
+function structureChanged() {
+  clearTimeout(structureTimer);
+  structureTimer = setTimeout(updateStructure, 120);
+}
+
+function clearStructure(note) {
+  state.structure = null;
+  setK(null);
+  $("verdict").hidden = true;
+  $("description").textContent = note;
+  $("svg-l").replaceChildren();
+  $("svg-r").replaceChildren();
+}
+
+const fromFile = () => document.querySelector("input[name=source]:checked").value === "file";
+
+async function updateStructure() {
+  if (state.structureRequest) state.structureRequest.abort();
+  if (fromFile() && !state.geometry) {
+    clearStructure("choose a geometry file: its blocks and limit analysis appear here");
+    status("waiting for a geometry file");
+    return;
+  }
+  const controller = new AbortController();
+  state.structureRequest = controller;
+  status("analysing…");
+  try {
+    const answer = await api("/api/structure", { structure: structureSpec() },
+                             { signal: controller.signal });
+    showMessage("");
+    showStructure(answer);
+    status(answer.verdict ? answer.verdict : "ready");
+  } catch (error) {
+    if (error.name === "AbortError") return;
+    showMessage(error.message);
+    setK(null);
+    status("input refused");
+  }
+}
+
+// ---------------------------------------------------------------------------- uploads
+async function upload(kind, file) {
+  const headers = { "X-File-Name": file.name };
+  return api(`/api/upload/${kind}`, file, { headers });
+}
+
+async function geometryChosen() {
+  const file = $("geometry-file").files[0];
+  if (!file) return;
+  state.geometry = null;
+  $("geometry-name").textContent = "";
+  try {
+    const answer = await upload("geometry", file);
+    state.geometry = answer;
+    $("geometry-name").textContent = `${answer.name} read`;
+    showMessage("");
+    updateStructure();
+  } catch (error) {
+    showMessage(error.message);
+    $("geometry-name").textContent = `${file.name} refused`;
+    clearStructure(`${file.name} refused: see the message above`);
+  }
+}
+
+async function recordChosen() {
+  const file = $("record-file").files[0];
+  if (!file) return;
+  state.record = null;
+  try {
+    const answer = await upload("record", file);
+    state.record = answer;
+    $("record-name").textContent =
+      `${answer.name}: ${answer.samples} samples, ${answer.duration.toFixed(2)} s, ` +
+      `PGA ${answer.pga_g.toFixed(3)} g`;
+    showMessage("");
+  } catch (error) {
+    showMessage(error.message);
+    $("record-name").textContent = `${file.name} refused`;
+  }
+}
+
+// ---------------------------------------------------------------------------- jobs
+async function startJob(kind, body, handlers) {
+  const job = await api(`/api/jobs/${kind}`, body);
+  const poll = async () => {
+    let status;
+    try {
+      status = await api(`/api/jobs/${job.id}`);
+    } catch (error) {
+      handlers.error(error.message);
+      return;
+    }
+    handlers.progress(status);
+    if (status.state === "running") {
+      handlers.timer = setTimeout(poll, 250);
+    } else if (status.state === "done") {
+      handlers.done(status.result);
+    } else if (status.state === "failed") {
+      handlers.error(status.error);
+    } else {
+      handlers.cancelled && handlers.cancelled();
+    }
+  };
+  handlers.id = job.id;
+  handlers.timer = setTimeout(poll, 150);
+  return handlers;
+}
+
+async function cancelJob(handlers) {
+  if (!handlers || !handlers.id) return;
+  clearTimeout(handlers.timer);
+  try { await api(`/api/jobs/${handlers.id}`, undefined, { method: "DELETE" }); } catch (e) { /* gone */ }
+  handlers.cancelled && handlers.cancelled();
+}
+
+// ---------------------------------------------------------------------------- shaking
+function setOutcome(name, text, cls) {
+  const span = $(`outcome-${name}`);
+  span.textContent = text;
+  span.className = `outcome ${cls || ""}`;
+}
+
+function describeOutcome(name, view) {
+  if (view.error) {
+    setOutcome(name, "not available", "error");
+    $(`detail-${name}`).textContent = view.error;
+    return;
+  }
+  const o = view.outcome;
+  let text = o.status;
+  let detail;
+  if (name === "four-link") {
+    if (o.status === "collapse") text += ` (half cycle ${o.half_cycle})`;
+    detail = `impacts ${o.impacts}; largest rotation φ = ${o.max_phi === null ? "–" : o.max_phi.toFixed(4)} rad` +
+      (o.collapse_time !== null ? `; point of no return at t = ${o.collapse_time.toFixed(3)} s` : "") +
+      `; c_v = ${view.restitution.map((c) => c.toFixed(3)).join(" / ")}`;
+  } else {
+    detail = `up to the decision: largest block rotation ${o.max_rotation.toFixed(4)} rad, ` +
+      `crown drop ${o.max_crown_drop.toFixed(4)} m` +
+      (o.collapse_time !== null ? `; collapse certain at t = ${o.collapse_time.toFixed(3)} s` : "") +
+      (o.decided ? "" : " (undecided at the end of the run)");
+  }
+  setOutcome(name, text, o.status);
+  $(`detail-${name}`).textContent = detail;
+}
+
+async function shake() {
+  stopAnimation();
+  if (state.shake) await cancelJob(state.shake);
+  let body;
+  try {
+    body = { structure: structureSpec(), motion: motionSpec(), models: modelsSpec() };
+  } catch (error) { showMessage(error.message); return; }
+  for (const name of ["four-link", "rigid-blocks"]) { setOutcome(name, "…", ""); }
+  $("shake-progress").textContent = "starting…";
+  $("shake-cancel").hidden = false;
+  const handlers = {
+    progress: (s) => { $("shake-progress").textContent = `running: ${s.progress.text}`; },
+    done: (result) => {
+      $("shake-progress").textContent = "";
+      $("shake-cancel").hidden = true;
+      state.shake = null;
+      showShake(result);
+    },
+    error: (message) => {
+      $("shake-progress").textContent = "";
+      $("shake-cancel").hidden = true;
+      state.shake = null;
+      showMessage(message);
+      for (const name of ["four-link", "rigid-blocks"]) setOutcome(name, "", "");
+    },
+    cancelled: () => {
+      $("shake-progress").textContent = "cancelled";
+      $("shake-cancel").hidden = true;
+      state.shake = null;
+      for (const name of ["four-link", "rigid-blocks"]) setOutcome(name, "", "");
+    },
+  };
+  try {
+    state.shake = await startJob("simulate", body, handlers);
+    showMessage("");
+  } catch (error) {
+    handlers.error(error.message);
+  }
+}
+
+function rigidMotion(frame, centre) {
+  const [dx, dy, rot] = frame;
+  return `translate(${dx} ${dy}) rotate(${rot * 180 / Math.PI} ${centre[0]} ${centre[1]})`;
+}
+
+function setupModelScene(svg, view, structure, bounds) {
+  const { world } = scene(svg, bounds, 0.05);
+  if (view.error) return null;
+  const drawn = drawBlocks(world, structure, view.blocks);
+  return { view, drawn };
+}
+
+function showShake(result) {
+  const base = result.structure;
+  // room for the blocks to move: the structure's bounds grown by half their size
+  const [x0, x1, y0, y1] = base.bounds;
+  const w = x1 - x0;
+  const bounds = [x0 - 0.25 * w, x1 + 0.25 * w, y0 - 0.35 * (y1 - y0), y1 + 0.1 * (y1 - y0)];
+  const scenes = {};
+  for (const name of ["four-link", "rigid-blocks"]) {
+    describeOutcome(name, result[name]);
+    scenes[name] = setupModelScene($(`anim-${name}`), result[name], base, bounds);
+  }
+  const times = result.times;
+  const charts = {
+    motion: lineChart($("chart-motion"), [{ ...result.motion, color: "#444" }], times),
+    phi: lineChart($("chart-phi"), result["four-link"].series ? [{ ...result["four-link"].series, color: "#1f77b4" }] : [], times),
+    drop: lineChart($("chart-drop"), result["rigid-blocks"].series ? [{ ...result["rigid-blocks"].series, color: "#b2182b" }] : [], times),
+  };
+  state.anim = { result, scenes, charts, times, frame: 0, playing: false, clock: 0 };
+  const slider = $("time");
+  slider.max = Math.max(0, times.length - 1);
+  slider.value = 0;
+  slider.disabled = false;
+  $("play").disabled = false;
+  showFrame(0);
+  playAnimation();
+}
+
+function showFrame(index) {
+  const anim = state.anim;
+  if (!anim) return;
+  const n = anim.times.length;
+  const i = Math.max(0, Math.min(n - 1, index));
+  anim.frame = i;
+  for (const scene of Object.values(anim.scenes)) {
+    if (!scene) continue;
+    const frame = scene.view.frames[i];
+    const centres = scene.view.centres;
+    scene.drawn.polygons.forEach((poly, b) => poly.setAttribute("transform", rigidMotion(frame[b], centres[b])));
+    for (const [poly, b] of scene.drawn.columns) {
+      poly.setAttribute("transform", rigidMotion(frame[b], centres[b]));
+    }
+  }
+  const t = anim.times[i];
+  for (const chart of Object.values(anim.charts)) chart(t);
+  $("time").value = i;
+  $("time-text").textContent = `t = ${t.toFixed(2)} s`;
+}
+
+function playAnimation() {
+  const anim = state.anim;
+  if (!anim) return;
+  if (anim.frame >= anim.times.length - 1) anim.frame = 0;
+  anim.playing = true;
+  $("play").textContent = "❚❚ Pause";
+  let last = performance.now();
+  let clock = anim.times[anim.frame];
+  const step = (now) => {
+    if (!anim.playing || state.anim !== anim) return;
+    clock += ((now - last) / 1000) * Number(value("speed"));
+    last = now;
+    const index = Math.floor(clock * anim.result.fps + 1e-9);
+    showFrame(index);
+    if (index >= anim.times.length - 1) { stopAnimation(); return; }
+    requestAnimationFrame(step);
+  };
+  requestAnimationFrame(step);
+}
+
+function stopAnimation() {
+  if (state.anim) state.anim.playing = false;
+  $("play").textContent = "▶ Play";
+}
+
+// A small line chart of series {t, y, color} over the frames' times; returns cursor(t).
+function lineChart(svg, series, times) {
+  svg.replaceChildren();
+  const W = 300, H = 110, L = 34, B = 16, T = 6, R = 6;
+  svg.setAttribute("viewBox", `0 0 ${W} ${H}`);
+  svg.setAttribute("preserveAspectRatio", "none");
+  const tmax = Math.max(times.length ? times[times.length - 1] : 1,
+                        ...series.map((s) => (s.t.length ? s.t[s.t.length - 1] : 0)), 1e-6);
+  let ymin = 0, ymax = 0;
+  for (const s of series) for (const y of s.y) { if (y < ymin) ymin = y; if (y > ymax) ymax = y; }
+  if (ymax - ymin < 1e-12) { ymax += 1; ymin -= 1; }
+  const X = (t) => L + (W - L - R) * (t / tmax);
+  const Y = (y) => T + (H - T - B) * (1 - (y - ymin) / (ymax - ymin));
+  el("line", { x1: L, y1: Y(0), x2: W - R, y2: Y(0), class: "axis" }, svg);
+  el("line", { x1: L, y1: T, x2: L, y2: H - B, class: "axis" }, svg);
+  for (const [y, label] of [[ymax, ymax], [ymin, ymin]]) {
+    const t = el("text", { x: L - 3, y: Y(y) + 3, class: "tick", "text-anchor": "end" }, svg);
+    t.textContent = Number(label).toPrecision(2);
+  }
+  const end = el("text", { x: W - R, y: H - 3, class: "tick", "text-anchor": "end" }, svg);
+  end.textContent = `${tmax.toFixed(1)} s`;
+  for (const s of series) {
+    const pts = s.t.map((t, i) => `${X(t).toFixed(1)},${Y(s.y[i]).toFixed(1)}`).join(" ");
+    el("polyline", { points: pts, class: "curve", stroke: s.color }, svg);
+  }
+  const cursor = el("line", { x1: L, y1: T, x2: L, y2: H - B, class: "cursor" }, svg);
+  return (t) => { const x = X(t); cursor.setAttribute("x1", x); cursor.setAttribute("x2", x); };
+}
+
+// ---------------------------------------------------------------------------- failure domain
+async function startDomain() {
+  const body = {
+    structure: structureSpec(), models: modelsSpec(),
+    domain: { durations: value("domain-durations"), amplitudes: value("domain-amplitudes"),
+              direction: value("domain-direction") },
+  };
+  $("domain-start").disabled = true;
+  $("domain-cancel").disabled = false;
+  $("domain-status").textContent = "starting…";
+  $("domain-progress").value = 0;
+  const finish = (text) => {
+    $("domain-start").disabled = false;
+    $("domain-cancel").disabled = true;
+    $("domain-status").textContent = text;
+    state.domain = null;
+  };
+  const handlers = {
+    progress: (s) => {
+      const p = s.progress;
+      $("domain-progress").max = p.total;
+      $("domain-progress").value = p.done;
+      $("domain-status").textContent = `${p.done} / ${p.total}: ${p.text} (${s.elapsed.toFixed(0)} s)`;
+    },
+    done: (result) => {
+      const img = $("domain-figure");
+      img.src = result.figure;
+      img.hidden = false;
+      const n = (result["four-link"].analyses || 0) + (result["rigid-blocks"].analyses || 0);
+      finish(`done: ${n} analyses` +
+             (result["four-link"].error ? `; four-link model: ${result["four-link"].error}` : "") +
+             (result["rigid-blocks"].error ? `; rigid blocks: ${result["rigid-blocks"].error}` : ""));
+    },
+    error: (message) => { finish("failed"); showMessage(message); },
+    cancelled: () => finish("cancelled"),
+  };
+  try {
+    state.domain = await startJob("domain", body, handlers);
+    showMessage("");
+  } catch (error) {
+    handlers.error(error.message);
+  }
+}
+
+// ---------------------------------------------------------------------------- assessment
+async function startAssess() {
+  $("assess").disabled = true;
+  $("assess-cancel").disabled = false;
+  $("assess-status").textContent = "starting…";
+  const finish = (html) => {
+    $("assess").disabled = false;
+    $("assess-cancel").disabled = true;
+    $("assess-status").innerHTML = "";
+    if (html) $("assess-status").append(...html);
+    state.assess = null;
+  };
+  const handlers = {
+    progress: (s) => { $("assess-status").textContent = `${s.progress.text}: ${s.elapsed.toFixed(0)} s`; },
+    done: (result) => {
+      const link = document.createElement("a");
+      link.href = `/api/download/${result.file}`;
+      link.id = "assess-download";
+      link.textContent = `download the report (${result.file})`;
+      const verdict = document.createElement("div");
+      verdict.textContent = result.verdict || "";
+      finish([link, verdict]);
+    },
+    error: (message) => { finish([document.createTextNode("failed")]); showMessage(message); },
+    cancelled: () => finish([document.createTextNode("cancelled")]),
+  };
+  try {
+    state.assess = await startJob("assess", { structure: structureSpec() }, handlers);
+  } catch (error) {
+    handlers.error(error.message);
+  }
+}
+
+// ---------------------------------------------------------------------------- set-up
+function fillSelect(select, values, selected) {
+  select.replaceChildren(...values.map((v) => {
+    const option = document.createElement("option");
+    option.value = v; option.textContent = v; if (v === selected) option.selected = true;
+    return option;
+  }));
+}
+
+function showShapeFields() {
+  const circular = value("shape") === "circular";
+  $("given-by-label").hidden = !circular;
+  const by = circular ? value("circle-by") : "size";
+  document.querySelectorAll("[data-for]").forEach((label) => { label.hidden = label.dataset.for !== by; });
+  if (by === "size" && value("span") === "") {
+    const R = number("radius"), a = (number("embrace") * Math.PI) / 180;
+    $("span").value = (2 * R * Math.sin(a / 2)).toFixed(3);
+    $("rise").value = (R * (1 - Math.cos(a / 2))).toFixed(3);
+  }
+}
+
+function showSource() {
+  const file = document.querySelector("input[name=source]:checked").value === "file";
+  $("by-file").hidden = !file;
+  $("by-shape").hidden = file;
+}
+
+function showPulseParams() {
+  const params = state.options.motions[value("pulse")] || {};
+  const box = $("pulse-params");
+  box.replaceChildren();
+  for (const [name, fallback] of Object.entries(params)) {
+    const label = document.createElement("label");
+    label.textContent = `${name} `;
+    const input = document.createElement("input");
+    input.type = "number"; input.step = "any"; input.dataset.param = name;
+    input.placeholder = String(fallback); input.id = `param-${name}`;
+    label.appendChild(input);
+    box.appendChild(label);
+  }
+}
+
+function showMotionSource() {
+  const source = value("motion-source");
+  $("motion-pulse").hidden = source !== "pulse";
+  $("motion-record").hidden = source !== "record";
+  $("motion-suite").hidden = source !== "suite";
+  $("motion-scale").hidden = source === "pulse";
+}
+
+async function loadSuites() {
+  try {
+    const suites = await api("/api/suites");
+    if (!suites.length) return;
+    state.suites = suites;
+    fillSelect($("suite"), suites.map((s) => s.name));
+    const showRecords = () => {
+      const suite = suites.find((s) => s.name === value("suite"));
+      $("suite-record").replaceChildren(...suite.records.map((r, i) => {
+        const option = document.createElement("option");
+        option.value = i; option.textContent = r; return option;
+      }));
+    };
+    $("suite").addEventListener("change", showRecords);
+    showRecords();
+    $("suite-option").disabled = false;
+  } catch (error) { /* no built-in records: the option stays disabled */ }
+}
+
+async function init() {
+  const options = await api("/api/options");
+  state.options = options;
+  fillSelect($("shape"), options.shapes, "circular");
+  fillSelect($("faces"), options.faces, "curved");
+  fillSelect($("fill-inertia"), options.fill_inertia, options.default_fill_inertia);
+  fillSelect($("pulse"), Object.keys(options.motions), "oppenheim");
+  const c = options.circular;
+  $("radius").value = c.radius; $("embrace").value = c.embrace;
+  $("thickness").value = c.thickness; $("thickness-slider").value = c.thickness;
+  $("voussoirs").value = c.voussoirs;
+  $("voussoirs").max = options.limits.blocks;
+  $("amplitude").value = options.pulse.amplitude; $("duration").value = options.pulse.duration;
+  $("restitution").placeholder = options.restitution; $("friction").value = options.friction;
+  $("domain-durations").value = options.domain.durations;
+  $("domain-amplitudes").value = options.domain.amplitudes;
+  showShapeFields(); showPulseParams(); showMotionSource();
+
+  document.querySelectorAll("#by-shape input, #by-shape select, details input, details select")
+    .forEach((input) => input.addEventListener("input", structureChanged));
+  $("thickness").addEventListener("input", () => { $("thickness-slider").value = value("thickness"); });
+  $("thickness-slider").addEventListener("input", () => {
+    $("thickness").value = $("thickness-slider").value; structureChanged();
+  });
+  $("shape").addEventListener("change", () => { showShapeFields(); structureChanged(); });
+  $("circle-by").addEventListener("change", () => { showShapeFields(); structureChanged(); });
+  document.querySelectorAll("input[name=source]").forEach((r) => r.addEventListener("change", () => {
+    showSource(); structureChanged();
+  }));
+  $("geometry-file").addEventListener("change", geometryChosen);
+  $("record-file").addEventListener("change", recordChosen);
+  $("pulse").addEventListener("change", showPulseParams);
+  $("motion-source").addEventListener("change", showMotionSource);
+  $("shake").addEventListener("click", shake);
+  $("shake-cancel").addEventListener("click", () => cancelJob(state.shake));
+  $("play").addEventListener("click", () => (state.anim && state.anim.playing ? stopAnimation() : playAnimation()));
+  $("time").addEventListener("input", () => { stopAnimation(); showFrame(Number($("time").value)); });
+  $("domain-start").addEventListener("click", startDomain);
+  $("domain-cancel").addEventListener("click", () => cancelJob(state.domain));
+  $("assess").addEventListener("click", startAssess);
+  $("assess-cancel").addEventListener("click", () => cancelJob(state.assess));
+  $("figure-link").addEventListener("click", async (event) => {
+    event.preventDefault();
+    try {
+      const blob = await api("/api/figure", { structure: structureSpec() });
+      window.open(URL.createObjectURL(blob), "_blank");
+    } catch (error) { showMessage(error.message); }
+  });
+  loadSuites();
+  await updateStructure();
+}
+
+init().catch((error) => { showMessage(`the page could not start: ${error.message}`); });

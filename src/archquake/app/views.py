@@ -1,0 +1,327 @@
+r"""The library's results as the data the page draws: JSON-ready dicts of plain lists.
+
+Every drawing is in the structure's own frame (x to the right, y up, metres). The limit
+analysis of Mech-r, which the library carries out on the mirrored structure (and the command
+line reports in that frame), is mapped back to the structure's own frame, :math:`x \to -x`, so
+both mechanisms are drawn on the structure the user shaped.
+
+The motion of the blocks is sent as a rigid motion of every block per frame, ``(dx, dy,
+rotation)``: the displacement of a reference point ``c`` of the block [m] and its rotation
+about that point [rad, counterclockwise], so that a point ``p`` of the block at rest is at
+
+.. math::
+
+    p' = c + d + R(\vartheta)\,(p - c)
+
+-- what an SVG ``translate(d) rotate(theta, c)`` draws, and what
+:meth:`archquake.rigid_blocks.BlockHistory.outlines` computes for the rigid blocks. For the
+four-link model the blocks of each link turn with it (:func:`four_link_motion`): link AB about
+A, link CD about D, link BC carried by B; the blocks outside A..D stay still.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+FRAME_RATE = 25.0
+"""Frames per second of the animation [1/s]."""
+
+MAX_ANIMATION_TIME = 60.0
+"""Longest stretch of a time history animated [s]."""
+
+MAX_BLOCK_FRAMES = 150_000
+"""Most block positions of an animation (blocks times frames): a structure of many blocks under a
+long motion is animated at a lower frame rate, so that its answer stays a few megabytes."""
+
+SERIES_POINTS = 1200
+"""Most points of a time series sent for a small plot [-]."""
+
+_MIRROR = np.array([-1.0, 1.0])
+
+
+def rounded(values, digits: int = 5) -> list:
+    """Plain nested lists of ``values`` rounded to ``digits`` decimals (smaller JSON)."""
+    return np.round(np.asarray(values, dtype=float), digits).tolist()
+
+
+def finite(x) -> float | None:
+    """``x`` as a float, None when it is not finite (JSON has no nan)."""
+    x = float(x)
+    return x if math.isfinite(x) else None
+
+
+def json_ready(value):
+    """``value`` with every float that is not finite replaced by None (JSON has no nan),
+    tuples as lists."""
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if isinstance(value, dict):
+        return {k: json_ready(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [json_ready(v) for v in value]
+    return value
+
+
+# ------------------------------------------------------------------------------ the structure
+def structure_view(structure) -> dict:
+    """The blocks of a structure as the page draws them.
+
+    Parameters
+    ----------
+    structure : BlockArch
+        An arch of any kind or a :class:`~archquake.geometry.Structure`.
+
+    Returns
+    -------
+    dict
+        ``blocks`` (outline of every block [m]), ``kinds`` (``"voussoir"`` or ``"pier"`` per
+        block), ``fill`` (``{"outlines", "blocks", "level"}``: every fill column, the block
+        that carries it and the fill's surface [m]; None without fill), ``ground`` (segments
+        [m] under the piers and springings), ``bounds`` ``[xmin, xmax, ymin, ymax]`` [m] and
+        ``description``.
+    """
+    from ..geometry.structure import describe_arch
+
+    n = structure.n_voussoirs
+    blocks = [structure.outline(i, points=16) for i in range(n)]
+    kinds = list(getattr(structure, "block_kinds", ("voussoir",) * n))
+    kinds = ["pier" if "pier" in k else "voussoir" for k in kinds]
+    fill = None
+    columns = getattr(structure, "fill_columns", None)
+    if columns is not None:
+        carriers = list(getattr(structure, "arch_blocks", range(n)))
+        fill = {"outlines": [rounded(o, 4) for o in columns.outlines], "blocks": carriers,
+                "level": float(columns.level)}
+    ground = [rounded(structure.joints[j], 4) for j in (0, -1)]
+    points = np.concatenate(blocks + ([np.asarray(o) for o in columns.outlines]
+                                      if columns is not None else []))
+    return {"blocks": [rounded(b, 4) for b in blocks], "kinds": kinds, "fill": fill,
+            "ground": ground,
+            "bounds": [float(points[:, 0].min()), float(points[:, 0].max()),
+                       float(points[:, 1].min()), float(points[:, 1].max())],
+            "description": describe_arch(structure)}
+
+
+def limit_view(results) -> dict:
+    """Both limit analyses as the page draws them, in the structure's own frame.
+
+    Parameters
+    ----------
+    results : (LimitAnalysis, LimitAnalysis)
+        :func:`archquake.limit_analysis.both_directions` of the structure.
+
+    Returns
+    -------
+    dict
+        ``k_l``, ``k_r``, ``k`` = min [-], and per direction (``"l"``, ``"r"``): ``k``, the
+        ``hinges`` (``x``, ``y`` [m], ``label``, ``joint``, ``face``, ``where`` on a structure;
+        ``joint`` is numbered in the frame of the analysis, mirrored for Mech-r, as the command
+        line reports it), the line of action of the resultant (``funicular``) and the
+        ``pressure_points`` on the joints [m].
+    """
+    out = {}
+    for r in results:
+        flip = _MIRROR if r.direction == "r" else np.ones(2)
+        labels = "ABCD" if r.is_four_hinge else [f"H{i + 1}" for i in range(len(r.hinges))]
+        hinges = []
+        for hinge, point, label in zip(r.hinges, r.hinge_points, labels, strict=False):
+            entry = {"x": float(point[0] * flip[0]), "y": float(point[1]), "label": label,
+                     "joint": int(hinge.joint), "face": hinge.face}
+            if hasattr(r.arch, "joint_name"):
+                entry["where"] = r.arch.joint_name(hinge.joint)
+            hinges.append(entry)
+        out[r.direction] = {"k": float(r.load_multiplier), "hinges": hinges,
+                            "funicular": rounded(r.funicular() * flip, 4),
+                            "pressure_points": rounded(r.thrust_line.points * flip, 4)}
+    k_l, k_r = out["l"]["k"], out["r"]["k"]
+    return {"k_l": k_l, "k_r": k_r, "k": min(k_l, k_r), **out}
+
+
+# ------------------------------------------------------------------------------ the motion
+def animation_end(*ends: float) -> float:
+    """The end of an animation [s]: the latest of ``ends`` (at most
+    :data:`MAX_ANIMATION_TIME`)."""
+    return min(max([e for e in ends if math.isfinite(e)], default=0.0), MAX_ANIMATION_TIME)
+
+
+def frame_rate(end: float, blocks: int) -> float:
+    """Frames per second of an animation of ``blocks`` blocks lasting ``end`` seconds:
+    :data:`FRAME_RATE`, or fewer (at least one) to keep within :data:`MAX_BLOCK_FRAMES`."""
+    return float(min(FRAME_RATE, max(1.0, MAX_BLOCK_FRAMES / (max(blocks, 1) * max(end, 1e-9)))))
+
+
+def frame_times(*ends: float, rate: float = FRAME_RATE) -> np.ndarray:
+    """Times of the frames of an animation [s]: ``rate`` per second from 0 to
+    :func:`animation_end` of ``ends``."""
+    end = animation_end(*ends)
+    return np.arange(int(math.floor(end * rate + 1e-9)) + 1) / rate
+
+
+def _rotation(angle: float) -> np.ndarray:
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, -s], [s, c]])
+
+
+def mechanism_motion(mechanism, theta: float, centres: np.ndarray) -> np.ndarray:
+    r"""Rigid motion of every block of a four-link mechanism at ``theta``, in its own frame.
+
+    Link k turns by :math:`\delta_k` (:mod:`archquake.fourlink.mechanism`): the blocks of AB
+    about A, those of CD about D, those of BC about B, which moves to :math:`B(\theta)`; so a
+    block's reference point ``c`` goes to :math:`P_k' + R(\delta_k)(c - P_k)`.
+
+    Parameters
+    ----------
+    mechanism : FourLinkMechanism
+        Mech-l or Mech-r (on its own, possibly mirrored, arch).
+    theta : float
+        Lagrangian coordinate [rad].
+    centres : ndarray, shape (n, 2)
+        Reference point of every block, in the mechanism's frame [m].
+
+    Returns
+    -------
+    ndarray, shape (n, 3)
+        ``(dx, dy, rotation)`` of every block [m, m, rad]; zero for the blocks outside A..D.
+    """
+    out = np.zeros((centres.shape[0], 3))
+    joints = [h.joint for h in mechanism.hinges]
+    a, b_u, _, d = mechanism.hinge_points
+    theta_bc, theta_cd = (float(x) for x in mechanism.closure(theta))
+    b = a + mechanism.ab * np.array([math.cos(theta), math.sin(theta)])
+    turns = (theta - mechanism.theta_u, theta_bc - mechanism.theta_bc_u,
+             theta_cd - mechanism.theta_cd_u)
+    pivots = ((a, a), (b_u, b), (d, d))
+    for k, ((before, after), turn) in enumerate(zip(pivots, turns, strict=True)):
+        blocks = slice(joints[k], joints[k + 1])
+        c = centres[blocks]
+        moved = after + (c - before) @ _rotation(turn).T
+        out[blocks, :2] = moved - c
+        out[blocks, 2] = turn
+    return out
+
+
+def four_link_motion(model, history, times: np.ndarray) -> np.ndarray:
+    """Rigid motion of every block of the structure at ``times`` in a four-link time history,
+    in the structure's own frame.
+
+    Parameters
+    ----------
+    model : FourLinkModel
+        The model that made ``history``.
+    history : TimeHistory
+        Its time history; at a time after its end the last recorded state is kept.
+    times : ndarray
+        Times of the frames [s].
+
+    Returns
+    -------
+    ndarray, shape (len(times), n, 3)
+        ``(dx, dy, rotation)`` of every block about its centroid
+        (:attr:`BlockArch.centroids <archquake.geometry.BlockArch.centroids>`).
+    """
+    arch = model.arch
+    n = arch.n_voussoirs
+    centres = np.asarray(arch.centroids)
+    mirrored = centres[::-1] * _MIRROR  # block n-1-i of the mirror is block i
+    t = history.t
+    theta = np.concatenate([s.theta for s in history.segments])
+    state = history.mechanism
+    index = np.clip(np.searchsorted(t, times, side="right") - 1, 0, t.size - 1)
+    out = np.zeros((times.size, n, 3))
+    for f, i in enumerate(index):
+        if state[i] == "l":
+            out[f] = mechanism_motion(model.mechanisms[0], float(theta[i]), centres)
+        elif state[i] == "r":
+            moved = mechanism_motion(model.mechanisms[1], float(theta[i]), mirrored)[::-1]
+            out[f] = moved * np.array([-1.0, 1.0, -1.0])
+    return out
+
+
+def block_motion(history, times: np.ndarray) -> np.ndarray:
+    """Rigid motion of every block at ``times`` in a rigid-block time history.
+
+    Parameters
+    ----------
+    history : BlockHistory
+        The history; at a time after its end the last record is kept.
+    times : ndarray
+        Times of the frames [s].
+
+    Returns
+    -------
+    ndarray, shape (len(times), n, 3)
+        ``(dx, dy, rotation)`` of every block about its centroid (``history.assembly``), as
+        :meth:`~archquake.rigid_blocks.BlockHistory.outlines` moves it.
+    """
+    index = np.clip(np.searchsorted(history.times, times, side="right") - 1, 0,
+                    history.times.size - 1)
+    return np.concatenate([history.displacements[index],
+                           history.rotations[index][..., None]], axis=2)
+
+
+def _series(t, y) -> dict:
+    """A time series thinned to at most :data:`SERIES_POINTS` points for a small plot."""
+    t, y = np.asarray(t, dtype=float), np.asarray(y, dtype=float)
+    step = max(1, int(math.ceil(t.size / SERIES_POINTS)))
+    return {"t": rounded(t[::step], 4), "y": rounded(y[::step], 6)}
+
+
+def motion_view(motion) -> dict:
+    """The ground acceleration for a small plot: ``name``, ``duration`` [s] and the series
+    ``t`` [s], ``y`` [g] to a little past its end."""
+    from ..geometry import GRAVITY
+    from ..ground_motion import LINEAR
+
+    end = float(motion.duration)
+    t = np.linspace(0.0, end * 1.1 if end > 0 else 1.0, SERIES_POINTS)
+    if motion.kind == LINEAR:  # a record: its own samples, thinned
+        t = np.asarray(motion.times, dtype=float)
+    return {"name": motion.name, "duration": end,
+            **_series(t, np.asarray(motion.acceleration(t)) / GRAVITY)}
+
+
+def four_link_outcome(outcome) -> dict:
+    """The outcome of the four-link model as the page shows it."""
+    return {"status": outcome.status.label, "half_cycle": int(outcome.half_cycle),
+            "impacts": int(outcome.impacts), "collapse_time": finite(outcome.collapse_time),
+            "max_phi": finite(outcome.max_phi)}
+
+
+def block_outcome(outcome) -> dict:
+    """The outcome of the rigid-block model as the page shows it."""
+    return {"status": outcome.status.label, "collapse_time": finite(outcome.collapse_time),
+            "max_rotation": finite(outcome.max_rotation),
+            "max_crown_drop": finite(outcome.max_crown_drop), "decided": bool(outcome.decided)}
+
+
+def four_link_view(model, history, times) -> dict:
+    """A four-link time history for the page: the blocks, their motion per frame, the outcome
+    and the rotation phi(t) [rad] (+ Mech-l, - Mech-r)."""
+    arch = model.arch
+    return {"blocks": [rounded(arch.outline(i, points=16), 4) for i in range(arch.n_voussoirs)],
+            "centres": rounded(arch.centroids, 5),
+            "frames": rounded(four_link_motion(model, history, times), 5),
+            "outcome": four_link_outcome(history.outcome),
+            "end": float(history.t[-1]), "series": _series(history.t, history.phi),
+            "restitution": [float(c) for c in model.restitution]}
+
+
+def rigid_block_view(history, times) -> dict:
+    """A rigid-block time history for the page: the blocks, their motion per frame, the
+    outcome and the drop of the crown [m] over time."""
+    assembly = history.assembly
+    return {"blocks": [rounded(o, 4) for o in assembly.outlines],
+            "centres": rounded(assembly.centroids, 5),
+            "frames": rounded(block_motion(history, times), 5),
+            "outcome": block_outcome(history.outcome),
+            "end": float(history.times[-1]), "series": _series(history.times,
+                                                               history.crown_drop)}
+
+
+__all__ = ["FRAME_RATE", "MAX_ANIMATION_TIME", "MAX_BLOCK_FRAMES", "animation_end",
+           "block_motion", "block_outcome", "finite", "frame_rate",
+           "four_link_motion", "four_link_outcome", "four_link_view", "frame_times", "json_ready",
+           "limit_view", "mechanism_motion", "motion_view", "rigid_block_view", "rounded",
+           "structure_view"]
