@@ -486,18 +486,33 @@ def _compute(structure, settings: AssessmentSettings, suite, suite_note: str, ou
         with steps("irregularity under pulses"):
             results["irregularity"], computed.irregularity = _irregularity(
                 structure, settings, model, out, resume, results)
-        results["records"], computed.records = _records(structure, settings, suite, suite_note,
-                                                        model, out, resume, steps, results)
-        with steps("failure domain, rigid blocks"):
+        results["records"], computed.records, check = _records(
+            structure, settings, suite, suite_note, model, out, resume, steps, results,
+            background)
+        with steps("rigid blocks (second process)"):
+            background_runs = {}
             if task is None:
                 rigid = parts.domain_from_dict(kept)
-                results["background"] = {"rigid-block failure domain": "kept from the run "
-                                                                        "resumed"}
+                background_runs["rigid-block failure domain"] = "kept from the run resumed"
             else:
                 run = task.result()
                 rigid = run.result
                 _keep(out, "rigid_blocks_domain", rb_key, parts.domain_to_dict(rigid))
-                results["background"] = {"rigid-block failure domain": run.describe()}
+                background_runs["rigid-block failure domain"] = run.describe()
+            if check is not None:
+                key, level, pending = check
+                if isinstance(pending, list):
+                    background_runs["rigid blocks under the records"] = ("kept from the run "
+                                                                         "resumed")
+                    statuses = pending
+                else:
+                    run = pending.result()
+                    statuses = run.result
+                    _keep(out, "record_check", key, statuses)
+                    background_runs["rigid blocks under the records"] = run.describe()
+                results["records"]["check"] = parts.record_check(model, suite, level,
+                                                                 statuses)
+            results["background"] = background_runs
     pulses = parts.pulse_part(fl_domains, rigid, governing, grid)
     results["pulses"] = pulses.summary
     computed.pulses = pulses
@@ -525,23 +540,34 @@ def _irregularity(structure, settings, model, out: Path, resume: bool, results: 
 
 
 def _records(structure, settings, suite, note: str, model, out: Path, resume: bool, steps,
-             results: dict):
-    """The record-based fragility in every intensity measure, or why it was not run."""
+             results: dict, background):
+    """The record-based fragility in every intensity measure, or why it was not run; and the
+    check of the two models under the records, given to the second process: ``(key, level,
+    task or the kept statuses)`` or None."""
     if model is None:
         with steps("records"):
             return {"skipped": "the four-link model, which the record-based study runs, does "
-                               "not apply to this structure"}, None
+                               "not apply to this structure"}, None, None
     if not parts.has_centreline(structure):
         with steps("records"):
             return {"skipped": "the record-based study draws irregular arches around an arch "
                                "with a centreline (circular or shaped); a surveyed arch has "
-                               "none"}, None
+                               "none"}, None, None
     with steps("records: where the stripes go"):
         key = {"suite": suite.to_dict(), "model": model.describe()}
         pilot = _kept(out, "record_pilot", key) if resume else None
         if pilot is None:
             pilot = parts.record_pilot(model, suite)
             _keep(out, "record_pilot", key, pilot)
+    check = None
+    level = parts.check_level(pilot)
+    if level is not None:
+        check_key = {"suite": suite.to_dict(), "level_pga": level,
+                     "friction": settings.friction}
+        kept = _kept(out, "record_check", check_key) if resume else None
+        check = (check_key, level, kept if kept is not None else background.submit(
+            parts.rigid_block_record_outcomes, structure, suite.to_dict(), level,
+            settings.friction))
     studies, entries = {}, {}
     quantiles = (results.get("irregularity") or {}).get("limit_sample", {}).get("quantiles")
     weaker = 1.0
@@ -568,7 +594,7 @@ def _records(structure, settings, suite, note: str, model, out: Path, resume: bo
     return {"suite": {**{k: v for k, v in suite.to_dict().items() if k != "records"},
                       "description": suite.describe(), "count": len(suite)},
             "note": note, "records": listed, "pilot": pilot, "weaker": weaker,
-            "ims": entries}, studies
+            "ims": entries}, studies, check
 
 
 def _sizes(settings: AssessmentSettings, results: dict, suite) -> dict:
@@ -610,6 +636,11 @@ def _summary(results: dict) -> dict:
         out["records"] = {im: {"unit": e["unit"], "lognormal": e["lognormal"],
                                "nominal_lognormal": e["nominal_lognormal"],
                                "total": e["total"]} for im, e in rec["ims"].items()}
+        check = rec.get("check")
+        if check is not None:
+            out["record_check"] = {k: check[k] for k in ("level_pga", "pairs", "agree", "both",
+                                                         "neither", "four_link_only",
+                                                         "rigid_blocks_only")}
     return out
 
 

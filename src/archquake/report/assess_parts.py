@@ -170,6 +170,13 @@ def limit_part(structure) -> LimitPart:
     return LimitPart(tuple(analyses), summary)
 
 
+def _same_geometry(arch, other) -> bool:
+    """Whether two arches have the same joints (to 1e-9 of their size) and kind."""
+    return (type(arch) is type(other) and arch.n_voussoirs == other.n_voussoirs
+            and bool(np.allclose(arch.joints, other.joints, rtol=0.0,
+                                 atol=1e-9 * arch.length_scale)))
+
+
 def safety_factor(structure) -> dict:
     """The geometric safety factor of a structure: how much thinner (or its piers narrower) it
     could be and still stand under its own weight (Heyman's geometric factor of safety).
@@ -205,7 +212,7 @@ def safety_factor(structure) -> dict:
         if isinstance(arch, CircularArch):
             t, r = float(arch.thicknesses[0]), float(arch.radii[0])
             n = arch.n_voussoirs
-            if arch == circular_arch(r, arch.embrace, t, n, density=arch.density):
+            if _same_geometry(arch, circular_arch(r, arch.embrace, t, n, density=arch.density)):
                 t_min = min_thickness(r, arch.embrace, n)
                 thickness = {"kind": "thickness", "value": t, "minimum": t_min,
                              "factor": t / t_min,
@@ -215,7 +222,7 @@ def safety_factor(structure) -> dict:
             line, t, n = arch.centreline, float(arch.thicknesses[0]), arch.n_voussoirs
             nominal = shaped_arch(line.shape, thickness=t, voussoirs=n, span=line.span,
                                   rise=line.rise, faces=arch.faces, density=arch.density)
-            if arch == nominal:
+            if _same_geometry(arch, nominal):
                 t_min = shaped_min_thickness(line.shape, voussoirs=n, span=line.span,
                                              rise=line.rise, faces=arch.faces)
                 thickness = {"kind": "thickness", "value": t, "minimum": t_min,
@@ -861,6 +868,104 @@ def record_study(structure, suite, im: str, levels, settings: AssessmentSettings
                                 progress=False, backend="serial")
 
 
+def check_level(pilot: dict) -> float | None:
+    """The PGA [g] of the records' check of the two models: the median over the records of the
+    lowest PGA that collapses the structure (:func:`record_pilot`; a record that does not
+    collapse it on the pilot's grid counts as above it), None if no record collapses it.
+
+    Parameters
+    ----------
+    pilot : dict
+        :func:`record_pilot`.
+
+    Returns
+    -------
+    float or None
+    """
+    first = np.array([math.inf if f is None else f * a
+                      for f, a in zip(pilot["first_factor"], pilot["pga"], strict=True)])
+    if not np.any(np.isfinite(first)):
+        return None
+    level = float(np.quantile(first, 0.5, method="lower"))
+    return _significant(level) if math.isfinite(level) else _significant(
+        float(np.max(first[np.isfinite(first)])))
+
+
+def rigid_block_record_outcomes(structure, suite: dict, level_pga: float,
+                                friction: float) -> list[list[int]]:
+    """The rigid-block model's outcome under every record of a suite scaled to one PGA, in both
+    polarities (a task for the second process: module level, picklable arguments).
+
+    Parameters
+    ----------
+    structure : BlockArch
+    suite : dict
+        :meth:`archquake.ground_motion.RecordSuite.to_dict`.
+    level_pga : float
+        The PGA every record is scaled to [g].
+    friction : float
+        Coulomb friction coefficient of the joints [-].
+
+    Returns
+    -------
+    list of [int, int]
+        Per record, the status code (:class:`archquake.status.Status`: 0 rest, 1 recovery,
+        2 collapse) as recorded and reversed.
+    """
+    from ..ground_motion.suites import RecordSuite
+    from ..rigid_blocks import BlockSettings, RigidBlockModel
+
+    records = RecordSuite.from_dict(suite)
+    model = RigidBlockModel(structure, BlockSettings(friction=friction))
+    out = []
+    for motion, pga in zip(records.motions(cached=True), records.intensities("pga"),
+                           strict=True):
+        factor = level_pga / float(pga)
+        out.append([int(model.outcome(motion.scaled(sign * factor)).status)
+                    for sign in (1.0, -1.0)])
+    return out
+
+
+def record_check(model, suite, level_pga: float, rigid_blocks: list) -> dict:
+    """Both models under every record of the suite scaled to one PGA, in both polarities: on
+    how many of them they agree about collapse.
+
+    Parameters
+    ----------
+    model : FourLinkModel
+        The structure's four-link model.
+    suite : RecordSuite
+    level_pga : float
+        The PGA every record is scaled to [g] (:func:`check_level`).
+    rigid_blocks : list of [int, int]
+        :func:`rigid_block_record_outcomes` at the same level.
+
+    Returns
+    -------
+    dict
+        ``level_pga`` [g], ``pairs`` (records x 2), the counts ``both``, ``neither``,
+        ``four_link_only`` and ``rigid_blocks_only`` (collapse), ``agree`` (the fraction of
+        pairs where the two agree) and ``by_record`` (``name``, the status codes of both
+        models as recorded and reversed).
+    """
+    from ..studies.record_fragility import record_outcomes
+
+    rows, counts = [], {"both": 0, "neither": 0, "four_link_only": 0, "rigid_blocks_only": 0}
+    for motion, pga, rb, name in zip(suite.motions(cached=True), suite.intensities("pga"),
+                                     rigid_blocks, suite.names, strict=True):
+        factor = level_pga / float(pga)
+        fl = [int(v) for v in record_outcomes(model, motion, [factor, -factor])["status"]]
+        for a, b in zip(fl, rb, strict=True):
+            key = {(True, True): "both", (False, False): "neither",
+                   (True, False): "four_link_only", (False, True): "rigid_blocks_only"}[
+                (a == 2, b == 2)]
+            counts[key] += 1
+        rows.append({"name": name, "four_link": fl, "rigid_blocks": [int(v) for v in rb]})
+    pairs = 2 * len(rows)
+    return {"level_pga": level_pga, "pairs": pairs, **counts,
+            "agree": (counts["both"] + counts["neither"]) / pairs, "by_record": rows}
+
+
 def file_stem(im: str) -> str:
     """An intensity measure's name as part of a file name: ``sa(0.5)`` -> ``sa_0.5``."""
     return im.replace("(", "_").replace(")", "")
@@ -932,7 +1037,8 @@ def export_nrml(result, directory, im: str) -> tuple[str | None, str]:
 
 
 __all__ = ["DIRECTIONS", "PILOT_RANGE", "RESTITUTION_RULES", "FourLinkPart", "IrregularityPart",
-           "LimitPart", "PulsePart", "agreement", "domain_from_dict", "domain_to_dict",
+           "LimitPart", "PulsePart", "agreement", "check_level", "domain_from_dict",
+           "domain_to_dict", "record_check", "rigid_block_record_outcomes",
            "export_nrml", "file_stem", "four_link_domains", "four_link_part",
            "fragility_amplitudes", "has_centreline", "hinges_in_own_frame", "irregularity_part",
            "joint_name", "limit_part", "pulse_grid", "pulse_part", "record_pilot",

@@ -155,13 +155,13 @@ class AssessmentSettings:
     friction: float = DEFAULT_FRICTION
     sa_period: float | None = None
     durations: tuple[float, ...] | None = None
-    duration_count: int = 10
+    duration_count: int = 19
     amplitude_points: int = 60
     domain_resolution_g: float = 5e-3
     fragility_sample_size: int = 40
     limit_sample_size: int = 1000
     fragility_amplitude_points: int = 41
-    record_sample_size: int = 10
+    record_sample_size: int = 12
     record_levels: int = 10
     record_count: int | None = None
     bootstrap: int = 200

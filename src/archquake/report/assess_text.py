@@ -157,6 +157,7 @@ def summary_rows(results: dict) -> list[list[str]]:
         rows.append([f"irregular masonry (epsilon = {results['settings']['epsilon']:g}, "
                      f"{irregular['arches']} arches)", "; ".join(text) or "-", "four-link model",
                      "-"])
+    check = s.get("record_check")
     for im, entry in (s.get("records") or {}).items():
         fit, nominal = entry["lognormal"], entry["nominal_lognormal"]
         if fit["median"] is None and nominal["median"] is None:
@@ -165,9 +166,23 @@ def summary_rows(results: dict) -> list[list[str]]:
             value = (f"median {number(fit['median'], 3)} {entry['unit']}, beta "
                      f"{number(fit['dispersion'], 2)} (irregular arches); "
                      f"{number(nominal['median'], 3)} {entry['unit']} (the structure)")
+        agree = "-"
+        if check is not None and im == "pga":
+            agree = check_words(check)
         rows.append([f"collapse under the records, {im_label(im)}", value,
-                     "four-link model", "-"])
+                     "four-link model", agree])
     return rows
+
+
+def check_words(check: dict) -> str:
+    """The check of the two models under the records, in a few words."""
+    text = (f"at PGA {check['level_pga']:.3g} g the rigid blocks agree on "
+            f"{check['both'] + check['neither']} of {check['pairs']} record-polarities")
+    if check["rigid_blocks_only"]:
+        text += f"; they collapse in {check['rigid_blocks_only']} where the four-link does not"
+    if check["four_link_only"]:
+        text += f"; survive {check['four_link_only']} where it collapses"
+    return text
 
 
 def agreement_text(results: dict) -> str:
@@ -211,8 +226,8 @@ def agreement_text(results: dict) -> str:
                  f"{len(above)} durations: the rigid-block model, which takes any mechanism "
                  f"and lets the blocks slide, is the more complete of the two.")
     text += (" The fragility of irregular arches and against the records is of the four-link "
-             "model only (the rigid-block model costs a thousand times more per analysis); "
-             "where the two models disagree above, so may those results.")
+             "model (the rigid-block model costs a thousand times more per analysis); the rigid "
+             "blocks check it under the records on the structure itself, at one PGA.")
     return text
 
 
@@ -467,6 +482,15 @@ def record_text(results: dict) -> str:
               f"likelihood (Baker 2015): the total beta pools every pair; record-to-record is "
               f"the structure's own fit; geometric, the spread of the irregular arches for the "
               f"same records.")
+    check = rec.get("check")
+    if check is not None:
+        text += (f" A check of the four-link model by the rigid blocks: the structure itself "
+                 f"under every record scaled to PGA = {check['level_pga']:.3g} g (the median "
+                 f"of the PGAs at which the records first collapse it), both polarities: the "
+                 f"two models agree on {check['both'] + check['neither']} of {check['pairs']} "
+                 f"(both collapse in {check['both']}, neither in {check['neither']}; only the "
+                 f"rigid blocks in {check['rigid_blocks_only']}, only the four-link model in "
+                 f"{check['four_link_only']}).")
     files = [e["nrml"] for e in rec["ims"].values() if e["nrml"]]
     if files:
         text += (" The fits are written as OpenQuake NRML fragility models (continuous logncdf, "
@@ -562,7 +586,7 @@ def command_text(results: dict) -> list[str]:
 
 
 __all__ = ["ASSUMPTIONS", "MECHANISM_QUANTITIES", "MODEL_NAMES", "RESTITUTION_WORDS",
-           "agreement_text", "command_text", "difference_words", "domain_caption",
+           "agreement_text", "check_words", "command_text", "difference_words", "domain_caption",
            "domain_header", "domain_rows",
            "domain_text", "heading", "hinge_rows", "im_label", "irregularity_caption",
            "irregularity_rows", "irregularity_text", "mechanism_rows", "mechanisms_caption",
