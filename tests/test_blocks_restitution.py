@@ -135,13 +135,14 @@ def test_impact_module_loads_the_rigid_blocks_only_on_demand():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True)
     assert out.stdout.strip() == "[]"
-    assert "blocks" in RESTITUTION_MODELS
+    assert RESTITUTION_MODELS["rigid-blocks"] is RESTITUTION_MODELS["blocks"]  # former name
 
 
-def test_cli_mechanism_prints_blocks_restitution(capsys, nominal):
-    assert main(["mechanism", "--restitution", "blocks", "--json"]) == 0
+@pytest.mark.parametrize("name", ["rigid-blocks", "blocks"])
+def test_cli_mechanism_prints_blocks_restitution(capsys, nominal, name):
+    assert main(["mechanism", "--restitution", name, "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
-    expected = ArchDynamics.from_arch(nominal, "blocks").restitution
+    expected = ArchDynamics.from_arch(nominal, "rigid-blocks").restitution
     assert out["restitution"]["l_to_r"] == pytest.approx(expected[0], rel=1e-12)
     assert out["restitution"]["r_to_l"] == pytest.approx(expected[1], rel=1e-12)
 
@@ -152,7 +153,8 @@ def test_every_restitution_option_lists_blocks(capsys, command):
     with pytest.raises(SystemExit):
         main([command, "--help"])
     text = " ".join(capsys.readouterr().out.split())
-    assert "--restitution" in text and "'blocks' measured on the rigid-block model" in text
+    assert "--restitution" in text and "'rigid-blocks' measured on the rigid-block model" in text
+    assert "formerly 'blocks', still accepted" in text
 
 
 def test_bad_mode_is_a_value_error(nominal):
@@ -160,3 +162,21 @@ def test_bad_mode_is_a_value_error(nominal):
         closing_impact(nominal, np.zeros((3, 3)))
     with pytest.raises(ValueError, match="mode_to"):
         equivalent_restitution(nominal, np.ones((7, 3)), np.zeros((7, 3)))
+
+
+def test_former_name_blocks_is_the_rigid_blocks_model_and_keeps_its_spelling(nominal):
+    from archquake.fourlink.impact import (
+        RESTITUTION_ALIASES,
+        canonical_restitution_model,
+        check_restitution_model,
+    )
+    from archquake.fourlink.mechanism import mechanisms
+
+    assert RESTITUTION_ALIASES == {"blocks": "rigid-blocks"}
+    pair = mechanisms(nominal)
+    assert restitution("blocks", *pair) == restitution("rigid-blocks", *pair)
+    # stored as given: study files and result keys written with "blocks" stay as they were
+    assert check_restitution_model("blocks") == "blocks"
+    assert canonical_restitution_model("blocks") == "rigid-blocks"
+    with pytest.raises(ValueError, match=r"'rigid-blocks'\] \(or the former name 'blocks'"):
+        check_restitution_model("block")

@@ -355,7 +355,7 @@ def test_cli_limit_text_table_has_units(capsys):
 
 
 def test_cli_limit_irregular_arch_is_reproducible_and_matches_library(capsys, nominal):
-    argv = ["limit", "--json", "--tolerance", "0.1", "--seed", "7"]
+    argv = ["limit", "--json", "--epsilon", "0.1", "--seed", "7"]
     assert main(argv) == 0
     first = json.loads(capsys.readouterr().out)
     assert main(argv) == 0
@@ -387,7 +387,7 @@ def test_cli_min_thickness(capsys):
 
 def test_cli_plot_writes_png(tmp_path, capsys):
     path = tmp_path / "limit.png"
-    assert main(["limit", "--tolerance", "0.1", "--seed", "1", "--plot", str(path)]) == 0
+    assert main(["limit", "--epsilon", "0.1", "--seed", "1", "--plot", str(path)]) == 0
     assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert str(path) in capsys.readouterr().out
 
@@ -395,11 +395,11 @@ def test_cli_plot_writes_png(tmp_path, capsys):
 @pytest.mark.parametrize(
     "argv",
     [
-        ["limit", "--tolerance", "1.5"],
+        ["limit", "--epsilon", "1.5"],
         ["limit", "--seed", "3"],
         ["limit", "--voussoirs", "2"],
         ["limit", "--geometry", "/nonexistent/arch.json"],
-        ["limit", "--min-thickness", "--tolerance", "0.1"],
+        ["limit", "--min-thickness", "--epsilon", "0.1"],
         ["limit", "--thickness", "-1"],
     ],
 )
@@ -421,7 +421,7 @@ def test_cli_limit_help(capsys):
         main(["limit", "--help"])
     assert exc.value.code == 0
     out = capsys.readouterr().out
-    for option in ("--json", "--min-thickness", "--plot", "--method", "--tolerance"):
+    for option in ("--json", "--min-thickness", "--plot", "--method", "--epsilon"):
         assert option in out
 
 

@@ -66,7 +66,7 @@ def test_mechanism_cli_reproduces_tables_2_and_3(capsys, paper):
 def test_mechanism_cli_restitution_choices(capsys):
     assert main(["mechanism", "--json", "--restitution", "0.875"]) == 0
     assert json.loads(capsys.readouterr().out)["restitution"]["l_to_r"] == 0.875
-    assert main(["mechanism", "--json", "--tolerance", "0.1", "--seed", "3",
+    assert main(["mechanism", "--json", "--epsilon", "0.1", "--seed", "3",
                  "--restitution", "nominal"]) == 0
     nominal_value = json.loads(capsys.readouterr().out)["restitution"]
     assert main(["mechanism", "--json", "--restitution", "computed"]) == 0

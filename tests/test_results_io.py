@@ -149,3 +149,27 @@ def test_files_are_created_with_the_permissions_of_the_umask(tmp_path, umask):
                                        "results.csv", "summary.json"}
     for path in files:
         assert stat.S_IMODE(path.stat().st_mode) == 0o666 & ~umask, path.name
+
+
+FORMULAS = ["=cmd|' /C calc'!A0", "+1+1", "-RSN6.AT2", "@SUM(A1)", "'=quoted", "''-twice", "'",
+            "plain.AT2", "a=b", "'plain"]
+
+
+def test_record_names_in_csv_are_never_formulas_and_read_back_as_they_were(tmp_path):
+    import csv
+
+    from archquake.results_io import FORMULA_PREFIXES, read_spreadsheet_text, write_csv
+
+    table = pd.DataFrame({"record": FORMULAS, "level": np.arange(len(FORMULAS)) - 3.0})
+    save_study(tmp_path, table, formats=("csv",))
+    with open(tmp_path / "results.csv", newline="") as fh:
+        cells = [row["record"] for row in csv.DictReader(fh)]
+    # what a spreadsheet sees: no cell starts like a formula, and the names are all there
+    assert not [c for c in cells if c[:1] in FORMULA_PREFIXES]
+    assert [read_spreadsheet_text(c) for c in cells] == FORMULAS
+    assert cells[2] == "'-RSN6.AT2" and cells[7] == "plain.AT2"
+    # numbers are numbers (a negative one is not text)
+    assert pd.read_csv(tmp_path / "results.csv")["level"].tolist() == table["level"].tolist()
+    assert_frame_equal(load_study(tmp_path).table, table)
+    write_csv(tmp_path / "alone.csv", table)
+    assert (tmp_path / "alone.csv").read_text() == (tmp_path / "results.csv").read_text()

@@ -7,6 +7,58 @@ nothing heavy, so the command line can build its options (and answer ``--help``)
 
 from __future__ import annotations
 
+import functools
+import math
+import tomllib
+from importlib import resources
+
+SHAPES: tuple[str, ...] = ("circular", "pointed", "elliptical", "parabolic", "catenary",
+                           "three-centred")
+"""Names of the shapes of a centreline (:data:`archquake.geometry.CENTRELINES` holds their
+builders, in this order)."""
+
+VOUSSOIR_FACES: tuple[str, ...] = ("curved", "flat")
+"""Faces of a voussoir of a shaped arch: ``"curved"`` (the intrados and extrados offset curves)
+or ``"flat"`` (chords between the ends of its joints)."""
+
+ANALYTIC_GROUND_MOTIONS: tuple[str, ...] = (
+    "oppenheim", "rectangular", "sine", "harmonic", "ricker", "ricker-antisymmetric",
+    "cycloidal-a", "cycloidal-b", "cycloidal-c", "mavroeidis-papageorgiou",
+)
+"""Names of the analytic ground motions (:data:`archquake.ground_motion.GROUND_MOTIONS`), whose
+factory takes ``(amplitude [m/s^2], time scale [s])``."""
+
+DEFAULT_MOTION = "oppenheim"
+"""Ground motion of an analysis of one arch when none is named: Oppenheim's pulse [paper,
+Sect. 5.3.1]."""
+
+DEFAULT_PULSE = (-1.0, 0.27)
+"""``(amplitude [g], time scale [s])`` of the pulse of an analysis of one arch when none is
+given (``archquake simulate``, ``archquake rigid-blocks``): the paper's Fig. 15."""
+
+
+def oppenheim_dimensions() -> dict:
+    """Oppenheim's arch [paper, Sect. 2], read from the paper's values (``[oppenheim]`` of
+    ``archquake/data/paper_values.toml``) without importing anything heavy.
+
+    Returns
+    -------
+    dict
+        ``radius`` [m], ``embrace`` [rad], ``thickness`` [m] and ``voussoirs``: the keyword
+        arguments of :func:`archquake.geometry.circular_arch` (R = 10 m, alpha = 157.5 deg,
+        t = 1.5 m, n = 7); a new dict on every call.
+    """
+    return dict(_oppenheim())
+
+
+@functools.cache
+def _oppenheim() -> tuple:
+    text = resources.files("archquake").joinpath("data", "paper_values.toml").read_text("utf-8")
+    arch = tomllib.loads(text)["oppenheim"]
+    return (("radius", float(arch["radius"])), ("embrace", math.radians(arch["embrace_deg"])),
+            ("thickness", float(arch["thickness"])), ("voussoirs", int(arch["voussoirs"])))
+
+
 LIMIT_METHODS: tuple[str, ...] = ("static", "kinematic")
 """Limit-analysis methods: the static linear program (HiGHS) and the kinematic enumeration of
 mechanisms. They give the same load multipliers (to ~1e-14) and hinges."""
@@ -105,6 +157,9 @@ MAX_BLOCK_STEPS = 5_000_000
 DEFAULT_FRICTION = 0.8
 """Coulomb friction coefficient of the joints of the rigid-block model [-]."""
 
+DEFAULT_TIME_STEP = 1e-3
+"""Time step of the rigid-block model [s]."""
+
 COMPARE_DURATIONS = (0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 1.0)
 """Pulse durations t_p [s] of a comparison of the two models (``archquake compare``)."""
 
@@ -117,6 +172,10 @@ COMPARE_RESOLUTION_G = 5e-3
 """Bisection width of every boundary of a comparison [g], the same for both models (a
 rigid-block analysis costs about 100 four-link ones)."""
 
+MIN_COMPARE_RESOLUTION_G = 1e-6
+"""Finest bisection width of a comparison on the command line [g]: a rigid-block boundary is
+decided by time steps of 1 ms, finer widths only cost analyses."""
+
 COMPARE_RESTITUTIONS = ("computed", "link", "paper", "blocks")
 """Restitution models of the four-link model in a comparison (names of
 :data:`archquake.fourlink.impact.RESTITUTION_MODELS`)."""
@@ -125,7 +184,24 @@ MAX_BLOCK_GRID_POINTS = 10_000
 """Most (duration, amplitude) points of a rigid-block failure curve's scan: some tens of minutes
 of analyses on two cores (a point costs 10-100 ms)."""
 
-# --- how a study searches a grid (archquake.studies.strategies)
+# --- the two models, and how a study searches a grid (archquake.studies.strategies)
+
+MODELS = ("four-link", "rigid-blocks")
+"""The dynamic models (:mod:`archquake.models`)."""
+
+DEFAULT_MODEL = "four-link"
+"""The model a study runs unless told otherwise: the paper's."""
+
+DEFAULT_LEVEL_STRIDE = 4
+"""Levels between the coarse points of a searched line of stripes of a record-based study [-]
+(20 levels: 5 coarse points)."""
+
+SEARCHES = ("exhaustive", "bisection", "screened")
+"""The search strategies of a grid (:mod:`archquake.studies.strategies`)."""
+
+DEFAULT_STRIDE = 8
+"""Grid steps between two points of the coarse scan of ``bisection`` and ``screened`` [-]: on
+the paper's grid of 0.01 g, a coarse scan every 0.08 g."""
 
 DEFAULT_SEARCH = {"four-link": "exhaustive", "rigid-blocks": "screened"}
 """Search strategy of a grid per model: the four-link model analyses a whole grid in one compiled
@@ -135,3 +211,13 @@ outcome is not smooth in the amplitude analysed point by point (``"screened"``,
 :mod:`archquake.studies.strategies`: the outcomes of the exhaustive grid in every case compared).
 ``"bisection"`` is faster still, and misses the isolated recoveries of the rigid-block model
 among its late collapses."""
+
+# --- fill over an arch (archquake.geometry.fill)
+
+FILL_INERTIA_MODELS = ("none", "centroid", "extrados")
+"""Where the fill's horizontal inertia force acts (:mod:`archquake.geometry.fill`): nowhere,
+through each column's centroid, or on the extrados below it."""
+
+DEFAULT_FILL_INERTIA = "centroid"
+"""The fill moves with its voussoir: the one model the dynamic models share
+(:mod:`archquake.geometry.fill`)."""

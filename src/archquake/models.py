@@ -24,13 +24,7 @@ from __future__ import annotations
 
 from typing import Any, ClassVar, Protocol, runtime_checkable
 
-from .defaults import DEFAULT_RESTITUTION
-
-MODELS = ("four-link", "rigid-blocks")
-"""The names of the two dynamic models: the paper's four-link mechanism and the rigid blocks."""
-
-DEFAULT_MODEL = "four-link"
-"""The model a study runs unless told otherwise."""
+from .defaults import DEFAULT_MODEL, DEFAULT_RESTITUTION, MODELS
 
 MODEL_ALIASES = {"fourlink": "four-link", "four_link": "four-link", "rigid_blocks": "rigid-blocks",
                  "rigid-block": "rigid-blocks", "blocks": "rigid-blocks", "dem": "rigid-blocks"}

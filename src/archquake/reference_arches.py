@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-import math
 import tomllib
 from importlib import resources
 
+from .defaults import oppenheim_dimensions
 from .geometry import DEFAULT_DENSITY, CircularArch, circular_arch
 
 
@@ -26,13 +26,7 @@ def paper_values() -> dict:
     return tomllib.loads(text)
 
 
-def _oppenheim_dimensions() -> dict:
-    arch = paper_values()["oppenheim"]
-    return {"radius": float(arch["radius"]), "embrace": math.radians(arch["embrace_deg"]),
-            "thickness": float(arch["thickness"]), "voussoirs": int(arch["voussoirs"])}
-
-
-OPPENHEIM = _oppenheim_dimensions()
+OPPENHEIM = oppenheim_dimensions()
 """Oppenheim's arch [paper, Sect. 2]: R = 10 m, alpha = 157.5 deg, t = 1.5 m, n = 7 (from the
 paper's values, ``[oppenheim]``), as the keyword arguments of
 :func:`archquake.geometry.circular_arch` (m, rad)."""

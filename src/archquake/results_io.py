@@ -14,6 +14,12 @@ A study directory written by :func:`save_study` holds
 Every file is written atomically: the content goes to a temporary file in the same directory,
 which is flushed to disk and then renamed over the target (:func:`os.replace`), so a reader or an
 interrupted writer never sees a half-written file -- only the old file or the new one.
+
+The other tables archquake writes as CSV live here too: :func:`write_csv` (any table; the
+``curves.csv`` and ``incremental.csv`` of the studies), and the time histories of one analysis,
+:func:`write_history_csv` (the four-link model) and :func:`write_block_history_csv` (the
+rigid-block model). Text written into a CSV cell (a record's file name) is never read by a
+spreadsheet as a formula (:func:`spreadsheet_text`).
 """
 
 from __future__ import annotations
@@ -90,6 +96,160 @@ def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
         with suppress(FileNotFoundError):
             tmp.unlink()
         raise
+
+
+FORMULA_PREFIXES = ("=", "+", "-", "@")
+"""First characters that make a spreadsheet read a CSV cell as a formula."""
+
+
+def spreadsheet_text(text: str) -> str:
+    """``text`` as a CSV cell that no spreadsheet reads as a formula.
+
+    A text that starts with one of :data:`FORMULA_PREFIXES` (a record named ``=cmd|...``, or
+    ``-RSN6.AT2``) gets a single quote in front, which spreadsheets show as text; so does a text
+    that already starts with single quotes followed by one of them, so that
+    :func:`read_spreadsheet_text` returns every text exactly as it was.
+
+    Parameters
+    ----------
+    text : str
+        The text of a cell.
+
+    Returns
+    -------
+    str
+        The text to write.
+
+    Examples
+    --------
+    >>> spreadsheet_text("=1+1"), spreadsheet_text("RSN6.AT2")
+    ("'=1+1", 'RSN6.AT2')
+    """
+    return "'" + text if text.lstrip("'")[:1] in FORMULA_PREFIXES else text
+
+
+def read_spreadsheet_text(text: str) -> str:
+    """The text that :func:`spreadsheet_text` wrote as ``text`` (its inverse)."""
+    if text[:1] == "'" and text.lstrip("'")[:1] in FORMULA_PREFIXES:
+        return text[1:]
+    return text
+
+
+def _is_text(column: pd.Series) -> bool:
+    return pd.api.types.is_object_dtype(column.dtype) or pd.api.types.is_string_dtype(column.dtype)
+
+
+def write_csv(path: str | os.PathLike, table: pd.DataFrame) -> Path:
+    """Write ``table`` to ``path`` as CSV, without its index, atomically (:func:`atomic_path`).
+
+    Text cells that a spreadsheet would read as a formula are written as text
+    (:func:`spreadsheet_text`); :func:`load_study` reads them back as they were.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file; its directory must exist.
+    table : pandas.DataFrame
+        The table.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    OSError
+        If the file cannot be written.
+    """
+    safe = table.copy(deep=False)
+    for name in table.columns:
+        if _is_text(table[name]):
+            safe[name] = table[name].map(
+                lambda cell: spreadsheet_text(cell) if isinstance(cell, str) else cell)
+    with atomic_path(path) as tmp:
+        safe.to_csv(tmp, index=False)
+    return Path(path)
+
+
+def write_history_csv(history, path: str | os.PathLike) -> Path:
+    """Write a time history of the four-link model as CSV (what ``archquake simulate --output``
+    writes).
+
+    One row per recorded instant: ``t_s`` [s], ``phi_rad`` [rad] (+ Mech-l, - Mech-r),
+    ``theta_dot_rad_s`` [rad/s] and ``mechanism`` (``l``, ``r`` or ``rest``); the floats are
+    written with all their digits (``repr``), so the file reads back as the same numbers.
+
+    Parameters
+    ----------
+    history : archquake.fourlink.time_history.TimeHistory
+        The time history (``t``, ``phi``, ``mechanism`` and the ``segments`` with their
+        ``theta_dot``).
+    path : str or os.PathLike
+        The file, written atomically (:func:`atomic_path`); its directory must exist.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    OSError
+        If the file cannot be written.
+    """
+    theta_dot = np.concatenate([s.theta_dot for s in history.segments])
+    table = np.column_stack([history.t, history.phi, theta_dot])
+    with atomic_path(path) as tmp, open(tmp, "w") as fh:
+        fh.write("t_s,phi_rad,theta_dot_rad_s,mechanism\n")
+        for (t, phi, thd), mech in zip(table.tolist(), history.mechanism, strict=True):
+            fh.write(f"{t!r},{phi!r},{thd!r},{mech}\n")  # Python floats: exact text
+    return Path(path)
+
+
+def write_block_history_csv(history, path: str | os.PathLike) -> Path:
+    """Write a time history of the rigid-block model as CSV (what
+    ``archquake rigid-blocks --output`` writes).
+
+    One row per time step: ``t_s`` [s], ``crown_drop_m`` [m], the energies ``kinetic_J_m``,
+    ``potential_J_m``, ``dissipated_J_m`` and ``input_J_m`` [J/m], every block's ``x{i}_m``,
+    ``y{i}_m`` [m] and ``rotation{i}_rad`` [rad], and every joint's ``opening{j}_m`` and
+    ``slip{j}_m`` [m]; the floats with all their digits (``repr``).
+
+    Parameters
+    ----------
+    history : archquake.rigid_blocks.BlockHistory
+        The time history.
+    path : str or os.PathLike
+        The file, written atomically (:func:`atomic_path`); its directory must exist.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    OSError
+        If the file cannot be written.
+    """
+    nb, nj = history.assembly.n_blocks, history.assembly.n_joints
+    columns = {"t_s": history.times, "crown_drop_m": history.crown_drop,
+               "kinetic_J_m": history.kinetic_energy, "potential_J_m": history.potential_energy,
+               "dissipated_J_m": history.dissipated_energy, "input_J_m": history.input_work}
+    for i in range(nb):
+        columns[f"x{i}_m"] = history.displacements[:, i, 0]
+        columns[f"y{i}_m"] = history.displacements[:, i, 1]
+        columns[f"rotation{i}_rad"] = history.rotations[:, i]
+    for j in range(nj):
+        columns[f"opening{j}_m"] = history.openings[:, j]
+        columns[f"slip{j}_m"] = history.slips[:, j]
+    table = np.column_stack(list(columns.values()))
+    with atomic_path(path) as tmp, open(tmp, "w") as fh:
+        fh.write(",".join(columns) + "\n")
+        for row in table:
+            fh.write(",".join(repr(float(x)) for x in row) + "\n")
+    return Path(path)
 
 
 def _json_default(obj: Any) -> Any:
@@ -232,8 +392,7 @@ def save_study(
         with atomic_path(out_dir / RESULTS_PARQUET) as tmp:
             plain.to_parquet(tmp, engine="pyarrow", index=False)
     if "csv" in formats:
-        with atomic_path(out_dir / RESULTS_CSV) as tmp:
-            plain.to_csv(tmp, index=False)
+        write_csv(out_dir / RESULTS_CSV, plain)
     with atomic_path(summary_path) as tmp:
         tmp.write_text(text, encoding="utf-8")
     return summary_path
@@ -279,6 +438,11 @@ def load_study(out_dir: str | os.PathLike) -> StoredStudy:
             dtypes = {c: d for c, d in columns.items() if d != "object"}
             table = pd.read_csv(path, dtype=dtypes, keep_default_na=False, na_values=[""],
                                 **_EXACT_FLOATS)
+            for name in table.columns:
+                if _is_text(table[name]):
+                    table[name] = table[name].map(
+                        lambda cell: read_spreadsheet_text(cell) if isinstance(cell, str)
+                        else cell)
         else:
             raise ValueError(f"{summary_path} lists no table file")
     except (OSError, ValueError) as exc:  # pyarrow's errors are ValueErrors or OSErrors

@@ -216,8 +216,8 @@ FRAGILITY_ARGS = ["fragility", "--samples", "3", "--durations", "0.4",
     (["fragility", "--amplitudes", "0.2:1.0:-0.1"], "step"),
     (["fragility", "--durations", ""], "--durations must not be empty"),
     (["fragility", "--durations=-0.4,0.5"], "--durations must be"),
-    (["fragility", "--tolerance", "1.0"], "[0, 1)"),
-    (["fragility", "--tolerance", "-0.1"], "[0, 1)"),
+    (["fragility", "--epsilon", "1.0"], "[0, 1)"),
+    (["fragility", "--epsilon", "-0.1"], "[0, 1)"),
     (["fragility", "--limit-samples", "0"], "--limit-samples"),
     (["domain", "--durations", "0.4", "--amplitudes", "0.5:0.2:0.1"], "stop must be >= start"),
     (["domain", "--durations", "0", "--amplitudes", "0.2:0.5:0.1"], "--durations must be"),
@@ -326,7 +326,7 @@ def test_arches_that_cannot_be_analysed_are_excluded_and_counted(nominal, tmp_pa
 
 
 def test_cli_fragility_reports_excluded_arches(capsys, tmp_path):
-    argv = ["fragility", "--tolerance", "0.5", "--samples", "6", "--durations", "0.4",
+    argv = ["fragility", "--epsilon", "0.5", "--samples", "6", "--durations", "0.4",
             "--amplitudes", "0.3,0.6", "--limit-samples", "6", "--no-progress", "--out"]
     assert main([*argv, str(tmp_path / "a"), "--plot-dir", str(tmp_path / "plots")]) == 0
     out = capsys.readouterr().out

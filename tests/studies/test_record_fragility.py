@@ -56,10 +56,10 @@ def _collapses(pair, c, motion):
 
 def test_nominal_arch_fraction_equals_records_collapsing_in_simulate(suite_dir, nominal_pair,
                                                                      tmp_path, capsys):
-    """``--tolerance 0 --samples 1`` is the nominal arch alone: at every stripe, P is the
+    """``--epsilon 0 --samples 1`` is the nominal arch alone: at every stripe, P is the
     fraction of records that collapse it (either polarity) in simulate()."""
     argv = ["fragility", "--records", str(suite_dir), "--im", "pga", "--levels", LEVELS,
-            "--tolerance", "0", "--samples", "1", "--out", str(tmp_path / "out"), "--json",
+            "--epsilon", "0", "--samples", "1", "--out", str(tmp_path / "out"), "--json",
             "--no-progress"]
     assert main(argv) == 0
     summary = json.loads(capsys.readouterr().out)
@@ -251,7 +251,7 @@ def test_plots_of_a_record_study(small_study):
     (["--levels", "1,0.5"], "--levels must increase"),
     ([], "--levels is required with --records"),
     (["--levels", "0.5,1", "--durations", "0.4"], "--durations: options of the pulse study"),
-    (["--levels", "0.5,1", "--samples", "0"], "--samples must be an integer >= 1"),
+    (["--levels", "0.5,1", "--samples", "0"], "--samples must be an integer in [1, 100000]"),
 ])
 def test_cli_bad_record_inputs_are_clear_errors(extra, message, suite_dir, tmp_path, capsys):
     argv = ["fragility", "--records", str(suite_dir), "--out", str(tmp_path / "o"),

@@ -106,7 +106,8 @@ Restitution measured on the rigid blocks
 The package's second model of the arch (:mod:`archquake.rigid_blocks`: every voussoir a rigid
 block, contacts at both ends of every joint, Newton's impact law with restitution 0, Coulomb
 friction) has impacts of its own, with no assumption on where the impulses act or which
-mechanism follows. Model ``"blocks"`` (:func:`blocks_restitution`) measures them: the arch,
+mechanism follows. Model ``"rigid-blocks"`` (formerly ``"blocks"``, still accepted;
+:func:`blocks_restitution`) measures them: the arch,
 closed in its undisplaced configuration, moves with the velocity field of the pre-impact
 mechanism returning to ``theta_u`` -- the state of every four-link impact --, one time step of
 the rigid-block model resolves the impact (:func:`archquake.rigid_blocks.impacts.closing_impact`),
@@ -488,13 +489,20 @@ def _elastic(mech_l, mech_r, nominal):
     return 1.0, 1.0
 
 
+RESTITUTION_ALIASES = {"blocks": "rigid-blocks"}
+"""Former names of restitution models, still accepted everywhere: ``"blocks"`` is
+``"rigid-blocks"``. A model given by its former name keeps that name in what is stored and
+printed (settings, study files, keys of results), so that results written before stay readable
+and comparable."""
+
 RESTITUTION_MODELS = {
     "computed": _computed,
     "link": _link,
     "nominal": _nominal,
     "paper": _paper,
     "elastic": _elastic,
-    "blocks": _blocks,
+    "rigid-blocks": _blocks,
+    **{former: _blocks for former in RESTITUTION_ALIASES},
 }
 """Restitution models by name, each ``f(mech_l, mech_r, nominal) -> (c_l_to_r, c_r_to_l)``:
 
@@ -505,9 +513,16 @@ RESTITUTION_MODELS = {
   an irregular arch as the paper does [paper, Sect. 4.4];
 - ``"paper"``: 0.875, the value the paper uses for Oppenheim's arch [paper, Sect. 5.2];
 - ``"elastic"``: 1, no energy lost at impact [paper, Sect. 5.2, Figs. 9-11];
-- ``"blocks"``: :func:`blocks_restitution`, measured on the rigid-block model of this arch
-  (0.7478 for Oppenheim's arch).
+- ``"rigid-blocks"``: :func:`blocks_restitution`, measured on the rigid-block model of this
+  arch (0.7478 for Oppenheim's arch); ``"blocks"`` is its former name
+  (:data:`RESTITUTION_ALIASES`).
 """
+
+
+def canonical_restitution_model(model):
+    """The current name of a restitution model given by a former name
+    (:data:`RESTITUTION_ALIASES`); any other model as it is."""
+    return RESTITUTION_ALIASES.get(model, model) if isinstance(model, str) else model
 
 
 def check_restitution_model(model) -> str | float:
@@ -540,9 +555,11 @@ def check_restitution_model(model) -> str | float:
     elif isinstance(model, numbers.Real) and not isinstance(model, bool):
         value = float(model)
     if math.isnan(value):
+        names = sorted(set(RESTITUTION_MODELS) - set(RESTITUTION_ALIASES))
+        former = ", ".join(f"{old!r} for {new!r}" for old, new in RESTITUTION_ALIASES.items())
         raise ValueError(
-            f"restitution must be one of {sorted(RESTITUTION_MODELS)} or a number in (0, 1], "
-            f"got {model!r}"
+            f"restitution must be one of {names} (or the former name {former}) or a number "
+            f"in (0, 1], got {model!r}"
         )
     if not (0.0 < value <= 1.0):
         raise ValueError(f"restitution coefficient must be in (0, 1], got {model!r}")

@@ -63,6 +63,7 @@ from functools import cached_property
 
 import numpy as np
 
+from .. import defaults
 from .blocks import check_length
 from .mass import Arc, Curve, Piece
 
@@ -673,8 +674,10 @@ CENTRELINES = {
 }
 """The shapes by name, each ``f(span, rise) -> Centreline`` [m]."""
 
-SHAPES = tuple(CENTRELINES)
-"""Names of the shapes: circular, pointed, elliptical, parabolic, catenary, three-centred."""
+SHAPES: tuple[str, ...] = defaults.SHAPES
+"""Names of the shapes: circular, pointed, elliptical, parabolic, catenary, three-centred (the
+keys of :data:`CENTRELINES`; named in :mod:`archquake.defaults`, which the command line reads
+without importing the geometry)."""
 
 
 def centreline(shape: str, span: float | None = None, rise: float | None = None, *,

@@ -61,15 +61,9 @@ import numpy as np
 
 from .._equality import value_equality
 from ..constants import DEFAULT_FILL_DENSITY, GRAVITY
+from ..defaults import DEFAULT_FILL_INERTIA, FILL_INERTIA_MODELS
 from .blocks import LENGTH_RANGE, BlockArch, check_json_numbers, frozen_array
 from .mass import Arc, Segment, region_moments
-
-FILL_INERTIA_MODELS = ("none", "centroid", "extrados")
-"""Where the fill's horizontal inertia force acts (see the module): nowhere, through each
-column's centroid, or on the extrados below it."""
-
-DEFAULT_FILL_INERTIA = "centroid"
-"""The fill moves with its voussoir: the one model the dynamic models share (see the module)."""
 
 DYNAMIC_FILL_INERTIA = "centroid"
 """The inertia model of the fill in both dynamic models (mass rigidly attached to its

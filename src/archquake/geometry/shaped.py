@@ -44,6 +44,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .. import defaults
 from .._equality import value_equality
 from ..constants import DEFAULT_DENSITY
 from .blocks import (
@@ -56,7 +57,7 @@ from .blocks import (
 from .centrelines import SHAPES, ArcPart, Centreline, centreline
 from .mass import Arc, Curve, Segment, region_properties
 
-VOUSSOIR_FACES = ("curved", "flat")
+VOUSSOIR_FACES: tuple[str, ...] = defaults.VOUSSOIR_FACES
 """Faces of a voussoir: ``"curved"`` (the intrados and extrados offset curves) or ``"flat"``
 (the chords between the joint ends)."""
 

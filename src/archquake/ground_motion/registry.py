@@ -5,6 +5,7 @@ from __future__ import annotations
 import inspect
 from collections.abc import Callable
 
+from .. import defaults
 from .core import GroundMotion
 from .pulses import (
     antisymmetric_ricker_wavelet,
@@ -65,11 +66,10 @@ The analytic shapes (listed in :data:`ANALYTIC_GROUND_MOTIONS`) are
 ``stochastic`` is ``stochastic(seed=0, **model parameters)`` (:func:`stochastic`).
 """
 
-ANALYTIC_GROUND_MOTIONS: tuple[str, ...] = (
-    "oppenheim", "rectangular", "sine", "harmonic", "ricker", "ricker-antisymmetric",
-    "cycloidal-a", "cycloidal-b", "cycloidal-c", "mavroeidis-papageorgiou",
-)
-"""Names in :data:`GROUND_MOTIONS` whose factory takes ``(amplitude [m/s^2], duration [s])``."""
+ANALYTIC_GROUND_MOTIONS: tuple[str, ...] = defaults.ANALYTIC_GROUND_MOTIONS
+"""Names in :data:`GROUND_MOTIONS` whose factory takes ``(amplitude [m/s^2], duration [s])``
+(named in :mod:`archquake.defaults`, which the command line reads without importing the ground
+motions)."""
 
 
 def ground_motion(name: str, *args, **kwargs) -> GroundMotion:

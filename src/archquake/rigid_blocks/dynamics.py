@@ -90,7 +90,7 @@ from dataclasses import dataclass, field, fields, replace
 import numpy as np
 
 from ..checks import json_float
-from ..defaults import DEFAULT_FRICTION, MAX_BLOCK_STEPS
+from ..defaults import DEFAULT_FRICTION, DEFAULT_TIME_STEP, MAX_BLOCK_STEPS
 from ..geometry import GRAVITY, BlockArch
 from ..ground_motion import GroundMotion
 from ..status import Status
@@ -167,7 +167,7 @@ class BlockSettings:
     """
 
     friction: float = DEFAULT_FRICTION
-    time_step: float = 1e-3
+    time_step: float = DEFAULT_TIME_STEP
     theta: float = 0.5
     tolerance: float = 1e-6
     max_iterations: int = 1000

@@ -38,6 +38,7 @@ from ..defaults import (
     COMPARE_DURATIONS,
     COMPARE_RESOLUTION_G,
     COMPARE_RESTITUTIONS,
+    DEFAULT_STRIDE,
 )
 from ..geometry import BlockArch
 
@@ -129,17 +130,20 @@ def _scan(amplitudes_g) -> np.ndarray:
 
 
 def _four_link(dynamics, model: str, settings):
-    """``dynamics`` with restitution ``model``; ``"blocks"`` measured with the rigid-block
-    model's ``settings`` (its friction and time step) when they are not the defaults."""
+    """``dynamics`` with restitution ``model``; ``"rigid-blocks"`` (or its former name
+    ``"blocks"``) measured with the rigid-block model's ``settings`` (its friction and time step)
+    when they are not the defaults."""
+    from ..fourlink.impact import canonical_restitution_model
     from ..rigid_blocks import BlockSettings
 
-    if model == "blocks" and settings is not None and settings != BlockSettings():
+    if (canonical_restitution_model(model) == "rigid-blocks" and settings is not None
+            and settings != BlockSettings()):
         from ..fourlink.impact import blocks_restitution
 
         mech_l, mech_r = dynamics.mechanisms
         pair = (blocks_restitution(mech_l, mech_r, settings),
                 blocks_restitution(mech_r, mech_l, settings))
-        return replace(dynamics, restitution=pair, restitution_model="blocks")
+        return replace(dynamics, restitution=pair, restitution_model=model)
     return dynamics.with_restitution(model)
 
 
@@ -169,7 +173,7 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
                    resolution: float = COMPARE_RESOLUTION_G, direction: str = "l",
                    motion: str = "oppenheim", settings=None, workers: int | None = None,
                    progress: bool = False, dynamics=None, rigid_block=None,
-                   search: str | None = None) -> ModelComparison:
+                   search: str | None = None, stride: int | None = None) -> ModelComparison:
     """Failure accelerations of the rigid-block and four-link models of ``arch`` under pulses.
 
     Parameters
@@ -206,6 +210,8 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
         Search strategy of the rigid-block scan (:mod:`archquake.studies.strategies`; default
         :data:`archquake.defaults.DEFAULT_SEARCH` of the rigid blocks). The four-link runs
         analyse every grid point.
+    stride : int
+        Grid steps between the coarse points of the faster searches [-].
 
     Returns
     -------
@@ -240,6 +246,7 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
         blocks = RigidBlockModel(arch, settings)
         rigid_block = domain_of(blocks, d, grid, direction=direction, motion=motion,
                                 resolution=float(resolution), extend_to_g=None, search=search,
+                                stride=DEFAULT_STRIDE if stride is None else stride,
                                 workers=workers, progress=progress)
     else:
         _check_curve(rigid_block, d, direction, motion, settings, float(resolution), grid)

@@ -370,7 +370,7 @@ def check_amplitudes(amplitudes_g) -> np.ndarray:
                          "values [g]")
     if a[0] < 0:
         raise ValueError(f"amplitudes must be >= 0 [g] (the direction gives the sign), got "
-                         f"{a[0]!r}")
+                         f"{float(a[0])!r}")
     if a[-1] > MAX_ACCELERATION_G:
         raise ValueError(f"amplitudes must be at most {MAX_ACCELERATION_G:g} g, got "
                          f"{float(a[-1])!r}")

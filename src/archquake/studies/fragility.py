@@ -191,8 +191,9 @@ class FragilitySettings:
     search : {"exhaustive", "bisection", "screened"}, optional
         How each arch's amplitude lines are searched (:mod:`archquake.studies.strategies`;
         default :data:`archquake.defaults.DEFAULT_SEARCH` of the model).
-    stride : int
-        Grid steps between the coarse points of ``bisection`` and ``screened`` [-].
+    stride : int, optional
+        Grid steps between the coarse points of ``bisection`` and ``screened`` [-] (default
+        :data:`archquake.defaults.DEFAULT_STRIDE`).
     friction : float
         Coulomb friction coefficient of the rigid-block model's joints [-] (ignored by the
         four-link model).
@@ -216,7 +217,7 @@ class FragilitySettings:
     motion: str = "oppenheim"
     model: str = DEFAULT_MODEL
     search: str | None = None
-    stride: int = DEFAULT_STRIDE
+    stride: int | None = None
     friction: float = DEFAULT_FRICTION
 
     def __post_init__(self) -> None:
@@ -228,7 +229,8 @@ class FragilitySettings:
         object.__setattr__(self, "model", check_model(self.model))
         object.__setattr__(self, "search", check_search(
             DEFAULT_SEARCH[self.model] if self.search is None else self.search))
-        object.__setattr__(self, "stride", check_stride(self.stride))
+        object.__setattr__(self, "stride", check_stride(
+            DEFAULT_STRIDE if self.stride is None else self.stride))
         _ = self.block_settings  # checks the friction
         sample = ArchSample(self.nominal, self.epsilon, self.seed)  # nominal, epsilon, seed
         check_integer("sample_size", self.sample_size, maximum=MAX_SAMPLES)
@@ -236,7 +238,7 @@ class FragilitySettings:
         d = np.atleast_1d(np.asarray(self.durations, dtype=float))
         if d.ndim != 1 or d.size == 0 or not np.all(np.isfinite(d)) or np.any(d <= 0):
             raise ValueError(f"durations must be a non-empty list of pulse durations > 0 [s], "
-                             f"got {list(np.ravel(self.durations))!r}")
+                             f"got {np.ravel(d).tolist()}")
         if np.unique(d).size != d.size:
             raise ValueError(f"durations must be distinct, got {d.tolist()}")
         a = np.atleast_1d(np.asarray(self.amplitudes_g, dtype=float))
@@ -882,9 +884,17 @@ def warm_up() -> None:
     run_fragility(tiny, backend="serial", progress=False)
 
 
-def _nominal_domains(settings: FragilitySettings, resolution_g: float) -> tuple:
+NOMINAL_RESOLUTION_G = {"four-link": 1e-4, "rigid-blocks": 2e-3}
+"""Default bisection width of the nominal arch's failure acceleration per model [g]: the
+four-link model's analyses are cheap; a rigid-block one costs about a thousand of them, and a
+fifth of the paper's 0.01 g step is enough to place the step of eq. (10) on the grid."""
+
+
+def _nominal_domains(settings: FragilitySettings, resolution_g: float | None) -> tuple:
     """The nominal arch's failure domains over the study grid, directions l and r (point Q of
-    Fig. 16 per duration), to ``resolution_g`` [g]."""
+    Fig. 16 per duration), to ``resolution_g`` [g] (default :data:`NOMINAL_RESOLUTION_G`)."""
+    if resolution_g is None:
+        resolution_g = NOMINAL_RESOLUTION_G[settings.model]
     if settings.model == "four-link":
         model = nominal_model(settings.nominal, settings.restitution)
     else:
@@ -916,7 +926,7 @@ def run_fragility(
     progress: bool = True,
     chunk_size: int | None = None,
     limit_chunk_size: int = 50,
-    nominal_resolution_g: float = 1e-4,
+    nominal_resolution_g: float | None = None,
 ) -> FragilityResult:
     """Fragility study of irregular arches [paper, Sect. 5.3.3, eq. (9), Figs. 17-21].
 
@@ -951,8 +961,9 @@ def run_fragility(
         Arches per chunk of the dynamic study (default 2 with the four-link model, 1 with the
         rigid blocks, whose arch takes seconds) and of the limit sample (recorded; a resumed
         study must use the same).
-    nominal_resolution_g : float
-        Bisection width of the nominal failure acceleration [g].
+    nominal_resolution_g : float, optional
+        Bisection width of the nominal failure acceleration [g] (default
+        :data:`NOMINAL_RESOLUTION_G` of the model).
 
     Returns
     -------
@@ -1026,7 +1037,7 @@ def run_fragility(
 
 
 def load_fragility(out_dir: str | os.PathLike, *,
-                   nominal_resolution_g: float = 1e-4) -> FragilityResult:
+                   nominal_resolution_g: float | None = None) -> FragilityResult:
     """Reload a finished fragility study (:func:`run_fragility` with ``out_dir``) as a
     :class:`FragilityResult`.
 

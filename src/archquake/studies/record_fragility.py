@@ -121,7 +121,13 @@ import numpy as np
 import pandas as pd
 
 from ..checks import check_integer
-from ..defaults import DEFAULT_FRICTION, DEFAULT_RESTITUTION, DEFAULT_SEARCH, MAX_SAMPLES
+from ..defaults import (
+    DEFAULT_FRICTION,
+    DEFAULT_LEVEL_STRIDE,
+    DEFAULT_RESTITUTION,
+    DEFAULT_SEARCH,
+    MAX_SAMPLES,
+)
 from ..geometry import GRAVITY, BlockArch, arch_from_dict
 from ..ground_motion.suites import RecordSuite, stripe_measure
 from ..models import DEFAULT_MODEL
@@ -151,9 +157,6 @@ NOMINAL_ARCH = -1
 """Value of the ``arch`` column for the nominal arch (the irregular arches are 0 .. h-1)."""
 POLARITIES = (1, -1)
 """Polarities of a record: +1 as recorded, -1 reversed (``GroundMotion.reversed()``)."""
-DEFAULT_LEVEL_STRIDE = 4
-"""Levels between the coarse points of a searched line of stripes [-] (20 levels: 5 coarse)."""
-
 DEFAULT_BOOTSTRAP = 1000
 """Default number of bootstrap resamples of a confidence band."""
 DEFAULT_CONFIDENCE = 0.90
@@ -215,8 +218,9 @@ class RecordFragilitySettings:
         How each (arch, record, polarity) line of levels is searched
         (:mod:`archquake.studies.strategies`; default :data:`archquake.defaults.DEFAULT_SEARCH`
         of the model).
-    stride : int
-        Levels between the coarse points of ``bisection`` and ``screened`` [-].
+    stride : int, optional
+        Levels between the coarse points of ``bisection`` and ``screened`` [-] (default
+        :data:`archquake.defaults.DEFAULT_LEVEL_STRIDE`).
     friction : float
         Coulomb friction coefficient of the rigid-block model's joints [-].
 
@@ -238,7 +242,7 @@ class RecordFragilitySettings:
     confidence: float = DEFAULT_CONFIDENCE
     model: str = DEFAULT_MODEL
     search: str | None = None
-    stride: int = DEFAULT_LEVEL_STRIDE
+    stride: int | None = None
     friction: float = DEFAULT_FRICTION
 
     def __post_init__(self) -> None:
@@ -250,7 +254,8 @@ class RecordFragilitySettings:
         object.__setattr__(self, "model", check_model(self.model))
         object.__setattr__(self, "search", check_search(
             DEFAULT_SEARCH[self.model] if self.search is None else self.search))
-        object.__setattr__(self, "stride", check_stride(self.stride))
+        object.__setattr__(self, "stride", check_stride(
+            DEFAULT_LEVEL_STRIDE if self.stride is None else self.stride))
         BlockSettings(friction=self.friction)  # checks the friction
 
         if not isinstance(self.suite, RecordSuite):
@@ -1143,7 +1148,7 @@ def run_record_fragility(
         cluster can no longer finish the study (:func:`archquake.execution.run_study`).
     """
     from ..execution import StudyPlan, run_study
-    from ..results_io import atomic_path, save_study
+    from ..results_io import atomic_path, save_study, write_csv
 
     if not isinstance(settings, RecordFragilitySettings):
         raise ValueError(f"settings must be RecordFragilitySettings, got "
@@ -1163,8 +1168,7 @@ def run_record_fragility(
     if out is not None:
         with atomic_path(out / CURVES_CSV) as tmp:
             result.curves().to_csv(tmp, index=False)
-        with atomic_path(out / INCREMENTAL_CSV) as tmp:
-            result.incremental().to_csv(tmp, index=False)
+        write_csv(out / INCREMENTAL_CSV, result.incremental())  # record names: never formulas
         save_study(out, table, metadata=metadata, summary=result.summary())
     return result
 

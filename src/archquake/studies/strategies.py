@@ -47,13 +47,7 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-SEARCHES = ("exhaustive", "bisection", "screened")
-"""The search strategies of a grid (module docstring)."""
-
-DEFAULT_STRIDE = 8
-"""Grid steps between two points of the coarse scan of ``bisection`` and ``screened`` [-]: on
-the paper's grid of 0.01 g, a coarse scan every 0.08 g (see :mod:`archquake.defaults` for the
-studies' choice and the measured width of the narrowest band)."""
+from ..defaults import DEFAULT_STRIDE, SEARCHES
 
 
 def check_search(search: str) -> str:

@@ -12,7 +12,7 @@ import pytest
 from archquake.cli import main
 from archquake.geometry import GRAVITY
 
-DATA = Path(__file__).parent / "data"
+DATA = Path(__file__).parents[1] / "data"
 
 
 def run_json(capsys, *argv):
@@ -102,7 +102,8 @@ def test_reverse_of_a_record_is_the_record_with_its_sign_flipped(capsys, tmp_pat
 ])
 def test_simulate_offers_the_new_pulses(capsys, argv):
     from archquake import oppenheim
-    from archquake.cli import build_parser, motion_from_args
+    from archquake.cli import build_parser
+    from archquake.cli.options import motion_from_args
     from archquake.fourlink.impact import restitution
     from archquake.fourlink.mechanism import mechanisms
     from archquake.fourlink.time_history import simulate
@@ -116,7 +117,8 @@ def test_simulate_offers_the_new_pulses(capsys, argv):
 
 
 def test_stochastic_motion_from_the_command_line(capsys):
-    from archquake.cli import build_parser, motion_from_args
+    from archquake.cli import build_parser
+    from archquake.cli.options import motion_from_args
     from archquake.ground_motion import stochastic_motion
 
     argv = ["simulate", "--motion", "stochastic", "--param", "seed=4", "--param",

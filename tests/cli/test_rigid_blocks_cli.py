@@ -1,4 +1,5 @@
-"""``archquake dem``: the rigid-block model from the command line."""
+"""``archquake rigid-blocks`` (formerly ``archquake dem``): the rigid-block model from the
+command line."""
 
 import csv
 import json
@@ -9,7 +10,7 @@ from archquake.cli import main
 
 
 def run_json(capsys, *argv):
-    assert main(["dem", *argv, "--json"]) == 0
+    assert main(["rigid-blocks", *argv, "--json"]) == 0
     return json.loads(capsys.readouterr().out)
 
 
@@ -53,18 +54,19 @@ def test_animation_of_a_short_record(tmp_path, capsys):
 def test_record_and_irregular_arch(tmp_path, capsys):
     record = tmp_path / "r.csv"
     record.write_text("time_s,acc_g\n0,0\n0.1,-0.2\n0.5,-0.2\n0.6,0\n")
-    out = run_json(capsys, "--record", str(record), "--scale-to", "0.25", "--tolerance", "0.1",
+    out = run_json(capsys, "--record", str(record), "--scale-to", "0.25", "--epsilon", "0.1",
                    "--seed", "3", "--time-step", "0.002")
     assert out["outcome"] == "rest" and out["time_step"] == 0.002
 
 
 @pytest.mark.parametrize("argv, message", [
     (["--friction", "-1"], "friction"),
-    (["--time-step", "0"], "time_step"),
+    (["--time-step", "0"], "--time-step must be > 0"),
     (["--scale-to", "0.3"], "--scale-to"),
     (["--record", "missing.csv"], "missing.csv"),
 ])
-def test_bad_options_are_reported(capsys, argv, message):
-    assert main(["dem", *argv]) == 2
+@pytest.mark.parametrize("command", ["rigid-blocks", "dem"])
+def test_bad_options_are_reported(capsys, command, argv, message):
+    assert main([command, *argv]) == 2
     err = capsys.readouterr().err
     assert err.startswith("archquake: error:") and message in err

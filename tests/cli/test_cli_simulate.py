@@ -8,7 +8,7 @@ import pytest
 
 from archquake.cli import main
 
-DATA = Path(__file__).parent / "data"
+DATA = Path(__file__).parents[1] / "data"
 
 
 def run_json(capsys, *argv):

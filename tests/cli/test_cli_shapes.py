@@ -81,7 +81,7 @@ def test_surveyed_geometry_file(capsys, tmp_path, nominal):
     assert (out["k_l"], out["k_r"]) == pytest.approx(
         tuple(r.load_multiplier for r in both_directions(survey)), abs=1e-12)
     assert out["k"] == pytest.approx(0.37, abs=2e-3)
-    assert main(["limit", "--geometry", str(path), "--tolerance", "0.1"]) == 2
+    assert main(["limit", "--geometry", str(path), "--epsilon", "0.1"]) == 2
     assert "centreline" in capsys.readouterr().err
 
 
@@ -89,7 +89,7 @@ def test_irregular_shaped_arch_on_the_command_line_is_the_librarys(capsys):
     from archquake.geometry import irregular_arch
     from archquake.limit_analysis import load_multipliers
 
-    out = run_json(capsys, ["limit", "--json", *shape_args("catenary"), "--tolerance", "0.1",
+    out = run_json(capsys, ["limit", "--json", *shape_args("catenary"), "--epsilon", "0.1",
                             "--seed", "3"])
     arch = irregular_arch(shaped_arch("catenary", span=10.0, rise=4.5, thickness=0.8,
                                       voussoirs=8), 0.1, rng=3)
@@ -146,6 +146,6 @@ def test_every_geometry_subcommand_takes_the_shape_options(capsys, command):
 
 def test_limit_plot_of_a_shape(tmp_path, capsys):
     path = tmp_path / "pointed.png"
-    assert main(["limit", *shape_args("pointed"), "--tolerance", "0.1", "--plot",
+    assert main(["limit", *shape_args("pointed"), "--epsilon", "0.1", "--plot",
                  str(path)]) == 0
     assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

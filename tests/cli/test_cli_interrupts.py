@@ -18,7 +18,7 @@ from archquake.studies.fragility import FragilitySettings, run_fragility
 
 pytestmark = pytest.mark.skipif(not Path("/proc/self/stat").exists(),
                                 reason="lists processes through /proc (Linux)")
-SRC = Path(__file__).parent.parent / "src"
+SRC = Path(__file__).parents[2] / "src"
 # long enough (about 2 s of work after the first chunk) that the signal always finds it running,
 # even when the first chunk is late because the workers compile the engine (a fresh clone)
 STUDY = ["fragility", "--samples", "100", "--durations", "0.4", "--amplitudes", "0.3:0.9:0.001",
@@ -87,7 +87,7 @@ def test_a_signal_stops_the_study_cleanly_and_it_resumes(tmp_path, capsys, unint
 
 
 def test_sigterm_is_turned_into_an_interrupt_only_around_worker_processes(monkeypatch):
-    from archquake import cli
+    from archquake.cli import _signals, main_fragility, main_limit
 
     default = signal.getsignal(signal.SIGTERM)
     seen = []
@@ -96,12 +96,12 @@ def test_sigterm_is_turned_into_an_interrupt_only_around_worker_processes(monkey
         seen.append(signal.getsignal(signal.SIGTERM))
         return 0
 
-    monkeypatch.setattr(cli, "_run_limit", spy)
-    monkeypatch.setattr(cli, "_run_fragility", spy)
+    monkeypatch.setattr(main_limit, "run", spy)
+    monkeypatch.setattr(main_fragility, "run", spy)
     assert main(["limit"]) == 0
     assert main(["fragility", "--out", "unused", "--workers", "2"]) == 0
     assert main(["fragility", "--out", "unused"]) == 0
     # a command in this process keeps the default action (a Python handler would wait for a
     # long compiled loop to return); a study on workers stops them cleanly
-    assert seen == [default, cli._raise_terminated, default]
+    assert seen == [default, _signals.raise_terminated, default]
     assert signal.getsignal(signal.SIGTERM) == default

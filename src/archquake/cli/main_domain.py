@@ -1,0 +1,152 @@
+"""``archquake domain``: failure domain over (t_p, a) (paper Sect. 5.3.3, Fig. 16) of either
+model; :func:`archquake.studies.failure_domain.domain_of`."""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+from ..defaults import (
+    DEFAULT_EXTEND_TO_G,
+    DEFAULT_RESOLUTION_G,
+    DEFAULT_STRIDE,
+    DOMAIN_AMPLITUDES_G,
+    DOMAIN_DURATIONS,
+    MAX_GRID_POINTS,
+    MIN_RESOLUTION_G,
+)
+from . import options
+from .output import print_json
+
+DESCRIPTION = (
+    "Outcome of Oppenheim's pulse (-a for t_p, +a/2 for 2 t_p, then 0) over a grid of "
+    "durations t_p and amplitudes a: every change of outcome along the amplitude (rest, "
+    "recovery, collapse in half cycle h) is bisected. Prints per duration the failure "
+    "acceleration (lowest collapsing a), the lowest a collapsing in the first half cycle "
+    "(Oppenheim's curve) and the intervals. Accelerations in g. --model rigid-blocks runs the "
+    "rigid-block model instead (it does not count half cycles: the scan is extended until the "
+    "first collapse).")
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    """The options of ``archquake domain``."""
+    parser.description = DESCRIPTION
+    options.add_arch_options(parser)
+    options.add_model_options(parser)
+    options.add_restitution_option(parser)
+    options.add_rigid_block_options(parser)
+    options.add_workers_option(parser, help="local worker processes of the rigid-block model, "
+                                            "one duration at a time (default: this process)")
+    parser.add_argument("--durations", default=options.range_text(DOMAIN_DURATIONS),
+                        metavar="LIST",
+                        help="pulse durations t_p [s]: comma list and/or ranges start:stop:step "
+                             "(stop included) (default: %(default)s)")
+    parser.add_argument("--amplitudes", default=options.range_text(DOMAIN_AMPLITUDES_G),
+                        metavar="LIST",
+                        help=f"scan grid of amplitudes a [g], increasing; durations x "
+                             f"amplitudes (with the extension) at most {MAX_GRID_POINTS} "
+                             f"(default: %(default)s)")
+    parser.add_argument("--extend-to", type=float, default=DEFAULT_EXTEND_TO_G, metavar="G",
+                        help="where the grid holds no collapse in the first half cycle (the "
+                             "rigid blocks: no collapse), scan on at its last spacing (times "
+                             "--stride for the faster searches) until it is found, up to this "
+                             "amplitude [g]; a boundary beyond it is reported as such; a value "
+                             "not above the grid scans the grid alone (default: %(default)s)")
+    parser.add_argument("--direction", choices=("l", "r"), default="l",
+                        help="l: the first pulse is -a g (opens Mech-l); r: +a g (Mech-r) "
+                             "(default: %(default)s)")
+    parser.add_argument("--resolution", type=float, default=DEFAULT_RESOLUTION_G, metavar="G",
+                        help=f"bisection width of every boundary [g], >= "
+                             f"{MIN_RESOLUTION_G:g} (default: %(default)s)")
+    options.add_plot_option(parser, "write the failure-domain figure")
+    options.add_json_option(parser)
+
+
+def run(args: argparse.Namespace) -> int:
+    """The failure domain of the arch of the options."""
+    durations = options.parse_values(args.durations, "--durations")
+    amplitudes = options.parse_values(args.amplitudes, "--amplitudes")
+    if not (math.isfinite(args.resolution) and args.resolution >= MIN_RESOLUTION_G):
+        # the library takes any width > 0; the command line refuses what means nothing
+        raise ValueError(f"--resolution must be >= {MIN_RESOLUTION_G:g} g (the analyses are "
+                         f"accurate to about 1e-11: finer boundaries mean nothing), got "
+                         f"{args.resolution}")
+    from ..studies.failure_domain import domain_of
+
+    model = options.model_from_args(args)
+    with options.analysing(args):
+        domain = domain_of(model, durations, amplitudes, direction=args.direction,
+                           resolution=args.resolution, extend_to_g=args.extend_to,
+                           search=args.search,
+                           stride=DEFAULT_STRIDE if args.stride is None else args.stride,
+                           workers=args.workers,
+                           progress=model.name != "four-link")
+    if args.plot:
+        from .output import pyplot, save_figure
+
+        pyplot()
+        from ..plotting import plot_failure_domain
+
+        ax = plot_failure_domain(domain)
+        save_figure(ax.figure, args.plot)
+    if args.json:
+        rows = domain.to_list()
+        if model.name != "four-link":  # the model is said where the four-link output is as before
+            for row, bands in zip(rows, (s.recovery_above_g for s in domain.slices),
+                                  strict=True):
+                row["model"] = model.name
+                row["recovery_above"] = [list(b) for b in bands]
+                del row["first_half_cycle_acceleration"]
+        print_json(rows)
+        return 0
+    four_link = model.name == "four-link"
+    if four_link:
+        c_lr, c_rl = domain.restitution
+        what = f"restitution {c_lr:.4f} (l->r), {c_rl:.4f} (r->l)"
+    else:
+        what = (f"rigid-block model, friction {model.settings.friction:g}, time step "
+                f"{model.settings.time_step:g} s, search {domain.search}")
+    print(f"Failure domain, first pulse {'-' if args.direction == 'l' else '+'}a g "
+          f"(Mech-{args.direction}); k = {domain.limit_multiplier:.4f}; {what}; boundaries to "
+          f"{args.resolution:g} g")
+    if not four_link:
+        return _print_rigid_block_domain(domain, args)
+    print(f"{'t_p [s]':>8} {'failure [g]':>12} {'1st half [g]':>13}  intervals [g]")
+    beyond = []
+    for sl in domain.slices:
+        parts = []
+        for iv in sl.intervals:
+            what = (f"collapse h={iv.half_cycle}" if iv.status == "collapse" else iv.status)
+            parts.append(f"{iv.start:.3f}-{iv.end:.3f} {what}")
+        columns = []
+        for value, width in ((sl.failure_acceleration_g, 12),
+                             (sl.first_half_cycle_acceleration_g, 13)):
+            columns.append(f"{value:>{width}.4f}" if math.isfinite(value)
+                           else f"{'> ' + format(sl.scanned_to_g, '.3g'):>{width}}")
+        if not math.isfinite(sl.first_half_cycle_acceleration_g):
+            beyond.append(sl.duration)
+        print(f"{sl.duration:>8.3f} {columns[0]} {columns[1]}  " + "; ".join(parts))
+    if beyond:
+        extend_to = domain.extend_to_g
+        print("no collapse in the first half cycle up to the end of the scan at t_p = "
+              + ", ".join(f"{d:g}" for d in beyond) + " s: the boundary lies beyond it"
+              + ("" if extend_to is None else f" (scan extended up to --extend-to "
+                                              f"{extend_to:g} g)"))
+    if args.plot:
+        print(f"figure written to {args.plot}")
+    return 0
+
+
+def _print_rigid_block_domain(domain, args: argparse.Namespace) -> int:
+    """The text output of a rigid-block domain: no half cycles, the recovery bands above the
+    failure acceleration and the analyses each duration cost."""
+    print(f"{'t_p [s]':>8} {'failure [g]':>12} {'analyses':>9}  intervals [g]")
+    for sl, count in zip(domain.slices, domain.analyses, strict=True):
+        parts = [f"{iv.start:.3f}-{iv.end:.3f} {iv.status}" for iv in sl.intervals]
+        value = sl.failure_acceleration_g
+        column = (f"{value:>12.4f}" if math.isfinite(value)
+                  else f"{'> ' + format(sl.scanned_to_g, '.3g'):>12}")
+        print(f"{sl.duration:>8.3f} {column} {count:>9d}  " + "; ".join(parts))
+    if args.plot:
+        print(f"figure written to {args.plot}")
+    return 0

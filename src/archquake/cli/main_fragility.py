@@ -1,0 +1,178 @@
+"""``archquake fragility``: Monte Carlo fragility study under pulses (paper Sect. 5.3.3, Figs.
+17-21); :func:`archquake.studies.fragility.run_fragility`.
+
+``archquake fragility --records ...`` is the record-based study, ``archquake record-fragility``
+(:mod:`archquake.cli.main_record_fragility`): the options of both are accepted here.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+from ..defaults import (
+    DEFAULT_SAMPLE_LIMIT_METHOD,
+    LIMIT_METHODS,
+    LIMIT_SAMPLE_SIZE,
+    MAX_GRID_POINTS,
+    MAX_LIMIT_SAMPLES,
+    MAX_STUDY_ANALYSES,
+    STUDY_AMPLITUDES_G,
+    STUDY_DURATIONS,
+)
+from . import main_record_fragility, options
+from .output import print_json
+
+DESCRIPTION = (
+    "Draw h irregular arches around the nominal arch (eq. 1), run Oppenheim's pulse in both "
+    "directions over every (t_p, a) of the grid, and estimate P_F = h_f/h (eq. 9; an arch fails "
+    "if it collapses in either direction), with quintic and lognormal fits per duration; the "
+    "CDF of the limit-analysis multiplier k~ = min(k~_l, k~_r) of s arches; the nominal arch's "
+    "failure acceleration and k. Default restitution: 'nominal', the nominal arch's computed "
+    "c_v applied to every irregular arch (the paper's practice). A drawn arch that is not an "
+    "arch or cannot stand is excluded, counted and named, and left out of h. Writes "
+    "results.parquet/.csv (one row per analysis), curves.csv, summary.json and limit_sample/ to "
+    "--out; checkpoints allow --resume.")
+
+PULSE_OPTIONS = ("durations", "amplitudes", "limit_samples", "limit_method")
+"""Options of the pulse study that a record-based one (``--records``) does not take."""
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    """The options of ``archquake fragility`` (and of ``fragility --records``)."""
+    parser.description = DESCRIPTION
+    options.add_nominal_arch_options(parser)
+    options.add_samples_option(parser)
+    parser.add_argument("--durations", default=",".join(f"{d:g}" for d in STUDY_DURATIONS),
+                        metavar="LIST",
+                        help="pulse durations t_p [s] (default: %(default)s)")
+    parser.add_argument("--amplitudes", default=options.range_text(STUDY_AMPLITUDES_G),
+                        metavar="LIST",
+                        help=f"amplitudes a [g], increasing; durations x amplitudes at most "
+                             f"{MAX_GRID_POINTS}, and 2 x samples x durations x amplitudes at "
+                             f"most {MAX_STUDY_ANALYSES} analyses (default: %(default)s)")
+    options.add_model_options(parser)
+    options.add_restitution_option(parser)
+    options.add_rigid_block_options(parser, time_step=False)
+    parser.add_argument("--limit-samples", type=int, default=LIMIT_SAMPLE_SIZE, metavar="S",
+                        help=f"number s of arches of the limit-analysis CDF of k~, at most "
+                             f"{MAX_LIMIT_SAMPLES} (default: %(default)s)")
+    parser.add_argument("--limit-method", choices=LIMIT_METHODS,
+                        default=DEFAULT_SAMPLE_LIMIT_METHOD,
+                        help="limit-analysis method of that sample (same k~; kinematic is "
+                             "faster) (default: %(default)s)")
+    options.add_study_output_options(parser)
+    parser.set_defaults(pulse_defaults={name: parser.get_default(name) for name in PULSE_OPTIONS})
+    main_record_fragility.add_record_options(parser, former=True)
+
+
+def run(args: argparse.Namespace) -> int:
+    """The pulse study of the options; the record-based study with ``--records``."""
+    if args.records or args.im or args.levels or args.export_nrml:
+        return _run_records(args)
+    from ..studies.fragility import CURVES_CSV, LIMIT_DIRECTORY, FragilitySettings, run_fragility
+
+    settings = FragilitySettings(
+        nominal=options.nominal_arch_from_args(args), sample_size=args.samples,
+        epsilon=args.epsilon,
+        durations=tuple(options.parse_values(args.durations, "--durations")),
+        amplitudes_g=tuple(options.parse_values(args.amplitudes, "--amplitudes")),
+        seed=args.seed, restitution=args.restitution, limit_sample_size=args.limit_samples,
+        limit_method=args.limit_method, model=args.model, search=args.search,
+        stride=args.stride, friction=args.friction)
+    result = run_fragility(settings, args.out, workers=args.workers, scheduler=args.scheduler,
+                           resume=args.resume, progress=not args.no_progress)
+    written = []
+    if args.plot_dir:
+        written = _plot(result, args.plot_dir)
+    summary = result.summary()
+    if args.json:
+        print_json(summary)
+        return 0
+    n_analyses = len(result.table)
+    c_lr, c_rl = summary["nominal_restitution"]
+    if settings.model == "four-link":
+        model = f"restitution {settings.restitution!r} (nominal arch: {c_lr:.4f})"
+    else:
+        analysed = int(result.table["analysed"].sum())
+        model = (f"rigid-block model (friction {settings.friction:g}), search "
+                 f"{settings.search!r}: {analysed} analysed, the others inferred")
+    print(f"Fragility study: h = {settings.sample_size} irregular arches (epsilon = "
+          f"{settings.epsilon:g}, seed {settings.seed}), {len(settings.durations)} durations x "
+          f"{len(settings.amplitudes_g)} amplitudes x 2 directions = {n_analyses} analyses; "
+          f"{model}")
+    print(f"nominal arch: k = {result.nominal_load_multiplier:.4f}")
+    arches = summary["arches"]
+    if arches["excluded"]:
+        listed = "; ".join(f"{why}: {', '.join(map(str, items))}"
+                           for why, items in arches["excluded"].items())
+        print(f"excluded: {arches['drawn'] - arches['analysed']} of {arches['drawn']} arches "
+              f"could not be analysed ({listed}; arch i is drawn from SeedSequence("
+              f"{settings.seed}, spawn_key=(i,))); P_F = h_f / h over the h = "
+              f"{arches['analysed']} arches analysed")
+    print(f"{'t_p [s]':>8} {'Q nominal [g]':>14} {'P_F below Q':>12} {'lowest a_f [g]':>15} "
+          f"{'lognormal median [g]':>21} {'beta':>6}")
+
+    def fmt(x, width, digits=4):
+        return f"{'-':>{width}}" if x is None else f"{x:>{width}.{digits}f}"
+
+    for row in summary["durations"]:
+        print(f"{row['duration']:>8.3f} {fmt(row['nominal_failure_acceleration'], 14)} "
+              f"{fmt(row['probability_below_nominal'], 12, 3)} "
+              f"{fmt(row['lowest_failure_acceleration'], 15, 2)} "
+              f"{fmt(row['lognormal_median'], 21)} {fmt(row['lognormal_dispersion'], 6, 3)}")
+    k = summary["limit_sample"]
+
+    def number(x, digits=4):
+        return "-" if x is None else f"{x:.{digits}f}"
+
+    others = [f"{k[key]} {what}" for key, what in (("excluded", "excluded"),
+                                                     ("never_collapse", "never collapse"))
+              if k[key]]
+    print(f"k~ = min(k~_l, k~_r) over s = {k['count']} arches ({k['method']}"
+          + "".join(f"; {o}" for o in others) + f"): mean {number(k['mean'])}, std "
+          f"{number(k['std'])}, min {number(k['min'])}, max {number(k['max'])}; fraction below "
+          f"the nominal k (by more than {k['below_nominal_rtol']:g} relative): "
+          f"{number(k['fraction_below_nominal'], 3)}")
+    print("P_F below Q: fraction of irregular arches that fail at the largest amplitude of "
+          "the grid below the nominal failure acceleration Q (where the nominal arch survives)")
+    print(f"written to {args.out}: results.parquet, results.csv, {CURVES_CSV}, summary.json, "
+          f"{LIMIT_DIRECTORY}/")
+    for path in written:
+        print(f"figure written to {path}")
+    return 0
+
+
+def _run_records(args: argparse.Namespace) -> int:
+    """``fragility --records ...``: the record-based study, refusing the pulse study's
+    options."""
+    if not args.records:
+        given = [option for option, value in (("--im", args.im), ("--levels", args.levels),
+                                              ("--export-nrml", args.export_nrml)) if value]
+        raise ValueError(f"{', '.join(given)}: only for a record-based study; give the records "
+                         "with --records PATH...")
+    pulse_only = [f"--{name.replace('_', '-')}" for name in PULSE_OPTIONS
+                  if getattr(args, name) != args.pulse_defaults[name]]
+    if pulse_only:
+        raise ValueError(f"{', '.join(pulse_only)}: options of the pulse study, not of a "
+                         "record-based one (--records)")
+    return main_record_fragility.run(args)
+
+
+def _plot(result, plot_dir) -> list[str]:
+    from .output import plot_directory, pyplot, save_figure
+
+    pyplot()
+    from ..plotting import plot_fragility_curve, plot_fragility_surface
+
+    directory = plot_directory(plot_dir)
+    written = []
+    for tp in result.durations:
+        path = directory / f"fragility_tp{tp:.3f}.png"
+        ax = plot_fragility_curve(result, tp)
+        save_figure(ax.figure, path)
+        written.append(str(path))
+    path = directory / "fragility_surface.png"
+    ax = plot_fragility_surface(result)
+    save_figure(ax.figure, path)
+    written.append(str(path))
+    return written

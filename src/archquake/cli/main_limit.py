@@ -1,0 +1,151 @@
+"""``archquake limit``: load multipliers, hinges and thrust lines (paper Sect. 3, Table 1);
+:func:`archquake.limit_analysis.both_directions`."""
+
+from __future__ import annotations
+
+import argparse
+
+from ..defaults import DEFAULT_LIMIT_METHOD, LIMIT_METHODS
+from . import options
+from .output import print_json
+
+DESCRIPTION = (
+    "Limit analysis of the arch under its weight and horizontal forces k m_i g (Heyman: no "
+    "tension, infinite compressive strength, no sliding). Mech-l: forces left -> right; Mech-r: "
+    "the mirrored arch, hinges reported in the mirrored frame (as Table 1 of the paper). Motion "
+    "starts when the ground acceleration reaches k g.")
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    """The options of ``archquake limit``."""
+    parser.description = DESCRIPTION
+    options.add_arch_options(parser)
+    parser.add_argument("--method", choices=LIMIT_METHODS, default=DEFAULT_LIMIT_METHOD,
+                        help="static: linear program (HiGHS); kinematic: enumeration of the "
+                             "mechanisms (default: %(default)s)")
+    parser.add_argument("--min-thickness", action="store_true",
+                        help="print the minimum thickness under its own weight of the arch of "
+                             "the shape options (its centreline and voussoirs kept, the "
+                             "thickness scaled) instead, and its ratio to the radius (circular "
+                             "arches) or to the span (as archquake min-thickness)")
+    parser.add_argument("--min-pier-width", action="store_true",
+                        help="print the narrowest equal rectangular piers on which the arch "
+                             "(with its fill) stands under its own weight instead: give their "
+                             "height as --piers ,HEIGHT[,COURSES], the width left blank")
+    options.add_plot_option(parser, "write a figure of both mechanisms (arch, hinges, line of "
+                                    "thrust)")
+    options.add_json_option(parser)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Limit analysis of the arch of the options, in both directions."""
+    from ..limit_analysis import both_directions
+
+    if args.min_pier_width:
+        return _min_pier_width(args)
+    if args.min_thickness:
+        if (args.geometry or args.epsilon is not None or args.plot
+                or args.thickness is not None):
+            raise ValueError("--min-thickness applies to an arch of a shape (--shape, --span, "
+                             "--rise or --radius, --embrace, and --voussoirs, --faces) whose "
+                             "thickness it finds; it cannot be combined with --thickness, "
+                             "--geometry, --epsilon or --plot")
+        from . import main_min_thickness
+
+        return main_min_thickness.run(args)
+    arch = options.arch_from_args(args)
+    with options.analysing(args):
+        results = both_directions(arch, method=args.method)
+    k_l, k_r = (r.load_multiplier for r in results)
+    if args.plot:
+        _plot(args, results)
+    if args.json:
+        mechanisms = {}
+        for r in results:
+            entry = {"hinges": [{"joint": h.joint, "face": h.face, "beta": h.beta(r.arch)}
+                                for h in r.hinges]}
+            if hasattr(r.arch, "joint_name"):  # a structure: where each hinge is
+                for hinge, item in zip(r.hinges, entry["hinges"], strict=True):
+                    item["where"] = r.arch.joint_name(hinge.joint)
+            if r.separation is not None:
+                entry["separation"] = r.separation
+            mechanisms[r.direction] = entry
+        print_json({"k": min(k_l, k_r), "k_l": k_l, "k_r": k_r, "mechanisms": mechanisms})
+        return 0
+    kind = "irregular arch" if args.epsilon is not None else "arch"
+    print(f"Limit analysis ({args.method}) of the {kind}: {describe_arch(arch)}")
+    circle = hasattr(arch, "joint_extents")  # the paper's arch: hinge radii, else positions
+    where = f"{'r [m]':>8}" if circle else f"{'x [m]':>8} {'y [m]':>8}"
+    print(f"{'mechanism':<10} {'k [-]':>8} {'hinge':>6} {'joint':>6} {'face':>9} "
+          f"{'beta [rad]':>11} {where}")
+    for r in results:
+        name = "Mech-l" if r.direction == "l" else "Mech-r"
+        labels = "ABCD" if r.is_four_hinge else "12"
+        for i, h in enumerate(r.hinges):
+            k_text = f"{r.load_multiplier:8.4f}" if i == 0 else " " * 8
+            x, y = h.point(r.arch)
+            where = f"{h.radius(r.arch):>8.4f}" if circle else f"{x:>8.4f} {y:>8.4f}"
+            if hasattr(r.arch, "joint_name"):  # a structure: where each hinge is
+                where += f"  {r.arch.joint_name(h.joint)}"
+            print(f"{name if i == 0 else '':<10} {k_text} {labels[i]:>6} {h.joint:>6} "
+                  f"{h.face:>9} {h.beta(r.arch):>11.4f} {where}")
+        if r.separation is not None:
+            print(f"{'':<10} {'':>8} {'':>6} {r.separation:>6} {'opens':>9}   (no normal force)")
+    print(f"k = min(k_l, k_r) = {min(k_l, k_r):.4f}: the motion starts when the ground "
+          f"acceleration reaches {min(k_l, k_r):.4f} g (Mech-r hinges in the mirrored frame)")
+    if args.plot:
+        print(f"figure written to {args.plot}")
+    return 0
+
+
+def describe_arch(arch) -> str:
+    """One line on the arch: its kind, size and voussoirs (units in brackets); a structure's
+    piers and fill too (:func:`archquake.geometry.structure.describe_arch`)."""
+    from ..geometry.structure import describe_arch as describe
+
+    return describe(arch)
+
+
+def _min_pier_width(args: argparse.Namespace) -> int:
+    """``limit --min-pier-width --piers ,HEIGHT[,COURSES]``: the narrowest piers that stand."""
+    from ..limit_analysis import min_pier_width
+    from .output import print_json
+
+    if not args.piers or args.pier_left or args.pier_right:
+        raise ValueError("--min-pier-width finds the width of two equal piers: give their "
+                         "height as --piers ,HEIGHT[,COURSES] (the width left blank), without "
+                         "--pier-left or --pier-right")
+    given = options.pier_from_option("--piers", args.piers, blank_width=True)
+    if not isinstance(given, tuple):
+        raise ValueError(f"--min-pier-width finds the width: leave it blank in --piers "
+                         f",HEIGHT[,COURSES], got {args.piers!r}")
+    if args.plot or args.min_thickness:
+        raise ValueError("--min-pier-width cannot be combined with --plot or --min-thickness")
+    _, height, courses = given
+    arch = options.arch_from_args(args)
+    with options.analysing(args):
+        width = min_pier_width(arch, height, courses)
+    if args.json:
+        print_json({"min_pier_width": width, "height": height, "courses": courses})
+    else:
+        print(f"narrowest piers on which the arch stands under its own weight: width = "
+              f"{width:.6g} m (height {height:g} m, {courses} course"
+              f"{'' if courses == 1 else 's'}; {describe_arch(arch)})")
+    return 0
+
+
+def _plot(args: argparse.Namespace, results) -> None:
+    from .output import pyplot, save_figure
+
+    plt = pyplot()  # the file-only backend, before the plotting module imports pyplot
+    from ..plotting import plot_limit_analysis
+
+    nominal = None
+    if args.epsilon is not None:
+        nominal = options.nominal_arch_from_args(args)
+    fig, axes = plt.subplots(1, 2, figsize=(13, 5.0), constrained_layout=True)
+    for ax, r in zip(axes, results, strict=True):
+        frame = None if nominal is None else (nominal if r.direction == "l"
+                                              else nominal.mirrored())
+        plot_limit_analysis(r, ax, nominal=frame)
+    save_figure(fig, args.plot)

@@ -1,0 +1,174 @@
+"""``archquake record-fragility`` (also ``archquake fragility --records ...``): a
+multiple-stripe study of a suite of records;
+:func:`archquake.studies.record_fragility.run_record_fragility`."""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+from . import options
+from .output import print_json
+
+DEFAULT_IM = "pga"
+"""Intensity measure of the stripes unless ``--im`` names one."""
+
+DESCRIPTION = (
+    "Every record is scaled to each --levels value of --im and applied in both polarities to "
+    "the h irregular arches and to the nominal arch; an arch-record pair fails if it collapses "
+    "in either polarity. P(collapse | IM) per stripe, lognormal fits by maximum likelihood "
+    "(irregular arches pooled; the nominal arch alone, the record-to-record dispersion; a common "
+    "dispersion over records, the geometric one) with 90% bootstrap bands over arches and "
+    "records. --epsilon 0 --samples 1 is the nominal arch alone. Writes results.parquet/.csv "
+    "(one row per arch, record, level and polarity), curves.csv, incremental.csv and "
+    "summary.json to --out.")
+
+
+def add_record_options(parser: argparse.ArgumentParser, *, former: bool = False) -> None:
+    """``--records``, ``--im``, ``--levels`` and ``--export-nrml``; with ``former=True`` as
+    ``archquake fragility`` takes them (``--records`` optional: it makes the study
+    record-based)."""
+    if former:
+        group = parser.add_argument_group(
+            "record-based fragility (multiple-stripe analysis, as archquake record-fragility)",
+            f"With --records: {DESCRIPTION} The pulse options --durations, --amplitudes, "
+            f"--limit-samples and --limit-method do not apply.")
+    else:
+        group = parser.add_argument_group("records and stripes")
+    group.add_argument("--records", nargs="+", metavar="PATH", required=not former,
+                       help="record files (PEER .AT2, CSV in g, ESM .ASC) and folders of them")
+    group.add_argument("--im", metavar="NAME",
+                       help="intensity measure of the stripes: pga [g], pgv [m/s], pgd [m], "
+                            f"arias [m/s] or sa(T) [g] with T the period [s] (default: "
+                            f"{DEFAULT_IM})")
+    group.add_argument("--levels", metavar="LIST",
+                       help="stripe levels of --im in its unit, increasing and > 0, e.g. "
+                            "0.1:1.0:0.05 (required with --records)")
+    group.add_argument("--export-nrml", metavar="FILE",
+                       help="write the fitted fragility functions (irregular arches, nominal "
+                            "arch) as an OpenQuake NRML fragility model, format continuous "
+                            "logncdf")
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    """The options of ``archquake record-fragility``."""
+    parser.description = DESCRIPTION
+    options.add_nominal_arch_options(parser)
+    options.add_samples_option(parser)
+    options.add_model_options(parser)
+    options.add_restitution_option(parser)
+    options.add_rigid_block_options(parser, time_step=False)
+    add_record_options(parser)
+    options.add_study_output_options(parser)
+
+
+def run(args: argparse.Namespace) -> int:
+    """The record-based study of the options."""
+    from ..fourlink.impact import check_restitution_model
+    from ..studies.record_fragility import (
+        CURVES_CSV,
+        INCREMENTAL_CSV,
+        RecordFragilitySettings,
+        RecordSuite,
+        run_record_fragility,
+        stripe_measure,
+    )
+
+    im = stripe_measure(args.im or DEFAULT_IM)
+    if args.levels is None:
+        raise ValueError(f"--levels is required with --records: the stripe levels of {im.name} "
+                         f"[{im.unit}], e.g. --levels 0.1:1.0:0.05")
+    settings = RecordFragilitySettings(
+        suite=RecordSuite.from_paths(args.records),
+        levels=tuple(options.parse_values(args.levels, "--levels")), im=im.name,
+        nominal=options.nominal_arch_from_args(args), sample_size=args.samples,
+        epsilon=args.epsilon, seed=args.seed,
+        restitution=check_restitution_model(args.restitution), model=args.model,
+        search=args.search, stride=args.stride, friction=args.friction)
+    result = run_record_fragility(settings, args.out, workers=args.workers,
+                                  scheduler=args.scheduler, resume=args.resume,
+                                  progress=not args.no_progress)
+    written = _plot(result, args.plot_dir) if args.plot_dir else []
+    if args.export_nrml:
+        try:
+            written.append(str(result.export_nrml(args.export_nrml)))
+        except OSError as exc:
+            raise ValueError(f"cannot write --export-nrml {args.export_nrml!r}: "
+                             f"{exc.strerror}") from exc
+    summary = result.summary()
+    if args.json:
+        print_json(summary)
+        return 0
+    _print(result, summary)
+    print(f"written to {args.out}: results.parquet, results.csv, {CURVES_CSV}, "
+          f"{INCREMENTAL_CSV}, summary.json")
+    for path in written:
+        print(f"written {path}")
+    return 0
+
+
+def _print(result, summary: dict) -> None:
+    s = result.settings
+    unit = s.unit
+    analyses = summary["analyses"]
+    print(f"Record-based fragility: h = {s.sample_size} irregular arches (epsilon = "
+          f"{s.epsilon:g}, seed {s.seed}) and the nominal arch, {len(result.records)} records "
+          f"x {result.levels.size} levels of {s.im} [{unit}] x 2 polarities = "
+          f"{analyses['total']} analyses ({analyses['at_rest_without_integration']} at rest "
+          f"without integration); restitution {s.restitution!r}")
+    curves = result.curves()
+    print(f"{'level [' + unit + ']':>12} {'P irregular':>12} {'P nominal':>10} "
+          f"{'lognormal':>10} {'band':>15}")
+    for row in curves.itertuples():
+        band = ("-" if not math.isfinite(row.band_lower)
+                else f"{row.band_lower:.3f}-{row.band_upper:.3f}")
+        fit = "-" if not math.isfinite(row.lognormal_fit) else f"{row.lognormal_fit:.3f}"
+        print(f"{row.level:>12.4g} {row.probability:>12.3f} {row.nominal_probability:>10.3f} "
+              f"{fit:>10} {band:>15}")
+
+    def describe(fit, band):
+        if fit["median"] is None:
+            return "no lognormal fit (no collapse, no survival, or a single step)"
+        text = f"median {fit['median']:.4g} {unit}, beta {fit['dispersion']:.3f}"
+        if band is not None:
+            lo, hi = band["median_interval"]
+            b_lo, b_hi = band["dispersion_interval"]
+            text += (f" ({100 * band['confidence']:.0f}% bootstrap intervals: median "
+                     f"{lo:.4g}-{hi:.4g}, beta {b_lo:.3f}-{b_hi:.3f}; {band['resamples']} "
+                     f"resamples)")
+        return text
+
+    total, nominal = summary["lognormal"], summary["nominal"]["lognormal"]
+    print(f"irregular arches, all pairs: {describe(total, total['band'])}")
+    print(f"nominal arch: {describe(nominal, nominal['band'])}")
+    v = summary["variability"]
+
+    def fmt(x):
+        return "-" if x is None else f"{x:.3f}"
+
+    print(f"dispersions: record-to-record {fmt(v['record_to_record'])}, geometric "
+          f"{fmt(v['geometric'])}, total {fmt(v['total'])} (srss of the first two "
+          f"{fmt(v['srss'])})")
+    inc = summary["incremental"]
+    print(f"incremental view: {inc['pairs_collapsing']} of {inc['pairs']} arch-record pairs "
+          f"collapse at some level; {inc['pairs_recovering_above_first_collapse']} of them "
+          "survive again at a level above their lowest collapsing one")
+
+
+def _plot(result, plot_dir) -> list[str]:
+    import re
+
+    from .output import plot_directory, pyplot, save_figure
+
+    pyplot()
+    from ..plotting import plot_incremental, plot_record_fragility
+
+    directory = plot_directory(plot_dir)
+    tag = re.sub(r"[^\w.-]", "_", result.settings.im)
+    written = []
+    for name, plot in (("fragility", plot_record_fragility), ("incremental", plot_incremental)):
+        path = directory / f"record_{name}_{tag}.png"
+        ax = plot(result)
+        save_figure(ax.figure, path)
+        written.append(str(path))
+    return written

@@ -1,0 +1,115 @@
+"""``archquake rigid-blocks`` (formerly ``archquake dem``, still accepted): the rigid-block model
+of the arch under one ground motion; :func:`archquake.rigid_blocks.block_outcome` and
+:func:`archquake.rigid_blocks.simulate_blocks`."""
+
+from __future__ import annotations
+
+import argparse
+
+from . import options
+from .output import print_json
+
+DESCRIPTION = (
+    "Every voussoir a rigid block on two supports that move with the ground; contacts at both "
+    "ends of every joint with Coulomb friction and no bounce (Moreau-Jean nonsmooth contact "
+    "dynamics). A second opinion on the four-link model, independent of it. Outcome: rest "
+    "(never moved), recovery (back at rest after the excitation) or collapse (a block or the "
+    "crown dropped by a thickness, or too little energy left to return), with the collapse "
+    "time [s], the largest block rotation [rad], crown drop [m] and joint slip [m]. "
+    "Displacements are relative to the ground. 'archquake dem' is the former name of this "
+    "command.")
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    """The options of ``archquake rigid-blocks``."""
+    parser.description = DESCRIPTION
+    options.add_arch_options(parser)
+    options.add_motion_options(parser)
+    options.add_rigid_block_options(parser)
+    parser.add_argument("--t-end", type=float, default=None,
+                        help="record up to this time [s] (default: until 0.5 s after the "
+                             "outcome is decided)")
+    parser.add_argument("--output", metavar="history.csv",
+                        help="write the time history: t [s], crown drop [m], energies [J/m], "
+                             "every block's x, y [m] and rotation [rad], every joint's opening "
+                             "and slip [m]")
+    options.add_plot_option(parser, "plot the blocks (when the collapse is certain, or at "
+                                    "their largest opening) and the time history")
+    parser.add_argument("--animate", metavar="FILE.gif", help="write an animation of the blocks")
+    options.add_json_option(parser)
+
+
+def run(args: argparse.Namespace) -> int:
+    """The rigid-block analysis of the arch of the options under the motion of the options."""
+    from ..rigid_blocks import block_outcome, simulate_blocks
+
+    arch = options.arch_from_args(args)
+    motion = options.motion_from_args(args)
+    settings = options.block_settings_from_args(args)
+    if args.animate:  # checked before the analysis, which may take a while
+        from pathlib import Path
+
+        if Path(args.animate).is_dir():
+            raise ValueError(f"cannot write the animation {args.animate!r}: it is a directory")
+        if Path(args.animate).suffix.lower() != ".gif":
+            raise ValueError(f"cannot write the animation {args.animate!r}: give a file name "
+                             f"ending in .gif")
+    if args.output or args.plot or args.animate or args.t_end is not None:
+        history = simulate_blocks(arch, motion, settings, t_end=args.t_end)
+        outcome = history.outcome
+        if args.output:
+            from ..results_io import write_block_history_csv
+            from .output import written_table
+
+            written_table(lambda: write_block_history_csv(history, args.output), args.output,
+                          "time history")
+        if args.plot:
+            _plot(history, args.plot)
+        if args.animate:
+            from .output import pyplot
+
+            pyplot()
+            from ..rigid_blocks.plotting import animate_blocks
+
+            animate_blocks(history, args.animate)
+    else:
+        outcome = block_outcome(arch, motion, settings)
+    if args.json:
+        out = outcome.to_dict()
+        out = {"outcome": out.pop("status"), **out, "friction": settings.friction,
+               "time_step": settings.time_step, "motion": motion.name}
+        print_json(out)
+        return 0
+    text = {"rest": "the arch never moves (it moves with the ground)",
+            "recovery": "the arch rocks and comes back to rest",
+            "collapse": f"the arch collapses (certain at t = {outcome.collapse_time:.3f} s)"}
+    print(f"Rigid-block model, {motion.name}; friction {settings.friction:g}, time step "
+          f"{settings.time_step:g} s")
+    undecided = "" if outcome.decided else " (not decided: still moving)"
+    print(f"{text[outcome.status.label]}{undecided}")
+    print(f"largest rotation {outcome.max_rotation:.4f} rad, crown drop "
+          f"{outcome.max_crown_drop:.4f} m, slip {outcome.max_slip:.2e} m, joint opening "
+          f"{outcome.max_opening:.4f} m; {outcome.steps} steps")
+    for option, what in ((args.output, "time history"), (args.plot, "figure"),
+                         (args.animate, "animation")):
+        if option:
+            print(f"{what} written to {option}")
+    return 0
+
+
+def _plot(history, path) -> None:
+    import numpy as np
+
+    from .output import pyplot, save_figure
+
+    plt = pyplot()
+    from ..rigid_blocks.plotting import plot_block_history, plot_blocks
+
+    fig, (left, right) = plt.subplots(1, 2, figsize=(13, 4.5), constrained_layout=True)
+    if history.outcome.collapsed:  # when the collapse became certain
+        moment = history.outcome.collapse_time
+    else:  # the most open state
+        moment = float(history.times[int(np.argmax(history.openings.max(axis=1)))])
+    plot_blocks(history, moment, left)
+    plot_block_history(history, right)
+    save_figure(fig, path)

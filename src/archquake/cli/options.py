@@ -1,0 +1,844 @@
+"""The option groups that several commands share, and what turns their values into the library's
+arguments.
+
+Each group is one function ``add_<group>(parser)``, so that a command takes a group with one line
+of its ``configure``; the values are read by the function beside it (``arch_from_args``,
+``motion_from_args``, ...). Building the options imports nothing heavy: the choices and the
+defaults they show come from :mod:`archquake.defaults`, the same values the run uses.
+
+The options do not check what the library checks: the library raises a :class:`ValueError`
+that names its parameter (``sample_size must be ...``) and :func:`option_message` names the
+option instead (``--samples must be ...``), through one table, :data:`OPTION_NAMES`. What is left
+here is what the library cannot check: combinations of options, and values in a unit the library
+does not see (the angle of embrace in degrees, the amplitude of a pulse in g).
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import math
+import os
+import re
+import sys
+
+from ..constants import DEFAULT_DENSITY, DEFAULT_FILL_DENSITY
+from ..defaults import (
+    ANALYTIC_GROUND_MOTIONS,
+    DEFAULT_EPSILON,
+    DEFAULT_FILL_INERTIA,
+    DEFAULT_FRICTION,
+    DEFAULT_LEVEL_STRIDE,
+    DEFAULT_MODEL,
+    DEFAULT_MOTION,
+    DEFAULT_PULSE,
+    DEFAULT_RESTITUTION,
+    DEFAULT_SEED,
+    DEFAULT_STRIDE,
+    DEFAULT_TIME_STEP,
+    FILL_INERTIA_MODELS,
+    MAX_ACCELERATION_G,
+    MAX_CYCLES,
+    MAX_SAMPLES,
+    SEARCHES,
+    SHAPES,
+    STUDY_SAMPLE_SIZE,
+    VOUSSOIR_FACES,
+    oppenheim_dimensions,
+)
+
+# ---------------------------------------------------------------------------------------------
+# library parameters -> options
+# ---------------------------------------------------------------------------------------------
+
+OPTION_NAMES = {
+    "sample_size": "--samples",
+    "limit_sample_size": "--limit-samples",
+    "limit_method": "--limit-method",
+    "epsilon": "--epsilon",
+    "seed": "--seed",
+    "restitution": "--restitution",
+    "durations": "--durations",
+    "amplitudes": "--amplitudes",
+    "amplitudes_g": "--amplitudes",
+    "resolution": "--resolution",
+    "extend_to_g": "--extend-to",
+    "direction": "--direction",
+    "levels": "--levels",
+    "im": "--im",
+    "workers": "--workers",
+    "friction": "--friction",
+    "time_step": "--time-step",
+    "t_end": "--t-end",
+    "phi0": "--phi0",
+    "duration": "--duration",
+    "cycles": "--cycles",
+    "scale_to": "--scale-to",
+    "shape": "--shape",
+    "span": "--span",
+    "rise": "--rise",
+    "radius": "--radius",
+    "radii": "--radius",
+    "embrace": "--embrace",
+    "thickness": "--thickness",
+    "voussoirs": "--voussoirs",
+    "faces": "--faces",
+}
+"""The option of each parameter of the library that an option sets, for the messages of
+:func:`option_message` (``sample_size`` of :class:`~archquake.studies.fragility.FragilitySettings`
+is ``--samples``, ``epsilon`` of eq. (1) is ``--epsilon``, ...)."""
+
+_NAMED = re.compile(r"^([a-z][a-z0-9_]*)(?=(?: [a-z]+)? must\b|:)")
+
+
+def option_message(message: str) -> str:
+    """A message of the library that names a parameter, naming its option instead.
+
+    Only a message that starts with the parameter (``"epsilon must be in [0, 1), got 1.5"``,
+    ``"im: unknown intensity measure ..."``) is changed; one that starts otherwise is about
+    something else (a file, a drawn arch) and is left as it is.
+
+    Parameters
+    ----------
+    message : str
+        The text of a :class:`ValueError` of the library.
+
+    Returns
+    -------
+    str
+        The message with the parameter replaced by its option (:data:`OPTION_NAMES`).
+
+    Examples
+    --------
+    >>> option_message("sample_size must be an integer in [1, 100000], got 0")
+    '--samples must be an integer in [1, 100000], got 0'
+    >>> option_message("durations x amplitudes = 2 x 3 = 6 analyses")
+    'durations x amplitudes = 2 x 3 = 6 analyses'
+    """
+    match = _NAMED.match(message)
+    if match is None or match.group(1) not in OPTION_NAMES:
+        return message
+    return OPTION_NAMES[match.group(1)] + message[match.end(1):]
+
+
+def given(args: argparse.Namespace, *names: str) -> list[str]:
+    """The options among ``names`` given on the command line (not None, empty or False)."""
+    return [f"--{name.replace('_', '-')}" for name in names
+            if getattr(args, name) not in (None, [], False)]
+
+
+# ---------------------------------------------------------------------------------------------
+# the arch
+# ---------------------------------------------------------------------------------------------
+
+
+def circular_defaults() -> dict:
+    """The options of a circular arch and their defaults: Oppenheim's arch, embrace in degrees
+    (:func:`archquake.defaults.oppenheim_dimensions`)."""
+    arch = oppenheim_dimensions()
+    return {"radius": arch["radius"], "embrace": math.degrees(arch["embrace"]),
+            "thickness": arch["thickness"], "voussoirs": arch["voussoirs"]}
+
+
+SHAPE_OPTIONS = ("shape", "span", "rise", "radius", "embrace", "thickness", "voussoirs", "faces")
+"""The options that describe an arch by its shape (``None`` when not given)."""
+
+
+def add_shape_options(group, *, thickness: bool = True) -> None:
+    """``--shape``, ``--span``, ``--rise``, ``--radius``, ``--embrace``, ``--thickness`` (unless
+    ``thickness=False``), ``--voussoirs`` and ``--faces``: an arch by its shape."""
+    defaults = circular_defaults()
+    group.add_argument("--shape", choices=SHAPES, default=None,
+                       help="shape of the centreline (default: circular); every shape but the "
+                            "circle is given by --span and --rise, with its springings on y = 0")
+    group.add_argument("--span", type=float, default=None,
+                       help="span of the centreline [m] (with --rise)")
+    group.add_argument("--rise", type=float, default=None,
+                       help="rise of the centreline [m] (with --span)")
+    group.add_argument("--radius", type=float, default=None,
+                       help=f"mean radius R of a circular arch [m] (default: "
+                            f"{defaults['radius']:g} unless --span and --rise are given)")
+    group.add_argument("--embrace", type=float, default=None,
+                       help=f"angle of embrace alpha of a circular arch [deg] (default: "
+                            f"{defaults['embrace']:g})")
+    if thickness:
+        group.add_argument("--thickness", type=float, default=None,
+                           help=f"thickness t, normal to the centreline [m] (default: "
+                                f"{defaults['thickness']:g})")
+    group.add_argument("--voussoirs", type=int, default=None,
+                       help=f"number of voussoirs n, of equal centreline length (default: "
+                            f"{defaults['voussoirs']}; even for a pointed arch)")
+    group.add_argument("--faces", choices=VOUSSOIR_FACES, default=None,
+                       help="voussoir faces: curved (following intrados and extrados) or flat "
+                            "(chords between the joint ends) (default: curved)")
+
+
+def _add_geometry_file_option(group) -> None:
+    group.add_argument("--geometry", metavar="FILE.json",
+                       help="explicit arch, instead of the options above: a JSON file with "
+                            "'angles' [rad], 'thicknesses' [m], 'radii' [m] per voussoir (a "
+                            "circular arch), or 'blocks' (block polygons [[x, y], ...] [m], left "
+                            "to right, optionally 'springings')")
+
+
+class DeprecatedName(argparse.Action):
+    """An option's former name: stores the value like the option and says once on stderr that
+    the name is deprecated (``archquake: --tolerance is deprecated, use --epsilon``)."""
+
+    def __init__(self, option_strings, dest, *, use: str, **kwargs):
+        super().__init__(option_strings, dest, **kwargs)
+        self.use = use
+        self.said = False
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        if not self.said:
+            print(f"archquake: {option_string} is deprecated, use {self.use}", file=sys.stderr)
+            self.said = True
+        setattr(namespace, self.dest, values)
+
+
+def _add_epsilon_option(group, *, default, help: str) -> None:
+    group.add_argument("--epsilon", type=float, default=default, metavar="EPS", help=help)
+    group.add_argument("--tolerance", type=float, dest="epsilon", default=argparse.SUPPRESS,
+                       metavar="EPS", action=DeprecatedName, use="--epsilon",
+                       help=argparse.SUPPRESS)
+
+
+def add_arch_options(parser: argparse.ArgumentParser) -> None:
+    """The arch of a command that analyses one: its shape (default Oppenheim's arch) or a file,
+    and optionally one irregular arch drawn around it (``--epsilon``, ``--seed``)."""
+    group = parser.add_argument_group("arch geometry (defaults: Oppenheim's arch)")
+    add_shape_options(group)
+    _add_geometry_file_option(group)
+    add_structure_options(parser)
+    _add_epsilon_option(group, default=None,
+                        help="draw one irregular arch around the arch above with the "
+                             "irregularity epsilon in [0, 1) of the paper's eq. (1) (formerly "
+                             "--tolerance, still accepted)")
+    group.add_argument("--seed", type=int, default=None,
+                       help="seed of the irregular draw (default: 0)")
+
+
+def add_nominal_arch_options(parser: argparse.ArgumentParser) -> None:
+    """The nominal arch of a sample of irregular arches, with the sample's ``--epsilon``
+    (default 0.10) and ``--seed`` (default 0)."""
+    group = parser.add_argument_group("nominal arch geometry (defaults: Oppenheim's arch)")
+    add_shape_options(group)
+    _add_geometry_file_option(group)
+    add_structure_options(parser)
+    _add_epsilon_option(group, default=DEFAULT_EPSILON,
+                        help="irregularity epsilon in [0, 1) of the irregular arches drawn "
+                             "around the nominal arch (paper eq. 1; formerly --tolerance, still "
+                             "accepted; default: %(default)s)")
+    group.add_argument("--seed", type=int, default=DEFAULT_SEED,
+                       help="root seed of the sample: arch i is drawn from "
+                            "SeedSequence(seed, spawn_key=(i,)) (default: %(default)s)")
+
+
+def option_value(args: argparse.Namespace, name: str):
+    """The value of a shape option, or its default (Oppenheim's arch)."""
+    value = getattr(args, name, None)
+    return circular_defaults()[name] if value is None else value
+
+
+def shape_from_args(args: argparse.Namespace) -> tuple[str | None, dict]:
+    """``(shape, keyword arguments of shaped_arch without thickness)`` of the shape options,
+    refusing conflicting ones; ``shape`` is None for the paper's circular arch by radius and
+    embrace with curved faces (:func:`~archquake.geometry.circular_arch`, centre at the origin).
+
+    The values themselves are checked by the library (its messages name the options through
+    :func:`option_message`), except the angle of embrace, which the library sees in radians.
+    """
+    shape = args.shape or "circular"
+    by_size, by_angle = given(args, "span", "rise"), given(args, "radius", "embrace")
+    article = "an" if shape[0] in "aeiou" else "a"
+    if shape != "circular" and by_angle:
+        raise ValueError(f"{' and '.join(by_angle)} apply to circular arches only; {article} "
+                         f"{shape} arch is given by --span and --rise")
+    if by_size and by_angle:
+        raise ValueError(f"{', '.join(by_size + by_angle)}: a circular arch is given by --span "
+                         "and --rise or by --radius and --embrace, not both")
+    voussoirs = option_value(args, "voussoirs")
+    if shape != "circular" or by_size:
+        if len(by_size) < 2:
+            raise ValueError(f"{article} {shape} arch needs --span and --rise [m]")
+        return shape, {"span": args.span, "rise": args.rise, "voussoirs": voussoirs,
+                       "faces": args.faces or "curved"}
+    embrace = option_value(args, "embrace")
+    if not 0 < embrace < 360:  # in the option's unit: the library sees radians
+        raise ValueError(f"--embrace must be in (0, 360) degrees, got {embrace:g}")
+    kwargs = {"radius": option_value(args, "radius"), "embrace": math.radians(embrace),
+              "voussoirs": voussoirs, "faces": args.faces or "curved"}
+    return (None if kwargs["faces"] == "curved" else "circular"), kwargs
+
+
+def nominal_arch_from_args(args: argparse.Namespace):
+    """The arch of the geometry options, before any irregular draw (on piers and under fill if
+    the structure options say so: :func:`structure_from_args`)."""
+    from ..geometry import circular_arch, load_arch, shaped_arch
+
+    density = _masonry_density(args)
+    if args.geometry:
+        shape_options = given(args, *SHAPE_OPTIONS)
+        if shape_options:
+            raise ValueError(f"--geometry gives the whole arch; it cannot be combined with "
+                             f"{', '.join(shape_options)}")
+        return structure_from_args(args, load_arch(args.geometry, density=density))
+    shape, kwargs = shape_from_args(args)
+    thickness = option_value(args, "thickness")
+    if shape is None:
+        arch = circular_arch(kwargs["radius"], kwargs["embrace"], thickness,
+                             kwargs["voussoirs"], density=density)
+    else:
+        arch = shaped_arch(shape, thickness=thickness, density=density, **kwargs)
+    return structure_from_args(args, arch)
+
+
+# ---------------------------------------------------------------------------------------------
+# piers, buttresses and fill
+# ---------------------------------------------------------------------------------------------
+
+STRUCTURE_OPTIONS = ("piers", "pier_left", "pier_right", "fill_cover", "fill_density",
+                     "fill_inertia", "fill_passive")
+"""The options that put the arch on piers or under fill (``None`` when not given)."""
+
+
+def add_structure_options(parser: argparse.ArgumentParser) -> None:
+    """``--piers``, ``--pier-left``, ``--pier-right``, ``--fill-*`` and ``--density``: the arch
+    on piers or buttresses and under a fill (:class:`archquake.geometry.Structure`)."""
+    group = parser.add_argument_group("piers, fill and masonry (default: fixed springings, no "
+                                      "fill)")
+    pier = ("WIDTH [m] from the intrados springing point outward, HEIGHT [m] from the ground "
+            "up to it, COURSES of equal height (default 1)")
+    group.add_argument("--piers", metavar="WIDTH,HEIGHT[,COURSES]",
+                       help=f"put the arch on two equal rectangular piers: {pier}")
+    group.add_argument("--pier-left", metavar="WIDTH,HEIGHT[,COURSES]",
+                       help="the pier under the left springing only (with --pier-right: "
+                            "unequal piers)")
+    group.add_argument("--pier-right", metavar="WIDTH,HEIGHT[,COURSES]",
+                       help="the pier under the right springing only")
+    group.add_argument("--fill-cover", type=float, metavar="M",
+                       help="a level fill over the arch, this deep above the crown [m]")
+    group.add_argument("--fill-density", type=float, metavar="KG/M3",
+                       help=f"density of the fill [kg/m^3] (default: {DEFAULT_FILL_DENSITY:g})")
+    group.add_argument("--fill-inertia", choices=FILL_INERTIA_MODELS,
+                       help="where the fill's horizontal inertia force acts: none (dead load "
+                            "only), centroid (through each column's centroid: the fill moves "
+                            "with its voussoir; the dynamic models' one) or extrados (on the "
+                            f"extrados below it) (default: {DEFAULT_FILL_INERTIA})")
+    group.add_argument("--fill-passive", metavar="PHI,MOBILISATION",
+                       help="a passive reaction of the fill toward midspan on each voussoir: "
+                            "angle of friction PHI [deg] and mobilised fraction of Rankine's "
+                            "passive pressure in [0, 1]")
+    group.add_argument("--density", type=float, metavar="KG/M3",
+                       help=f"density of the masonry, arch and piers [kg/m^3] (default: "
+                            f"{DEFAULT_DENSITY:g})")
+
+
+def _numbers(option: str, text: str, low: int, high: int, *, blank_first: bool = False):
+    """The comma-separated numbers of ``option`` (``low`` to ``high`` of them); the first may
+    be blank (None) when ``blank_first``."""
+    parts = text.split(",")
+    if not low <= len(parts) <= high:
+        raise ValueError(f"{option} takes {low} to {high} numbers separated by commas, got "
+                         f"{text!r}")
+    values = []
+    for k, part in enumerate(parts):
+        if k == 0 and blank_first and not part.strip():
+            values.append(None)
+            continue
+        try:
+            values.append(float(part))
+        except ValueError:
+            hint = (" (a blank WIDTH only with limit --min-pier-width)" if k == 0
+                    and not part.strip() else "")
+            raise ValueError(f"{option} takes numbers separated by commas, got "
+                             f"{text!r}{hint}") from None
+    return values
+
+
+def pier_from_option(option: str, text: str, *, blank_width: bool = False):
+    """The :class:`~archquake.geometry.Pier` of ``--piers WIDTH,HEIGHT[,COURSES]`` (or, with
+    ``blank_width`` and no width, ``(None, height, courses)``), errors naming the option."""
+    from ..geometry import Pier
+
+    width, height, *courses = _numbers(option, text, 2, 3, blank_first=blank_width)
+    courses = courses[0] if courses else 1
+    if not float(courses).is_integer() or courses < 1:
+        raise ValueError(f"{option}: COURSES must be an integer >= 1, got {courses:g}")
+    try:
+        if width is None:
+            Pier(1.0, height, int(courses))  # checks height and courses
+            return None, height, int(courses)
+        return Pier(width, height, int(courses))
+    except ValueError as exc:
+        raise ValueError(f"{option}: {exc}") from None
+
+
+def _masonry_density(args: argparse.Namespace) -> float:
+    density = getattr(args, "density", None)
+    if density is None:
+        return DEFAULT_DENSITY
+    if not (math.isfinite(density) and density > 0):
+        raise ValueError(f"--density must be a finite number > 0 [kg/m^3], got {density:g}")
+    return density
+
+
+def structure_from_args(args: argparse.Namespace, arch):
+    """``arch`` on the piers and under the fill of the structure options (``arch`` itself
+    without them); every error names its option."""
+    from ..geometry import Fill, Structure
+
+    if not hasattr(args, "piers"):
+        return arch
+    present = given(args, *STRUCTURE_OPTIONS)
+    if not present:
+        return arch
+    if isinstance(arch, Structure):
+        raise ValueError(f"the geometry file describes a structure already; it cannot be "
+                         f"combined with {', '.join(present)}")
+    if args.piers and (args.pier_left or args.pier_right):
+        raise ValueError("--piers gives both piers; use --pier-left and --pier-right for "
+                         "unequal ones, not both")
+    if getattr(args, "min_pier_width", False):
+        left = right = None  # the piers are what --min-pier-width finds
+    elif args.piers:
+        left = right = pier_from_option("--piers", args.piers)
+    else:
+        left = pier_from_option("--pier-left", args.pier_left) if args.pier_left else None
+        right = pier_from_option("--pier-right", args.pier_right) if args.pier_right else None
+    fill = None
+    fill_options = given(args, "fill_density", "fill_inertia", "fill_passive")
+    if args.fill_cover is None and fill_options:
+        raise ValueError(f"{', '.join(fill_options)}: the fill needs --fill-cover M (its depth "
+                         "above the crown [m])")
+    if args.fill_cover is not None:
+        option = "--fill-cover"
+        try:
+            passive = (None, None)
+            if args.fill_passive:
+                option = "--fill-passive"
+                phi, mobilisation = _numbers(option, args.fill_passive, 2, 2)
+                if not 0 < phi < 90:
+                    raise ValueError(f"PHI must be in (0, 90) degrees, got {phi:g}")
+                passive = (math.radians(phi), mobilisation)
+            option = "--fill-cover"
+            fill = Fill(args.fill_cover,
+                        DEFAULT_FILL_DENSITY if args.fill_density is None else args.fill_density,
+                        args.fill_inertia or DEFAULT_FILL_INERTIA, *passive)
+        except ValueError as exc:
+            text = str(exc)
+            if text.startswith("fill density"):
+                option = "--fill-density"
+            raise ValueError(f"{option}: {text}") from None
+    if left is None and right is None and fill is None:
+        return arch
+    try:
+        return Structure(arch, left, right, fill)
+    except ValueError as exc:
+        text = str(exc)
+        option = "--fill-cover"
+        for side in ("left", "right"):
+            if text.startswith(f"{side} pier"):
+                option = f"--pier-{side}" if getattr(args, f"pier_{side}") else "--piers"
+        raise ValueError(f"{option}: {text}") from None
+
+
+def arches_from_args(args: argparse.Namespace):
+    """``(nominal, arch)``: the arch before and after the optional irregular draw."""
+    from ..geometry import irregular_arch
+
+    nominal = arch = nominal_arch_from_args(args)
+    if args.epsilon is not None:
+        seed = 0 if args.seed is None else args.seed
+        if seed < 0:  # numpy's own message would not name the option
+            raise ValueError(f"--seed must be an integer >= 0, got {seed}")
+        if not hasattr(arch, "perturbed"):
+            raise ValueError("--epsilon draws an irregular arch around an arch with a "
+                             "centreline; a surveyed arch (--geometry with 'blocks') has none")
+        try:
+            arch = irregular_arch(arch, args.epsilon, rng=seed)
+        except ValueError as exc:
+            if str(exc).startswith("epsilon"):
+                raise
+            raise ValueError(f"{drawn(args)} is not a valid arch: {exc}; epsilon is too "
+                             f"large for this arch") from exc
+    elif args.seed is not None:
+        raise ValueError("--seed needs --epsilon (the seed of an irregular arch)")
+    return nominal, arch
+
+
+def arch_from_args(args: argparse.Namespace):
+    """The arch described by the geometry options (after the irregular draw, if any)."""
+    return arches_from_args(args)[1]
+
+
+def drawn(args: argparse.Namespace) -> str:
+    """How the command line names the irregular arch of ``--epsilon`` and ``--seed``."""
+    return (f"the irregular arch drawn with --epsilon {args.epsilon:g} (seed "
+            f"{0 if args.seed is None else args.seed})")
+
+
+@contextlib.contextmanager
+def analysing(args: argparse.Namespace):
+    """Name the irregular arch (epsilon and seed) in an error of its analysis."""
+    try:
+        yield
+    except ValueError as exc:
+        if getattr(args, "epsilon", None) is None:
+            raise
+        raise ValueError(f"{drawn(args)}: {exc}") from exc
+
+
+# ---------------------------------------------------------------------------------------------
+# the four-link model
+# ---------------------------------------------------------------------------------------------
+
+RESTITUTION_METAVAR = "computed|link|rigid-blocks|nominal|paper|elastic|VALUE"
+"""The restitution models (:data:`archquake.fourlink.impact.RESTITUTION_MODELS`) as the
+``--restitution`` options show them."""
+
+RESTITUTION_HELP = (
+    "'computed' from the momentum balance of the whole arch, 'link' from the paper's link-wise "
+    "rule (Housner's rule for the post-impact springing link), 'rigid-blocks' measured on the "
+    "rigid-block model of the arch (the kinetic energy its blocks keep at the impact; formerly "
+    "'blocks', still accepted), 'nominal' = the nominal arch's computed value (the paper's "
+    "practice for irregular arches), 'paper' = 0.875, 'elastic' = 1, or a number in (0, 1]")
+"""The restitution models, as the help of every ``--restitution`` option lists them."""
+
+
+def add_restitution_option(parser: argparse.ArgumentParser) -> None:
+    """``--restitution``: the restitution model of the four-link model."""
+    parser.add_argument(
+        "--restitution", default=DEFAULT_RESTITUTION, metavar=RESTITUTION_METAVAR,
+        help=f"coefficient of restitution c_v at impacts: {RESTITUTION_HELP} "
+             f"(default: %(default)s)")
+
+
+def dynamics_from_args(args: argparse.Namespace):
+    """The :class:`~archquake.fourlink.FourLinkModel` of the arch of the geometry options."""
+    from ..fourlink.dynamics import ArchDynamics
+    from ..fourlink.impact import check_restitution_model
+
+    nominal, arch = arches_from_args(args)
+    model = check_restitution_model(args.restitution)  # its error names --restitution alone
+    with analysing(args):
+        return ArchDynamics.from_arch(arch, model, nominal)
+
+
+# ---------------------------------------------------------------------------------------------
+# the rigid-block model
+# ---------------------------------------------------------------------------------------------
+
+
+def add_rigid_block_options(parser: argparse.ArgumentParser, *, time_step: bool = True) -> None:
+    """``--friction`` and (unless ``time_step=False``) ``--time-step`` of the rigid-block
+    model."""
+    parser.add_argument("--friction", type=float, default=DEFAULT_FRICTION, metavar="MU",
+                        help="Coulomb friction coefficient of the joints of the rigid-block "
+                             "model, >= 0 (default: %(default)s)")
+    if time_step:
+        parser.add_argument("--time-step", type=float, default=DEFAULT_TIME_STEP, metavar="H",
+                            help="time step of the rigid-block model [s] (default: "
+                                 "%(default)s)")
+
+
+def block_settings_from_args(args: argparse.Namespace):
+    """The :class:`~archquake.rigid_blocks.BlockSettings` of ``--friction`` and
+    ``--time-step``."""
+    from ..rigid_blocks import BlockSettings
+
+    return BlockSettings(friction=args.friction, time_step=args.time_step)
+
+
+# ---------------------------------------------------------------------------------------------
+# which model, and how a study searches its grid
+# ---------------------------------------------------------------------------------------------
+
+
+def model_name(text: str) -> str:
+    """The canonical name of ``--model`` (:func:`archquake.models.check_model`)."""
+    from ..models import check_model
+
+    try:
+        return check_model(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc).replace("model must", "must")) from None
+
+
+def add_model_options(parser: argparse.ArgumentParser, *, search: bool = True) -> None:
+    """``--model`` (four-link or rigid-blocks) and, for a study, ``--search`` and ``--stride``
+    (:mod:`archquake.studies.strategies`)."""
+    group = parser.add_argument_group("model and search")
+    group.add_argument("--model", type=model_name, default=DEFAULT_MODEL,
+                       metavar="four-link|rigid-blocks",
+                       help="the dynamic model: the paper's four-link mechanism, or every "
+                            "voussoir a rigid block with Coulomb friction (the trusted one for "
+                            "short pulses; 'dem' and 'blocks' are accepted) (default: "
+                            "%(default)s)")
+    if search:
+        add_search_options(group)
+
+
+def add_search_options(group) -> None:
+    """``--search`` and ``--stride``: how a study searches each line of its grid
+    (:mod:`archquake.studies.strategies`)."""
+    group.add_argument("--search", choices=SEARCHES, default=None,
+                       help="how each line of the grid is searched: every point, a coarse scan "
+                            "with bisection of every change, or that screened by the four-link "
+                            "model with the stretches whose outcome is not smooth analysed "
+                            "point by point (default: exhaustive for the four-link model, "
+                            "screened for the rigid blocks)")
+    group.add_argument("--stride", type=int, default=None, metavar="N",
+                       help=f"grid steps between the coarse points of bisection and screened "
+                            f"(default: {DEFAULT_STRIDE} amplitudes, {DEFAULT_LEVEL_STRIDE} "
+                            f"levels of a record-based study)")
+
+
+def model_from_args(args: argparse.Namespace):
+    """The model of ``--model`` for the arch of the geometry options: the four-link model with
+    ``--restitution``, or the rigid blocks with ``--friction`` and ``--time-step``."""
+    if args.model == "four-link":
+        return dynamics_from_args(args)
+    from ..rigid_blocks import RigidBlockModel
+
+    arch = arch_from_args(args)
+    with analysing(args):
+        return RigidBlockModel(arch, block_settings_from_args(args))
+
+
+# ---------------------------------------------------------------------------------------------
+# lists of values
+# ---------------------------------------------------------------------------------------------
+
+
+def range_text(values: tuple[float, float, float]) -> str:
+    """``start:stop:step`` of a range of :mod:`archquake.defaults`, as an option's default."""
+    return ":".join(f"{v:g}" for v in values)
+
+
+def parse_values(text: str, name: str) -> list[float]:
+    """Values of a list option: comma-separated numbers and ranges ``start:stop:step``.
+
+    A range includes ``stop`` when a step lands within ``step/2`` of it
+    (:func:`archquake.studies.failure_domain.inclusive_range`); ``"0.4,0.5"`` and
+    ``"0.2:1.0:0.01"`` and ``"0.1:0.3:0.1,0.5"`` are valid.
+    """
+    from ..studies.failure_domain import inclusive_range
+
+    values: list[float] = []
+    for part in (p.strip() for p in str(text).split(",")):
+        if not part:
+            continue
+        pieces = part.split(":")
+        try:
+            numbers = [float(x) for x in pieces]
+        except ValueError:
+            raise ValueError(f"{name}: cannot read {part!r}; give numbers separated by commas "
+                             "or a range start:stop:step") from None
+        if len(numbers) == 1:
+            values.append(numbers[0])
+        elif len(numbers) == 3:
+            try:
+                values.extend(inclusive_range(*numbers).tolist())
+            except ValueError as exc:
+                raise ValueError(f"{name}: {exc}") from None
+        else:
+            raise ValueError(f"{name}: a range is start:stop:step, got {part!r}")
+    if not values:
+        raise ValueError(f"{name} must not be empty")
+    if not all(math.isfinite(v) for v in values):
+        raise ValueError(f"{name} must be finite numbers, got {values}")
+    return values
+
+
+# ---------------------------------------------------------------------------------------------
+# execution and output
+# ---------------------------------------------------------------------------------------------
+
+
+def add_workers_option(parser, *, help: str) -> None:
+    """``--workers N``: local worker processes (checked by :func:`check_workers` for every
+    command)."""
+    parser.add_argument("--workers", type=int, default=None, metavar="N", help=help)
+
+
+def add_execution_options(parser: argparse.ArgumentParser) -> None:
+    """``--workers`` or ``--scheduler``, and ``--resume``: how a study runs."""
+    run = parser.add_mutually_exclusive_group()
+    add_workers_option(run, help="local worker processes, at most 4 per CPU (default: 1, run "
+                                 "in this process)")
+    run.add_argument("--scheduler", metavar="tcp://HOST:PORT",
+                     help="run the chunks on the Dask cluster of this scheduler")
+    parser.add_argument("--resume", action="store_true",
+                        help="continue the interrupted study in --out (same settings)")
+
+
+def check_workers(workers: int | None) -> int | None:
+    """The ``--workers`` value of any command, checked: None or 1 (run in this process) ->
+    None. At most 4 processes per CPU of this machine: more would only share them."""
+    cpus = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    most = 4 * (cpus or 1)
+    if workers is not None and not 1 <= workers <= most:
+        raise ValueError(f"--workers must be an integer in [1, {most}] (4 per CPU of this "
+                         f"machine: more processes would only share them, each with its own "
+                         f"memory), got {workers}")
+    return None if workers in (None, 1) else workers
+
+
+def add_samples_option(parser: argparse.ArgumentParser) -> None:
+    """``--samples``: the number h of irregular arches of a study."""
+    parser.add_argument("--samples", type=int, default=STUDY_SAMPLE_SIZE,
+                        help=f"number h of irregular arches analysed dynamically, at most "
+                             f"{MAX_SAMPLES} (default: %(default)s)")
+
+
+def add_study_output_options(parser: argparse.ArgumentParser) -> None:
+    """``--out``, how the study runs (``--workers``/``--scheduler``, ``--resume``),
+    ``--plot-dir``, ``--no-progress`` and ``--json``."""
+    parser.add_argument("--out", required=True, metavar="DIR",
+                        help="study directory (new or empty, or an interrupted study with "
+                             "--resume)")
+    add_execution_options(parser)
+    parser.add_argument("--plot-dir", metavar="DIR",
+                        help="write the figures of the study as PNG files here: the "
+                             "fragility curves and surface, or with records the fragility "
+                             "curve and the incremental view")
+    add_progress_option(parser, "no progress bars")
+    add_json_option(parser, "print the summary as JSON")
+
+
+def add_json_option(parser, help: str = "machine-readable output") -> None:
+    """``--json``: machine-readable output."""
+    parser.add_argument("--json", action="store_true", help=help)
+
+
+def add_plot_option(parser, help: str) -> None:
+    """``--plot FILE.png``: a figure."""
+    parser.add_argument("--plot", metavar="FILE.png", help=help)
+
+
+def add_progress_option(parser, help: str = "no progress bar on stderr") -> None:
+    """``--no-progress``."""
+    parser.add_argument("--no-progress", action="store_true", help=help)
+
+
+# ---------------------------------------------------------------------------------------------
+# one ground motion
+# ---------------------------------------------------------------------------------------------
+
+STOCHASTIC_PARAMETERS = ("seed", "arias_intensity", "significant_duration", "midpoint_time",
+                         "filter_frequency", "filter_frequency_rate", "filter_damping",
+                         "high_pass_frequency", "dt", "duration")
+"""Parameters of ``--motion stochastic`` (see :func:`archquake.ground_motion.stochastic`)."""
+
+
+def add_motion_options(parser: argparse.ArgumentParser) -> None:
+    """Options that define one ground motion (read by :func:`motion_from_args`)."""
+    m = parser.add_argument_group("ground motion")
+    # no argparse defaults (motion_from_args applies them), so that an option given where it
+    # does not apply (with --record, with --phi0) can be refused instead of ignored
+    m.add_argument("--motion", choices=ANALYTIC_GROUND_MOTIONS + ("record", "stochastic"),
+                   default=None, metavar="NAME",
+                   help="oppenheim (a for t_p then -a/2 for 2 t_p), rectangular, sine, "
+                        "harmonic, ricker, ricker-antisymmetric, cycloidal-a, cycloidal-b, "
+                        "cycloidal-c, mavroeidis-papageorgiou, record (--record FILE) or "
+                        f"stochastic (Rezaeian-Der Kiureghian model) (default: {DEFAULT_MOTION})")
+    m.add_argument("--amplitude", type=float, default=None,
+                   help=f"signed peak acceleration of a pulse [g], within "
+                        f"+-{MAX_ACCELERATION_G:g}; -1 starts Mech-l "
+                        f"(default: {DEFAULT_PULSE[0]})")
+    m.add_argument("--duration", type=float, default=None,
+                   help="time scale of a pulse [s]: its duration t_p (oppenheim, rectangular) "
+                        f"or its period (the others) (default: {DEFAULT_PULSE[1]})")
+    m.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
+                   help="a parameter of the chosen motion (repeatable): cycles (harmonic), n "
+                        "(cycloidal-c), gamma and phase [rad] (mavroeidis-papageorgiou), seed "
+                        "and the model parameters of stochastic (arias_intensity [m/s], "
+                        "significant_duration [s], midpoint_time [s], filter_frequency [Hz], "
+                        "filter_frequency_rate [Hz/s], filter_damping, high_pass_frequency "
+                        "[Hz], dt [s], duration [s])")
+    m.add_argument("--cycles", type=float, default=None,
+                   help=f"cycles of the harmonic motion, at most {MAX_CYCLES} (same as --param "
+                        f"cycles=N)")
+    m.add_argument("--record", metavar="FILE",
+                   help="accelerogram: two-column CSV (time [s], acceleration [g]), PEER NGA "
+                        ".AT2 or ESM ASCII (implies --motion record)")
+    m.add_argument("--scale-to", type=float, default=None, metavar="PGA",
+                   help="scale the record or stochastic motion to this peak ground "
+                        "acceleration [g]")
+    m.add_argument("--reverse", action="store_true",
+                   help="apply the motion with its sign flipped (the other polarity, -xg''(t))")
+
+
+def motion_parameters(args: argparse.Namespace, allowed) -> dict[str, float]:
+    """``--param NAME=VALUE`` (and ``--cycles``) as ``{name: value}``, checked against
+    ``allowed``."""
+    params: dict[str, float] = {}
+    if args.cycles is not None:
+        if "cycles" not in allowed:
+            raise ValueError(f"--cycles applies to --motion harmonic, not {args.motion}")
+        params["cycles"] = args.cycles
+    for item in args.param:
+        name, sep, text = item.partition("=")
+        name = name.strip()
+        if not sep or not name:
+            raise ValueError(f"--param must be NAME=VALUE, got {item!r}")
+        if name not in allowed:
+            options = ", ".join(allowed) if allowed else "none"
+            raise ValueError(f"--param {name} does not apply to --motion {args.motion}; its "
+                             f"parameters: {options}")
+        try:
+            value = float(text)
+        except ValueError:
+            raise ValueError(f"--param {name}: {text!r} is not a number") from None
+        if name in params:
+            raise ValueError(f"--param {name} is given twice")
+        params[name] = value
+    return params
+
+
+def motion_from_args(args: argparse.Namespace):
+    """The ground motion of the motion options (reversed with ``--reverse``)."""
+    from ..geometry import GRAVITY
+    from ..ground_motion import ground_motion, read_record, scale_to_im, shape_parameters
+
+    def refuse(option, value, what):
+        if value is not None:
+            raise ValueError(f"{option} applies to an analytic pulse, not to {what}")
+
+    if args.motion is None and not args.record:
+        args.motion = DEFAULT_MOTION
+    if args.record or args.motion == "record":
+        if not args.record:
+            raise ValueError("--motion record needs --record FILE")
+        if args.motion not in (None, "record"):
+            raise ValueError(f"--record FILE is a recorded motion; it cannot be combined with "
+                             f"--motion {args.motion}")
+        args.motion = "record"
+        refuse("--amplitude", args.amplitude, "a record (use --scale-to PGA)")
+        refuse("--duration", args.duration, "a record")
+        motion_parameters(args, ())
+        motion = read_record(args.record, scale_to=args.scale_to)
+    elif args.motion == "stochastic":
+        refuse("--amplitude", args.amplitude, "a stochastic motion (use --scale-to PGA)")
+        refuse("--duration", args.duration, "a stochastic motion (use --param duration=...)")
+        motion = ground_motion("stochastic", **motion_parameters(args, STOCHASTIC_PARAMETERS))
+        if args.scale_to is not None:
+            try:
+                motion = scale_to_im(motion, "pga", args.scale_to)
+            except ValueError as exc:
+                raise ValueError(f"--scale-to: {exc}") from None
+    else:
+        if args.scale_to is not None:
+            raise ValueError("--scale-to applies to a recorded accelerogram (--record FILE) or "
+                             "a stochastic motion; a pulse takes --amplitude")
+        amplitude = DEFAULT_PULSE[0] if args.amplitude is None else args.amplitude
+        duration = DEFAULT_PULSE[1] if args.duration is None else args.duration
+        if not (math.isfinite(amplitude) and abs(amplitude) <= MAX_ACCELERATION_G):
+            # in the option's unit: the library sees m/s^2
+            raise ValueError(f"--amplitude must be a finite acceleration within "
+                             f"+-{MAX_ACCELERATION_G:g} g, got {amplitude:g}")
+        params = motion_parameters(args, tuple(shape_parameters(args.motion)))
+        motion = ground_motion(args.motion, amplitude * GRAVITY, duration, **params)
+    return motion.reversed() if args.reverse else motion
