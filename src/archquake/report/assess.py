@@ -266,15 +266,18 @@ def regenerate_command(out: Path, record: dict, settings: AssessmentSettings) ->
     else:
         note = ("The synthetic records are drawn again when the built-in ones are not "
                 "installed.")
-    if settings.epsilon != AssessmentSettings().epsilon:
-        words += ["--epsilon", f"{settings.epsilon:g}"]
-    if settings.sa_period is not None:
-        words += ["--sa-period", f"{settings.sa_period:g}"]
+    defaults = AssessmentSettings()
+    for name in ("epsilon", "seed", "restitution", "friction", "sa_period"):
+        value = getattr(settings, name)
+        if value != getattr(defaults, name):
+            words += [f"--{name.replace('_', '-')}", f"{value:g}" if isinstance(value, float)
+                      else str(value)]
     if settings.quick:
         words.append("--quick")
     words += ["--out", str(out.resolve())]
     base = (AssessmentSettings.quick_settings if settings.quick else AssessmentSettings)(
-        epsilon=settings.epsilon, sa_period=settings.sa_period)
+        epsilon=settings.epsilon, seed=settings.seed, restitution=settings.restitution,
+        friction=settings.friction, sa_period=settings.sa_period)
     if base.to_dict() != settings.to_dict():
         changed = [k for k, v in settings.to_dict().items() if base.to_dict()[k] != v]
         note = (note + " " if note else "") + (
