@@ -66,10 +66,11 @@ def run(args: argparse.Namespace) -> int:
                     progress=not args.no_progress, resume=args.resume, settings=settings,
                     command=command)
     total = result.results["timings"]["total"]
+    figures = sum(f.endswith(".png") for f in result.files)
+    nrml = sum(f.endswith(".xml") for f in result.files)
     print(result.verdict)
     print(f"report written to {result.directory / 'report.html'} (also report.md, "
-          f"results.json, {sum(f.endswith('.png') for f in result.files)} figures"
-          + (f", {sum(f.endswith('.xml') for f in result.files)} NRML files"
-             if any(f.endswith(".xml") for f in result.files) else "")
+          f"results.json, {figures} figure{'s' if figures != 1 else ''}"
+          + (f", {nrml} NRML file{'s' if nrml != 1 else ''}" if nrml else "")
           + f") in {total:.1f} s")
     return 0

@@ -70,8 +70,9 @@ def verdict_text(results: dict) -> str:
     verdict, safety = results["verdict"], results["safety"]
     factor = _factor_text(safety) or _factor_text(safety.get("thickness") or {})
     if not verdict["stands"]:
-        text = (f"VERDICT: CANNOT STAND. The {verdict['part'] or 'structure'} cannot carry its "
-                f"own weight: {verdict['reason']}.")
+        reason = verdict["reason"]
+        text = (f"VERDICT: CANNOT STAND (the {verdict['part'] or 'structure'}). "
+                f"{reason[:1].upper()}{reason[1:]}.")
         if factor:
             text += f" Its {factor}."
         return text + " No seismic capacity exists; the assessment stops here."
