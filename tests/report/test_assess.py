@@ -13,6 +13,7 @@ import html
 import json
 import math
 import re
+import shlex
 import shutil
 import time
 import xml.etree.ElementTree as ET
@@ -295,18 +296,21 @@ def test_the_written_structure_regenerates_the_same_structure(quick):
 
 # ------------------------------------------------------------------------------ resume
 def test_an_assessment_resumes_and_refuses_another(quick, tmp_path):
+    """The command the report gives regenerates it (resuming: every study is kept), and a
+    resume with other settings, or a new assessment in the same directory, is refused."""
     out = tmp_path / "report"
     shutil.copytree(quick["out"], out)
     for name in ("report.html", "results.json"):
         (out / name).unlink()
-    settings = AssessmentSettings.quick_settings()
-    again = assess(pointed_arch(), records=quick["records"], out_dir=out, resume=True,
-                   progress=False, settings=settings)
-    ours, theirs = again.results, quick["results"]
+    command = quick["results"]["command"]["regenerate"].replace(str(quick["out"]), str(out))
+    assert main([*shlex.split(command)[1:], "--no-progress"]) == 0
+    ours = json.loads((out / "results.json").read_text())
+    theirs = quick["results"]
     assert ours["records"]["ims"] == theirs["records"]["ims"]
     assert ours["pulses"]["rows"] == theirs["pulses"]["rows"]
     assert ours["irregularity"]["durations"] == theirs["irregularity"]["durations"]
     assert ours["background"]["rigid-block failure domain"] == "kept from the run resumed"
+    settings = AssessmentSettings.quick_settings()
     with pytest.raises(ValueError, match="setting 'epsilon' differs"):
         assess(pointed_arch(), records=quick["records"], out_dir=out, resume=True,
                progress=False, settings=settings.with_changes(epsilon=0.2))

@@ -240,8 +240,9 @@ def _keep(out: Path, name: str, key: dict, value) -> None:
 
 # ------------------------------------------------------------------------------ the command
 def regenerate_command(out: Path, record: dict, settings: AssessmentSettings) -> tuple[str, str]:
-    """The command that regenerates the report from the files the assessment wrote, and a note
-    on what it cannot say.
+    """The command that regenerates the report from the files the assessment wrote (with
+    ``--resume``: the finished studies are reused, or computed again where they are gone), and
+    a note on what it cannot say.
 
     Parameters
     ----------
@@ -274,7 +275,7 @@ def regenerate_command(out: Path, record: dict, settings: AssessmentSettings) ->
                       else str(value)]
     if settings.quick:
         words.append("--quick")
-    words += ["--out", str(out.resolve())]
+    words += ["--out", str(out.resolve()), "--resume"]
     base = (AssessmentSettings.quick_settings if settings.quick else AssessmentSettings)(
         epsilon=settings.epsilon, seed=settings.seed, restitution=settings.restitution,
         friction=settings.friction, sa_period=settings.sa_period)

@@ -136,8 +136,15 @@ def domain_figure(pulses):
     ax.set_title(f"Failure domain, {model}, first pulse {sign}a g", fontsize=10)
     low, high = ax.get_ylim()
     if high > 20.0 * low > 0.0:  # the failure curves near k would be a line at the bottom
+        from matplotlib.ticker import FixedLocator, NullFormatter, ScalarFormatter
+
         ax.set_yscale("log")
         ax.set_ylim(low, high)
+        ticks = [t for t in (0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0)
+                 if low <= t <= high]
+        ax.yaxis.set_major_locator(FixedLocator(ticks))
+        ax.yaxis.set_major_formatter(ScalarFormatter())
+        ax.yaxis.set_minor_formatter(NullFormatter())
         ax.set_ylabel("pulse amplitude |$\\ddot{x}_g$| [g] (logarithmic)")
     return fig
 
