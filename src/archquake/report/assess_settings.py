@@ -41,7 +41,7 @@ records, the kind of motion the paper studies (a pulse), when the ``records`` ex
 FALLBACK_RECORDS = 20
 """Ground motions of the stochastic suite used when no real records are at hand."""
 
-QUICK = {"duration_count": 4, "amplitude_points": 40, "domain_resolution_g": 1e-2,
+QUICK = {"duration_count": 4, "amplitude_points": 30, "domain_resolution_g": 2e-2,
          "fragility_sample_size": 8, "limit_sample_size": 100,
          "fragility_amplitude_points": 21, "record_sample_size": 4, "record_levels": 6,
          "record_count": 6, "bootstrap": 50, "quick": True}
