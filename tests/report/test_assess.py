@@ -190,6 +190,44 @@ def test_record_fragility_is_that_of_run_record_fragility(quick):
         entry["lognormal"]["median"], rel=1e-12)
 
 
+def test_the_structure_alone_gets_the_nominal_part_of_the_record_study(quick):
+    """A structure without irregular arches around it (a surveyed arch) gets the stripes, fit
+    and bootstrap band the record-based study gives its nominal arch."""
+    from archquake.ground_motion import RecordSuite
+    from archquake.report.assess_parts import structure_stripes
+    from archquake.studies.record_fragility import load_record_fragility
+
+    r = quick["results"]
+    study = load_record_fragility(quick["out"] / "records_pga")
+    model = model_for(pointed_arch(), "four-link", restitution=r["settings"]["restitution"])
+    stripes = structure_stripes(model, RecordSuite.from_paths(quick["records"]), "pga",
+                                study.levels, bootstrap=r["settings"]["bootstrap"],
+                                seed=r["settings"]["seed"])
+    assert np.array_equal(stripes.collapsed, study.nominal_collapsed)
+    assert np.array_equal(stripes.probability, study.nominal_probability)
+    if study.nominal_lognormal is None:
+        assert stripes.lognormal is None
+    else:
+        assert stripes.lognormal.median == study.nominal_lognormal.median
+        assert stripes.lognormal.dispersion == study.nominal_lognormal.dispersion
+        assert np.array_equal(stripes.band.upper, study.nominal_band.upper)
+
+
+@pytest.mark.slow
+def test_a_surveyed_arch_gets_the_fragility_of_the_structure_alone(quick, tmp_path):
+    from archquake.geometry import surveyed_arch
+
+    arch = surveyed_arch([oppenheim().outline(i, 60)[:-1] for i in range(7)])
+    result = assess(arch, records=quick["records"], quick=True, out_dir=tmp_path / "report",
+                    progress=False)
+    r = result.results
+    assert r["irregularity"]["skipped"].startswith("irregular arches are drawn around")
+    entry = r["records"]["ims"]["pga"]
+    assert entry["structure_only"] and entry["lognormal"]["median"] is None
+    assert entry["nominal_lognormal"]["median"] is not None and entry["nrml"]
+    assert "no irregular arches" in (tmp_path / "report" / "report.md").read_text()
+
+
 def test_a_stripe_of_the_structure_is_what_direct_analyses_give(quick):
     """The structure's first collapsing level under one record, by single analyses."""
     r = quick["results"]

@@ -552,11 +552,7 @@ def _records(structure, settings, suite, note: str, model, out: Path, resume: bo
         with steps("records"):
             return {"skipped": "the four-link model, which the record-based study runs, does "
                                "not apply to this structure"}, None, None
-    if not parts.has_centreline(structure):
-        with steps("records"):
-            return {"skipped": "the record-based study draws irregular arches around an arch "
-                               "with a centreline (circular or shaped); a surveyed arch has "
-                               "none"}, None, None
+    irregular = parts.has_centreline(structure)
     with steps("records: where the stripes go"):
         key = {"suite": suite.to_dict(), "model": model.describe()}
         pilot = _kept(out, "record_pilot", key) if resume else None
@@ -580,12 +576,18 @@ def _records(structure, settings, suite, note: str, model, out: Path, resume: bo
     for im in settings.intensity_measures():
         with steps(f"records: {text.im_label(im)}"):
             levels = parts.stripe_levels(pilot, suite, im, settings.record_levels, weaker)
-            directory = out / RECORDS_DIR.format(im=parts.file_stem(im))
-            result = parts.record_study(structure, suite, im, levels, settings, directory,
-                                        resume)
-            nrml, why = parts.export_nrml(result, out, im)
+            if irregular:
+                directory = out / RECORDS_DIR.format(im=parts.file_stem(im))
+                result = parts.record_study(structure, suite, im, levels, settings, directory,
+                                            resume)
+                nrml, why = parts.export_nrml(result, out, im)
+                entries[im] = parts.record_summary(result, nrml, why)
+            else:  # no irregular arches around a surveyed arch: the structure alone
+                result = parts.structure_stripes(model, suite, im, levels,
+                                                 bootstrap=settings.bootstrap, seed=settings.seed)
+                nrml, why = parts.export_structure_nrml(result, out)
+                entries[im] = parts.structure_stripes_summary(result, nrml, why)
             studies[im] = result
-            entries[im] = parts.record_summary(result, nrml, why)
     pga, pgv = suite.intensities("pga"), suite.intensities("pgv")
     listed = []
     for meta, a, v, f in zip(suite.metadata, pga, pgv, pilot["first_factor"], strict=True):

@@ -196,15 +196,58 @@ def record_figure(results: dict):
     import matplotlib.pyplot as plt
 
     from ..plotting import plot_record_fragility
+    from .assess_parts import StructureStripes
 
     n = len(results)
     fig, axes = plt.subplots(1, n, figsize=(5.6 * n, 5.0), constrained_layout=True,
                              squeeze=False)
     for ax, (im, result) in zip(axes[0], results.items(), strict=True):
+        if isinstance(result, StructureStripes):
+            structure_stripes_axes(result, ax)
+            ax.set_title(f"{im.upper() if '(' not in im else 'Sa' + im[2:]}, the structure",
+                         fontsize=10)
+            continue
         plot_record_fragility(result, ax)
         ax.set_title(f"{im.upper() if '(' not in im else 'Sa' + im[2:]}, "
                      f"$\\varepsilon$ = {result.settings.epsilon:g}", fontsize=10)
     return fig
+
+
+def structure_stripes_axes(stripes, ax):
+    """The record-based fragility of the structure alone on ``ax``: the fraction of the records
+    that collapse it at each stripe, the lognormal fit and its bootstrap band.
+
+    Parameters
+    ----------
+    stripes : StructureStripes
+        :func:`archquake.report.assess_parts.structure_stripes`.
+    ax : matplotlib.axes.Axes
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    x = stripes.levels
+    if stripes.band is not None:
+        band = stripes.band
+        ax.fill_between(band.x, band.lower, band.upper, color="tab:blue", alpha=0.15,
+                        linewidth=0, label=f"{100 * band.confidence:.0f} % bootstrap band "
+                                           f"({band.resamples} resamples)")
+    if stripes.lognormal is not None:
+        fit = stripes.lognormal
+        fine = np.geomspace(x[0], x[-1], 300)
+        ax.plot(fine, fit(fine), "--", color="tab:blue", linewidth=1.3,
+                label=f"lognormal fit: median {fit.median:.3g} {stripes.unit}, "
+                      f"$\\beta$ = {fit.dispersion:.3f}")
+    ax.plot(x, stripes.probability, "s", color="tab:blue", markersize=4,
+            markerfacecolor="none", label=f"fraction of {len(stripes.records)} records")
+    ax.set_xlim(0.0, float(x[-1]) * 1.03)
+    ax.set_ylim(-0.02, 1.04)
+    ax.set_xlabel(f"{stripes.im} [{stripes.unit}]")
+    ax.set_ylabel("P(collapse | IM) [-]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="lower right", fontsize=7.5)
+    return ax
 
 
 def records_figure(names, pga_g, first_pga_g, k: float):
@@ -245,4 +288,4 @@ def records_figure(names, pga_g, first_pga_g, k: float):
 
 
 __all__ = ["domain_figure", "irregularity_figure", "mechanisms_figure", "record_figure",
-           "records_figure", "structure_figure"]
+           "records_figure", "structure_figure", "structure_stripes_axes"]

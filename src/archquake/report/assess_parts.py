@@ -1012,6 +1012,176 @@ def record_summary(result, nrml: str | None, nrml_note: str) -> dict:
     }
 
 
+@dataclass(frozen=True, eq=False)
+class StructureStripes:
+    """The record-based fragility of the structure alone (multiple-stripe analysis), for a
+    structure around which no irregular arches are drawn (a surveyed arch): the record-to-record
+    part of :func:`archquake.studies.record_fragility.run_record_fragility`, the same counts,
+    fit and bootstrap band as that study's nominal arch.
+
+    Attributes
+    ----------
+    im : str
+        The intensity measure.
+    unit : str
+        Its unit.
+    levels : ndarray, shape (L,)
+        The stripes [unit].
+    records : tuple of str
+        The records, in suite order.
+    collapsed : bool ndarray, shape (R, L, 2)
+        Collapse under every record, level and polarity (as recorded, reversed).
+    integrated : int
+        Analyses integrated (the others never reach the activation: at rest).
+    lognormal : LognormalFragility or None
+        The maximum-likelihood fit (:func:`archquake.studies.fits.lognormal_fit`).
+    band : BootstrapBand or None
+        Its bootstrap band over the records.
+    """
+
+    im: str
+    unit: str
+    levels: np.ndarray
+    records: tuple
+    collapsed: np.ndarray
+    integrated: int
+    lognormal: object
+    band: object
+
+    @property
+    def failed(self) -> np.ndarray:
+        """Collapse in either polarity, shape (R, L)."""
+        return self.collapsed.any(axis=-1)
+
+    @property
+    def probability(self) -> np.ndarray:
+        """The fraction of the records that collapse the structure at each level [-]."""
+        return self.failed.mean(axis=0)
+
+
+def structure_stripes(model, suite, im: str, levels, *, bootstrap: int, seed: int):
+    """The record-based fragility of the structure alone: every record of the suite scaled to
+    each level and applied in both polarities (:func:`archquake.studies.record_fragility.
+    record_outcomes`), a pair failing if it collapses in either; the lognormal fit by maximum
+    likelihood and its bootstrap band over the records, on the random stream the record-based
+    study gives its nominal arch (so the numbers are that study's for the same structure).
+
+    Parameters
+    ----------
+    model : FourLinkModel
+        The structure's model.
+    suite : RecordSuite
+    im : str
+        The intensity measure of the stripes.
+    levels : sequence of float
+        The stripes [the IM's unit].
+    bootstrap : int
+        Bootstrap resamples.
+    seed : int
+        Root seed of the bootstrap.
+
+    Returns
+    -------
+    StructureStripes
+    """
+    from ..ground_motion.suites import stripe_measure
+    from ..studies.fits import bootstrap_lognormal, lognormal_fit
+    from ..studies.record_fragility import BOOTSTRAP_KEY, DEFAULT_CONFIDENCE, record_outcomes
+
+    measure = stripe_measure(im)
+    x = np.asarray(levels, dtype=float)
+    factors = suite.scale_factors(measure.name, x)
+    collapsed = np.zeros((len(suite), x.size, 2), dtype=bool)
+    integrated = 0
+    for r, motion in enumerate(suite.motions(cached=True)):
+        out = record_outcomes(model, motion, np.concatenate([factors[r], -factors[r]]))
+        collapsed[r] = (out["status"].reshape(2, -1) == 2).T
+        integrated += int(out["integrated"].sum())
+    failed = collapsed.any(axis=-1)
+    fit = lognormal_fit(x, failed.shape[0], failed.sum(axis=0))
+    band = None
+    if fit is not None:
+        stream = np.random.default_rng(
+            np.random.SeedSequence(seed, spawn_key=(BOOTSTRAP_KEY,)).spawn(2)[1])
+        band = bootstrap_lognormal(x, failed, fit, resamples=bootstrap,
+                                   confidence=DEFAULT_CONFIDENCE, rng=stream)
+    return StructureStripes(measure.name, measure.unit, x, tuple(suite.names), collapsed,
+                            integrated, fit, band)
+
+
+def structure_stripes_summary(stripes: StructureStripes, nrml: str | None,
+                              nrml_note: str) -> dict:
+    """What ``results.json`` records of :func:`structure_stripes`, with the keys of
+    :func:`record_summary` (the irregular arches' fits and dispersions None).
+
+    Parameters
+    ----------
+    stripes : StructureStripes
+    nrml : str or None
+        File name of its NRML export.
+    nrml_note : str
+        Why there is none, or ``""``.
+
+    Returns
+    -------
+    dict
+    """
+    failed = stripes.failed
+    fit = stripes.lognormal
+    first = {}
+    for name, row in zip(stripes.records, failed, strict=True):
+        first[name] = float(stripes.levels[np.argmax(row)]) if row.any() else None
+    rtr = None if fit is None else float(fit.dispersion)
+    return {
+        "im": stripes.im, "unit": stripes.unit, "levels": stripes.levels.tolist(),
+        "records": len(stripes.records), "sample_size": 0, "analysed": 0, "arches": None,
+        "structure_only": True, "probability": None,
+        "nominal_probability": stripes.probability.tolist(),
+        "lognormal": {"median": None, "dispersion": None},
+        "nominal_lognormal": {"median": None if fit is None else float(fit.median),
+                              "dispersion": rtr},
+        "record_to_record": rtr, "geometric": None, "total": None, "srss": None,
+        "analyses": {"total": int(stripes.collapsed.size),
+                     "integrated": stripes.integrated,
+                     "at_rest_without_integration": int(stripes.collapsed.size)
+                     - stripes.integrated},
+        "first_collapse": first, "nrml": nrml, "nrml_note": nrml_note,
+    }
+
+
+def export_structure_nrml(stripes: StructureStripes, directory) -> tuple[str | None, str]:
+    """Write the fit of :func:`structure_stripes` as an OpenQuake NRML fragility model
+    (:func:`archquake.results_io.write_fragility_nrml`, id ``masonry-arch-nominal``).
+
+    Parameters
+    ----------
+    stripes : StructureStripes
+    directory : str or Path
+
+    Returns
+    -------
+    (str or None, str)
+        The file's name, or None and why no file was written.
+    """
+    from .._version import __version__
+    from ..results_io import write_fragility_nrml
+
+    if stripes.lognormal is None:
+        return None, ("no fragility function to export: the stripes admit no lognormal fit (no "
+                      "collapse, no survival, or a single step between two levels)")
+    name = f"fragility_{file_stem(stripes.im)}.xml"
+    x = stripes.levels
+    write_fragility_nrml(
+        Path(directory) / name,
+        [("masonry-arch-nominal", stripes.lognormal.median, stripes.lognormal.dispersion)],
+        im=stripes.im, min_iml=float(x[0]), max_iml=float(x[-1]),
+        description=f"archquake {__version__}: collapse of a masonry arch, lognormal fit by "
+                    f"maximum likelihood to multiple stripes of {stripes.im} ({x[0]:g} to "
+                    f"{x[-1]:g} {stripes.unit}), {len(stripes.records)} records x 2 "
+                    f"polarities; the structure alone")
+    return name, ""
+
+
 def export_nrml(result, directory, im: str) -> tuple[str | None, str]:
     """Write a record-based fragility's lognormal fits as an OpenQuake NRML fragility model
     (:meth:`~archquake.studies.record_fragility.RecordFragilityResult.export_nrml`) beside the
@@ -1043,4 +1213,6 @@ __all__ = ["DIRECTIONS", "PILOT_RANGE", "RESTITUTION_RULES", "FourLinkPart", "Ir
            "fragility_amplitudes", "has_centreline", "hinges_in_own_frame", "irregularity_part",
            "joint_name", "limit_part", "pulse_grid", "pulse_part", "record_pilot",
            "record_study", "record_summary", "rigid_block_domain", "safety_factor",
+           "StructureStripes", "export_structure_nrml", "structure_stripes",
+           "structure_stripes_summary",
            "select_records", "significant_disagreement", "stripe_levels"]

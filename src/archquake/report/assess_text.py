@@ -163,6 +163,10 @@ def summary_rows(results: dict) -> list[list[str]]:
         fit, nominal = entry["lognormal"], entry["nominal_lognormal"]
         if fit["median"] is None and nominal["median"] is None:
             value = "no lognormal fit (see Section 5)"
+        elif fit["median"] is None:
+            value = (f"median {number(nominal['median'], 3)} {entry['unit']}, beta "
+                     f"{number(nominal['dispersion'], 2)} (the structure; no irregular "
+                     f"arches)")
         else:
             value = (f"median {number(fit['median'], 3)} {entry['unit']}, beta "
                      f"{number(fit['dispersion'], 2)} (irregular arches); "
@@ -219,7 +223,8 @@ def agreement_text(results: dict) -> str:
                      + ", ".join(f"{d:.2f}" for d in durations) + " s")
     disagreeing = a.get("disagreeing", [])
     text += (". Where one collapses and the other does not is hatched in Fig. 3"
-             + (f" ({len(disagreeing)} durations)" if disagreeing else " (nowhere)") + ".")
+             + (f" ({len(disagreeing)} duration{'s' if len(disagreeing) != 1 else ''})"
+               if disagreeing else " (nowhere)") + ".")
     above = [r for r in pulses["rows"] if r["difference"] is not None
              and r["difference"] > a["band"]]
     if above:
@@ -469,20 +474,30 @@ def record_text(results: dict) -> str:
     if "skipped" in rec:
         return f"Not assessed: {rec['skipped']}."
     first = next(iter(rec["ims"].values()))
-    text = (f"Records: {rec['suite']['description']}." + (f" {rec['note']}" if rec["note"]
-                                                           else "")
-            + f" Multiple-stripe analysis: every record scaled to each of {len(first['levels'])} "
-              f"levels of each intensity measure and applied in both polarities to the structure "
-              f"and to h = {first['sample_size']} irregular arches (epsilon = "
-              f"{results['settings']['epsilon']:g}), with the four-link model; an "
-              f"arch-record pair fails if it collapses in either polarity. The levels span the "
-              f"PGA at which the records first collapse the structure (a pilot on a grid from k "
-              f"to 30 k), widened by 0.8 below (times {rec['weaker']:.2f}, the 5 % quantile of "
-              f"k~ over k, for the weaker irregular arches) and 1.25 above. Lognormal fragility "
-              f"functions P(collapse | IM) = Phi(ln(IM/median)/beta) fitted by maximum "
-              f"likelihood (Baker 2015): the total beta pools every pair; record-to-record is "
-              f"the structure's own fit; geometric, the spread of the irregular arches for the "
-              f"same records.")
+    alone = bool(first.get("structure_only"))
+    text = f"Records: {rec['suite']['description']}." + (f" {rec['note']}" if rec["note"]
+                                                          else "")
+    if alone:
+        text += (f" Multiple-stripe analysis of the structure alone (no irregular arches are "
+                 f"drawn around a surveyed arch): every record scaled to each of "
+                 f"{len(first['levels'])} levels of each intensity measure and applied in both "
+                 f"polarities, with the four-link model; a record fails the structure if it "
+                 f"collapses it in either polarity.")
+    else:
+        text += (f" Multiple-stripe analysis: every record scaled to each of "
+                 f"{len(first['levels'])} levels of each intensity measure and applied in both "
+                 f"polarities to the structure and to h = {first['sample_size']} irregular "
+                 f"arches (epsilon = {results['settings']['epsilon']:g}), with the four-link "
+                 f"model; an arch-record pair fails if it collapses in either polarity.")
+    text += (" The levels span the PGA at which the records first collapse the structure (a "
+             "pilot on a grid from k to 30 k), widened by 0.8 below"
+             + ("" if alone else f" (times {rec['weaker']:.2f}, the 5 % quantile of k~ over k, "
+                                 f"for the weaker irregular arches)")
+             + " and 1.25 above. Lognormal fragility functions P(collapse | IM) = "
+               "Phi(ln(IM/median)/beta) fitted by maximum likelihood (Baker 2015)"
+             + ("; beta is the record-to-record dispersion." if alone else
+                ": the total beta pools every pair; record-to-record is the structure's own "
+                "fit; geometric, the spread of the irregular arches for the same records."))
     check = rec.get("check")
     if check is not None:
         text += (f" A check of the four-link model by the rigid blocks: the structure itself "
@@ -495,8 +510,9 @@ def record_text(results: dict) -> str:
     files = [e["nrml"] for e in rec["ims"].values() if e["nrml"]]
     if files:
         text += (" The fits are written as OpenQuake NRML fragility models (continuous logncdf, "
-                 "limit state 'collapse'; 'masonry-arch' the irregular arches, "
-                 "'masonry-arch-nominal' the structure): " + ", ".join(files) + ".")
+                 "limit state 'collapse'; "
+                 + ("" if alone else "'masonry-arch' the irregular arches, ")
+                 + "'masonry-arch-nominal' the structure): " + ", ".join(files) + ".")
     return text
 
 
@@ -543,6 +559,13 @@ def record_caption(results: dict) -> str:
     """Caption of the record-based fragility."""
     rec = results["records"]
     first = next(iter(rec["ims"].values()))
+    if first.get("structure_only"):
+        return (f"P(collapse | IM) of the structure against {first['records']} ground motions "
+                f"in both polarities: squares, the fraction of the records that collapse it at "
+                f"each stripe; dashed, the lognormal fit and its 90 % bootstrap band. "
+                + "; ".join(f"{im_label(im)}: median {number(e['nominal_lognormal']['median'], 3)}"
+                            f" {e['unit']}, beta {number(e['record_to_record'], 3)}"
+                            for im, e in rec["ims"].items()) + ".")
     return (f"P(collapse | IM) against {first['records']} ground motions in both polarities: "
             f"black dots, the {first['analysed']} irregular arches; line, the lognormal fit and "
             f"(grey) its 90 % bootstrap band; blue squares and dashed line, the structure "
