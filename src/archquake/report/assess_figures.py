@@ -186,8 +186,9 @@ def record_figure(results: dict):
     Parameters
     ----------
     results : dict
-        By intensity measure: :class:`~archquake.studies.record_fragility.
-        RecordFragilityResult`.
+        By intensity measure: a
+        :class:`~archquake.studies.record_fragility.RecordFragilityResult` (or a
+        :class:`~archquake.report.assess_parts.StructureStripes`).
 
     Returns
     -------

@@ -17,9 +17,11 @@ by the library's own calls, so that a test can recompute any of them with the si
   :func:`pulse_part`: the failure domains under pulses of both models, and where they disagree;
 - :func:`irregularity_part`: the k~ sample and the fragility under pulses of the irregular
   arches (:func:`fragility_amplitudes` chooses the amplitudes);
-- :func:`select_records`, :func:`record_pilot`, :func:`stripe_levels`, :func:`record_part`:
-  the record-based fragility (multiple-stripe analysis) in each intensity measure, with its
-  OpenQuake NRML file.
+- :func:`select_records`, :func:`record_pilot`, :func:`stripe_levels`, :func:`record_study`,
+  :func:`record_summary`, :func:`export_nrml`, :func:`record_check`: the record-based
+  fragility (multiple-stripe analysis) in each intensity measure, with its OpenQuake NRML file,
+  and the rigid blocks' check under the records (:func:`structure_stripes` for a structure
+  without irregular arches around it).
 """
 
 from __future__ import annotations
@@ -283,8 +285,9 @@ class FourLinkPart:
 
 
 RESTITUTION_RULES = ("computed", "link", "rigid-blocks", "paper", "elastic")
-"""The restitution rules an assessment reports (:data:`archquake.fourlink.impact.
-RESTITUTION_MODELS`; ``"nominal"`` is ``"computed"`` for the structure itself)."""
+"""The restitution rules an assessment reports
+(:data:`archquake.fourlink.impact.RESTITUTION_MODELS`; ``"nominal"`` is ``"computed"`` for the
+structure itself)."""
 
 
 def four_link_part(structure, settings: AssessmentSettings) -> FourLinkPart:
@@ -836,8 +839,8 @@ def stripe_levels(pilot: dict, suite, im: str, count: int, weaker: float = 1.0
 def record_study(structure, suite, im: str, levels, settings: AssessmentSettings,
                  directory=None, resume: bool = False):
     """One record-based fragility (multiple-stripe analysis) of the structure and its irregular
-    arches, with the four-link model (:func:`archquake.studies.record_fragility.
-    run_record_fragility`).
+    arches, with the four-link model
+    (:func:`archquake.studies.record_fragility.run_record_fragility`).
 
     Parameters
     ----------
@@ -1061,10 +1064,11 @@ class StructureStripes:
 
 def structure_stripes(model, suite, im: str, levels, *, bootstrap: int, seed: int):
     """The record-based fragility of the structure alone: every record of the suite scaled to
-    each level and applied in both polarities (:func:`archquake.studies.record_fragility.
-    record_outcomes`), a pair failing if it collapses in either; the lognormal fit by maximum
-    likelihood and its bootstrap band over the records, on the random stream the record-based
-    study gives its nominal arch (so the numbers are that study's for the same structure).
+    each level and applied in both polarities
+    (:func:`archquake.studies.record_fragility.record_outcomes`), a pair failing if it
+    collapses in either; the lognormal fit by maximum likelihood and its bootstrap band over
+    the records, on the random stream the record-based study gives its nominal arch (so the
+    numbers are that study's for the same structure).
 
     Parameters
     ----------

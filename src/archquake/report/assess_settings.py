@@ -106,9 +106,9 @@ class AssessmentSettings:
     seed : int
         Root seed of the irregular arches (and of a synthetic suite), >= 0.
     restitution : str or float
-        Restitution model of the four-link model (:data:`archquake.fourlink.impact.
-        RESTITUTION_MODELS`, or an imposed c_v in (0, 1]); every irregular arch gets its own
-        with ``"computed"``.
+        Restitution model of the four-link model
+        (:data:`archquake.fourlink.impact.RESTITUTION_MODELS`, or an imposed c_v in (0, 1]);
+        every irregular arch gets its own with ``"computed"``.
     friction : float
         Coulomb friction coefficient of the rigid-block model's joints [-].
     sa_period : float or None
