@@ -18,6 +18,7 @@ EXPECTED_FIGURES = (
     "fig15_pulse_response_computed", "fig16_failure_domain", "fig17_fragility_tp0.40",
     "fig18_fragility_tp0.50", "fig19_fragility_tp0.60", "fig20_fragility_tp0.70",
     "fig21_fragility_surface", "record_fragility", "comparison_rigid_blocks",
+    "fig16_failure_domain_both_models", "fig17_20_fragility_both_models",
 )
 
 
@@ -225,3 +226,29 @@ def test_regression_results_json_unchanged_by_restructuring(report, data_dir):
     number here must be a deliberate change of physics, with the fixture regenerated."""
     _, results = report
     assert_same(load_fixture(data_dir), results)
+
+
+def test_both_models_section_comes_from_the_studies(report):
+    """The section that runs Figs. 16-20 with both models: its numbers are those of the
+    library's calls at the report's settings, and the text names the model that collapses."""
+    from archquake import model_for, oppenheim
+    from archquake.report.parts import rigid_block_fragility
+    from archquake.report.settings import ReproductionSettings
+    from archquake.studies.failure_domain import domain_of, inclusive_range
+
+    out, results = report
+    settings = ReproductionSettings.quick_settings()
+    both = results["two_models"]
+    grid = inclusive_range(0.30, settings.comparison_amplitude_max_g,
+                           settings.comparison_amplitude_step_g)
+    four_link = domain_of(model_for(oppenheim(), restitution=0.875),
+                          settings.comparison_durations, grid,
+                          resolution=settings.comparison_resolution_g, extend_to_g=None)
+    assert both["domain"]["four_link_failure_g"] == four_link.failure_accelerations_g.tolist()
+    assert both["domain"]["rigid_block_failure_g"] == [
+        row["rigid_block"] for row in results["comparison"]["rows"]]
+    rigid = rigid_block_fragility(settings)
+    assert np.array_equal(both["fragility"]["rigid_blocks"], rigid.probability)
+    assert both["fragility"]["search"] == "screened"
+    html = (out / "report.html").read_text()
+    assert "Both models in the paper" in html and "multi-fidelity" in html

@@ -335,6 +335,76 @@ def record_fragility(results: dict):
     return fig
 
 
+
+def two_model_domain(part):
+    """The four-link failure domain (the paper's c_v) with the rigid-block failure curve over it
+    and, hatched, where the two models disagree on collapse.
+
+    Parameters
+    ----------
+    part : TwoModelsPart
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib.pyplot as plt
+
+    from ..plotting import plot_disagreement, plot_failure_domain
+
+    fig, ax = plt.subplots(figsize=(8.0, 5.6), constrained_layout=True)
+    plot_failure_domain(part.four_link_domain, ax)
+    domain = part.rigid_domain
+    ax.plot(domain.durations, domain.failure_accelerations_g, "-s", color="tab:red",
+            markersize=4, linewidth=1.6, label="rigid-block model: failure curve", zorder=5)
+    handles, _ = ax.get_legend_handles_labels()
+    ax.legend(handles=handles, loc="upper right", fontsize=7, framealpha=0.9)
+    plot_disagreement(part.disagreement, ax)
+    ax.set_title("Failure domain by both models: the four-link model (shaded) and the rigid "
+                 "blocks (red)", fontsize=10)
+    return fig
+
+
+def two_model_fragility(summary: dict):
+    """P_F against the amplitude per pulse duration by both models on the same arches, the
+    four-link P_F of the whole sample, and the multi-fidelity estimate of the rigid blocks' P_F
+    of the whole sample.
+
+    Parameters
+    ----------
+    summary : dict
+        ``two_models["fragility"]`` of ``results.json``.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    durations = summary["durations"]
+    a = np.asarray(summary["amplitudes_g"])
+    fig, axes = plt.subplots(1, len(durations), figsize=(3.6 * len(durations), 3.9),
+                             sharey=True, constrained_layout=True, squeeze=False)
+    for i, (ax, tp) in enumerate(zip(axes[0], durations, strict=True)):
+        ax.step(a, np.asarray(summary["rigid_blocks"])[i], where="mid", color="tab:red",
+                linewidth=1.6, label=f"rigid blocks ({summary['arches_both']} arches)")
+        ax.step(a, np.asarray(summary["four_link_same_arches"])[i], where="mid",
+                color="black", linewidth=1.2, label="four-link, the same arches")
+        ax.plot(a, np.asarray(summary["four_link_all"])[i], ":", color="0.4", linewidth=1.2,
+                label=f"four-link, all {summary['arches_four_link']} arches")
+        ax.plot(a, np.asarray(summary["multifidelity"])[i], "--", color="tab:red",
+                linewidth=1.2, label="rigid blocks, multi-fidelity estimate (all arches)")
+        ax.set_title(f"t$_p$ = {tp:.2f} s", fontsize=10)
+        ax.set_xlabel("pulse amplitude [g]")
+        ax.grid(True, alpha=0.3)
+    axes[0][0].set_ylabel("P$_F$")
+    axes[0][0].set_ylim(-0.03, 1.03)
+    axes[0][-1].legend(loc="lower right", fontsize=7, framealpha=0.9)
+    return fig
+
+
 __all__ = ["DPI", "failure_domain", "fragility_curve", "fragility_surface", "free_vibration",
            "irregular_arches", "model_comparison", "nominal_arch", "plot_history",
-           "potential_energy", "pulse_response", "record_fragility", "save"]
+           "potential_energy", "pulse_response", "record_fragility", "save", "two_model_domain",
+           "two_model_fragility"]

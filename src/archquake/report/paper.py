@@ -47,7 +47,7 @@ from .settings import ReproductionSettings
 STEPS = ("limit analysis (Table 1)", "four-link mechanisms (Tables 2-3)",
          "free vibrations (Figs. 9-14)", "pulse responses (Fig. 15)", "failure domain (Fig. 16)",
          "fragility and k~ sample (Figs. 17-21)", "figures", "rigid blocks beside four links",
-         "record-based fragility")
+         "both models in the paper's study", "record-based fragility")
 """The steps of the reproduction, in the order they run (the rows of the report's run-time
 table)."""
 
@@ -160,6 +160,33 @@ def comparison_figure(directory, comparison: parts.ComparisonPart) -> Figure:
     return _figure(Path(directory), "comparison_rigid_blocks.png",
                    draw.model_comparison(comparison.comparison), "Rigid blocks beside four links",
                    text.comparison_caption(ok), ok)
+
+
+def two_models_figures(directory, both: parts.TwoModelsPart) -> dict:
+    """Draw and write the failure domain and the fragility curves by both models, with their
+    captions.
+
+    Parameters
+    ----------
+    directory : str or Path
+    both : TwoModelsPart
+
+    Returns
+    -------
+    dict
+        ``two_models_domain`` and ``two_models_fragility``
+        (:class:`~archquake.report.render.Figure`).
+    """
+    out = Path(directory)
+    return {
+        "two_models_domain": _figure(out, "fig16_failure_domain_both_models.png",
+                                     draw.two_model_domain(both), "Fig. 16, both models",
+                                     text.two_models_domain_caption(both.summary), None),
+        "two_models_fragility": _figure(out, "fig17_20_fragility_both_models.png",
+                                        draw.two_model_fragility(both.summary["fragility"]),
+                                        "Figs. 17-20, both models",
+                                        text.two_models_fragility_caption(both.summary), None),
+    }
 
 
 def record_fragility_figure(directory, record: parts.RecordFragilityPart) -> Figure:
@@ -278,6 +305,12 @@ def sections(results: dict, figures: dict, paper: dict) -> list[Section]:
             *(Paragraph(t) for t in text.comparison_text(c)),
             Table(header, text.comparison_rows(c)), figures["comparison"],
         ]))
+    if "two_models" in results:
+        out.append(Section("Both models in the paper's study (Figs. 16-20)", [
+            *(Paragraph(t) for t in text.two_models_text(results["two_models"],
+                                                          s["comparison_resolution_g"])),
+            figures["two_models_domain"], figures["two_models_fragility"],
+        ]))
     if "record_fragility" in results:
         out.append(Section("Record-based fragility (PGA, PGV)", [
             Paragraph(text.record_text(results["record_fragility"], s)),
@@ -334,6 +367,7 @@ def reproduce(out_dir, settings: ReproductionSettings | None = None, *,
     with Background.start(warm_up) as background:
         blocks = model_for(nominal, "rigid-blocks")
         curve = background.submit(parts.rigid_block_curve, blocks, settings)
+        rigid_fragility = background.submit(parts.rigid_block_fragility, settings)
         with steps("limit analysis (Table 1)"):
             arches = parts.paper_arches(settings, nominal)
             table1 = parts.limit_table(arches, paper)
@@ -357,20 +391,27 @@ def reproduce(out_dir, settings: ReproductionSettings | None = None, *,
         with steps("rigid blocks beside four links"):
             comparison = parts.model_comparison(settings, arches.nominal, blocks, curve.result())
             comparison_fig = comparison_figure(out, comparison)
+        with steps("both models in the paper's study"):
+            both = parts.two_models(settings, arches, cases, comparison, fragility,
+                                    rigid_fragility.result())
+            both_figs = two_models_figures(out, both)
         with steps("record-based fragility"):
             record = parts.record_fragility(settings, records.result())
             record_fig = record_fragility_figure(out, record)
-    figures = {**figures, "comparison": comparison_fig, "record_fragility": record_fig}
+    figures = {**figures, "comparison": comparison_fig, "record_fragility": record_fig,
+               **both_figs}
     t0 = time.perf_counter()
     flat = flat_figures(figures)
     timings = {**steps.timings, "report": 0.0, "total": time.perf_counter() - started}
     results = jsonable({
         "settings": settings.to_dict(), "environment": env, "timings": timings,
-        "background": {"rigid-block curve": comparison.run, "record studies": record.run},
+        "background": {"rigid-block curve": comparison.run, "record studies": record.run,
+                       "rigid-block fragility": both.run},
         "missing": [], "table1": table1, "table2": table2, "table3": table3,
         "restitution": restitution, "free_vibration": free.summary, "pulse": pulses.summary,
         "failure_domain": domain.summary, "limit_sample": fragility.limit_sample,
         "fragility": fragility.summary, "comparison": comparison.summary,
+        "two_models": both.summary,
         "record_fragility": record.summary,
         "figures": {stem: figure_record(f) for stem, f in flat.items()}})
     document = Document(TITLE, HEADING, sections(results, figures, paper))
@@ -384,4 +425,5 @@ def reproduce(out_dir, settings: ReproductionSettings | None = None, *,
 
 
 __all__ = ["HEADING", "STEPS", "TITLE", "Reproduction", "comparison_figure", "figure_record",
-           "flat_figures", "paper_figures", "record_fragility_figure", "reproduce", "sections"]
+           "flat_figures", "paper_figures", "record_fragility_figure", "reproduce", "sections",
+           "two_models_figures"]

@@ -876,10 +876,160 @@ def record_fragility(settings: ReproductionSettings,
     return RecordFragilityPart(studies.result, summaries, studies.describe())
 
 
+
+
+# ------------------------------------------------------------------------------ both models
+def rigid_block_fragility(settings: ReproductionSettings):
+    """The fragility study with the rigid-block model (a worker's task): the first
+    ``rigid_fragility_sample_size`` arches of the four-link study's sample, on its grid, with the
+    default search (:data:`archquake.defaults.DEFAULT_SEARCH`).
+
+    Parameters
+    ----------
+    settings : ReproductionSettings
+
+    Returns
+    -------
+    FragilityResult
+    """
+    from ..studies.failure_domain import inclusive_range
+    from ..studies.fragility import FragilitySettings, run_fragility
+
+    study = FragilitySettings(
+        sample_size=settings.rigid_fragility_sample_size, epsilon=settings.epsilon,
+        durations=settings.fragility_durations,
+        amplitudes_g=tuple(inclusive_range(settings.amplitude_min_g, settings.amplitude_max_g,
+                                           settings.amplitude_step_g).tolist()),
+        seed=settings.seed, limit_sample_size=2, model="rigid-blocks")
+    return run_fragility(study, backend="serial", progress=False)
+
+
+def _failed_arches(result) -> tuple[np.ndarray, np.ndarray]:
+    """``(failed[arch, duration, amplitude], analysed[arch])`` of a fragility study: an arch
+    fails where it collapses in either direction."""
+    table = result.table
+    h = result.settings.sample_size
+    nd, na = len(result.settings.durations), len(result.settings.amplitudes_g)
+    status = table["status"].to_numpy().reshape(h, 2, nd, na)
+    analysed = (table["excluded"].to_numpy().reshape(h, -1) == "").all(axis=1)
+    return np.any(status == 2, axis=1), analysed
+
+
+@dataclass(frozen=True, eq=False)
+class TwoModelsPart:
+    """The paper's failure domain and fragility with both models.
+
+    Attributes
+    ----------
+    four_link_domain : FailureDomain
+        The four-link model (the paper's c_v) over the comparison's durations and scan.
+    rigid_domain : FailureDomain
+        The rigid-block model over the same (the comparison's rigid-block curve).
+    disagreement : Disagreement
+        Where they disagree on collapse
+        (:func:`archquake.studies.comparison.domain_disagreement`).
+    rigid_fragility : FragilityResult
+        The rigid-block fragility study.
+    summary : dict
+        What ``results.json`` records.
+    run : dict
+        Where the rigid-block study ran and what it cost.
+    """
+
+    four_link_domain: object
+    rigid_domain: object
+    disagreement: object
+    rigid_fragility: object
+    summary: dict
+    run: dict
+
+
+def two_models(settings: ReproductionSettings, arches: Arches, cases: dict,
+               comparison: ComparisonPart, fragility: FragilityPart, rigid: TaskRun
+               ) -> TwoModelsPart:
+    r"""Fig. 16 and Figs. 17-20 with both models: where they disagree on collapse in (t_p, a),
+    and the fragility of the same arches by each, with a multi-fidelity estimate.
+
+    The multi-fidelity estimate of the rigid blocks' P_F over the four-link study's h arches is
+    the four-link P_F of all h arches corrected by the mean difference of the two models on the
+    m arches both analysed (a control variate with unit coefficient),
+
+    .. math::
+
+        \hat P_F^{RB} = P_F^{FL}(h) + \frac{1}{m}\sum_{i \le m}
+        \left(I^{RB}_i - I^{FL}_i\right),
+
+    unbiased for the rigid blocks' P_F of the sample, and more precise than the m rigid-block
+    arches alone where the two models' outcomes are correlated.
+
+    Parameters
+    ----------
+    settings : ReproductionSettings
+    arches : Arches
+        The nominal arch's four-link model.
+    cases : dict of str to RestitutionCase
+        ``"paper"``: the coefficient of restitution of the four-link runs.
+    comparison : ComparisonPart
+        Its rigid-block curve is the rigid-block failure domain.
+    fragility : FragilityPart
+        The four-link study.
+    rigid : TaskRun
+        :func:`rigid_block_fragility`, run elsewhere.
+
+    Returns
+    -------
+    TwoModelsPart
+    """
+    from ..studies.comparison import domain_disagreement
+    from ..studies.failure_domain import domain_of
+
+    rigid_domain = comparison.comparison.rigid_block
+    four_link = arches.nominal.with_restitution(cases["paper"].pair[0])
+    four_link_domain = domain_of(four_link, settings.comparison_durations,
+                                 comparison_grid(settings),
+                                 resolution=settings.comparison_resolution_g, extend_to_g=None)
+    gap = domain_disagreement(four_link_domain, rigid_domain)
+    result = rigid.result
+    m = result.settings.sample_size
+    fl_failed, fl_analysed = _failed_arches(fragility.result)
+    rb_failed, rb_analysed = _failed_arches(result)
+    both = fl_analysed[:m] & rb_analysed
+    p_fl_all = fl_failed[fl_analysed].mean(axis=0)
+    p_fl_same = fl_failed[:m][both].mean(axis=0)
+    p_rb_same = rb_failed[both].mean(axis=0)
+    estimate = np.clip(p_fl_all + (p_rb_same - p_fl_same), 0.0, 1.0)
+    difference = p_rb_same - p_fl_same
+    worst = np.unravel_index(int(np.argmax(np.abs(difference))), difference.shape)
+    table = result.table
+    summary = {
+        "domain": {"durations": list(gap.durations), "disagreement": gap.to_list(),
+                   "width_g": gap.width_g().tolist(),
+                   "four_link_failure_g": four_link_domain.failure_accelerations_g.tolist(),
+                   "rigid_block_failure_g": rigid_domain.failure_accelerations_g.tolist(),
+                   "restitution": list(cases["paper"].pair)},
+        "fragility": {
+            "arches_rigid_blocks": int(m), "arches_both": int(both.sum()),
+            "arches_four_link": int(fl_analysed.sum()),
+            "search": result.settings.search,
+            "analysed": int(table["analysed"].sum()), "grid_points": len(table),
+            "durations": list(result.settings.durations),
+            "amplitudes_g": list(result.settings.amplitudes_g),
+            "rigid_blocks": p_rb_same, "four_link_same_arches": p_fl_same,
+            "four_link_all": p_fl_all, "multifidelity": estimate,
+            "largest_difference": float(difference[worst]),
+            "largest_difference_at": {"duration": result.settings.durations[worst[0]],
+                                      "amplitude_g": result.settings.amplitudes_g[worst[1]]},
+        },
+    }
+    return TwoModelsPart(four_link_domain, rigid_domain, gap, result, summary,
+                         rigid.describe())
+
+
 __all__ = ["Arches", "ComparisonPart", "FailureDomainPart", "FragilityPart", "FreeVibrations",
-           "PulseResponses", "RecordFragilityPart", "RestitutionCase", "below_nominal",
-           "comparison_grid", "comparison_statistics", "domain_grid", "elastic_case",
-           "failure_domain", "fragility", "free_vibrations", "half_cycle_peaks", "limit_table",
-           "long_pulses_agree", "mechanism_tables", "model_comparison", "paper_arches",
-           "paper_q", "pulse_responses", "q_agrees", "record_fragility", "record_studies",
-           "restitution_cases", "restitution_summary", "rigid_block_curve"]
+           "PulseResponses", "RecordFragilityPart", "RestitutionCase", "TwoModelsPart",
+           "below_nominal", "comparison_grid", "comparison_statistics", "domain_grid",
+           "elastic_case", "failure_domain", "fragility", "free_vibrations", "half_cycle_peaks",
+           "limit_table", "long_pulses_agree", "mechanism_tables", "model_comparison",
+           "paper_arches", "paper_q", "pulse_responses", "q_agrees", "record_fragility",
+           "record_studies", "restitution_cases", "restitution_summary", "rigid_block_curve",
+           "rigid_block_fragility", "two_models"]

@@ -94,6 +94,10 @@ class ReproductionSettings:
         Stripe levels of the record-based fragility, PGA [g] and PGV [m/s].
     record_bootstrap : int
         Bootstrap resamples of the record-based fragility's bands.
+    rigid_fragility_sample_size : int
+        Arches of the fragility study with the rigid-block model (the first of the four-link
+        study's sample, whose fragility grid it shares): a reduced h, the rigid-block analyses
+        being about a thousand times as costly.
     quick : bool
         Reduced sizes for a smoke test (recorded in the report).
     """
@@ -121,13 +125,14 @@ class ReproductionSettings:
     record_levels_pga: tuple[float, ...] = RECORD_LEVELS["pga"]
     record_levels_pgv: tuple[float, ...] = RECORD_LEVELS["pgv"]
     record_bootstrap: int = 200
+    rigid_fragility_sample_size: int = 10
     quick: bool = False
 
     def __post_init__(self):
         if not (0.0 <= self.epsilon < 1.0):
             raise ValueError(f"epsilon must be in [0, 1), got {self.epsilon!r}")
         for name in ("fragility_sample_size", "limit_sample_size", "record_count",
-                     "record_sample_size"):
+                     "record_sample_size", "rigid_fragility_sample_size"):
             value = getattr(self, name)
             if isinstance(value, bool) or not float(value).is_integer() or value < 2:
                 raise ValueError(f"{name} must be an integer >= 2, got {value!r}")
@@ -174,7 +179,7 @@ class ReproductionSettings:
                 "domain_amplitude_step_g": 0.1, "domain_resolution_g": 5e-3,
                 "comparison_durations": (0.3, 0.7), "comparison_resolution_g": 0.01,
                 "record_count": 4, "record_sample_size": 4, "record_bootstrap": 50,
-                "quick": True}
+                "rigid_fragility_sample_size": 2, "quick": True}
         return cls(**{**base, **changes})
 
     def to_dict(self) -> dict:
