@@ -375,7 +375,7 @@ def assess(structure=None, *, records=None, suite: str | None = None,
         "settings": settings.to_dict(),
         "command": {"given": command, "regenerate": regenerate, "note": note},
     }
-    steps = Steps(9, progress=progress, desc="assess")
+    steps = Steps(8 + len(settings.intensity_measures()), progress=progress, desc="assess")
     try:
         computed = _compute(structure, settings, record_suite, suite_note, out, resume,
                             results, steps)
@@ -627,7 +627,8 @@ def _summary(results: dict) -> dict:
     out = {"stands": True, "k": results["limit"]["k"],
            "safety_factor": results["safety"].get("factor")}
     rows = results["pulses"]["rows"]
-    both = [r for r in rows if r["difference"] is not None]
+    applies = bool((results.get("four_link") or {}).get("applies"))
+    both = [r for r in rows if (r["difference"] if applies else r["rigid_blocks"]) is not None]
     if rows:
         out["pulse_long"] = rows[-1]
         shorter = [r for r in both if r["duration"] < rows[-1]["duration"]]

@@ -88,10 +88,14 @@ def verdict_text(results: dict) -> str:
     return text
 
 
-def _pulse_cells(row: dict, scanned: float) -> list[str]:
+def _pulse_cells(row: dict, scanned: float, four_link: bool = True) -> list[str]:
     fl, rb = row["four_link"], row["rigid_blocks"]
-    value = (f"{'> ' + format(scanned, 'g') + ' g' if fl is None else _g(fl)} (four-link), "
-             f"{'> ' + format(scanned, 'g') + ' g' if rb is None else _g(rb)} (rigid blocks)")
+    beyond = f"> {scanned:g} g"
+    if not four_link:
+        return [f"{beyond if rb is None else _g(rb)} (rigid blocks)", "rigid-block model",
+                "the four-link model does not apply"]
+    value = (f"{beyond if fl is None else _g(fl)} (four-link), "
+             f"{beyond if rb is None else _g(rb)} (rigid blocks)")
     return [value, "both models", difference_words(row["difference"])]
 
 
@@ -138,11 +142,12 @@ def summary_rows(results: dict) -> list[list[str]]:
                  f"{limit['k']:.3f} g (k_l = {limit['k_l']:.3f}, k_r = {limit['k_r']:.3f})",
                  "limit analysis (both models start to move there)", "-"])
     scanned = results["pulses"].get("amplitudes_g", [0.0])[-1]
+    applies = bool((results.get("four_link") or {}).get("applies"))
     for key, what in (("pulse_long", "long"), ("pulse_short", "short")):
         row = s.get(key)
         if row is not None:
             rows.append([f"collapse under a {what} pulse (Oppenheim's, t_p = "
-                         f"{row['duration']:.2f} s)", *_pulse_cells(row, scanned)])
+                         f"{row['duration']:.2f} s)", *_pulse_cells(row, scanned, applies)])
     irregular = s.get("irregular")
     if irregular is not None:
         q = irregular.get("k_5")
