@@ -504,7 +504,7 @@ def _compute(structure, settings: AssessmentSettings, suite, suite_note: str, ou
                 _keep(out, "rigid_blocks_domain", rb_key, parts.domain_to_dict(rigid))
                 background_runs["rigid-block failure domain"] = run.describe()
             if check is not None:
-                key, level, pending = check
+                key, level, pending, checked = check
                 if isinstance(pending, list):
                     background_runs["rigid blocks under the records"] = ("kept from the run "
                                                                          "resumed")
@@ -514,7 +514,7 @@ def _compute(structure, settings: AssessmentSettings, suite, suite_note: str, ou
                     statuses = run.result
                     _keep(out, "record_check", key, statuses)
                     background_runs["rigid blocks under the records"] = run.describe()
-                results["records"]["check"] = parts.record_check(model, suite, level,
+                results["records"]["check"] = parts.record_check(model, checked, level,
                                                                  statuses)
             results["background"] = background_runs
     pulses = parts.pulse_part(fl_domains, rigid, governing, grid)
@@ -562,12 +562,13 @@ def _records(structure, settings, suite, note: str, model, out: Path, resume: bo
     check = None
     level = parts.check_level(pilot)
     if level is not None:
-        check_key = {"suite": suite.to_dict(), "level_pga": level,
+        checked = parts.select_records(suite, parts.CHECK_RECORDS)
+        check_key = {"suite": checked.to_dict(), "level_pga": level,
                      "friction": settings.friction}
         kept = _kept(out, "record_check", check_key) if resume else None
         check = (check_key, level, kept if kept is not None else background.submit(
-            parts.rigid_block_record_outcomes, structure, suite.to_dict(), level,
-            settings.friction))
+            parts.rigid_block_record_outcomes, structure, checked.to_dict(), level,
+            settings.friction), checked)
     studies, entries = {}, {}
     quantiles = (results.get("irregularity") or {}).get("limit_sample", {}).get("quantiles")
     weaker = 1.0

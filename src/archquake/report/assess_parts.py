@@ -871,6 +871,13 @@ def record_study(structure, suite, im: str, levels, settings: AssessmentSettings
                                 progress=False, backend="serial")
 
 
+CHECK_RECORDS = 14
+"""Ground motions of the rigid blocks' check under the records: the first of the suite in the
+order of :func:`select_records` (of a FEMA P695 near-field set, its 14 fault-normal components,
+which carry the pulses). A rigid-block analysis of a record costs about a thousand four-link
+ones."""
+
+
 def check_level(pilot: dict) -> float | None:
     """The PGA [g] of the records' check of the two models: the median over the records of the
     lowest PGA that collapses the structure (:func:`record_pilot`; a record that does not
@@ -1210,13 +1217,12 @@ def export_nrml(result, directory, im: str) -> tuple[str | None, str]:
     return name, ""
 
 
-__all__ = ["DIRECTIONS", "PILOT_RANGE", "RESTITUTION_RULES", "FourLinkPart", "IrregularityPart",
-           "LimitPart", "PulsePart", "agreement", "check_level", "domain_from_dict",
-           "domain_to_dict", "record_check", "rigid_block_record_outcomes",
-           "export_nrml", "file_stem", "four_link_domains", "four_link_part",
+__all__ = ["CHECK_RECORDS", "DIRECTIONS", "PILOT_RANGE", "RESTITUTION_RULES", "FourLinkPart",
+           "IrregularityPart", "LimitPart", "PulsePart", "StructureStripes", "agreement",
+           "check_level", "domain_from_dict", "domain_to_dict", "export_nrml",
+           "export_structure_nrml", "file_stem", "four_link_domains", "four_link_part",
            "fragility_amplitudes", "has_centreline", "hinges_in_own_frame", "irregularity_part",
-           "joint_name", "limit_part", "pulse_grid", "pulse_part", "record_pilot",
-           "record_study", "record_summary", "rigid_block_domain", "safety_factor",
-           "StructureStripes", "export_structure_nrml", "structure_stripes",
-           "structure_stripes_summary",
-           "select_records", "significant_disagreement", "stripe_levels"]
+           "joint_name", "limit_part", "pulse_grid", "pulse_part", "record_check", "record_pilot",
+           "record_study", "record_summary", "rigid_block_domain", "rigid_block_record_outcomes",
+           "safety_factor", "select_records", "significant_disagreement", "stripe_levels",
+           "structure_stripes", "structure_stripes_summary"]

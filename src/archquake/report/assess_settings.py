@@ -161,7 +161,7 @@ class AssessmentSettings:
     fragility_sample_size: int = 40
     limit_sample_size: int = 1000
     fragility_amplitude_points: int = 41
-    record_sample_size: int = 12
+    record_sample_size: int = 10
     record_levels: int = 10
     record_count: int | None = None
     bootstrap: int = 200

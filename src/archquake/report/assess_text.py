@@ -506,7 +506,8 @@ def record_text(results: dict) -> str:
     check = rec.get("check")
     if check is not None:
         text += (f" A check of the four-link model by the rigid blocks: the structure itself "
-                 f"under every record scaled to PGA = {check['level_pga']:.3g} g (the median "
+                 f"under {check['pairs'] // 2} of the records (the fault-normal components "
+                 f"first) scaled to PGA = {check['level_pga']:.3g} g (the median "
                  f"of the PGAs at which the records first collapse it), both polarities: the "
                  f"two models agree on {check['both'] + check['neither']} of {check['pairs']} "
                  f"(both collapse in {check['both']}, neither in {check['neither']}; only the "
