@@ -4,8 +4,8 @@ fixed choices of its report.
 :class:`AssessmentSettings` holds every choice an assessment makes: the irregularity (epsilon,
 seed), the four-link model's restitution, the rigid blocks' friction, the period of Sa(T), and the
 sizes of its studies. The defaults keep an assessment of a ten-voussoir arch against a built-in
-suite of real records within about three minutes on two processors;
-:meth:`AssessmentSettings.quick_settings` within thirty seconds (a smoke test, not an
+suite of real records within three minutes on two processors (measured: about one, two with
+Sa(T)); :meth:`AssessmentSettings.quick_settings` within thirty seconds (a smoke test, not an
 assessment). The pulse durations are the paper's, scaled to the size of the structure
 (:func:`time_scale`): rocking is slower, by the square root of the size, in a larger structure.
 """
