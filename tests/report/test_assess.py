@@ -357,6 +357,37 @@ def test_an_assessment_resumes_and_refuses_another(quick, tmp_path):
                settings=settings)
 
 
+def test_an_interrupted_assessment_continues_where_it_stopped(quick, tmp_path, monkeypatch):
+    """Interrupted in its second record-based study, an assessment resumes: the finished study
+    is loaded from its checkpoints, not run again, and the numbers are those of an assessment
+    that was never interrupted."""
+    from archquake.report import assess_parts
+    from archquake.studies.record_fragility import load_record_fragility
+
+    out = tmp_path / "report"
+    run_study = assess_parts.record_study
+
+    def interrupted(structure, suite, im, *args, **kwargs):
+        if im == "pgv":
+            raise KeyboardInterrupt
+        return run_study(structure, suite, im, *args, **kwargs)
+
+    monkeypatch.setattr(assess_parts, "record_study", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        assess(pointed_arch(), records=quick["records"], quick=True, out_dir=out,
+               progress=False)
+    assert not (out / "results.json").exists() and (out / "records_pga" / "study.json").is_file()
+    monkeypatch.setattr(assess_parts, "record_study", run_study)
+    resumed = assess(pointed_arch(), records=quick["records"], quick=True, out_dir=out,
+                     progress=False, resume=True).results
+    study = load_record_fragility(out / "records_pga")
+    assert study.metadata["timings"]["chunks_computed"] == 0  # all loaded from the first run
+    for key in ("ims", "check", "records"):
+        assert resumed["records"][key] == quick["results"]["records"][key]
+    assert resumed["pulses"]["rows"] == quick["results"]["pulses"]["rows"]
+    assert resumed["irregularity"]["durations"] == quick["results"]["irregularity"]["durations"]
+
+
 # ------------------------------------------------------------------------------ verdicts
 def test_a_structure_that_cannot_stand_gets_the_verdict(tmp_path):
     out = tmp_path / "report"

@@ -493,7 +493,7 @@ def _compute(structure, settings: AssessmentSettings, suite, suite_note: str, ou
         results["records"], computed.records, check = _records(
             structure, settings, suite, suite_note, model, out, resume, steps, results,
             background)
-        with steps("rigid blocks (second process)"):
+        with steps("waiting for the rigid blocks (second process)"):
             background_runs = {}
             if task is None:
                 rigid = parts.domain_from_dict(kept)
@@ -506,14 +506,14 @@ def _compute(structure, settings: AssessmentSettings, suite, suite_note: str, ou
             if check is not None:
                 key, level, pending, checked = check
                 if isinstance(pending, list):
-                    background_runs["rigid blocks under the records"] = ("kept from the run "
+                    background_runs["rigid-block check under the records"] = ("kept from the run "
                                                                          "resumed")
                     statuses = pending
                 else:
                     run = pending.result()
                     statuses = run.result
                     _keep(out, "record_check", key, statuses)
-                    background_runs["rigid blocks under the records"] = run.describe()
+                    background_runs["rigid-block check under the records"] = run.describe()
                 results["records"]["check"] = parts.record_check(model, checked, level,
                                                                  statuses)
             results["background"] = background_runs

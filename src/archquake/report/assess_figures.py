@@ -198,6 +198,7 @@ def record_figure(results: dict):
 
     from ..plotting import plot_record_fragility
     from .assess_parts import StructureStripes
+    from .assess_text import im_label
 
     n = len(results)
     fig, axes = plt.subplots(1, n, figsize=(5.6 * n, 5.0), constrained_layout=True,
@@ -205,12 +206,11 @@ def record_figure(results: dict):
     for ax, (im, result) in zip(axes[0], results.items(), strict=True):
         if isinstance(result, StructureStripes):
             structure_stripes_axes(result, ax)
-            ax.set_title(f"{im.upper() if '(' not in im else 'Sa' + im[2:]}, the structure",
-                         fontsize=10)
+            ax.set_title(f"{im_label(im)}, the structure", fontsize=10)
             continue
         plot_record_fragility(result, ax)
-        ax.set_title(f"{im.upper() if '(' not in im else 'Sa' + im[2:]}, "
-                     f"$\\varepsilon$ = {result.settings.epsilon:g}", fontsize=10)
+        ax.set_title(f"{im_label(im)}, $\\varepsilon$ = {result.settings.epsilon:g}",
+                     fontsize=10)
     return fig
 
 
