@@ -547,7 +547,7 @@ def _records(structure, settings, suite, note: str, model, out: Path, resume: bo
              results: dict, background):
     """The record-based fragility in every intensity measure, or why it was not run; and the
     check of the two models under the records, given to the second process: ``(key, level,
-    task or the kept statuses)`` or None."""
+    task or the kept statuses, the records checked)`` or None."""
     if model is None:
         with steps("records"):
             return {"skipped": "the four-link model, which the record-based study runs, does "
