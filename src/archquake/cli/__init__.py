@@ -42,6 +42,10 @@ class Command(NamedTuple):
 
 
 COMMANDS = {
+    "assess": Command(
+        "main_assess",
+        "assess a structure: limit analysis, both models under pulses, irregularity and real "
+        "records, in one report (HTML, Markdown, JSON, NRML)"),
     "limit": Command(
         "main_limit",
         "limit analysis: horizontal load multipliers k_l, k_r and the collapse hinges"),
@@ -172,6 +176,7 @@ def main(argv: list[str] | None = None) -> int:
     name = _command_name(argv)
     parser = build_parser(() if name is None else (name,))
     args = parser.parse_args(argv)
+    args.argv = list(argv)  # the command line, for a command that records it
     return run_command(command_module(args.command), args)
 
 

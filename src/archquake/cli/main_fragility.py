@@ -67,7 +67,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """The pulse study of the options; the record-based study with ``--records``."""
-    if args.records or args.im or args.levels or args.export_nrml:
+    if args.records or args.suite or args.im or args.levels or args.export_nrml:
         return _run_records(args)
     from ..studies.fragility import CURVES_CSV, LIMIT_DIRECTORY, FragilitySettings, run_fragility
 
@@ -145,11 +145,11 @@ def run(args: argparse.Namespace) -> int:
 def _run_records(args: argparse.Namespace) -> int:
     """``fragility --records ...``: the record-based study, refusing the pulse study's
     options."""
-    if not args.records:
+    if not args.records and not args.suite:
         given = [option for option, value in (("--im", args.im), ("--levels", args.levels),
                                               ("--export-nrml", args.export_nrml)) if value]
         raise ValueError(f"{', '.join(given)}: only for a record-based study; give the records "
-                         "with --records PATH...")
+                         "with --records PATH... or --suite NAME")
     pulse_only = [f"--{name.replace('_', '-')}" for name in PULSE_OPTIONS
                   if getattr(args, name) != args.pulse_defaults[name]]
     if pulse_only:

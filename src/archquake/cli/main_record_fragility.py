@@ -25,8 +25,8 @@ DESCRIPTION = (
 
 
 def add_record_options(parser: argparse.ArgumentParser, *, former: bool = False) -> None:
-    """``--records``, ``--im``, ``--levels`` and ``--export-nrml``; with ``former=True`` as
-    ``archquake fragility`` takes them (``--records`` optional: it makes the study
+    """``--records`` or ``--suite``, ``--im``, ``--levels`` and ``--export-nrml``; with
+    ``former=True`` as ``archquake fragility`` takes them (the records make the study
     record-based)."""
     if former:
         group = parser.add_argument_group(
@@ -35,8 +35,9 @@ def add_record_options(parser: argparse.ArgumentParser, *, former: bool = False)
             f"--limit-samples and --limit-method do not apply.")
     else:
         group = parser.add_argument_group("records and stripes")
-    group.add_argument("--records", nargs="+", metavar="PATH", required=not former,
+    group.add_argument("--records", nargs="+", metavar="PATH",
                        help="record files (PEER .AT2, CSV in g, ESM .ASC) and folders of them")
+    options.add_suite_option(group)
     group.add_argument("--im", metavar="NAME",
                        help="intensity measure of the stripes: pga [g], pgv [m/s], pgd [m], "
                             f"arias [m/s] or sa(T) [g] with T the period [s] (default: "
@@ -69,17 +70,19 @@ def run(args: argparse.Namespace) -> int:
         CURVES_CSV,
         INCREMENTAL_CSV,
         RecordFragilitySettings,
-        RecordSuite,
         run_record_fragility,
         stripe_measure,
     )
 
     im = stripe_measure(args.im or DEFAULT_IM)
+    if not args.records and not args.suite:
+        raise ValueError("give the records: --records PATH... or --suite NAME")
     if args.levels is None:
         raise ValueError(f"--levels is required with --records: the stripe levels of {im.name} "
                          f"[{im.unit}], e.g. --levels 0.1:1.0:0.05")
+    suite = options.suite_from_args(args)
     settings = RecordFragilitySettings(
-        suite=RecordSuite.from_paths(args.records),
+        suite=suite,
         levels=tuple(options.parse_values(args.levels, "--levels")), im=im.name,
         nominal=options.nominal_arch_from_args(args), sample_size=args.samples,
         epsilon=args.epsilon, seed=args.seed,

@@ -22,12 +22,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.description = DESCRIPTION
     parser.add_argument("paths", nargs="*", metavar="PATH",
                         help="record files and folders of record files")
-    parser.add_argument("--suite", metavar="NAME",
-                        help="a built-in record suite instead of files: fema-p695-far-field, "
-                             "fema-p695-near-field-pulse or fema-p695-near-field-no-pulse "
-                             "(the FEMA P695 record sets, both components of every record; "
-                             'needs pip install "archquake[records]"); --json adds each '
-                             "record's metadata")
+    options.add_suite_option(parser, "instead of files (--json adds each record's metadata)")
     parser.add_argument("--im", default="pga,pgv,pgd,arias,d5-95", metavar="LIST",
                         help="comma-separated intensity measures, e.g. pga,pgv,sa(0.5) "
                              "(default: %(default)s)")

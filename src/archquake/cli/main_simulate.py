@@ -42,7 +42,7 @@ def run(args: argparse.Namespace) -> int:
     """The time history of the arch of the options under the motion of the options."""
     if args.phi0 is not None:
         motion = options.given(args, "motion", "amplitude", "duration", "cycles", "param",
-                               "record", "scale_to", "reverse")
+                               "record", "suite", "scale_to", "reverse")
         if motion:
             raise ValueError(f"--phi0 (free vibration on a still ground) cannot be combined "
                              f"with the ground motion options {', '.join(motion)}")

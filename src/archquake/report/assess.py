@@ -1,0 +1,830 @@
+"""Assess a structure: the paper's method and both models applied to it, against real records,
+in one report an engineer can read, check and file (``archquake assess``).
+
+:func:`assess` runs, for one structure (an arch of any shape, surveyed, on piers, under fill;
+Oppenheim's arch by default):
+
+1. the limit analysis both ways: does it stand, at what horizontal acceleration does it start to
+   move (k_l, k_r), where are the hinges, and its geometric safety factor -- or the verdict that
+   it cannot stand, with the reason (the report then stops there);
+2. the four-link mechanisms, their critical rotations and the coefficient of restitution of
+   every rule;
+3. the failure domain under Oppenheim's pulse with both models, the four-link model and the
+   rigid blocks (on a second process while the rest runs), and where they disagree;
+4. the effect of irregularity: irregular arches drawn with the user's epsilon, the CDF of k~ and
+   the fragility under pulses;
+5. the record-based fragility (multiple-stripe analysis) against real records (the FEMA P695
+   pulse-like near-field set when the ``records`` extra is installed, else a synthetic suite, with
+   a note), in PGA, PGV and Sa(T), with lognormal medians and dispersions and an OpenQuake NRML
+   file per intensity measure;
+
+and writes ``report.html`` (self-contained: figures embedded, opens offline), ``report.md`` with
+the figures beside it, ``results.json`` (every number, the settings, versions and run times) and
+the NRML files into ``out_dir``, whose first screen is the summary: the verdict, the capacities
+in words and numbers, which model each comes from and how far the two agree, and the
+assumptions. Each study runs in its own subdirectory of ``out_dir`` and finished parts are kept,
+so an interrupted assessment continues with ``resume=True``.
+
+This module only orchestrates: the parts compute (:mod:`archquake.report.assess_parts`), the
+figures are drawn from their values (:mod:`archquake.report.assess_figures`), the words written
+from the numbers (:mod:`archquake.report.assess_text`) and the files rendered
+(:mod:`archquake.report.render`).
+"""
+
+from __future__ import annotations
+
+import shlex
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .._version import __version__
+from . import assess_parts as parts
+from . import assess_text as text
+from .assess_settings import DEFAULT_SUITE, FALLBACK_RECORDS, AssessmentSettings, time_scale
+from .render import (
+    Bullets,
+    Document,
+    Figure,
+    Paragraph,
+    Section,
+    Table,
+    environment,
+    jsonable,
+    write_html,
+    write_markdown,
+)
+
+ASSESSMENT_JSON = "assessment.json"
+"""What an assessment directory records of its assessment: the structure, the settings, the
+records and the version (a resume must match it)."""
+
+STRUCTURE_JSON = "structure.json"
+"""The structure, as ``--geometry`` reads it (the command that regenerates the report uses it)."""
+
+PARTS_DIR = "parts"
+"""Subdirectory of the finished parts that are kept for a resume (the rigid-block domain, the
+records' pilot)."""
+
+FRAGILITY_DIR = "fragility_pulses"
+"""Subdirectory of the fragility study under pulses."""
+
+RECORDS_DIR = "records_{im}"
+"""Subdirectory of each record-based fragility study (``{im}``: the intensity measure)."""
+
+TITLE = "archquake: seismic assessment"
+"""The title of the report's page."""
+
+STYLE = (".verdict{font-size:1.08em;font-weight:bold;border-left:6px solid #444;"
+         "padding:0.4em 0.8em;background:#f4f4f4}.cannot{border-color:#b00;color:#800}"
+         ".note{color:#444;font-size:0.92em}ul{margin-top:0.2em}li{margin:0.1em 0}")
+"""The assessment's additions to the report's style (the verdict's box)."""
+
+
+@dataclass(frozen=True)
+class Assessment:
+    """Result of :func:`assess`.
+
+    Attributes
+    ----------
+    results : dict
+        Every number of the report (also written to ``results.json``).
+    directory : Path
+        Where ``report.html``, ``report.md``, ``results.json``, the figures and the NRML files
+        are.
+    files : tuple of str
+        The files of the report in ``directory``: the two pages, ``results.json``, the figures
+        (PNG) and the NRML files.
+    """
+
+    results: dict
+    directory: Path
+    files: tuple[str, ...]
+
+    @property
+    def stands(self) -> bool:
+        """Whether the structure stands under its own weight."""
+        return bool(self.results["verdict"]["stands"])
+
+    @property
+    def verdict(self) -> str:
+        """The verdict in words (the report's first paragraph)."""
+        return text.verdict_text(self.results)
+
+
+# ------------------------------------------------------------------------------ records
+def choose_suite(records=None, suite: str | None = None, settings: AssessmentSettings | None
+                 = None):
+    """The records of an assessment, and a note on them.
+
+    Parameters
+    ----------
+    records : str, Path, sequence of them, or RecordSuite, optional
+        Record files and folders (:meth:`archquake.ground_motion.RecordSuite.from_paths`), or
+        a suite.
+    suite : str, optional
+        A built-in suite (:data:`archquake.ground_motion.BUILTIN_SUITES`).
+    settings : AssessmentSettings, optional
+        ``record_count`` (the ground motions kept) and ``seed`` (of a synthetic suite).
+
+    Returns
+    -------
+    (RecordSuite, str)
+        The suite and a note ("" or what replaced the default records and how to get them).
+
+    Raises
+    ------
+    ValueError
+        For both ``records`` and ``suite``, an unknown suite, a bad record file.
+    ImportError
+        For a built-in suite named explicitly without the ``records`` extra.
+    """
+    from ..ground_motion.fema_p695 import INSTALL_HINT
+    from ..ground_motion.suites import RecordSuite
+    from ..studies.record_fragility import STOCHASTIC_SUITE
+
+    settings = AssessmentSettings() if settings is None else settings
+    if records is not None and suite is not None:
+        raise ValueError("give records (files and folders) or suite (a built-in suite), not "
+                         "both")
+    note = ""
+    if isinstance(records, RecordSuite):
+        chosen = records
+    elif records is not None:
+        chosen = RecordSuite.from_paths(records)
+    elif suite is not None:
+        chosen = RecordSuite.from_builtin(suite)
+    else:
+        try:
+            chosen = RecordSuite.from_builtin(DEFAULT_SUITE)
+        except ImportError:
+            chosen = RecordSuite.from_stochastic(FALLBACK_RECORDS, settings.seed,
+                                                 **STOCHASTIC_SUITE)
+            note = (f"These are synthetic ground motions, not real records: the built-in FEMA "
+                    f"P695 records are not installed. Install them with {INSTALL_HINT} and "
+                    f"run the assessment again to use the pulse-like near-field records.")
+    return parts.select_records(chosen, settings.record_count), note
+
+
+# ------------------------------------------------------------------------------ directory
+def _difference(stored: dict, record: dict) -> str | None:
+    for key in ("archquake", "structure", "suite"):
+        if stored.get(key) != record[key]:
+            return f"{key} differs"
+    old, new = stored.get("settings", {}), record["settings"]
+    for key in sorted(set(old) | set(new)):
+        if old.get(key) != new.get(key):
+            return (f"setting {key!r} differs: the directory has {old.get(key)!r}, this "
+                    f"assessment {new.get(key)!r}")
+    return None
+
+
+def prepare_directory(out: Path, record: dict, resume: bool) -> None:
+    """Create the assessment's directory, or check that it continues the same assessment.
+
+    Parameters
+    ----------
+    out : Path
+    record : dict
+        What :data:`ASSESSMENT_JSON` records.
+    resume : bool
+
+    Raises
+    ------
+    ValueError
+        For a directory that holds another assessment, or one without ``resume``, or files that
+        are no assessment's.
+    """
+    from ..results_io import read_json, write_json
+
+    if out.exists() and not out.is_dir():
+        raise ValueError(f"out_dir {out} exists and is not a directory")
+    stored = out / ASSESSMENT_JSON
+    if stored.is_file():
+        if not resume:
+            raise ValueError(f"out_dir {out} holds an assessment already; pass resume=True "
+                             f"(--resume) to continue it, or choose another directory")
+        difference = _difference(read_json(stored), record)
+        if difference is not None:
+            raise ValueError(f"cannot resume the assessment in {out}: {difference}; use the "
+                             f"same structure, records and settings, or another directory")
+        return
+    if out.is_dir() and any(out.iterdir()):
+        raise ValueError(f"out_dir {out} exists and is not empty (and holds no assessment); "
+                         f"choose a new or empty directory")
+    out.mkdir(parents=True, exist_ok=True)
+    write_json(out / STRUCTURE_JSON, record["structure"])
+    write_json(stored, record)
+
+
+def _kept(out: Path, name: str, key: dict):
+    """A finished part kept in :data:`PARTS_DIR`, if it was computed from ``key``."""
+    from ..results_io import read_json
+
+    path = out / PARTS_DIR / f"{name}.json"
+    if not path.is_file():
+        return None
+    data = read_json(path)
+    return data["value"] if data.get("key") == jsonable(key) else None
+
+
+def _keep(out: Path, name: str, key: dict, value) -> None:
+    from ..results_io import write_json
+
+    (out / PARTS_DIR).mkdir(exist_ok=True)
+    write_json(out / PARTS_DIR / f"{name}.json", {"key": jsonable(key),
+                                                  "value": jsonable(value)})
+
+
+# ------------------------------------------------------------------------------ the command
+def regenerate_command(out: Path, record: dict, settings: AssessmentSettings) -> tuple[str, str]:
+    """The command that regenerates the report from the files the assessment wrote (with
+    ``--resume``: the finished studies are reused, or computed again where they are gone), and
+    a note on what it cannot say.
+
+    Parameters
+    ----------
+    out : Path
+    record : dict
+        :data:`ASSESSMENT_JSON`'s content.
+    settings : AssessmentSettings
+
+    Returns
+    -------
+    (str, str)
+    """
+    words = ["archquake", "assess", "--geometry", str((out / STRUCTURE_JSON).resolve())]
+    suite = record["suite"]
+    note = ""
+    if suite["kind"] == "builtin":
+        words += ["--suite", suite["name"]]
+        if settings.record_count is not None and not settings.quick:
+            note = "It keeps the settings' record_count ground motions of the suite."
+    elif suite["kind"] == "files":
+        words += ["--records", *(r["path"] for r in suite["records"])]
+    else:
+        note = ("The synthetic records are drawn again when the built-in ones are not "
+                "installed.")
+    defaults = AssessmentSettings()
+    for name in ("epsilon", "seed", "restitution", "friction", "sa_period"):
+        value = getattr(settings, name)
+        if value != getattr(defaults, name):
+            words += [f"--{name.replace('_', '-')}", f"{value:g}" if isinstance(value, float)
+                      else str(value)]
+    if settings.quick:
+        words.append("--quick")
+    words += ["--out", str(out.resolve()), "--resume"]
+    base = (AssessmentSettings.quick_settings if settings.quick else AssessmentSettings)(
+        epsilon=settings.epsilon, seed=settings.seed, restitution=settings.restitution,
+        friction=settings.friction, sa_period=settings.sa_period)
+    if base.to_dict() != settings.to_dict():
+        changed = [k for k, v in settings.to_dict().items() if base.to_dict()[k] != v]
+        note = (note + " " if note else "") + (
+            f"Settings the command's options do not cover ({', '.join(changed)}) are in "
+            f"{ASSESSMENT_JSON}: run archquake.report.assess.assess with them.")
+    return shlex.join(words), note
+
+
+# ------------------------------------------------------------------------------ driver
+def assess(structure=None, *, records=None, suite: str | None = None,
+           epsilon: float | None = None, sa_period: float | None = None, quick: bool = False,
+           out_dir, progress: bool = True, resume: bool = False,
+           settings: AssessmentSettings | None = None, command: str | None = None
+           ) -> Assessment:
+    """Assess a structure: the paper's method and both models applied to it, against real
+    records, in a report (module docstring).
+
+    Parameters
+    ----------
+    structure : BlockArch, optional
+        An arch (circular, shaped, surveyed) or a :class:`~archquake.geometry.Structure` (on
+        piers, under fill); default Oppenheim's arch (:func:`archquake.oppenheim`).
+    records : str, Path, sequence of them, or RecordSuite, optional
+        Record files and folders of the record-based fragility (PEER .AT2, CSV in g, ESM .ASC).
+    suite : str, optional
+        A built-in suite instead (:data:`archquake.ground_motion.BUILTIN_SUITES`). Default
+        (neither): the FEMA P695 pulse-like near-field records when the ``records`` extra is
+        installed, else a synthetic suite, with a note saying how to get the real ones.
+    epsilon : float, optional
+        epsilon of the irregular arches [-], in [0, 1) (default 0.10, the paper's).
+    sa_period : float, optional
+        Period T [s] of a third record-based fragility in Sa(T).
+    quick : bool
+        Reduced sizes (:meth:`AssessmentSettings.quick_settings`): a smoke test.
+    out_dir : str or Path
+        Where the report goes: a new or empty directory (or an assessment's, with ``resume``).
+    progress : bool
+        A progress bar over the parts on stderr.
+    resume : bool
+        Continue the assessment saved in ``out_dir`` (same structure, records and settings):
+        finished parts and studies are reused.
+    settings : AssessmentSettings, optional
+        Every setting (instead of ``epsilon``, ``sa_period`` and ``quick``).
+    command : str, optional
+        The command line that ran the assessment (recorded in the report).
+
+    Returns
+    -------
+    Assessment
+
+    Raises
+    ------
+    ValueError
+        For an invalid setting (naming it), records and suite both given, a bad record file, or
+        an ``out_dir`` that holds files of something else or another assessment.
+    ImportError
+        For a built-in suite named explicitly without the ``records`` extra.
+
+    Examples
+    --------
+    >>> from archquake.geometry import shaped_arch
+    >>> arch = shaped_arch("pointed", span=10, rise=7, thickness=0.6, voussoirs=12)
+    >>> report = assess(arch, quick=True, out_dir="pointed-arch")  # doctest: +SKIP
+    >>> report.verdict[:16]  # doctest: +SKIP
+    'VERDICT: STANDS.'
+    """
+    from ..geometry import BlockArch
+    from ..reference_arches import oppenheim
+    from .running import Steps
+
+    t_start = time.perf_counter()
+    structure = oppenheim() if structure is None else structure
+    if not isinstance(structure, BlockArch):
+        raise ValueError(f"structure must be an arch or a Structure (archquake.geometry), got "
+                         f"{type(structure).__name__}")
+    if settings is None:
+        options = {"epsilon": AssessmentSettings().epsilon if epsilon is None else epsilon,
+                   "sa_period": sa_period}
+        settings = (AssessmentSettings.quick_settings(**options) if quick
+                    else AssessmentSettings(**options))
+    elif epsilon is not None or sa_period is not None or quick:
+        raise ValueError("give epsilon, sa_period and quick in settings, or settings not at all")
+    out = Path(out_dir)
+    timings: dict[str, float] = {}
+    t0 = time.perf_counter()
+    record_suite, suite_note = choose_suite(records, suite, settings)
+    timings["records read"] = time.perf_counter() - t0
+    record = {"archquake": __version__, "structure": structure.to_dict(),
+              "settings": settings.to_dict(), "suite": record_suite.to_dict()}
+    prepare_directory(out, record, resume)
+    regenerate, note = regenerate_command(out, record, settings)
+    results = {
+        "structure": _structure_entry(structure),
+        "settings": settings.to_dict(),
+        "command": {"given": command, "regenerate": regenerate, "note": note},
+    }
+    steps = Steps(8 + len(settings.intensity_measures()), progress=progress, desc="assess")
+    try:
+        computed = _compute(structure, settings, record_suite, suite_note, out, resume,
+                            results, steps)
+        with steps("figures"):
+            figures = _figures(out, structure, results, computed)
+        timings.update(steps.timings)
+        timings["total"] = time.perf_counter() - t_start
+        results["timings"] = timings
+        results["environment"] = environment()
+        with steps("report"):
+            files = write_report(out, results, figures)
+    finally:
+        steps.close()
+    return Assessment(results, out, files)
+
+
+def structure_name(structure) -> str:
+    """A short name of a structure for the report's heading: its kind, main sizes and blocks,
+    and whether it stands on piers or carries fill.
+
+    Parameters
+    ----------
+    structure : BlockArch
+
+    Returns
+    -------
+    str
+    """
+    import math
+
+    from ..geometry import CircularArch
+
+    arch = getattr(structure, "arch", structure)
+    n = arch.n_voussoirs
+    if isinstance(arch, CircularArch):
+        name = (f"circular arch, R = {float(np.mean(arch.radii)):.4g} m, embrace "
+                f"{math.degrees(arch.embrace):.4g} deg, t = {arch.thickness_scale:.3g} m, "
+                f"{n} voussoirs")
+    elif hasattr(arch, "centreline"):
+        line = arch.centreline
+        name = (f"{line.shape} arch, span {line.span:.4g} m, rise {line.rise:.4g} m, t = "
+                f"{arch.thickness_scale:.3g} m, {n} voussoirs")
+    else:
+        name = f"surveyed arch of {n} blocks"
+    if getattr(structure, "left", None) is not None or getattr(structure, "right", None):
+        name += ", on piers"
+    if getattr(structure, "fill", None) is not None:
+        name += ", under fill"
+    return name
+
+
+def _structure_entry(structure) -> dict:
+    from ..geometry.structure import describe_arch
+
+    description = describe_arch(structure)
+    if description.startswith("n ="):
+        description = "circular arch, " + description
+    return {"name": structure_name(structure), "description": description,
+            "kind": type(structure).__name__, "blocks": structure.n_voussoirs,
+            "file": STRUCTURE_JSON, "data": structure.to_dict()}
+
+
+@dataclass
+class _Computed:
+    """The values the figures are drawn from."""
+
+    limit: object = None
+    four_link: object = None
+    pulses: object = None
+    irregularity: object = None
+    records: dict | None = None
+
+
+def _compute(structure, settings: AssessmentSettings, suite, suite_note: str, out: Path,
+             resume: bool, results: dict, steps) -> _Computed:
+    """Run the parts in order, filling ``results``; the rigid blocks on a second process."""
+    from .running import Background
+
+    computed = _Computed()
+    with steps("limit analysis"):
+        limit = parts.limit_part(structure)
+        results["verdict"] = limit.summary["verdict"]
+        results["limit"] = ({k: v for k, v in limit.summary.items() if k != "verdict"}
+                            if limit.collapses else None)
+        results["safety"] = parts.safety_factor(structure)
+    computed.limit = limit
+    scale = time_scale(structure)
+    results["sizes"] = {"time_scale": scale}
+    if not limit.collapses:
+        results.update(four_link=None, pulses={}, irregularity={}, records={},
+                       summary={"stands": results["verdict"]["stands"]})
+        return computed
+    k, governing = results["limit"]["k"], results["limit"]["governing"]
+    durations = settings.pulse_durations(structure)
+    grid = parts.pulse_grid(k, settings)
+    rb_key = {"durations": durations, "amplitudes_g": grid, "direction": governing,
+              "resolution": settings.domain_resolution_g, "friction": settings.friction}
+    kept = _kept(out, "rigid_blocks_domain", rb_key) if resume else None
+    with Background.start() as background:
+        task = None
+        if kept is None:
+            task = background.submit(parts.rigid_block_domain, structure, durations, grid,
+                                     governing, settings.domain_resolution_g, settings.friction)
+        with steps("four-link mechanisms"):
+            four_link = parts.four_link_part(structure, settings)
+            results["four_link"] = four_link.summary
+        computed.four_link = four_link
+        model = four_link.model
+        with steps("failure domain, four-link"):
+            fl_domains = (None if model is None else parts.four_link_domains(
+                model, durations, grid, settings.domain_resolution_g))
+        with steps("irregularity under pulses"):
+            results["irregularity"], computed.irregularity = _irregularity(
+                structure, settings, model, out, resume, results)
+        results["records"], computed.records, check = _records(
+            structure, settings, suite, suite_note, model, out, resume, steps, results,
+            background)
+        with steps("waiting for the rigid blocks (second process)"):
+            background_runs = {}
+            if task is None:
+                rigid = parts.domain_from_dict(kept)
+                background_runs["rigid-block failure domain"] = "kept from the run resumed"
+            else:
+                run = task.result()
+                rigid = run.result
+                _keep(out, "rigid_blocks_domain", rb_key, parts.domain_to_dict(rigid))
+                background_runs["rigid-block failure domain"] = run.describe()
+            if check is not None:
+                key, level, pending, checked = check
+                if isinstance(pending, list):
+                    background_runs["rigid-block check under the records"] = ("kept from the run "
+                                                                         "resumed")
+                    statuses = pending
+                else:
+                    run = pending.result()
+                    statuses = run.result
+                    _keep(out, "record_check", key, statuses)
+                    background_runs["rigid-block check under the records"] = run.describe()
+                results["records"]["check"] = parts.record_check(model, checked, level,
+                                                                 statuses)
+            results["background"] = background_runs
+    pulses = parts.pulse_part(fl_domains, rigid, governing, grid)
+    results["pulses"] = pulses.summary
+    computed.pulses = pulses
+    results["sizes"].update(_sizes(settings, results, suite))
+    results["summary"] = _summary(results)
+    return computed
+
+
+def _irregularity(structure, settings, model, out: Path, resume: bool, results: dict):
+    """The irregularity part, or why it was not run."""
+    if model is None:
+        return {"skipped": "the four-link model, which the studies of irregular arches run, "
+                           "does not apply to this structure"}, None
+    if not parts.has_centreline(structure):
+        return {"skipped": "irregular arches are drawn around an arch with a centreline "
+                           "(circular or shaped); a surveyed arch has none"}, None
+    durations = settings.fragility_durations(structure)
+    domains = parts.four_link_domains(model, durations,
+                                      parts.pulse_grid(results["limit"]["k"], settings), 1e-3)
+    fa = np.fmin(domains["l"].failure_accelerations_g, domains["r"].failure_accelerations_g)
+    amplitudes = parts.fragility_amplitudes(fa, results["limit"]["k"], settings)
+    part = parts.irregularity_part(structure, settings, durations, amplitudes,
+                                   out / FRAGILITY_DIR, resume)
+    return part.summary, part
+
+
+def _records(structure, settings, suite, note: str, model, out: Path, resume: bool, steps,
+             results: dict, background):
+    """The record-based fragility in every intensity measure, or why it was not run; and the
+    check of the two models under the records, given to the second process: ``(key, level,
+    task or the kept statuses, the records checked)`` or None."""
+    if model is None:
+        with steps("records"):
+            return {"skipped": "the four-link model, which the record-based study runs, does "
+                               "not apply to this structure"}, None, None
+    irregular = parts.has_centreline(structure)
+    with steps("records: where the stripes go"):
+        key = {"suite": suite.to_dict(), "model": model.describe()}
+        pilot = _kept(out, "record_pilot", key) if resume else None
+        if pilot is None:
+            pilot = parts.record_pilot(model, suite)
+            _keep(out, "record_pilot", key, pilot)
+    check = None
+    level = parts.check_level(pilot)
+    if level is not None:
+        checked = parts.select_records(suite, parts.CHECK_RECORDS)
+        check_key = {"suite": checked.to_dict(), "level_pga": level,
+                     "friction": settings.friction}
+        kept = _kept(out, "record_check", check_key) if resume else None
+        check = (check_key, level, kept if kept is not None else background.submit(
+            parts.rigid_block_record_outcomes, structure, checked.to_dict(), level,
+            settings.friction), checked)
+    studies, entries = {}, {}
+    quantiles = (results.get("irregularity") or {}).get("limit_sample", {}).get("quantiles")
+    weaker = 1.0
+    if quantiles and settings.epsilon > 0:
+        weaker = float(np.clip(quantiles["0.05"] / results["limit"]["k"], 0.25, 1.0))
+    for im in settings.intensity_measures():
+        with steps(f"records: {text.im_label(im)}"):
+            levels = parts.stripe_levels(pilot, suite, im, settings.record_levels, weaker)
+            if irregular:
+                directory = out / RECORDS_DIR.format(im=parts.file_stem(im))
+                result = parts.record_study(structure, suite, im, levels, settings, directory,
+                                            resume)
+                nrml, why = parts.export_nrml(result, out, im)
+                entries[im] = parts.record_summary(result, nrml, why)
+            else:  # no irregular arches around a surveyed arch: the structure alone
+                result = parts.structure_stripes(model, suite, im, levels,
+                                                 bootstrap=settings.bootstrap, seed=settings.seed)
+                nrml, why = parts.export_structure_nrml(result, out)
+                entries[im] = parts.structure_stripes_summary(result, nrml, why)
+            studies[im] = result
+    pga, pgv = suite.intensities("pga"), suite.intensities("pgv")
+    listed = []
+    for meta, a, v, f in zip(suite.metadata, pga, pgv, pilot["first_factor"], strict=True):
+        keep = {k: meta[k] for k in ("name", "event", "year", "station", "magnitude",
+                                     "component", "record_sequence_number", "site_class",
+                                     "rupture_distance_km", "vs30", "path") if k in meta}
+        keep.update(pga=float(a), pgv=float(v),
+                    pilot_first_collapse_pga=None if f is None else float(f * a))
+        listed.append(keep)
+    return {"suite": {**{k: v for k, v in suite.to_dict().items() if k != "records"},
+                      "description": suite.describe(), "count": len(suite)},
+            "note": note, "records": listed, "pilot": pilot, "weaker": weaker,
+            "ims": entries}, studies, check
+
+
+def _sizes(settings: AssessmentSettings, results: dict, suite) -> dict:
+    """The sizes the assessment ran at (the report says what it reduced)."""
+    out = {"pulse_durations": len(results["pulses"]["durations"])}
+    irr = results.get("irregularity") or {}
+    if "settings" in irr:
+        out.update(fragility_arches=irr["settings"]["sample_size"],
+                   limit_arches=irr["settings"]["limit_sample_size"])
+    rec = results.get("records") or {}
+    if "ims" in rec:
+        first = next(iter(rec["ims"].values()))
+        from ..ground_motion.fema_p695 import BUILTIN_SUITES
+
+        whole = (BUILTIN_SUITES[rec["suite"]["name"]].motions if rec["suite"]["kind"] ==
+                 "builtin" else len(suite))
+        out.update(record_arches=first["sample_size"], records=first["records"],
+                   suite_records=whole, levels=len(first["levels"]))
+    return out
+
+
+def _summary(results: dict) -> dict:
+    """The numbers of the first screen (also in ``results.json``)."""
+    out = {"stands": True, "k": results["limit"]["k"],
+           "safety_factor": results["safety"].get("factor")}
+    rows = results["pulses"]["rows"]
+    applies = bool((results.get("four_link") or {}).get("applies"))
+    both = [r for r in rows if (r["difference"] if applies else r["rigid_blocks"]) is not None]
+    if rows:
+        out["pulse_long"] = rows[-1]
+        shorter = [r for r in both if r["duration"] < rows[-1]["duration"]]
+        out["pulse_short"] = shorter[0] if shorter else None
+    irr = results.get("irregularity") or {}
+    if "durations" in irr:
+        q = irr["limit_sample"].get("quantiles") or {}
+        out["irregular"] = {"arches": irr["analysed"], "k_5": q.get("0.05"),
+                            "curve": irr["durations"][-1]}
+    rec = results.get("records") or {}
+    if "ims" in rec:
+        out["records"] = {im: {"unit": e["unit"], "lognormal": e["lognormal"],
+                               "nominal_lognormal": e["nominal_lognormal"],
+                               "total": e["total"]} for im, e in rec["ims"].items()}
+        check = rec.get("check")
+        if check is not None:
+            out["record_check"] = {k: check[k] for k in ("level_pga", "pairs", "agree", "both",
+                                                         "neither", "four_link_only",
+                                                         "rigid_blocks_only")}
+    return out
+
+
+# ------------------------------------------------------------------------------ figures
+def _figure(directory: Path, name: str, figure, label: str, caption: str) -> Figure:
+    from .figures import save
+
+    return Figure(save(figure, directory, name), label, caption, None)
+
+
+def _figures(out: Path, structure, results: dict, computed: _Computed) -> dict:
+    """Draw and write the figures, each with its caption."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from . import assess_figures as draw
+
+    figures = {}
+    limit = computed.limit
+    figures["structure"] = _figure(
+        out, "fig1_structure.png",
+        draw.structure_figure(structure, limit.analyses,
+                              title="The structure: " + results["verdict"]["reason"][:80]),
+        "Fig. 1", text.structure_caption(results))
+    if not limit.collapses:
+        return figures
+    if computed.four_link.model is not None:
+        figures["mechanisms"] = _figure(out, "fig2_mechanisms.png",
+                                        draw.mechanisms_figure(computed.four_link.model),
+                                        "Fig. 2", text.mechanisms_caption(results))
+    figures["domain"] = _figure(out, "fig3_failure_domain.png",
+                                draw.domain_figure(computed.pulses), "Fig. 3",
+                                text.domain_caption(results))
+    if computed.irregularity is not None:
+        d = computed.irregularity.result.durations
+        shown = [float(d[0])] if d.size == 1 else [float(d[0]), float(d[-1])]
+        figures["irregularity"] = _figure(
+            out, "fig4_irregularity.png",
+            draw.irregularity_figure(computed.irregularity, shown), "Fig. 4",
+            text.irregularity_caption(results, shown))
+    if computed.records:
+        figures["records"] = _figure(out, "fig5_record_fragility.png",
+                                     draw.record_figure(computed.records), "Fig. 5",
+                                     text.record_caption(results))
+    return figures
+
+
+# ------------------------------------------------------------------------------ rendering
+def sections(results: dict, figures: dict) -> list[Section]:
+    """The sections of the report, from ``results.json`` and the figures; the summary first.
+
+    Parameters
+    ----------
+    results : dict
+        ``results.json``.
+    figures : dict
+        :class:`~archquake.report.render.Figure` by key (``structure``, ``mechanisms``,
+        ``domain``, ``irregularity``, ``records``; those drawn).
+
+    Returns
+    -------
+    list of Section
+    """
+    verdict = results["verdict"]
+    kind = "verdict" if verdict["stands"] else "verdict cannot"
+    summary = [Paragraph(text.verdict_text(results), kind)]
+    rows = text.summary_rows(results)
+    if rows:
+        summary.append(Table(["capacity", "value", "from", "how far the two models agree"],
+                             rows))
+        summary.append(Paragraph(text.agreement_text(results)))
+    note = (results.get("records") or {}).get("note")
+    if note:
+        summary.append(Paragraph(note, "note"))
+    if results["settings"]["quick"]:
+        summary.append(Paragraph("QUICK RUN: reduced sizes for a smoke test, not an "
+                                 "assessment.", "note"))
+    summary.append(Paragraph("Assumptions (as in the paper, Heyman's for the limit analysis):",
+                             "note"))
+    summary.append(Bullets(text.ASSUMPTIONS))
+    out = [Section("Summary", summary)]
+    limit_blocks = [Paragraph(text.structure_text(results)), figures["structure"]]
+    if results["limit"] is not None:
+        limit_blocks.insert(1, Table(["mechanism", "k [-]", "hinge", "where", "face", "x [m]",
+                                      "y [m]"], text.hinge_rows(results)))
+    out.append(Section("1. The structure and its limit analysis", limit_blocks))
+    if results["limit"] is None:
+        out.append(Section("Run, versions and settings", _run_blocks(results)))
+        return out
+    fl = results["four_link"]
+    blocks = [Paragraph(text.mechanisms_text(results))]
+    if fl["applies"]:
+        blocks += [Table(["quantity", "Mech-l", "Mech-r"], text.mechanism_rows(results)),
+                   Table(["restitution rule", "c_lr", "c_rl", "what it is"],
+                         text.restitution_rows(results)), figures["mechanisms"]]
+    out.append(Section("2. The four-link mechanisms", blocks))
+    out.append(Section("3. Failure domain under pulses: both models", [
+        Paragraph(text.domain_text(results)),
+        Table(text.domain_header(results), text.domain_rows(results)), figures["domain"]]))
+    irr = [Paragraph(text.irregularity_text(results))]
+    if "durations" in results["irregularity"]:
+        irr += [Table(["t_p [s]", "structure's failure acceleration [g]",
+                       "lognormal median [g]", "lognormal dispersion",
+                       "P_F just below the structure's failure acceleration"],
+                      text.irregularity_rows(results)), figures["irregularity"]]
+    out.append(Section("4. Irregular masonry", irr))
+    rec = [Paragraph(text.record_text(results))]
+    if "ims" in results["records"]:
+        rec += [Table(["IM [unit]", "levels", "median, irregular arches", "total beta",
+                       "median, the structure", "record-to-record beta", "geometric beta",
+                       "NRML file"], text.record_rows(results)), figures["records"],
+                Paragraph("The records, and the level at which each first collapses the "
+                          "structure itself (either polarity; '-': not within the stripes):"),
+                Table(text.record_list_header(results), text.record_list_rows(results))]
+    out.append(Section("5. Record-based fragility", rec))
+    out.append(Section("Run, versions and settings", _run_blocks(results)))
+    return out
+
+
+def _run_blocks(results: dict) -> list:
+    blocks = []
+    if "pulses" in results and results["pulses"]:
+        blocks.append(Paragraph(text.reduced_text(results)))
+    blocks.append(Table(["part", "wall time [s]"],
+                        [[k, f"{v:.2f}"] for k, v in results["timings"].items()]))
+    for task, run in (results.get("background") or {}).items():
+        if isinstance(run, dict):
+            blocks.append(Paragraph(f"The {task} ran on {run['ran on']} beside the parts above: "
+                                    f"{run['seconds']:.1f} s of analyses, "
+                                    f"{run['wall_seconds']:.1f} s from its start to its "
+                                    f"result."))
+        else:
+            blocks.append(Paragraph(f"The {task}: {run}."))
+    env = results["environment"]
+    blocks.append(Paragraph("Versions: " + ", ".join(f"{k} {v}" for k, v in env.items()) + "."))
+    blocks.append(Paragraph("Settings: " + ", ".join(f"{k} = {v}" for k, v in
+                                                     results["settings"].items()) + "."))
+    blocks.append(Paragraph("To regenerate this report:"))
+    blocks.append(Bullets(text.command_text(results)))
+    return blocks
+
+
+def write_report(directory, results: dict, figures: dict) -> tuple[str, ...]:
+    """Write ``report.html``, ``report.md`` and ``results.json`` into ``directory`` (the figures
+    are there already).
+
+    Parameters
+    ----------
+    directory : str or Path
+    results : dict
+        ``results.json``.
+    figures : dict
+        The figures by key.
+
+    Returns
+    -------
+    tuple of str
+        Every file of the report in ``directory``.
+    """
+    from ..results_io import write_json
+
+    out = Path(directory)
+    results["figures"] = {key: {"file": f.file, "label": f.label, "caption": f.caption}
+                          for key, f in figures.items()}
+    nrml = [e["nrml"] for e in (results.get("records") or {}).get("ims", {}).values()
+            if e.get("nrml")]
+    results["files"] = ["report.html", "report.md", "results.json",
+                        *(f.file for f in figures.values()), *nrml]
+    write_json(out / "results.json", jsonable(results))
+    document = Document(TITLE, text.heading(results), sections(results, figures),
+                        verdicts=False, style=STYLE)
+    write_html(out / "report.html", document)
+    write_markdown(out / "report.md", document)
+    return tuple(results["files"])
+
+
+__all__ = ["ASSESSMENT_JSON", "FRAGILITY_DIR", "PARTS_DIR", "RECORDS_DIR", "STRUCTURE_JSON",
+           "STYLE", "TITLE", "Assessment", "assess", "choose_suite", "prepare_directory",
+           "regenerate_command", "sections", "structure_name", "write_report"]

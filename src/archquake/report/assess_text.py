@@ -1,0 +1,625 @@
+"""The words of an assessment: its verdict, summary, captions, paragraphs and table rows, each
+written from the numbers of ``results.json`` (:func:`archquake.report.assess.assess`), never by
+hand.
+
+The formatters are those of every report (:mod:`archquake.report.text`); what is written here
+is the assessment's own: the first screen (:func:`verdict_text`, :func:`summary_rows`,
+:func:`agreement_text`, :data:`ASSUMPTIONS`), then a paragraph, a table and a caption per part.
+"""
+
+from __future__ import annotations
+
+from .assess_settings import AGREEMENT_BAND
+from .text import number, percent
+
+ASSUMPTIONS = (
+    "Rigid blocks: the masonry does not deform; all motion is rotation (and, in the rigid-block "
+    "model, sliding) at the joints.",
+    "No tension: a joint carries compression only, and opens (a hinge forms) where the line of "
+    "thrust reaches its edge.",
+    "Infinite compressive strength: no crushing at the hinges.",
+    "No sliding in the limit analysis and the four-link model (Heyman's hypotheses); the "
+    "rigid-block model allows it, with Coulomb friction.",
+    "A plane model of unit depth: in-plane motion only, under a horizontal ground acceleration; "
+    "no out-of-plane or vertical excitation, no soil-structure interaction.",
+)
+"""The assumptions every result of an assessment rests on."""
+
+MODEL_NAMES = {"four-link": "four-link model", "rigid-blocks": "rigid-block model"}
+"""The models in words."""
+
+
+def im_label(im: str) -> str:
+    """An intensity measure in words: ``PGA``, ``PGV``, ``Sa(0.5 s)``."""
+    if im.startswith("sa("):
+        return f"Sa({im[3:-1]} s)"
+    return im.upper()
+
+
+def _g(x, digits: int = 3) -> str:
+    return "-" if x is None else f"{x:.{digits}f} g"
+
+
+def _factor_text(safety: dict) -> str:
+    if safety.get("factor") is None:
+        return ""
+    what = "thickness" if safety["kind"] == "thickness" else "pier width"
+    return (f"geometric safety factor {safety['factor']:.2f} ({what} {safety['value']:.3g} m "
+            f"over the least that stands, {safety['minimum']:.3g} m)")
+
+
+# ------------------------------------------------------------------------------ first screen
+def heading(results: dict) -> str:
+    """The report's heading: ``"Seismic assessment: <the structure>"``."""
+    return f"Seismic assessment: {results['structure']['name']}"
+
+
+def verdict_text(results: dict) -> str:
+    """The verdict in one paragraph: does the structure stand, when does it start to move, how
+    safe is its geometry.
+
+    Parameters
+    ----------
+    results : dict
+        ``results.json``.
+
+    Returns
+    -------
+    str
+    """
+    verdict, safety = results["verdict"], results["safety"]
+    factor = _factor_text(safety) or _factor_text(safety.get("thickness") or {})
+    if not verdict["stands"]:
+        reason = verdict["reason"]
+        text = (f"VERDICT: CANNOT STAND (the {verdict['part'] or 'structure'}). "
+                f"{reason[:1].upper()}{reason[1:]}.")
+        if factor:
+            text += f" Its {factor}."
+        return text + " No seismic capacity exists; the assessment stops here."
+    if not verdict["collapses"]:
+        return (f"VERDICT: STANDS, AND NO HORIZONTAL ACCELERATION COLLAPSES IT. "
+                f"{verdict['reason']}.")
+    limit = results["limit"]
+    text = (f"VERDICT: STANDS. A horizontal ground acceleration of {limit['k']:.3f} g sets it "
+            f"in motion (limit analysis: k_l = {limit['k_l']:.3f}, k_r = {limit['k_r']:.3f}); "
+            f"below it the structure moves with the ground.")
+    if factor:
+        text += f" Its {factor}."
+    return text
+
+
+def _pulse_cells(row: dict, scanned: float, four_link: bool = True) -> list[str]:
+    fl, rb = row["four_link"], row["rigid_blocks"]
+    beyond = f"> {scanned:g} g"
+    if not four_link:
+        return [f"{beyond if rb is None else _g(rb)} (rigid blocks)", "rigid-block model",
+                "the four-link model does not apply"]
+    value = (f"{beyond if fl is None else _g(fl)} (four-link), "
+             f"{beyond if rb is None else _g(rb)} (rigid blocks)")
+    return [value, "both models", difference_words(row["difference"])]
+
+
+def difference_words(difference) -> str:
+    """The four-link model's failure acceleration against the rigid blocks', in words.
+
+    Parameters
+    ----------
+    difference : float or None
+        Four-link over rigid blocks, minus 1 [-] (None: one does not collapse in the scan).
+
+    Returns
+    -------
+    str
+    """
+    if difference is None:
+        return "one model does not collapse in the scan"
+    if abs(difference) <= AGREEMENT_BAND:
+        return f"{percent(difference)}: agree within {100 * AGREEMENT_BAND:g} %"
+    side = "unconservative" if difference > 0 else "conservative"
+    return (f"{percent(difference)}: differ; the four-link model is {side} (the rigid blocks "
+            f"collapse {'lower' if difference > 0 else 'higher'})")
+
+
+def summary_rows(results: dict) -> list[list[str]]:
+    """The capacities of the first screen: quantity, value, the model it comes from, and how
+    far the two models agree.
+
+    Parameters
+    ----------
+    results : dict
+        ``results.json``.
+
+    Returns
+    -------
+    list of list of str
+    """
+    s = results["summary"]
+    rows = []
+    limit = results["limit"]
+    if limit is None:
+        return rows
+    rows.append(["start of motion (activation)",
+                 f"{limit['k']:.3f} g (k_l = {limit['k_l']:.3f}, k_r = {limit['k_r']:.3f})",
+                 "limit analysis (both models start to move there)", "-"])
+    scanned = results["pulses"].get("amplitudes_g", [0.0])[-1]
+    applies = bool((results.get("four_link") or {}).get("applies"))
+    for key, what in (("pulse_long", "long"), ("pulse_short", "short")):
+        row = s.get(key)
+        if row is not None:
+            rows.append([f"collapse under a {what} pulse (Oppenheim's, t_p = "
+                         f"{row['duration']:.2f} s)", *_pulse_cells(row, scanned, applies)])
+    irregular = s.get("irregular")
+    if irregular is not None:
+        q = irregular.get("k_5")
+        text = []
+        if q is not None:
+            text.append(f"5 % of the arches start to move below {q:.3f} g (the structure: "
+                        f"{limit['k']:.3f} g)")
+        c = irregular.get("curve")
+        if c is not None and c.get("lognormal_median") is not None:
+            text.append(f"at t_p = {c['duration']:.2f} s, median collapse "
+                        f"{c['lognormal_median']:.3f} g (the structure: "
+                        f"{number(c['nominal_failure_acceleration'], 3)} g)")
+        rows.append([f"irregular masonry (epsilon = {results['settings']['epsilon']:g}, "
+                     f"{irregular['arches']} arches)", "; ".join(text) or "-", "four-link model",
+                     "-"])
+    check = s.get("record_check")
+    for im, entry in (s.get("records") or {}).items():
+        fit, nominal = entry["lognormal"], entry["nominal_lognormal"]
+        if fit["median"] is None and nominal["median"] is None:
+            value = "no lognormal fit (see Section 5)"
+        elif fit["median"] is None:
+            value = (f"median {number(nominal['median'], 3)} {entry['unit']}, beta "
+                     f"{number(nominal['dispersion'], 2)} (the structure; no irregular "
+                     f"arches)")
+        else:
+            value = (f"median {number(fit['median'], 3)} {entry['unit']}, beta "
+                     f"{number(fit['dispersion'], 2)} (irregular arches); "
+                     f"{number(nominal['median'], 3)} {entry['unit']} (the structure)")
+        agree = "-"
+        if check is not None and im == "pga":
+            agree = check_words(check)
+        rows.append([f"collapse under the records, {im_label(im)}", value,
+                     "four-link model", agree])
+    return rows
+
+
+def check_words(check: dict) -> str:
+    """The check of the two models under the records, in a few words."""
+    text = (f"at PGA {check['level_pga']:.3g} g the rigid blocks agree on "
+            f"{check['both'] + check['neither']} of {check['pairs']} record-polarities")
+    if check["rigid_blocks_only"]:
+        text += f"; they collapse in {check['rigid_blocks_only']} where the four-link does not"
+    if check["four_link_only"]:
+        text += f"; survive {check['four_link_only']} where it collapses"
+    return text
+
+
+def agreement_text(results: dict) -> str:
+    """How far the two models agree, in one paragraph.
+
+    Parameters
+    ----------
+    results : dict
+        ``results.json``.
+
+    Returns
+    -------
+    str
+    """
+    pulses = results["pulses"]
+    if "agreement" not in pulses:
+        return ("Only the rigid-block model describes this structure's collapse under pulses: "
+                + results["four_link"].get("reason", "") + ".")
+    a = pulses["agreement"]
+    n, within = len(pulses["rows"]), len(a["within"])
+    text = (f"How far the two models agree: their failure accelerations under Oppenheim's pulse "
+            f"agree within {100 * a['band']:g} % at {within or 'none'} of the {n} pulse "
+            f"durations")
+    if a["from"] is not None:
+        text += f" (every duration from t_p = {a['from']:.2f} s on)"
+    if a["largest"] is not None:
+        text += (f"; the largest difference is {percent(a['largest']['difference'])} at t_p = "
+                 f"{a['largest']['duration']:.2f} s")
+    only = a["only"]
+    for name, durations in only.items():
+        if durations:
+            text += (f"; only the {MODEL_NAMES[name]} collapses in the scan at t_p = "
+                     + ", ".join(f"{d:.2f}" for d in durations) + " s")
+    disagreeing = a.get("disagreeing", [])
+    text += (". Where one collapses and the other does not is hatched in Fig. 3"
+             + (f" ({len(disagreeing)} duration{'s' if len(disagreeing) != 1 else ''})"
+               if disagreeing else " (nowhere)") + ".")
+    above = [r for r in pulses["rows"] if r["difference"] is not None
+             and r["difference"] > a["band"]]
+    if above:
+        text += (f" Where they differ the four-link model overestimates the capacity at "
+                 f"{len(above)} durations: the rigid-block model, which takes any mechanism "
+                 f"and lets the blocks slide, is the more complete of the two.")
+    text += (" The fragility of irregular arches and against the records is of the four-link "
+             "model (the rigid-block model costs a thousand times more per analysis); the rigid "
+             "blocks check it under the records on the structure itself, at one PGA.")
+    return text
+
+
+# ------------------------------------------------------------------------------ structure
+def structure_text(results: dict) -> str:
+    """What the structure is and how it was analysed."""
+    st = results["structure"]
+    text = (f"The structure: {st['description']} ({st['blocks']} blocks). Limit analysis by "
+            f"the static method (a linear program): the largest horizontal load multiplier k "
+            f"for which a line of thrust in equilibrium with the weights and horizontal forces "
+            f"k m_i g fits inside every joint, left to right (Mech-l) and right to left "
+            f"(Mech-r).")
+    safety = results["safety"]
+    if safety.get("note"):
+        text += f" Geometric safety factor: {safety['note']}"
+        text += "." if safety.get("factor") is None else f": {safety['factor']:.3f}."
+        inner = safety.get("thickness")
+        if inner and inner.get("factor") is not None:
+            text += f" The arch's own: {inner['note']}: {inner['factor']:.3f}."
+    return text
+
+
+def structure_caption(results: dict) -> str:
+    """Caption of the drawing of the structure."""
+    if results["limit"] is None:
+        return (f"The structure drawn to scale [m]. {results['verdict']['reason'][:1].upper()}"
+                f"{results['verdict']['reason'][1:]}.")
+    limit = results["limit"]
+    return (f"The structure drawn to scale [m], with the line of thrust at activation (blue: "
+            f"the line of action of the resultant and its pressure points on the joints) and "
+            f"the four hinges of each mechanism: left, forces left to right, k_l = "
+            f"{limit['k_l']:.4f}; right, forces right to left, k_r = {limit['k_r']:.4f} (the "
+            f"mirrored structure's analysis, drawn in the structure's own frame).")
+
+
+def hinge_rows(results: dict) -> list[list[str]]:
+    """Rows of the hinges' table: mechanism, hinge, where, face, x, y."""
+    rows = []
+    for d, mech in results["limit"]["mechanisms"].items():
+        name = "Mech-l" if d == "l" else "Mech-r"
+        k = results["limit"][f"k_{d}"]
+        for i, h in enumerate(mech["hinges"]):
+            rows.append([name if i == 0 else "", f"{k:.4f}" if i == 0 else "", h["label"],
+                         h["where"], h["face"], f"{h['x']:.3f}", f"{h['y']:.3f}"])
+    return rows
+
+
+# ------------------------------------------------------------------------------ four links
+MECHANISM_QUANTITIES = (
+    ("theta_u", "theta_u, undisplaced link AB [rad]", 4),
+    ("ab", "|AB| [m]", 3), ("bc", "|BC| [m]", 3), ("cd", "|CD| [m]", 3),
+    ("theta_cr", "theta_cr, critical angle [rad]", 4),
+    ("phi_cr", "phi_cr = theta_u - theta_cr, critical rotation [rad]", 4),
+    ("ratio", "theta_cr / theta_u [-]", 4),
+    ("activation", "activation -F/P [g]", 4),
+)
+"""The quantities of a four-link mechanism in the report's table: key, label, decimals."""
+
+
+def mechanism_rows(results: dict) -> list[list[str]]:
+    """Rows of the four-link mechanisms' table: quantity, Mech-l, Mech-r."""
+    m = results["four_link"]["mechanisms"]
+    return [[label, number(m["l"][key], digits), number(m["r"][key], digits)]
+            for key, label, digits in MECHANISM_QUANTITIES]
+
+
+RESTITUTION_WORDS = {
+    "computed": "momentum balance of the impact of this structure (the default)",
+    "link": "the paper's link-wise rule (Housner's rule for the post-impact springing link)",
+    "rigid-blocks": "measured on the rigid-block model: the kinetic energy its blocks keep",
+    "paper": "the paper's value for Oppenheim's arch",
+    "elastic": "no energy lost at an impact",
+}
+"""What each restitution rule is, in words."""
+
+
+def restitution_rows(results: dict) -> list[list[str]]:
+    """Rows of the restitution table: rule, c_lr, c_rl, what it is."""
+    used = results["four_link"]["used"]["rule"]
+    rows = []
+    for rule, pair in results["four_link"]["restitution"].items():
+        mark = " (used)" if rule == used else ""
+        if isinstance(pair, dict):
+            rows.append([rule + mark, "-", "-", f"not available: {pair['error']}"])
+        else:
+            rows.append([rule + mark, f"{pair[0]:.4f}", f"{pair[1]:.4f}",
+                         RESTITUTION_WORDS.get(rule, "")])
+    if isinstance(used, float):
+        pair = results["four_link"]["used"]["pair"]
+        rows.append([f"{used:g} (used)", f"{pair[0]:.4f}", f"{pair[1]:.4f}", "imposed"])
+    return rows
+
+
+def mechanisms_text(results: dict) -> str:
+    """The paragraph of the four-link part."""
+    fl = results["four_link"]
+    if not fl["applies"]:
+        return (f"The four-link model does not apply to this structure: {fl['reason']}. Its "
+                f"dynamics are those of the rigid-block model alone.")
+    return ("The paper's four-link model: the structure rocks as three rigid blocks on the four "
+            "hinges of its limit analysis (a four-bar linkage), one mechanism each way. It "
+            "collapses when the rotation phi = theta_u - theta passes the critical rotation "
+            "phi_cr, where the potential energy is largest; an impact closes the hinges and "
+            "opens the other mechanism, losing kinetic energy by the coefficient of restitution "
+            "c_v (c_lr from Mech-l to Mech-r, c_rl back).")
+
+
+def mechanisms_caption(results: dict) -> str:
+    """Caption of the potential energy of the mechanisms."""
+    m = results["four_link"]["mechanisms"]
+    return (f"Potential energy V(phi) - V(0) of the two four-link mechanisms per unit depth; its "
+            f"maximum is the critical rotation, phi_cr = {m['l']['phi_cr']:.4f} rad (Mech-l) and "
+            f"{m['r']['phi_cr']:.4f} rad (Mech-r): beyond it gravity no longer brings the "
+            f"structure back.")
+
+
+# ------------------------------------------------------------------------------ pulses
+def domain_text(results: dict) -> str:
+    """The paragraph of the failure domain."""
+    p = results["pulses"]
+    sizes = results["sizes"]
+    d = p["durations"]
+    rb = p["rigid_blocks"]
+    text = (f"Oppenheim's pulse: the ground accelerates at -a g for t_p, then at +a g/2 for "
+            f"2 t_p (the first pulse toward the weaker direction, "
+            f"{'Mech-l' if p['direction'] == 'l' else 'Mech-r'}). Both models analysed "
+            f"{len(d)} durations from {d[0]:.2f} to {d[-1]:.2f} s (the paper's 0.1-1.0 s scaled "
+            f"to the size of the structure by {sizes['time_scale']:.3f}) on the same scan of "
+            f"{len(p['amplitudes_g'])} amplitudes from {p['amplitudes_g'][0]:g} to "
+            f"{p['amplitudes_g'][-1]:g} g, every boundary bisected to {p['resolution_g']:g} g. "
+            f"The rigid-block model: every block rigid, Coulomb friction "
+            f"{rb['model'].get('friction', '-')} at the joints; {rb['analyses']} analyses, "
+            f"its scan screened by the four-link model ({rb['search']}).")
+    if "four_link" in p:
+        c = p["four_link"][p["direction"]]["restitution"]
+        text += (f" The four-link model: restitution '{results['four_link']['used']['rule']}', "
+                 f"c_v = {number(c[0], 3)}.")
+    return text
+
+
+def domain_rows(results: dict) -> list[list[str]]:
+    """Rows of the failure accelerations' table, per duration."""
+    p = results["pulses"]
+    top = p["amplitudes_g"][-1]
+    rows = []
+    for r in p["rows"]:
+        def cell(v):
+            return f"> {top:g}" if v is None else f"{v:.3f}"
+
+        row = [f"{r['duration']:.2f}", cell(r["four_link"]), cell(r["rigid_blocks"]),
+               percent(r["difference"])]
+        if "four_link" in p:
+            row.append(cell(r.get("four_link_first_half_cycle")))
+            row.append(cell(r.get("four_link_other_direction")))
+        rows.append(row)
+    return rows
+
+
+def domain_header(results: dict) -> list[str]:
+    """Header of the failure accelerations' table."""
+    header = ["t_p [s]", "four-link [g]", "rigid blocks [g]", "difference"]
+    if "four_link" in results["pulses"]:
+        other = "Mech-r" if results["pulses"]["direction"] == "l" else "Mech-l"
+        header += ["four-link, first half cycle [g]", f"four-link, the other way ({other}) [g]"]
+    return header
+
+
+def domain_caption(results: dict) -> str:
+    """Caption of the failure domain."""
+    p = results["pulses"]
+    if "four_link" not in p:
+        return ("Failure domain of the rigid-block model under Oppenheim's pulse: rest, "
+                "recovery and collapse over pulse duration and amplitude.")
+    return ("Failure domain under Oppenheim's pulse of duration t_p and amplitude a: the "
+            "four-link model's regions (grey: no motion, below k; green: (1) recovery; orange: "
+            "(2) collapse after impacts; red: (3) collapse in the first half cycle) and failure "
+            "curve (dots), the rigid-block model's failure curve (red squares), and, hatched, "
+            "where one model collapses and the other does not (red: only the rigid blocks "
+            "collapse, the four-link model is unconservative; blue: only the four-link model "
+            f"collapses), where that band is wider than "
+            f"{p['disagreement_shown_above_g']:g} g, twice the bisection width.")
+
+
+# ------------------------------------------------------------------------------ irregularity
+def irregularity_text(results: dict) -> str:
+    """The paragraph of the irregularity part."""
+    irr = results["irregularity"]
+    if "skipped" in irr:
+        return f"Not assessed: {irr['skipped']}."
+    s = irr["settings"]
+    ls = irr["limit_sample"]
+    text = (f"Irregular arches drawn around the structure by the paper's eq. (1) with epsilon "
+            f"= {s['epsilon']:g} (every voussoir's angle, thickness and radius perturbed by up "
+            f"to epsilon times a fraction of the nominal; seed {s['seed']}): the limit analysis "
+            f"of s = {ls['count']} of them gives the distribution of k~ = min(k~_l, k~_r): mean "
+            f"{number(ls['mean'])}, standard deviation {number(ls['std'])}, "
+            f"{100 * (ls['fraction_below_nominal'] or 0):.1f} % below the structure's k")
+    q = ls.get("quantiles")
+    if q:
+        text += f", 5 % quantile {q['0.05']:.4f}"
+    text += (f". h = {irr['analysed']} of them under Oppenheim's pulse at t_p = "
+             + ", ".join(f"{d:g}" for d in s["durations"])
+             + f" s (the paper's 0.4-0.7 s scaled), amplitudes {s['amplitudes_g'][0]:g}-"
+               f"{s['amplitudes_g'][-1]:g} g in {len(s['amplitudes_g'])} steps, each arch with "
+               f"its own restitution ('{s['restitution']}'): P_F = h_f/h (eq. 9), an arch failing "
+               f"when it collapses in either direction.")
+    excluded = irr["arches"].get("excluded", 0) if isinstance(irr.get("arches"), dict) else 0
+    if excluded:
+        text += f" {excluded} drawn arches could not be analysed and are left out."
+    return text
+
+
+def irregularity_rows(results: dict) -> list[list[str]]:
+    """Rows of the irregularity table, per duration."""
+    return [[f"{c['duration']:.2f}", number(c["nominal_failure_acceleration"], 3),
+             number(c["lognormal_median"], 3), number(c["lognormal_dispersion"], 3),
+             number(c["probability_below_nominal"], 3)]
+            for c in results["irregularity"]["durations"]]
+
+
+def irregularity_caption(results: dict, durations) -> str:
+    """Caption of the fragility curves of the irregular arches."""
+    irr = results["irregularity"]
+    return ("Fragility of the irregular arches (epsilon = "
+            f"{irr['settings']['epsilon']:g}) under Oppenheim's pulse at t_p = "
+            + " and ".join(f"{d:.2f}" for d in durations)
+            + " s: the fraction P_F of arches that collapse (dots), the paper's fifth-degree "
+              "fit (dashed) and a lognormal fit (grey); in blue the CDF of k~ by limit analysis "
+              "and the structure's k; the black dash-dot line is the structure's own failure "
+              "acceleration, where its step fragility (the paper's eq. 10) jumps from 0 to 1. "
+              "P_F > 0 left of it: irregular arches fail where the regular one would not.")
+
+
+# ------------------------------------------------------------------------------ records
+def record_text(results: dict) -> str:
+    """The paragraph of the record-based fragility."""
+    rec = results["records"]
+    if "skipped" in rec:
+        return f"Not assessed: {rec['skipped']}."
+    first = next(iter(rec["ims"].values()))
+    alone = bool(first.get("structure_only"))
+    text = f"Records: {rec['suite']['description']}." + (f" {rec['note']}" if rec["note"]
+                                                          else "")
+    if alone:
+        text += (f" Multiple-stripe analysis of the structure alone (no irregular arches are "
+                 f"drawn around a surveyed arch): every record scaled to each of "
+                 f"{len(first['levels'])} levels of each intensity measure and applied in both "
+                 f"polarities, with the four-link model; a record fails the structure if it "
+                 f"collapses it in either polarity.")
+    else:
+        text += (f" Multiple-stripe analysis: every record scaled to each of "
+                 f"{len(first['levels'])} levels of each intensity measure and applied in both "
+                 f"polarities to the structure and to h = {first['sample_size']} irregular "
+                 f"arches (epsilon = {results['settings']['epsilon']:g}), with the four-link "
+                 f"model; an arch-record pair fails if it collapses in either polarity.")
+    text += (" The levels span the PGA at which the records first collapse the structure (a "
+             "pilot on a grid from k to 30 k), widened by 0.8 below"
+             + ("" if alone else f" (times {rec['weaker']:.2f}, the 5 % quantile of k~ over k, "
+                                 f"for the weaker irregular arches)")
+             + " and 1.25 above. Lognormal fragility functions P(collapse | IM) = "
+               "Phi(ln(IM/median)/beta) fitted by maximum likelihood (Baker 2015)"
+             + ("; beta is the record-to-record dispersion." if alone else
+                ": the total beta pools every pair; record-to-record is the structure's own "
+                "fit; geometric, the spread of the irregular arches for the same records."))
+    check = rec.get("check")
+    if check is not None:
+        text += (f" A check of the four-link model by the rigid blocks: the structure itself "
+                 f"under {check['pairs'] // 2} of the records (the fault-normal components "
+                 f"first) scaled to PGA = {check['level_pga']:.3g} g (the median "
+                 f"of the PGAs at which the records first collapse it), both polarities: the "
+                 f"two models agree on {check['both'] + check['neither']} of {check['pairs']} "
+                 f"(both collapse in {check['both']}, neither in {check['neither']}; only the "
+                 f"rigid blocks in {check['rigid_blocks_only']}, only the four-link model in "
+                 f"{check['four_link_only']}).")
+    files = [e["nrml"] for e in rec["ims"].values() if e["nrml"]]
+    if files:
+        text += (" The fits are written as OpenQuake NRML fragility models (continuous logncdf, "
+                 "limit state 'collapse'; "
+                 + ("" if alone else "'masonry-arch' the irregular arches, ")
+                 + "'masonry-arch-nominal' the structure): " + ", ".join(files) + ".")
+    return text
+
+
+def record_rows(results: dict) -> list[list[str]]:
+    """Rows of the record-based fragility's table, per intensity measure."""
+    rows = []
+    for im, e in results["records"]["ims"].items():
+        rows.append([f"{im_label(im)} [{e['unit']}]", f"{e['levels'][0]:.3g}-"
+                     f"{e['levels'][-1]:.3g}", number(e["lognormal"]["median"], 3),
+                     number(e["total"], 3), number(e["nominal_lognormal"]["median"], 3),
+                     number(e["record_to_record"], 3), number(e["geometric"], 3),
+                     e["nrml"] or "-"])
+    return rows
+
+
+def record_list_rows(results: dict) -> list[list[str]]:
+    """Rows of the records' table: each record's metadata and the level at which it first
+    collapses the structure."""
+    rows = []
+    ims = results["records"]["ims"]
+    near = str(results["records"]["suite"].get("name", "")).startswith("fema-p695-near")
+    for r in results["records"]["records"]:
+        component = str(r.get("component", "-"))
+        if near:
+            component = {"a": "a, fault-normal", "b": "b, fault-parallel"}.get(component,
+                                                                            component)
+        cells = [r["name"], str(r.get("event", "-")), str(r.get("year", "-")),
+                 str(r.get("station", "-")), number(r.get("magnitude"), 1), component,
+                 f"{r['pga']:.3f}", f"{r['pgv']:.3f}"]
+        for im in ims:
+            cells.append(number(ims[im]["first_collapse"].get(r["name"]), 3))
+        rows.append(cells)
+    return rows
+
+
+def record_list_header(results: dict) -> list[str]:
+    """Header of the records' table."""
+    return (["record", "event", "year", "station", "M", "component", "PGA [g]", "PGV [m/s]"]
+            + [f"first collapse, {im_label(im)} [{e['unit']}]"
+               for im, e in results["records"]["ims"].items()])
+
+
+def record_caption(results: dict) -> str:
+    """Caption of the record-based fragility."""
+    rec = results["records"]
+    first = next(iter(rec["ims"].values()))
+    if first.get("structure_only"):
+        return (f"P(collapse | IM) of the structure against {first['records']} ground motions "
+                f"in both polarities: squares, the fraction of the records that collapse it at "
+                f"each stripe; dashed, the lognormal fit and its 90 % bootstrap band. "
+                + "; ".join(f"{im_label(im)}: median {number(e['nominal_lognormal']['median'], 3)}"
+                            f" {e['unit']}, beta {number(e['record_to_record'], 3)}"
+                            for im, e in rec["ims"].items()) + ".")
+    return (f"P(collapse | IM) against {first['records']} ground motions in both polarities: "
+            f"black dots, the {first['analysed']} irregular arches; line, the lognormal fit and "
+            f"(grey) its 90 % bootstrap band; blue squares and dashed line, the structure "
+            f"itself. " + "; ".join(
+                f"{im_label(im)}: median {number(e['lognormal']['median'], 3)} {e['unit']}, "
+                f"beta {number(e['total'], 3)}" for im, e in rec["ims"].items()) + ".")
+
+
+# ------------------------------------------------------------------------------ the run
+def reduced_text(results: dict) -> str:
+    """What an assessment reduced to meet its time budget, in one paragraph."""
+    z = results["sizes"]
+    s = results["settings"]
+    parts = [f"{z['pulse_durations']} pulse durations for both failure domains (the paper's "
+             f"Fig. 16 has 37), {s['amplitude_points']} amplitudes bisected to "
+             f"{s['domain_resolution_g']:g} g"]
+    if z.get("fragility_arches") is not None:
+        parts.append(f"h = {z['fragility_arches']} irregular arches under pulses (the paper: "
+                     f"40) and s = {z['limit_arches']} by limit analysis (the paper: 1000)")
+    if z.get("record_arches") is not None:
+        parts.append(f"h = {z['record_arches']} irregular arches under {z['records']} of the "
+                     f"suite's {z['suite_records']} ground motions at {z['levels']} levels "
+                     f"(a full study: 40 arches, 20 levels), {s['bootstrap']} bootstrap "
+                     f"resamples")
+    text = ("Study sizes, chosen to fit the time budget: " + "; ".join(parts)
+            + ". The rigid-block model runs only on the structure itself, under pulses.")
+    if s["quick"]:
+        text = ("QUICK RUN: reduced sizes for a smoke test, not an assessment. " + text)
+    return text
+
+
+def command_text(results: dict) -> list[str]:
+    """The commands that regenerate the report."""
+    out = []
+    given = results["command"].get("given")
+    if given:
+        out.append(f"As run: {given}")
+    out.append(f"From the files it wrote: {results['command']['regenerate']}")
+    if results["command"].get("note"):
+        out.append(results["command"]["note"])
+    return out
+
+
+__all__ = ["ASSUMPTIONS", "MECHANISM_QUANTITIES", "MODEL_NAMES", "RESTITUTION_WORDS",
+           "agreement_text", "check_words", "command_text", "difference_words", "domain_caption",
+           "domain_header", "domain_rows",
+           "domain_text", "heading", "hinge_rows", "im_label", "irregularity_caption",
+           "irregularity_rows", "irregularity_text", "mechanism_rows", "mechanisms_caption",
+           "mechanisms_text", "record_caption", "record_list_header", "record_list_rows",
+           "record_rows", "record_text", "reduced_text", "restitution_rows", "structure_caption",
+           "structure_text", "summary_rows", "verdict_text"]
