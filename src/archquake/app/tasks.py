@@ -304,40 +304,18 @@ def assessment(spec: dict, report) -> dict:
 
 
 def assessment_report(structure, out_dir: Path) -> dict:
-    """Run the assessment of ``structure`` into ``out_dir`` (the quick sizes: the page's
-    button is a first look; ``archquake assess`` runs the full one).
-
-    Uses :func:`archquake.report.assess.assess` where this version of archquake has it, and
-    otherwise :func:`paper_report_instead`, which says so.
+    """Run :func:`archquake.report.assess.assess` on ``structure`` into ``out_dir`` with its
+    quick sizes: the page's button is a first look; ``archquake assess`` runs the full one.
 
     Returns
     -------
     dict
         ``verdict`` (the report's verdict in words) and ``files`` (the names written).
     """
-    try:
-        from ..report.assess import assess
-    except ImportError:
-        return paper_report_instead(out_dir)
+    from ..report.assess import assess
+
     result = assess(structure, quick=True, out_dir=out_dir, progress=False)
     return {"verdict": str(result.verdict), "files": [Path(f).name for f in result.files]}
-
-
-def paper_report_instead(out_dir: Path) -> dict:
-    """The paper's reproduction (``archquake reproduce --quick``, Oppenheim's arch), for a
-    version of archquake without the assessment of a structure: what the button offers there.
-
-    Returns
-    -------
-    dict
-        ``verdict`` (saying that the report is the paper's, not the structure's) and ``files``.
-    """
-    from ..report import ReproductionSettings, reproduce
-
-    reproduce(out_dir, ReproductionSettings.quick_settings(), progress=False)
-    return {"verdict": "This version of archquake cannot assess a structure of its own: the "
-                       "report is the paper's reproduction (Oppenheim's arch, quick sizes).",
-            "files": sorted(p.name for p in Path(out_dir).iterdir())}
 
 
 TASKS = {"simulate": simulate, "domain": failure_domain, "assess": assessment}
@@ -345,4 +323,4 @@ TASKS = {"simulate": simulate, "domain": failure_domain, "assess": assessment}
 
 
 __all__ = ["DOMAIN_DEFAULTS", "TASKS", "assessment", "assessment_report", "check_domain",
-           "failure_domain", "model_settings", "models_of", "paper_report_instead", "simulate"]
+           "failure_domain", "model_settings", "models_of", "simulate"]
