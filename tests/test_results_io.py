@@ -105,7 +105,25 @@ def test_json_helpers_round_trip_numpy_values(tmp_path):
     write_json(tmp_path / "x.json", obj)
     back = read_json(tmp_path / "x.json")
     assert back["a"] == 0.5 and back["b"] == [0, 1, 2] and back["d"] == str(tmp_path)
-    assert np.isnan(back["c"][0]) and back["c"][1] == np.inf
+    assert back["c"] == [None, None]  # strict JSON: no NaN, no Infinity
+
+
+def test_json_writer_is_strict_json(tmp_path):
+    """What write_json writes parses with a reader that refuses NaN and Infinity."""
+    import json
+
+    def refuse(name):
+        raise AssertionError(f"{name} in the JSON")
+
+    write_json(tmp_path / "x.json", {"t": np.float64("nan"), "u": [-np.inf, 1.0]})
+    text = (tmp_path / "x.json").read_text()
+    assert json.loads(text, parse_constant=refuse) == {"t": None, "u": [None, 1.0]}
+
+
+def test_json_reader_refuses_duplicate_keys(tmp_path):
+    (tmp_path / "x.json").write_text('{"a": 1, "b": 2, "a": 3}')
+    with pytest.raises(ValueError, match="x.json is not valid JSON: the key 'a' is given twice"):
+        read_json(tmp_path / "x.json")
 
 
 @pytest.mark.parametrize("kwargs, message", [

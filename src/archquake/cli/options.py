@@ -379,9 +379,9 @@ def _masonry_density(args: argparse.Namespace) -> float:
     density = getattr(args, "density", None)
     if density is None:
         return DEFAULT_DENSITY
-    if not (math.isfinite(density) and density > 0):
-        raise ValueError(f"--density must be a finite number > 0 [kg/m^3], got {density:g}")
-    return density
+    from ..geometry.blocks import check_density
+
+    return check_density(density, "--density")
 
 
 def structure_from_args(args: argparse.Namespace, arch):
@@ -620,7 +620,7 @@ def range_text(values: tuple[float, float, float]) -> str:
 def parse_values(text: str, name: str) -> list[float]:
     """Values of a list option: comma-separated numbers and ranges ``start:stop:step``.
 
-    A range includes ``stop`` when a step lands within ``step/2`` of it
+    A range never passes ``stop`` and includes it when a step lands on it
     (:func:`archquake.studies.failure_domain.inclusive_range`); ``"0.4,0.5"`` and
     ``"0.2:1.0:0.01"`` and ``"0.1:0.3:0.1,0.5"`` are valid.
     """

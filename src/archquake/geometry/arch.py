@@ -50,6 +50,7 @@ from .blocks import (
     MAX_VOUSSOIRS,
     MIN_VOUSSOIRS,
     BlockArch,
+    check_density,
     float_array,
     is_json_number,
     json_text,
@@ -158,7 +159,7 @@ class CircularArch(BlockArch):
                 f"the angle of embrace (sum of angles) must be in (0, 360) degrees, got "
                 f"{math.degrees(total):.6g} degrees"
             )
-        density = _check_positive("density", self.density, "kg/m^3")
+        density = check_density(self.density)
         for name, arr in (("angles", angles), ("thicknesses", thicknesses), ("radii", radii)):
             arr.setflags(write=False)
             object.__setattr__(self, name, arr)

@@ -49,6 +49,7 @@ from .._equality import value_equality
 from ..constants import DEFAULT_DENSITY
 from .blocks import (
     BlockArch,
+    check_density,
     check_json_numbers,
     check_voussoir_count,
     float_array,
@@ -122,10 +123,7 @@ class ShapedArch(BlockArch):
             raise ValueError(f"lengths must all be > 0 [m], got {lengths.tolist()}")
         if np.any(thicknesses <= 0):
             raise ValueError(f"thicknesses must all be > 0 [m], got {thicknesses.tolist()}")
-        density = float(self.density)
-        if not (math.isfinite(density) and density > 0):
-            raise ValueError(f"density must be a finite number > 0 [kg/m^3], got "
-                             f"{self.density!r}")
+        density = check_density(self.density)
         for name, arr in (("lengths", lengths), ("thicknesses", thicknesses),
                           ("offsets", offsets)):
             arr.setflags(write=False)

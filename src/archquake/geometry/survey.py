@@ -5,9 +5,11 @@ A surveyed arch is a JSON object (or the same dict in Python)::
     {"blocks": [[[x, y], [x, y], ...], ...],
      "springings": [[[x, y], [x, y]], [[x, y], [x, y]]]}
 
-- ``blocks``: one polygon per block [m], the blocks left to right; the vertices of a polygon in
-  order, either sense, not repeated at the end (a repeated first vertex is dropped). Curved
-  faces are given by sampling them finely; mass properties are those of the polygons, exact.
+- ``blocks``: one polygon per block [m], the blocks left to right (listed right to left, they
+  are reversed, with a warning: the order names the hinges and the direction of each impact);
+  the vertices of a polygon in order, either sense, not repeated at the end (a repeated first
+  vertex is dropped). Curved faces are given by sampling them finely; mass properties are those
+  of the polygons, exact.
 - Joints: the joint between consecutive blocks is the segment along which their boundaries
   overlap: an edge of one lying on an edge of the other (to :data:`SURVEY_TOLERANCE` of the
   arch's size), or several collinear such edges, merged. Two blocks that do not touch along a
@@ -30,6 +32,7 @@ of it.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -40,6 +43,7 @@ from .blocks import (
     MAX_VOUSSOIRS,
     MIN_VOUSSOIRS,
     BlockArch,
+    check_density,
     check_json_numbers,
 )
 from .mass import Segment, polygon_properties
@@ -290,10 +294,7 @@ class SurveyedArch(BlockArch):
             raise ValueError("vertices (K, 2) and counts (n,) >= 3 must describe the blocks")
         if springings.shape != (2, 2, 2) or not np.all(np.isfinite(springings)):
             raise ValueError("springings must be two segments [[x, y], [x, y]] [m]")
-        density = float(self.density)
-        if not (math.isfinite(density) and density > 0):
-            raise ValueError(f"density must be a finite number > 0 [kg/m^3], got "
-                             f"{self.density!r}")
+        density = check_density(self.density)
         for name, arr in (("vertices", vertices), ("counts", counts),
                           ("springings", springings)):
             arr.setflags(write=False)
@@ -432,7 +433,9 @@ def surveyed_arch(blocks, springings=None, *, density: float = DEFAULT_DENSITY) 
     Parameters
     ----------
     blocks : sequence of array_like (k_i, 2)
-        One polygon per block [m], vertices in order (either sense).
+        One polygon per block [m], vertices in order (either sense), left to right; blocks
+        listed right to left (the first block's centroid to the right of the last's) are taken
+        in the reverse order, with a warning.
     springings : array_like (2, 2, 2), optional
         The left and right springing joints, each two points [m]; found from the geometry when
         not given.
@@ -474,6 +477,18 @@ def surveyed_arch(blocks, springings=None, *, density: float = DEFAULT_DENSITY) 
         if area < 0:
             v = v[::-1].copy()
         polygons.append(v)
+    first, last = _centroid(polygons[0])[0], _centroid(polygons[-1])[0]
+    if first > last:  # listed right to left: the hinges and impacts would be mislabelled
+        warnings.warn(f"the blocks are listed right to left (the first block's centroid at x = "
+                      f"{first:.6g} m, the last's at x = {last:.6g} m); they are taken in the "
+                      "reverse order, left to right", stacklevel=2)
+        polygons = polygons[::-1]
+        if springings is not None:
+            try:
+                springings = list(springings)[::-1]
+            except TypeError as exc:
+                raise ValueError("springings must be [[[x, y], [x, y]], [[x, y], [x, y]]] "
+                                 "[m]") from exc
     everything = np.vstack(polygons)
     tol = SURVEY_TOLERANCE * float(np.ptp(everything, axis=0).max())
     _check_overlaps(polygons, tol)

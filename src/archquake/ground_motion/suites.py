@@ -28,7 +28,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..checks import check_integer
+from ..checks import check_integer, json_dumps
+from ..defaults import MAX_ACCELERATION_G
 from .core import GroundMotion
 from .intensity import IntensityMeasure, intensity_measure
 from .records import RECORD_EXTENSIONS, read_record, record_format
@@ -398,14 +399,27 @@ class RecordSuite:
         Raises
         ------
         ValueError
-            As :meth:`intensities`.
+            As :meth:`intensities`; or a level that scales a record to a peak ground
+            acceleration above :data:`archquake.defaults.MAX_ACCELERATION_G` (the cap of every
+            motion the package analyses), naming the level and the record.
         """
         measure = stripe_measure(im)
-        return scale_factors(self.intensities(measure.name), levels, measure.exponent)
+        factors = scale_factors(self.intensities(measure.name), levels, measure.exponent)
+        peaks = self.intensities("pga")[:, None] * factors  # [g]
+        over = np.argwhere(~(peaks <= MAX_ACCELERATION_G * (1 + 1e-12)))  # a level at the cap
+        if over.size:
+            r, j = over[np.lexsort((over[:, 0], over[:, 1]))[0]]  # the lowest level first
+            level = np.atleast_1d(np.asarray(levels, dtype=float))[j]
+            name = self.motions(cached=True)[r].name
+            raise ValueError(f"levels: the level {level:g} {measure.unit} of {measure.name} "
+                             f"scales the record {name!r} to a peak ground acceleration of "
+                             f"{peaks[r, j]:.4g} g, above the {MAX_ACCELERATION_G:g} g of any "
+                             f"motion analysed (MAX_ACCELERATION_G); give lower levels")
+        return factors
 
     def _key(self) -> str:
         """The suite as canonical JSON text: the key of the per-process caches."""
-        return json.dumps(self.to_dict(), sort_keys=True)
+        return json_dumps(self.to_dict(), sort_keys=True)
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, RecordSuite):

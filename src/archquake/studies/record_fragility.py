@@ -1153,8 +1153,9 @@ def run_record_fragility(
     if not isinstance(settings, RecordFragilitySettings):
         raise ValueError(f"settings must be RecordFragilitySettings, got "
                          f"{type(settings).__name__}")
-    # read every record and its IM here, so that a bad file stops the study before it starts
-    settings.suite.intensities(settings.im)
+    # read every record and its IM here, so that a bad file or a level that would scale a
+    # record beyond any acceleration analysed stops the study before it starts
+    settings.suite.scale_factors(settings.im, settings.levels)
     check_nominal(settings.nominal, settings.restitution, model=settings.model)
     out = None if out_dir is None else Path(out_dir)
     if resume and out is not None:

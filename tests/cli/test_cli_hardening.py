@@ -1,0 +1,99 @@
+"""Command lines that used to give a silent wrong answer, invalid JSON or a traceback: each test
+is named after what it guards."""
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from archquake.cli import main
+from archquake.defaults import MAX_ACCELERATION_G
+from archquake.studies.failure_domain import inclusive_range
+
+DATA = Path(__file__).parents[1] / "data"
+
+
+def _refuse_constant(name):
+    raise AssertionError(f"{name} in the JSON output")
+
+
+def strict_json(text):
+    """``text`` parsed as strict JSON (no NaN, no Infinity)."""
+    return json.loads(text, parse_constant=_refuse_constant)
+
+
+def error_line(capsys) -> str:
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("archquake: error: "), err
+    return err[0]
+
+
+# --- ranges never pass their stop -------------------------------------------------------------
+
+@pytest.mark.parametrize("start, stop, step, expected", [
+    (0.2, 1.0, 0.3, [0.2, 0.5, 0.8]),  # 1.1 was scanned
+    (0.2, 1.0, 0.2, [0.2, 0.4, 0.6, 0.8, 1.0]),
+    (0.3, 0.5, 0.1, [0.3, 0.4, 0.5]),  # 0.3 + 2 * 0.1 = 0.5000000000000001
+    (1.0, 1.0, 0.5, [1.0]),
+    (0.0, 0.99999999, 0.5, [0.0, 0.5]),
+])
+def test_range_never_passes_its_stop(start, stop, step, expected):
+    values = inclusive_range(start, stop, step)
+    assert values.tolist() == pytest.approx(expected, abs=1e-12)
+    assert values.max() <= stop
+
+
+def test_range_includes_a_stop_it_lands_on_within_the_tolerance():
+    values = inclusive_range(0.2, 1.0, 0.01)
+    assert len(values) == 81 and values[-1] == 1.0
+    assert np.all(np.diff(values) > 0)
+
+
+def test_domain_scans_no_amplitude_beyond_the_stop(capsys):
+    assert main(["domain", "--durations", "0.5", "--amplitudes", "0.2:1.0:0.3",
+                 "--extend-to", "0", "--json"]) == 0
+    (row,) = strict_json(capsys.readouterr().out)
+    assert row["scanned_to"] == 0.8  # 1.1 was scanned
+    assert max(iv["to"] for iv in row["intervals"]) == 0.8
+
+
+def test_compare_range_error_names_a_value_of_the_range(capsys):
+    """0.3:1001:1 holds 0.3, 1.3, ..., 1000.3; the error names the first value beyond the cap,
+    not 1001.3, which the range does not hold."""
+    assert main(["compare", "--amplitudes", "0.3:1001:1", "--durations", "0.5"]) == 2
+    line = error_line(capsys)
+    assert "1001.3" not in line and "--amplitudes" in line
+
+
+# --- the 1000 g cap holds for scaled records --------------------------------------------------
+
+@pytest.mark.parametrize("argv, level", [
+    (["--levels", "1,2000"], "2000 g of pga"),
+    (["--levels", "1", "--im", "sa(1e6)"], "1 g of sa(1e6)"),
+])
+def test_record_fragility_refuses_levels_beyond_the_acceleration_cap(capsys, tmp_path, argv,
+                                                                    level):
+    out = tmp_path / "study"
+    assert main(["record-fragility", "--records", str(DATA / "decaying_sine.csv"), *argv,
+                 "--samples", "2", "--out", str(out), "--no-progress"]) == 2
+    line = error_line(capsys)
+    assert f"--levels: the level {level}" in line
+    assert "'decaying_sine.csv'" in line and f"{MAX_ACCELERATION_G:g} g" in line
+    assert not out.exists() or not any(out.iterdir())
+
+
+def test_record_suite_scale_factors_refuse_a_peak_beyond_the_cap():
+    """The cap is on the scaled peak: the factor that brings the record's PGA to the cap is
+    accepted, one just above it is not (the PGA of the file computed here from its samples)."""
+    from archquake.ground_motion.suites import RecordSuite
+
+    suite = RecordSuite.from_paths([DATA / "decaying_sine.csv"])
+    _, a_g = np.loadtxt(DATA / "decaying_sine.csv", delimiter=",", skiprows=3, unpack=True)
+    pga = float(np.max(np.abs(a_g)))
+    factors = suite.scale_factors("pga", [MAX_ACCELERATION_G])
+    assert factors[0, 0] * pga == pytest.approx(MAX_ACCELERATION_G, rel=1e-12)
+    with pytest.raises(ValueError, match="levels: the level 1001 g of pga"):
+        suite.scale_factors("pga", [1.0, 1001.0])
+    assert math.isfinite(pga)
