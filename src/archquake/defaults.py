@@ -140,6 +140,22 @@ MAX_ACCELERATION_G = 1000.0
 times the largest amplitude a failure domain scans by default; at 1e150 g the step sizes of the
 integrator underflow."""
 
+PLAUSIBLE_PEAK_G = 5.0
+"""Largest peak acceleration of a record [g] read without a warning: above it (no record on
+file comes near it; the largest recorded are about 4 g) the values are likely in cm/s^2 or m/s^2,
+not g."""
+
+RECORD_TIME_STEP_RANGE = (1e-6, 1.0)
+"""Accepted time steps between the samples of a record [s]: accelerographs sample at 50 to
+1000 Hz (0.02 to 0.001 s); a step outside this range is a unit or header mistake."""
+
+MAX_RECORD_DURATION = 3600.0
+"""Longest record accepted [s]: an hour, far beyond any earthquake's shaking (some minutes)."""
+
+MAX_RECORD_FILE_BYTES = 256 * 2**20
+"""Largest record file read [bytes]: a record of an hour sampled at 1000 Hz is about 60 MB of
+text."""
+
 MAX_CYCLES = 10_000
 """Most cycles of a harmonic ground motion: each costs the integrator some tens of steps, and
 one analysis is limited to :data:`archquake.fourlink.engine.DEFAULT_MAX_STEPS` steps."""
