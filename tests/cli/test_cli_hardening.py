@@ -97,3 +97,38 @@ def test_record_suite_scale_factors_refuse_a_peak_beyond_the_cap():
     with pytest.raises(ValueError, match="levels: the level 1001 g of pga"):
         suite.scale_factors("pga", [1.0, 1001.0])
     assert math.isfinite(pga)
+
+
+# --- a failure at the first amplitude scanned is a bound, not a value ------------------------
+
+def test_domain_marks_a_collapse_from_the_first_amplitude_as_an_upper_bound(capsys):
+    """t = 0.7 m: k = 0.058, and the arch already collapses at 0.2 g, the lowest amplitude
+    scanned; a scan from 0.01 g finds the failure acceleration below 0.2 g, as the bound says."""
+    argv = ["domain", "--thickness", "0.7", "--durations", "0.5"]
+    assert main([*argv, "--amplitudes", "0.2:1:0.05"]) == 0
+    out = capsys.readouterr().out
+    assert "<= 0.2000" in out and "at most it" in out
+    assert main([*argv, "--amplitudes", "0.2:1:0.05", "--json"]) == 0
+    (row,) = strict_json(capsys.readouterr().out)
+    assert row["failure_acceleration"] == 0.2 and row["failure_acceleration_bound"] == "upper"
+    assert main([*argv, "--amplitudes", "0.01:1:0.01", "--json"]) == 0
+    (fine,) = strict_json(capsys.readouterr().out)
+    assert "failure_acceleration_bound" not in fine
+    assert fine["failure_acceleration"] < 0.2
+
+
+def test_domain_json_keeps_its_keys_when_the_failure_is_bracketed(capsys):
+    assert main(["domain", "--durations", "0.5", "--amplitudes", "0.3:1:0.05", "--json"]) == 0
+    (row,) = strict_json(capsys.readouterr().out)
+    assert set(row) == {"duration", "failure_acceleration", "first_half_cycle_acceleration",
+                        "scanned_to", "intervals"}
+
+
+@pytest.mark.parametrize("friction", ["0", "0.2"])
+def test_compare_refuses_an_arch_that_slides_under_its_own_weight(capsys, friction):
+    """Oppenheim's arch needs a friction of 0.206 to stand (limit analysis with friction);
+    below it every amplitude 'collapses' it, and no failure acceleration is printed."""
+    assert main(["compare", "--friction", friction, "--durations", "0.5", "--amplitudes",
+                 "0.3:0.5:0.1", "--no-progress"]) == 2
+    line = error_line(capsys)
+    assert f"with friction {friction} at its joints the arch cannot stand" in line

@@ -123,6 +123,24 @@ class DomainSlice:
         return math.nan
 
     @property
+    def failure_acceleration_bound(self) -> str | None:
+        """Whether :attr:`failure_acceleration_g` is a bound rather than a value bracketed to
+        the resolution: ``"upper"`` when the lowest amplitude scanned already collapses (the
+        failure acceleration is at most it: the scan started too high), ``"lower"`` when no
+        amplitude of the scan collapses (it is above :attr:`scanned_to_g`), None otherwise."""
+        if math.isnan(self.failure_acceleration_g):
+            return "lower"
+        return "upper" if self.intervals[0].status == "collapse" else None
+
+    @property
+    def first_half_cycle_bound(self) -> str | None:
+        """:attr:`failure_acceleration_bound` of :attr:`first_half_cycle_acceleration_g`."""
+        if math.isnan(self.first_half_cycle_acceleration_g):
+            return "lower"
+        first = self.intervals[0]
+        return "upper" if first.status == "collapse" and first.half_cycle == 1 else None
+
+    @property
     def first_half_cycle_acceleration_g(self) -> float:
         """Lowest amplitude [g] that collapses in the first half cycle, with no impact
         (Oppenheim's boundary in Fig. 16 of the paper; nan if none in the scanned range)."""
@@ -153,15 +171,21 @@ class DomainSlice:
         -------
         dict
             ``duration`` [s], ``failure_acceleration``, ``first_half_cycle_acceleration`` (None
-            for nan) and ``scanned_to`` [g], and the ``intervals`` (:meth:`Interval.to_dict`).
+            for nan: no collapse up to ``scanned_to``, a lower bound) and ``scanned_to`` [g],
+            and the ``intervals`` (:meth:`Interval.to_dict`); and, only when the lowest
+            amplitude scanned already collapses, ``failure_acceleration_bound: "upper"`` (the
+            failure acceleration is at most the value given; :attr:`failure_acceleration_bound`).
         """
-        return {
+        out = {
             "duration": self.duration,
             "failure_acceleration": json_float(self.failure_acceleration_g),
             "first_half_cycle_acceleration": json_float(self.first_half_cycle_acceleration_g),
             "scanned_to": self.scanned_to_g,
             "intervals": [iv.to_dict() for iv in self.intervals],
         }
+        if self.failure_acceleration_bound == "upper":
+            out["failure_acceleration_bound"] = "upper"
+        return out
 
 
 def _key(outcome) -> OutcomeKey:
@@ -524,6 +548,9 @@ def domain_of(model, durations=None, amplitudes_g=None, *, direction: str = "l",
         :data:`~archquake.defaults.MAX_ACCELERATION_G`), resolution, search, ``extend_to_g``
         or ``workers``, or a scan of more than :data:`~archquake.defaults.MAX_GRID_POINTS`
         analyses (:data:`~archquake.defaults.MAX_BLOCK_GRID_POINTS` for the rigid blocks).
+    archquake.errors.CannotStandError
+        For a rigid-block structure that cannot stand under its own weight with its friction
+        (:func:`archquake.limit_analysis.standing_with_friction`), before any dynamics.
 
     References
     ----------
@@ -557,6 +584,7 @@ def domain_of(model, durations=None, amplitudes_g=None, *, direction: str = "l",
     single = name != "four-link"
     _check_scan_size(d.size, a, extend_to_g, MAX_BLOCK_GRID_POINTS if single else
                      MAX_GRID_POINTS)
+    _check_stands(model)
     screen_model = screen
     if search == "screened" and screen is None:
         screen_model = model if name == "four-link" else _four_link_screen(model.structure)
@@ -574,6 +602,22 @@ def domain_of(model, durations=None, amplitudes_g=None, *, direction: str = "l",
     return FailureDomain(tuple(s for s, _ in slices), direction, limit_k, k, restitution,
                          motion, None if extend_to_g is None else float(extend_to_g),
                          model.describe(), search, tuple(n for _, n in slices))
+
+
+def _check_stands(model) -> None:
+    """Refuse, before any dynamics, a rigid-block structure that cannot stand under its own
+    weight with its friction (:func:`archquake.limit_analysis.standing_with_friction`): every
+    amplitude would collapse it, and the lowest one scanned is no failure acceleration. (The
+    four-link model refuses such an arch when it is built.)"""
+    from ..errors import CannotStandError
+    from ..geometry import BlockArch
+    from ..limit_analysis import standing_with_friction
+
+    if model.name == "four-link" or not isinstance(model.structure, BlockArch):
+        return
+    verdict = standing_with_friction(model.structure, model.settings.friction)
+    if not verdict.stands:
+        raise CannotStandError(verdict.reason)
 
 
 def _four_link_screen(structure):

@@ -664,6 +664,19 @@ class FragilityResult:
                              f"{self.durations.tolist()}")
         return int(hits[0])
 
+    def nominal_failure_bound(self, i: int) -> str | None:
+        """Whether the nominal failure acceleration of duration ``i`` is a bound
+        (:attr:`archquake.studies.failure_domain.DomainSlice.failure_acceleration_bound` of the
+        direction that gives it): ``"upper"`` when the nominal arch collapses at the lowest
+        amplitude scanned, ``"lower"`` when at none, None when bracketed."""
+        q = float(self.nominal_failure_acceleration_g[i])
+        if not math.isfinite(q):
+            return "lower"
+        slices = [domain.slices[i] for domain in self.nominal_domains]
+        return ("upper" if any(s.failure_acceleration_g == q
+                               and s.failure_acceleration_bound == "upper" for s in slices)
+                else None)
+
     def probability_below_nominal(self) -> np.ndarray:
         """P_F at the largest grid amplitude below the nominal failure acceleration, per
         duration: where the step of eq. (10) says P_F = 0.
@@ -758,6 +771,8 @@ class FragilityResult:
                 "lognormal_dispersion": None if lognormal is None else lognormal.dispersion,
                 "lognormal_at_nominal": (None if lognormal is None or not math.isfinite(q)
                                          else float(lognormal(q))),
+                **({"nominal_failure_acceleration_bound": "upper"}
+                   if self.nominal_failure_bound(i) == "upper" else {}),
             })
         def stat(function, values):
             return json_float(float(function(values))) if values.size else None
