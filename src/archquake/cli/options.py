@@ -122,9 +122,11 @@ def option_message(message: str) -> str:
 
 
 def given(args: argparse.Namespace, *names: str) -> list[str]:
-    """The options among ``names`` given on the command line (not None, empty or False)."""
+    """The options among ``names`` given on the command line (not None, empty or False; a
+    number 0 is given: ``--rise 0`` is a rise of zero, which the library refuses by name)."""
     return [f"--{name.replace('_', '-')}" for name in names
-            if getattr(args, name) not in (None, [], False)]
+            if (value := getattr(args, name)) is not None and value is not False
+            and value != []]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -165,9 +167,11 @@ def add_shape_options(group, *, thickness: bool = True) -> None:
         group.add_argument("--thickness", type=float, default=None,
                            help=f"thickness t, normal to the centreline [m] (default: "
                                 f"{defaults['thickness']:g})")
+    voussoirs = defaults["voussoirs"]
     group.add_argument("--voussoirs", type=int, default=None,
                        help=f"number of voussoirs n, of equal centreline length (default: "
-                            f"{defaults['voussoirs']}; even for a pointed arch)")
+                            f"{voussoirs}, {voussoirs + voussoirs % 2} for a pointed arch, "
+                            f"which needs an even number)")
     group.add_argument("--faces", choices=VOUSSOIR_FACES, default=None,
                        help="voussoir faces: curved (following intrados and extrados) or flat "
                             "(chords between the joint ends) (default: curved)")
@@ -259,6 +263,8 @@ def shape_from_args(args: argparse.Namespace) -> tuple[str | None, dict]:
         raise ValueError(f"{', '.join(by_size + by_angle)}: a circular arch is given by --span "
                          "and --rise or by --radius and --embrace, not both")
     voussoirs = option_value(args, "voussoirs")
+    if args.voussoirs is None and shape == "pointed" and voussoirs % 2:
+        voussoirs += 1  # a joint at the crown: half the voussoirs on each side
     if shape != "circular" or by_size:
         if len(by_size) < 2:
             raise ValueError(f"{article} {shape} arch needs --span and --rise [m]")

@@ -28,6 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._equality import frozen_value
 from ..checks import check_integer, json_dumps
 from ..defaults import MAX_ACCELERATION_G
 from .core import GroundMotion
@@ -426,7 +427,8 @@ class RecordSuite:
             return NotImplemented
         return self.to_dict() == other.to_dict()
 
-    __hash__ = None
+    def __hash__(self) -> int:
+        return hash(("RecordSuite", frozen_value(self.to_dict())))
 
 
 @functools.lru_cache(maxsize=2)

@@ -84,6 +84,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from .._equality import frozen_value
 from ..checks import check_integer, json_float
 from ..defaults import (
     DEFAULT_EPSILON,
@@ -341,7 +342,9 @@ class FragilitySettings:
             return NotImplemented
         return self.to_dict() == other.to_dict()
 
-    __hash__ = None  # mutable-free but holds arrays: compare by value, do not hash
+    def __hash__(self) -> int:
+        # frozen, and every field an immutable value: hashed as it compares, by its to_dict
+        return hash(("FragilitySettings", frozen_value(self.to_dict())))
 
 
 def arch_outcomes(arch: BlockArch, durations, amplitudes_g, *, restitution=DEFAULT_RESTITUTION,

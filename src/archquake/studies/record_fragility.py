@@ -120,6 +120,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from .._equality import frozen_value
 from ..checks import check_integer
 from ..defaults import (
     DEFAULT_FRICTION,
@@ -361,7 +362,9 @@ class RecordFragilitySettings:
             return NotImplemented
         return self.to_dict() == other.to_dict()
 
-    __hash__ = None
+    def __hash__(self) -> int:
+        # frozen, and every field an immutable value: hashed as it compares, by its to_dict
+        return hash(("RecordFragilitySettings", frozen_value(self.to_dict())))
 
 
 # ---------------------------------------------------------------------------------------------
