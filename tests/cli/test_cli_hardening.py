@@ -132,3 +132,43 @@ def test_compare_refuses_an_arch_that_slides_under_its_own_weight(capsys, fricti
                  "0.3:0.5:0.1", "--no-progress"]) == 2
     line = error_line(capsys)
     assert f"with friction {friction} at its joints the arch cannot stand" in line
+
+
+# --- smaller ones ---------------------------------------------------------------------------
+
+def test_rise_zero_is_a_rise_of_zero_not_a_missing_option(capsys):
+    assert main(["limit", "--shape", "parabolic", "--span", "10", "--rise", "0"]) == 2
+    assert "--rise must be a finite number > 0" in error_line(capsys)
+
+
+def test_pointed_arch_takes_an_even_default_number_of_voussoirs(capsys):
+    """7 (the default of the other shapes) is refused for a pointed arch: it takes 8."""
+    assert main(["limit", "--shape", "pointed", "--span", "10", "--rise", "6"]) == 0
+    assert "n = 8 voussoirs" in capsys.readouterr().out
+    assert main(["limit", "--shape", "pointed", "--span", "10", "--rise", "6",
+                 "--voussoirs", "7"]) == 2
+    assert "divisible by 2" in error_line(capsys)
+
+
+def test_free_vibration_beyond_the_point_of_no_return_prints_no_nan(capsys):
+    assert main(["simulate", "--phi0", "0.5"]) == 0
+    out = capsys.readouterr().out
+    assert "nan" not in out and "released beyond its point of no return" in out
+
+
+def test_outcomes_of_identical_runs_are_equal_and_hash_alike():
+    from archquake import ArchDynamics, oppenheim
+    from archquake.ground_motion import oppenheim_pulse
+
+    dynamics = ArchDynamics.from_arch(oppenheim())
+    pulse = oppenheim_pulse(-0.3 * 9.81, 0.4)  # below k: rest, collapse_time nan
+    a, b = dynamics.outcome(pulse), dynamics.outcome(pulse)
+    assert math.isnan(a.collapse_time)
+    assert a == b and hash(a) == hash(b)
+    assert a != dynamics.outcome(oppenheim_pulse(-0.8 * 9.81, 0.4))
+
+
+def test_study_settings_are_hashable_as_they_compare():
+    from archquake.studies.fragility import FragilitySettings
+
+    assert len({FragilitySettings(), FragilitySettings(), FragilitySettings(seed=1)}) == 2
