@@ -95,6 +95,11 @@ DOMAIN_AMPLITUDES_G = (0.05, 1.5, 0.01)
 """``(start, stop, step)`` [g] of the scan of a failure domain (extended up to
 :data:`DEFAULT_EXTEND_TO_G` where needed)."""
 
+MAX_PULSE_DURATION = 60.0
+"""Longest pulse duration t_p of a failure domain, a comparison or a fragility study [s]: the
+pulses of near-fault records last a few seconds (the paper's reach 1 s); a duration of minutes
+is a unit mistake, and the rigid-block model would take millions of steps for it."""
+
 STUDY_DURATIONS = (0.4, 0.5, 0.6, 0.7)
 """Pulse durations t_p [s] of a fragility study [paper, Sect. 5.3.3]."""
 

@@ -180,6 +180,7 @@ def run_command(module, args: argparse.Namespace) -> int:
     try:
         if "workers" in vars(args):  # one check of --workers for every command
             args.workers = options.check_workers(args.workers)
+        options.check_paths(args)  # and of every file or directory name
         # a study on worker processes: SIGTERM stops it like Ctrl-C, which terminates them
         with sigterm_as_interrupt(getattr(args, "workers", None) is not None):
             return int(module.run(args) or 0)

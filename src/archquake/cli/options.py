@@ -663,6 +663,22 @@ def parse_values(text: str, name: str) -> list[float]:
 # ---------------------------------------------------------------------------------------------
 
 
+PATH_OPTIONS = ("out", "plot_dir", "output", "plot", "animate", "geometry", "record",
+                "records", "export_nrml", "paths")
+"""The options that name a file or a directory (:func:`check_paths`)."""
+
+
+def check_paths(args: argparse.Namespace) -> None:
+    """Refuse an empty file or directory name (``--out ""`` would be the current directory,
+    ``--plot ""`` no file at all), naming the option."""
+    for name in PATH_OPTIONS:
+        value = getattr(args, name, None)
+        values = value if isinstance(value, list) else [value]
+        if any(isinstance(v, str) and not v.strip() for v in values):
+            option = f"--{name.replace('_', '-')}" if name != "paths" else "PATH"
+            raise ValueError(f"{option} must name a file or directory, got {value!r}")
+
+
 def add_workers_option(parser, *, help: str) -> None:
     """``--workers N``: local worker processes (checked by :func:`check_workers` for every
     command)."""

@@ -98,7 +98,11 @@ def irregular_arch(nominal: BlockArch, epsilon: float,
             "irregular arches are drawn around an arch with a centreline (CircularArch or "
             "ShapedArch), "
             f"got {type(nominal).__name__}")
-    rng = np.random.default_rng(rng)
+    try:
+        rng = np.random.default_rng(rng)
+    except (TypeError, ValueError):  # numpy's message would not name the parameter
+        raise ValueError(f"rng must be a numpy.random.Generator, a seed (an integer >= 0) or "
+                         f"None, got {rng!r}") from None
     p = rng.uniform(-1.0, 1.0, size=(3, nominal.n_voussoirs))
     if eps == 0.0:
         return nominal

@@ -55,6 +55,7 @@ from ..defaults import (
     MAX_ACCELERATION_G,
     MAX_BLOCK_GRID_POINTS,
     MAX_GRID_POINTS,
+    MAX_PULSE_DURATION,
 )
 from ..status import Status
 from .strategies import DEFAULT_STRIDE
@@ -382,8 +383,9 @@ def check_durations(durations) -> np.ndarray:
     d = np.atleast_1d(np.asarray(durations, dtype=float))
     if d.ndim != 1 or d.size == 0:
         raise ValueError("durations must be a non-empty sequence of pulse durations t_p [s]")
-    if not np.all(np.isfinite(d)) or np.any(d <= 0):
-        raise ValueError(f"durations must be finite and > 0 [s], got {d.tolist()}")
+    if not np.all(np.isfinite(d)) or np.any(d <= 0) or np.any(d > MAX_PULSE_DURATION):
+        raise ValueError(f"durations must be pulse durations in (0, {MAX_PULSE_DURATION:g}] s "
+                         f"(MAX_PULSE_DURATION), got {d.tolist()}")
     return d
 
 

@@ -98,6 +98,7 @@ from ..defaults import (
     MAX_ACCELERATION_G,
     MAX_GRID_POINTS,
     MAX_LIMIT_SAMPLES,
+    MAX_PULSE_DURATION,
     MAX_SAMPLES,
     MAX_STUDY_ANALYSES,
     STUDY_AMPLITUDES_G,
@@ -237,9 +238,11 @@ class FragilitySettings:
         check_integer("sample_size", self.sample_size, maximum=MAX_SAMPLES)
         check_integer("limit_sample_size", self.limit_sample_size, maximum=MAX_LIMIT_SAMPLES)
         d = np.atleast_1d(np.asarray(self.durations, dtype=float))
-        if d.ndim != 1 or d.size == 0 or not np.all(np.isfinite(d)) or np.any(d <= 0):
-            raise ValueError(f"durations must be a non-empty list of pulse durations > 0 [s], "
-                             f"got {np.ravel(d).tolist()}")
+        if (d.ndim != 1 or d.size == 0 or not np.all(np.isfinite(d)) or np.any(d <= 0)
+                or np.any(d > MAX_PULSE_DURATION)):
+            raise ValueError(f"durations must be a non-empty list of pulse durations in (0, "
+                             f"{MAX_PULSE_DURATION:g}] s (MAX_PULSE_DURATION), got "
+                             f"{np.ravel(d).tolist()}")
         if np.unique(d).size != d.size:
             raise ValueError(f"durations must be distinct, got {d.tolist()}")
         a = np.atleast_1d(np.asarray(self.amplitudes_g, dtype=float))
