@@ -170,6 +170,7 @@ def test_files_are_created_with_the_permissions_of_the_umask(tmp_path, umask):
 
 
 FORMULAS = ["=cmd|' /C calc'!A0", "+1+1", "-RSN6.AT2", "@SUM(A1)", "'=quoted", "''-twice", "'",
+            "\t=tab.AT2",
             "plain.AT2", "a=b", "'plain"]
 
 
@@ -185,7 +186,7 @@ def test_record_names_in_csv_are_never_formulas_and_read_back_as_they_were(tmp_p
     # what a spreadsheet sees: no cell starts like a formula, and the names are all there
     assert not [c for c in cells if c[:1] in FORMULA_PREFIXES]
     assert [read_spreadsheet_text(c) for c in cells] == FORMULAS
-    assert cells[2] == "'-RSN6.AT2" and cells[7] == "plain.AT2"
+    assert cells[2] == "'-RSN6.AT2" and cells[8] == "plain.AT2"
     # numbers are numbers (a negative one is not text)
     assert pd.read_csv(tmp_path / "results.csv")["level"].tolist() == table["level"].tolist()
     assert_frame_equal(load_study(tmp_path).table, table)

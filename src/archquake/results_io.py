@@ -99,8 +99,9 @@ def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
         raise
 
 
-FORMULA_PREFIXES = ("=", "+", "-", "@")
-"""First characters that make a spreadsheet read a CSV cell as a formula."""
+FORMULA_PREFIXES = ("=", "+", "-", "@", "\t", "\r")
+"""First characters that make a spreadsheet read a CSV cell as a formula (OWASP's list: a tab
+or a carriage return first is read so by some)."""
 
 
 def spreadsheet_text(text: str) -> str:

@@ -99,3 +99,14 @@ def test_a_utf16_record_without_its_mark_says_the_encoding(tmp_path):
     path.write_bytes("0,0.1\n0.01,0.2\n".encode("utf-16-le"))
     with pytest.raises(ValueError, match="NUL bytes: it is not UTF-8 text.*UTF-16"):
         read_record(path)
+
+
+def test_a_record_whose_name_holds_a_line_break_is_refused(tmp_path):
+    """A carriage return in a file name is not quoted in a CSV table (pandas quotes only the
+    line terminator): it would split the record's row of results.csv in two."""
+    from archquake.ground_motion import RecordSuite
+
+    path = tmp_path / "bad\rname.csv"
+    path.write_bytes((DATA / "decaying_sine.csv").read_bytes())
+    with pytest.raises(ValueError, match="control character"):
+        RecordSuite.from_paths([path])

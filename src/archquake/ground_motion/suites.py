@@ -235,6 +235,10 @@ class RecordSuite:
             found.setdefault(path.name, (path, fmt))
         files = []
         for motion in motions:
+            if any(ord(c) < 32 or ord(c) == 127 for c in motion.name):
+                # a line break in a name would break the tables that list the records
+                raise ValueError(f"record file {motion.name!r}: its name holds a control "
+                                 "character (a line break, a tab); rename the file")
             path, fmt = found[motion.name]
             files.append(RecordFile(motion.name, str(path.resolve()), fmt or record_format(path),
                                     file_digest(path)))
