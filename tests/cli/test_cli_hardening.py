@@ -172,3 +172,17 @@ def test_study_settings_are_hashable_as_they_compare():
     from archquake.studies.fragility import FragilitySettings
 
     assert len({FragilitySettings(), FragilitySettings(), FragilitySettings(seed=1)}) == 2
+
+
+def test_sigterm_stops_reproduce_like_ctrl_c(monkeypatch):
+    """The report starts a process of its own: SIGTERM must stop it cleanly (its helper and
+    queues released), not kill the report and leave them."""
+    import signal
+
+    from archquake.cli import _signals, main_reproduce
+
+    seen = []
+    monkeypatch.setattr(main_reproduce, "run",
+                        lambda args: seen.append(signal.getsignal(signal.SIGTERM)) or 0)
+    assert main(["reproduce", "--out", "unused"]) == 0
+    assert seen == [_signals.raise_terminated]

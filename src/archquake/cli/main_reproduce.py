@@ -14,6 +14,11 @@ DESCRIPTION = (
     "(17-21), each beside the paper's values. Writes DIR/report.html (self-contained), "
     "DIR/report.md with the PNG figures, and DIR/results.json with every number.")
 
+STARTS_PROCESSES = True
+"""The report runs its long tasks on a second process (on a machine with two processors):
+SIGTERM stops it like Ctrl-C, so that process is stopped too and its queues are released
+(:func:`archquake.cli._signals.sigterm_as_interrupt`)."""
+
 
 def configure(parser: argparse.ArgumentParser) -> None:
     """The options of ``archquake reproduce``."""
