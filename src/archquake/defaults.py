@@ -77,6 +77,15 @@ momentum balance of the impact of this arch
 DEFAULT_SEED = 0
 """Root seed of irregular arches and samples."""
 
+REPORT_SEED = 2024
+"""Root seed of the irregular arches of the paper's reproduction (``archquake reproduce``)."""
+
+DEFAULT_IM = "pga"
+"""Intensity measure of the stripes of a record-based fragility study."""
+
+DEFAULT_INTENSITY_MEASURES = "pga,pgv,pgd,arias,d5-95"
+"""The intensity measures ``archquake records`` computes unless told."""
+
 DEFAULT_EPSILON = 0.10
 """Tolerance epsilon of the irregular draw of a study [paper, eq. (1) and Sect. 5.3.3]."""
 

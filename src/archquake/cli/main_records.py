@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import argparse
 
+from ..defaults import DEFAULT_INTENSITY_MEASURES
 from . import options
 from .output import print_json
 
@@ -28,7 +29,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
                              "(the FEMA P695 record sets, both components of every record; "
                              'needs pip install "archquake[records]"); --json adds each '
                              "record's metadata")
-    parser.add_argument("--im", default="pga,pgv,pgd,arias,d5-95", metavar="LIST",
+    parser.add_argument("--im", default=DEFAULT_INTENSITY_MEASURES, metavar="LIST",
                         help="comma-separated intensity measures, e.g. pga,pgv,sa(0.5) "
                              "(default: %(default)s)")
     options.add_json_option(

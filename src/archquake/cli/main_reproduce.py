@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import argparse
 
+from ..defaults import REPORT_SEED
 from . import options
 
 DESCRIPTION = (
@@ -29,7 +30,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="reduced study for a smoke test (h = 6 arches, s = 100, 0.05 g "
                              "steps, 7 failure-domain durations)")
     parser.add_argument("--seed", type=int, default=None,
-                        help="root seed of the irregular arches (default: 2024)")
+                        help=f"root seed of the irregular arches (default: {REPORT_SEED})")
     parser.add_argument("--restitution", default=None, metavar=options.RESTITUTION_METAVAR,
                         help=f"coefficient of restitution c_v of the paper's results, one value "
                              f"for every arch as in the paper: {options.RESTITUTION_HELP}; a "

@@ -151,7 +151,7 @@ def add_shape_options(group, *, thickness: bool = True) -> None:
     ``thickness=False``), ``--voussoirs`` and ``--faces``: an arch by its shape."""
     defaults = circular_defaults()
     group.add_argument("--shape", choices=SHAPES, default=None,
-                       help="shape of the centreline (default: circular); every shape but the "
+                       help=f"shape of the centreline (default: {SHAPES[0]}); every shape but the "
                             "circle is given by --span and --rise, with its springings on y = 0")
     group.add_argument("--span", type=float, default=None,
                        help="span of the centreline [m] (with --rise)")
@@ -174,7 +174,7 @@ def add_shape_options(group, *, thickness: bool = True) -> None:
                             f"which needs an even number)")
     group.add_argument("--faces", choices=VOUSSOIR_FACES, default=None,
                        help="voussoir faces: curved (following intrados and extrados) or flat "
-                            "(chords between the joint ends) (default: curved)")
+                            f"(chords between the joint ends) (default: {VOUSSOIR_FACES[0]})")
 
 
 def _add_geometry_file_option(group) -> None:
@@ -220,7 +220,7 @@ def add_arch_options(parser: argparse.ArgumentParser) -> None:
                              "irregularity epsilon in [0, 1) of the paper's eq. (1) (formerly "
                              "--tolerance, still accepted)")
     group.add_argument("--seed", type=int, default=None,
-                       help="seed of the irregular draw (default: 0)")
+                       help=f"seed of the irregular draw (default: {DEFAULT_SEED})")
 
 
 def add_nominal_arch_options(parser: argparse.ArgumentParser) -> None:
@@ -253,7 +253,7 @@ def shape_from_args(args: argparse.Namespace) -> tuple[str | None, dict]:
     The values themselves are checked by the library (its messages name the options through
     :func:`option_message`), except the angle of embrace, which the library sees in radians.
     """
-    shape = args.shape or "circular"
+    shape = args.shape or SHAPES[0]
     by_size, by_angle = given(args, "span", "rise"), given(args, "radius", "embrace")
     article = "an" if shape[0] in "aeiou" else "a"
     if shape != "circular" and by_angle:
@@ -269,12 +269,12 @@ def shape_from_args(args: argparse.Namespace) -> tuple[str | None, dict]:
         if len(by_size) < 2:
             raise ValueError(f"{article} {shape} arch needs --span and --rise [m]")
         return shape, {"span": args.span, "rise": args.rise, "voussoirs": voussoirs,
-                       "faces": args.faces or "curved"}
+                       "faces": args.faces or VOUSSOIR_FACES[0]}
     embrace = option_value(args, "embrace")
     if not 0 < embrace < 360:  # in the option's unit: the library sees radians
         raise ValueError(f"--embrace must be in (0, 360) degrees, got {embrace:g}")
     kwargs = {"radius": option_value(args, "radius"), "embrace": math.radians(embrace),
-              "voussoirs": voussoirs, "faces": args.faces or "curved"}
+              "voussoirs": voussoirs, "faces": args.faces or VOUSSOIR_FACES[0]}
     return (None if kwargs["faces"] == "curved" else "circular"), kwargs
 
 
@@ -456,7 +456,7 @@ def arches_from_args(args: argparse.Namespace):
 
     nominal = arch = nominal_arch_from_args(args)
     if args.epsilon is not None:
-        seed = 0 if args.seed is None else args.seed
+        seed = DEFAULT_SEED if args.seed is None else args.seed
         if seed < 0:  # numpy's own message would not name the option
             raise ValueError(f"--seed must be an integer >= 0, got {seed}")
         if not hasattr(arch, "perturbed"):
@@ -482,7 +482,7 @@ def arch_from_args(args: argparse.Namespace):
 def drawn(args: argparse.Namespace) -> str:
     """How the command line names the irregular arch of ``--epsilon`` and ``--seed``."""
     return (f"the irregular arch drawn with --epsilon {args.epsilon:g} (seed "
-            f"{0 if args.seed is None else args.seed})")
+            f"{DEFAULT_SEED if args.seed is None else args.seed})")
 
 
 @contextlib.contextmanager

@@ -123,11 +123,15 @@ import pandas as pd
 from .._equality import frozen_value
 from ..checks import check_integer
 from ..defaults import (
+    DEFAULT_EPSILON,
     DEFAULT_FRICTION,
+    DEFAULT_IM,
     DEFAULT_LEVEL_STRIDE,
     DEFAULT_RESTITUTION,
     DEFAULT_SEARCH,
+    DEFAULT_SEED,
     MAX_SAMPLES,
+    STUDY_SAMPLE_SIZE,
 )
 from ..geometry import GRAVITY, BlockArch, arch_from_dict
 from ..ground_motion.suites import RecordSuite, stripe_measure
@@ -233,11 +237,11 @@ class RecordFragilitySettings:
 
     suite: RecordSuite
     levels: tuple[float, ...]
-    im: str = "pga"
+    im: str = DEFAULT_IM
     nominal: BlockArch = field(default_factory=oppenheim)
-    sample_size: int = 40
-    epsilon: float = 0.10
-    seed: int = 0
+    sample_size: int = STUDY_SAMPLE_SIZE
+    epsilon: float = DEFAULT_EPSILON
+    seed: int = DEFAULT_SEED
     restitution: str | float = DEFAULT_RESTITUTION
     bootstrap: int = DEFAULT_BOOTSTRAP
     confidence: float = DEFAULT_CONFIDENCE
