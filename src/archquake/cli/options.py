@@ -465,10 +465,10 @@ def arches_from_args(args: argparse.Namespace):
         try:
             arch = irregular_arch(arch, args.epsilon, rng=seed)
         except ValueError as exc:
-            if str(exc).startswith("epsilon"):
+            if exc.__cause__ is None:  # epsilon itself is out of its range
                 raise
-            raise ValueError(f"{drawn(args)} is not a valid arch: {exc}; epsilon is too "
-                             f"large for this arch") from exc
+            raise ValueError(f"{drawn(args)} is not a valid arch: {exc.__cause__}; epsilon is "
+                             f"too large for this arch") from exc
     elif args.seed is not None:
         raise ValueError("--seed needs --epsilon (the seed of an irregular arch)")
     return nominal, arch

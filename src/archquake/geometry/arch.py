@@ -51,6 +51,7 @@ from .blocks import (
     MIN_VOUSSOIRS,
     BlockArch,
     check_density,
+    check_voussoir_count,
     float_array,
     is_json_number,
     json_text,
@@ -588,14 +589,10 @@ def circular_arch(
         raise ValueError(
             f"thickness must be < 2 x radius = {2 * radius} m, got {thickness} m"
         )
-    if isinstance(voussoirs, bool) or not float(voussoirs).is_integer():
-        raise ValueError(f"voussoirs must be an integer >= {MIN_VOUSSOIRS}, got {voussoirs!r}")
-    n = int(voussoirs)
-    if n < MIN_VOUSSOIRS:
-        raise ValueError(
-            f"voussoirs must be >= {MIN_VOUSSOIRS} for a four-hinge mechanism, got {n}"
-        )
-    _check_voussoir_count(n)
+    n = check_voussoir_count(voussoirs)
+    if not embrace / n > 0.0:
+        raise ValueError(f"embrace must give each of the {n} voussoirs an angle > 0, got "
+                         f"{embrace!r} rad")
     return CircularArch(
         np.full(n, embrace / n), np.full(n, thickness), np.full(n, radius),
         (math.pi - embrace) / 2.0, density,

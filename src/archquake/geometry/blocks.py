@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import json
 import math
+import numbers
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
 from pathlib import Path
@@ -97,7 +98,11 @@ FACES = ("intrados", "extrados")
 def check_voussoir_count(count, name: str = "voussoirs") -> int:
     """``count`` as an int in [:data:`MIN_VOUSSOIRS`, :data:`MAX_VOUSSOIRS`], or a ValueError
     naming ``name``."""
-    if isinstance(count, bool) or not float(count).is_integer():
+    try:  # an integer too large for a float is too many voussoirs, not an OverflowError
+        whole = isinstance(count, numbers.Integral) or float(count).is_integer()
+    except (TypeError, ValueError, OverflowError):
+        whole = False
+    if isinstance(count, bool) or not whole:
         raise ValueError(f"{name} must be an integer >= {MIN_VOUSSOIRS}, got {count!r}")
     n = int(count)
     if n < MIN_VOUSSOIRS:

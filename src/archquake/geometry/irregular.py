@@ -106,7 +106,11 @@ def irregular_arch(nominal: BlockArch, epsilon: float,
     p = rng.uniform(-1.0, 1.0, size=(3, nominal.n_voussoirs))
     if eps == 0.0:
         return nominal
-    return perturbed(eps, p)
+    try:
+        return perturbed(eps, p)
+    except ValueError as exc:  # the draw is not an arch: say which parameter made it
+        raise ValueError(f"epsilon {eps:g} draws an irregular arch that is not valid: "
+                         f"{exc}") from exc
 
 
 def irregular_sample(nominal: BlockArch, epsilon: float, sample_size: int,

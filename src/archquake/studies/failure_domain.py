@@ -383,9 +383,11 @@ def check_durations(durations) -> np.ndarray:
     d = np.atleast_1d(np.asarray(durations, dtype=float))
     if d.ndim != 1 or d.size == 0:
         raise ValueError("durations must be a non-empty sequence of pulse durations t_p [s]")
-    if not np.all(np.isfinite(d)) or np.any(d <= 0) or np.any(d > MAX_PULSE_DURATION):
+    bad = d[~((d > 0) & (d <= MAX_PULSE_DURATION))]  # nan too
+    if bad.size:
+        shown = ", ".join(f"{v:g}" for v in bad[:5]) + (", ..." if bad.size > 5 else "")
         raise ValueError(f"durations must be pulse durations in (0, {MAX_PULSE_DURATION:g}] s "
-                         f"(MAX_PULSE_DURATION), got {d.tolist()}")
+                         f"(MAX_PULSE_DURATION), got {shown}")
     return d
 
 

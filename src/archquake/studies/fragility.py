@@ -240,9 +240,10 @@ class FragilitySettings:
         d = np.atleast_1d(np.asarray(self.durations, dtype=float))
         if (d.ndim != 1 or d.size == 0 or not np.all(np.isfinite(d)) or np.any(d <= 0)
                 or np.any(d > MAX_PULSE_DURATION)):
+            bad = [v for v in np.ravel(d).tolist() if not 0 < v <= MAX_PULSE_DURATION]
             raise ValueError(f"durations must be a non-empty list of pulse durations in (0, "
                              f"{MAX_PULSE_DURATION:g}] s (MAX_PULSE_DURATION), got "
-                             f"{np.ravel(d).tolist()}")
+                             f"{bad[:5] if bad else np.ravel(d).tolist()[:5]}")
         if np.unique(d).size != d.size:
             raise ValueError(f"durations must be distinct, got {d.tolist()}")
         a = np.atleast_1d(np.asarray(self.amplitudes_g, dtype=float))
