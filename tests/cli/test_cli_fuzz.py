@@ -4,11 +4,11 @@ finite numbers, or one error line naming an option or a file, status 2; no trace
 time). ``make fuzz`` runs these with many more examples (HYPOTHESIS_PROFILE=fuzz)."""
 
 import pytest
-from fuzzing import check_run, integers_text, numbers, options, run_cli, words
 from hypothesis import event, given
 from hypothesis import strategies as st
 
 from archquake.defaults import SHAPES, VOUSSOIR_FACES
+from fuzzing import check_run, integers_text, numbers, options, run_cli, words
 
 pytestmark = pytest.mark.fuzz
 

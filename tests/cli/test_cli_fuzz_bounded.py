@@ -11,10 +11,11 @@ import sys
 from pathlib import Path
 
 import pytest
-from fuzzing import check_run
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from test_cli_fuzz import COMMAND_LINES
+
+from fuzzing import check_run
 
 pytestmark = [pytest.mark.fuzz,
               pytest.mark.skipif(not hasattr(resource, "RLIMIT_AS"), reason="POSIX limits")]

@@ -8,12 +8,12 @@ import math
 import string
 
 import pytest
-from fuzzing import check_run, run_cli, time_limit
 from hypothesis import HealthCheck, event, given, settings
 from hypothesis import strategies as st
 
 from archquake import oppenheim
 from archquake.geometry import circular_arch, irregular_arch, load_arch, shaped_arch
+from fuzzing import check_run, run_cli, time_limit
 
 pytestmark = pytest.mark.fuzz
 

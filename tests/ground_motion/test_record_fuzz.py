@@ -9,12 +9,12 @@ import string
 
 import numpy as np
 import pytest
-from fuzzing import check_run, run_cli, time_limit
 from hypothesis import HealthCheck, event, given, settings
 from hypothesis import strategies as st
 
 from archquake.defaults import ANALYTIC_GROUND_MOTIONS
 from archquake.ground_motion import ground_motion, read_record
+from fuzzing import check_run, run_cli, time_limit
 
 pytestmark = pytest.mark.fuzz
 
