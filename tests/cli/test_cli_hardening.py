@@ -186,3 +186,17 @@ def test_sigterm_stops_reproduce_like_ctrl_c(monkeypatch):
                         lambda args: seen.append(signal.getsignal(signal.SIGTERM)) or 0)
     assert main(["reproduce", "--out", "unused"]) == 0
     assert seen == [_signals.raise_terminated]
+
+
+def test_a_pulse_duration_of_days_is_refused_naming_the_option(capsys):
+    """compare --durations 1e6 suggested a --t-end compare does not have."""
+    assert main(["compare", "--durations", "1e6", "--no-progress"]) == 2
+    line = error_line(capsys)
+    assert "--durations must be pulse durations in (0, 60] s" in line and "t_end" not in line
+
+
+@pytest.mark.parametrize("argv", [["fragility", "--out", ""], ["reproduce", "--out", " "],
+                                  ["limit", "--plot", ""], ["records", ""]])
+def test_an_empty_file_name_is_refused(capsys, argv):
+    assert main(argv) == 2
+    assert "must name a file or directory" in error_line(capsys)

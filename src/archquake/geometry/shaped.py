@@ -175,11 +175,6 @@ class ShapedArch(BlockArch):
         return int(index[joint]), float(u[joint])
 
     def _check_thickness(self) -> None:
-        size = max(self.centreline.span, self.centreline.rise)
-        thinnest = float(self.thicknesses.min())
-        if thinnest <= 1e-9 * size:  # the voussoirs would enclose no area in floating point
-            raise ValueError(f"thickness must be more than 1e-9 of the arch's size {size:.6g} "
-                             f"m, got {thinnest!r} m")
         for i in range(self.n_voussoirs):
             kappa = self.centreline.max_curvature(self._station(i, "right"),
                                                   self._station(i + 1, "left"))
@@ -296,9 +291,10 @@ class ShapedArch(BlockArch):
             props = [region_properties(self.boundary(i), self.density, name=f"voussoir {i}",
                                        check=False)  # closed by construction
                      for i in range(self.n_voussoirs)]
-        except ValueError as exc:  # a voussoir folds over itself: too thick where it turns
-            raise ValueError(f"thickness: {exc}; the {self.shape} arch is too thick for its "
-                             f"shape there (its faces cross)") from exc
+        except ValueError as exc:  # too thin to have an area, or folded where it turns
+            raise ValueError(f"thickness: {exc} (a voussoir of this {self.shape} arch is too "
+                             f"thin to have an area in floating point, or so thick where the "
+                             f"arch turns that its faces cross)") from exc
         return (np.array([p[0] for p in props]), np.array([p[1] for p in props]),
                 np.array([p[2] for p in props]))
 
