@@ -12,7 +12,7 @@ DOC_OUTPUTS := docs/_build docs/api/generated docs/auto_examples docs/sg_executi
 OQ_VENV := .venv-openquake
 OQ := $(OQ_VENV)/.installed
 
-.PHONY: run test docs lint bench clean openquake chromium app-screenshots
+.PHONY: run test fuzz docs lint bench clean openquake chromium app-screenshots
 
 $(BASE): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -60,6 +60,11 @@ run: $(BASE)
 
 test: $(TEST) $(OQ) chromium
 	ARCHQUAKE_OPENQUAKE_PYTHON=$(CURDIR)/$(OQ_VENV)/bin/python $(BIN)/python -m pytest -q
+
+# The property-based fuzzers (tests marked fuzz) with Hypothesis's "fuzz" profile: hundreds of
+# examples per property where `make test` runs twenty (tests/conftest.py).
+fuzz: $(TEST)
+	HYPOTHESIS_PROFILE=fuzz $(BIN)/python -m pytest -q -m fuzz --hypothesis-show-statistics
 
 # The site in docs/_build/html, built from scratch (every example runs) and offline; a warning
 # fails the build.

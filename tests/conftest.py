@@ -1,6 +1,8 @@
 import math
+import os
 
 import pytest
+from hypothesis import HealthCheck, settings
 
 from archquake import oppenheim
 from archquake.reference_arches import paper_values
@@ -29,3 +31,14 @@ def data_dir():
     from pathlib import Path
 
     return Path(__file__).parent / "data"
+
+
+# Property-based tests (Hypothesis): "ci", the default, runs few examples so that the whole suite
+# stays fast; "fuzz" (make fuzz: HYPOTHESIS_PROFILE=fuzz pytest -m fuzz) runs many. The time of
+# an example is bounded by the tests themselves (tests/fuzzing.py), not by Hypothesis's
+# deadline, which a shared machine would trip.
+settings.register_profile("ci", max_examples=20, deadline=None, derandomize=True,
+                          database=None, suppress_health_check=[HealthCheck.too_slow])
+settings.register_profile("fuzz", max_examples=400, deadline=None,
+                          suppress_health_check=[HealthCheck.too_slow])
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))

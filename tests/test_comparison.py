@@ -107,7 +107,7 @@ def test_plots_draw_every_model(comparison):
 def test_blocks_restitution_follows_the_friction_of_the_comparison(nominal):
     """With a friction low enough for the joints to slide at the impact, the 'blocks' c_v is
     measured with that friction."""
-    settings = BlockSettings(friction=0.1)
+    settings = BlockSettings(friction=0.3)  # the lowest friction it stands with is 0.206
     c = compare_models(nominal, (0.7,), amplitudes_g=(0.3, 0.5), resolution=0.05,
                        restitutions=("blocks",), settings=settings)
     from archquake.fourlink.impact import blocks_restitution
@@ -115,7 +115,7 @@ def test_blocks_restitution_follows_the_friction_of_the_comparison(nominal):
     mech_l, mech_r = ArchDynamics.from_arch(nominal).mechanisms
     assert c.restitution["blocks"][0] == pytest.approx(
         blocks_restitution(mech_l, mech_r, settings), rel=1e-12)
-    assert c.restitution["blocks"][0] > 0.8  # vs 0.748 at mu = 0.8
+    assert c.restitution["blocks"][0] > 0.755  # 0.759, vs 0.748 at mu = 0.8
 
 
 def test_precomputed_rigid_block_curve_is_checked(nominal, comparison):

@@ -465,3 +465,33 @@ def test_workers_compile_when_the_main_module_imported_numba(tmp_path):
                          env={**os.environ, "PYTHONPATH": src}, timeout=120)
     assert out.returncode == 0, out.stderr[-2000:]
     assert float(out.stdout.split()[-1]) == 6.0
+
+
+def test_closing_the_client_of_a_lost_cluster_logs_nothing_of_distributeds(monkeypatch,
+                                                                            caplog):
+    """After a lost scheduler, closing the client makes distributed log its cancelled
+    reconnection with two tracebacks before our message: they are silenced; a study that
+    ends well leaves the loggers as they were."""
+    import logging
+
+    pytest.importorskip("distributed")  # its loggers exist once it is imported, as in a study
+
+    class Client:
+        def close(self):
+            logging.getLogger("distributed.client").error("Traceback (most recent call last)")
+
+    def lost(*args):
+        raise StudyError("lost the connection to the Dask scheduler")
+
+    monkeypatch.setattr(execution, "_dask_client", lambda scheduler: (Client(), True))
+    monkeypatch.setattr(execution, "_run", lost)
+    caplog.set_level(logging.DEBUG)
+    with pytest.raises(StudyError, match="lost the connection"):
+        run_study(toy_tasks.trivial_task, StudyPlan({}, 0, 2, 1),
+                  scheduler="tcp://127.0.0.1:8786", progress=False)
+    assert not [r for r in caplog.records if r.name.startswith("distributed")]
+    assert not logging.getLogger("distributed.client").disabled
+    monkeypatch.setattr(execution, "_run", lambda *args: "table")
+    assert run_study(toy_tasks.trivial_task, StudyPlan({}, 0, 2, 1),
+                     scheduler="tcp://127.0.0.1:8786", progress=False) == "table"
+    assert [r.name for r in caplog.records] == ["distributed.client"]  # not silenced then

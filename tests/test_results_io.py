@@ -105,7 +105,25 @@ def test_json_helpers_round_trip_numpy_values(tmp_path):
     write_json(tmp_path / "x.json", obj)
     back = read_json(tmp_path / "x.json")
     assert back["a"] == 0.5 and back["b"] == [0, 1, 2] and back["d"] == str(tmp_path)
-    assert np.isnan(back["c"][0]) and back["c"][1] == np.inf
+    assert back["c"] == [None, None]  # strict JSON: no NaN, no Infinity
+
+
+def test_json_writer_is_strict_json(tmp_path):
+    """What write_json writes parses with a reader that refuses NaN and Infinity."""
+    import json
+
+    def refuse(name):
+        raise AssertionError(f"{name} in the JSON")
+
+    write_json(tmp_path / "x.json", {"t": np.float64("nan"), "u": [-np.inf, 1.0]})
+    text = (tmp_path / "x.json").read_text()
+    assert json.loads(text, parse_constant=refuse) == {"t": None, "u": [None, 1.0]}
+
+
+def test_json_reader_refuses_duplicate_keys(tmp_path):
+    (tmp_path / "x.json").write_text('{"a": 1, "b": 2, "a": 3}')
+    with pytest.raises(ValueError, match="x.json is not valid JSON: the key 'a' is given twice"):
+        read_json(tmp_path / "x.json")
 
 
 @pytest.mark.parametrize("kwargs, message", [
@@ -152,6 +170,7 @@ def test_files_are_created_with_the_permissions_of_the_umask(tmp_path, umask):
 
 
 FORMULAS = ["=cmd|' /C calc'!A0", "+1+1", "-RSN6.AT2", "@SUM(A1)", "'=quoted", "''-twice", "'",
+            "\t=tab.AT2",
             "plain.AT2", "a=b", "'plain"]
 
 
@@ -167,7 +186,7 @@ def test_record_names_in_csv_are_never_formulas_and_read_back_as_they_were(tmp_p
     # what a spreadsheet sees: no cell starts like a formula, and the names are all there
     assert not [c for c in cells if c[:1] in FORMULA_PREFIXES]
     assert [read_spreadsheet_text(c) for c in cells] == FORMULAS
-    assert cells[2] == "'-RSN6.AT2" and cells[7] == "plain.AT2"
+    assert cells[2] == "'-RSN6.AT2" and cells[8] == "plain.AT2"
     # numbers are numbers (a negative one is not text)
     assert pd.read_csv(tmp_path / "results.csv")["level"].tolist() == table["level"].tolist()
     assert_frame_equal(load_study(tmp_path).table, table)

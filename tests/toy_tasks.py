@@ -69,3 +69,22 @@ def threads_task(chunk):
     return {"numba_env": [int(os.environ.get("NUMBA_NUM_THREADS", -1))],
             "omp_env": [int(os.environ.get("OMP_NUM_THREADS", -1))],
             "numba_threads": [numba.get_num_threads()]}
+
+
+def pid_and_sleep(seconds):
+    """This process's id, after a progress bar of ``seconds`` seconds (tqdm's lock made)."""
+    from tqdm.auto import tqdm
+
+    for _ in tqdm(range(max(1, int(seconds * 10))), disable=False, leave=False):
+        time.sleep(0.1)
+    return os.getpid()
+
+
+def report_pid(path):
+    """Write this process's id to ``path``, then sleep a minute (a worker that is never done)."""
+    from tqdm.auto import tqdm
+
+    with open(path, "w") as f:
+        f.write(str(os.getpid()))
+    for _ in tqdm(range(600), leave=False):
+        time.sleep(0.1)

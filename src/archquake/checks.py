@@ -5,7 +5,13 @@
 :func:`json_float`
     a number as JSON holds it: a finite float, or ``None`` for nan and infinities (strict JSON
     has no such numbers, and a summary's reader should not meet ``NaN`` where a number is
-    missing).
+    missing);
+:func:`json_value`, :func:`json_dumps`
+    any value as strict JSON (``null`` for nan and infinities, never ``NaN``): every JSON the
+    package writes goes through them;
+:func:`json_loads`
+    JSON as the package reads it: a key given twice, ``NaN`` or a nesting too deep for Python
+    is a ``ValueError``, never a silent choice or a ``RecursionError``.
 
 The module imports nothing of the package, so any module may import it (geometry, ground motions,
 studies and result files alike).
@@ -13,8 +19,10 @@ studies and result files alike).
 
 from __future__ import annotations
 
+import json
 import math
 import numbers
+import os
 from typing import Any
 
 
@@ -82,4 +90,109 @@ def json_float(value: Any) -> float | None:
     return x if math.isfinite(x) else None
 
 
-__all__ = ["check_integer", "json_float"]
+def json_value(obj: Any) -> Any:
+    """``obj`` as plain JSON values: numpy scalars and arrays as numbers and lists, tuples as
+    lists, paths as strings, keys as strings, and nan and infinities as ``None``.
+
+    Parameters
+    ----------
+    obj : object
+        Nested dicts, lists, tuples, arrays, numbers, strings, paths.
+
+    Returns
+    -------
+    object
+        What :func:`json.dumps` writes as strict JSON.
+
+    Raises
+    ------
+    TypeError
+        For a value JSON cannot hold (naming its type).
+
+    Examples
+    --------
+    >>> json_value({"a": (1.5, float("nan")), 2: float("-inf")})
+    {'a': [1.5, None], '2': None}
+    """
+    if isinstance(obj, dict):
+        return {str(k): json_value(v) for k, v in obj.items()}
+    if isinstance(obj, list | tuple):
+        return [json_value(v) for v in obj]
+    if obj is None or isinstance(obj, bool | str | int):
+        return obj
+    if isinstance(obj, float):
+        return obj if math.isfinite(obj) else None
+    if isinstance(obj, os.PathLike):
+        return os.fspath(obj)
+    if hasattr(obj, "tolist"):  # numpy scalars and arrays, without importing numpy here
+        return json_value(obj.tolist())
+    if isinstance(obj, numbers.Real):
+        return json_value(float(obj))
+    raise TypeError(f"object of type {type(obj).__name__} is not JSON serialisable")
+
+
+def json_dumps(obj: Any, **kwargs) -> str:
+    """Strict JSON text of ``obj`` (:func:`json_value`; ``allow_nan=False``): ``null`` where a
+    number is nan or infinite. ``kwargs`` go to :func:`json.dumps` (``indent``,
+    ``sort_keys``).
+
+    Examples
+    --------
+    >>> json_dumps({"collapse_time": float("nan")})
+    '{"collapse_time": null}'
+    """
+    return json.dumps(json_value(obj), allow_nan=False, **kwargs)
+
+
+def _refuse_duplicate_keys(pairs: list[tuple[str, Any]]) -> dict:
+    keys = [key for key, _ in pairs]
+    seen: set[str] = set()
+    for key in keys:
+        if key in seen:
+            raise ValueError(f"the key {key!r} is given twice")
+        seen.add(key)
+    return dict(pairs)
+
+
+def _refuse_constant(name: str):
+    raise ValueError(f"{name} is not a JSON number (strict JSON has no {name}); give a finite "
+                     "number")
+
+
+def json_loads(text: str, *, allow_nan: bool = False) -> Any:
+    """The value of the JSON ``text``, refusing what :func:`json.loads` would accept silently.
+
+    Parameters
+    ----------
+    text : str
+        The JSON text.
+    allow_nan : bool
+        Accept ``NaN``, ``Infinity`` and ``-Infinity`` (files written by earlier versions);
+        default: refuse them.
+
+    Returns
+    -------
+    object
+
+    Raises
+    ------
+    ValueError
+        A key given twice in one object (:func:`json.loads` keeps the last), ``NaN`` or
+        ``Infinity`` unless ``allow_nan``, a nesting deeper than Python's recursion limit, or
+        text that is not JSON (a :class:`json.JSONDecodeError`, a subclass of ValueError).
+
+    Examples
+    --------
+    >>> json_loads('{"a": 1, "a": 2}')
+    Traceback (most recent call last):
+    ...
+    ValueError: the key 'a' is given twice
+    """
+    kwargs = {} if allow_nan else {"parse_constant": _refuse_constant}
+    try:
+        return json.loads(text, object_pairs_hook=_refuse_duplicate_keys, **kwargs)
+    except RecursionError:
+        raise ValueError("the JSON is nested too deeply to be read") from None
+
+
+__all__ = ["check_integer", "json_dumps", "json_float", "json_loads", "json_value"]

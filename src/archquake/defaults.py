@@ -77,6 +77,15 @@ momentum balance of the impact of this arch
 DEFAULT_SEED = 0
 """Root seed of irregular arches and samples."""
 
+REPORT_SEED = 2024
+"""Root seed of the irregular arches of the paper's reproduction (``archquake reproduce``)."""
+
+DEFAULT_IM = "pga"
+"""Intensity measure of the stripes of a record-based fragility study."""
+
+DEFAULT_INTENSITY_MEASURES = "pga,pgv,pgd,arias,d5-95"
+"""The intensity measures ``archquake records`` computes unless told."""
+
 DEFAULT_EPSILON = 0.10
 """Tolerance epsilon of the irregular draw of a study [paper, eq. (1) and Sect. 5.3.3]."""
 
@@ -94,6 +103,11 @@ DOMAIN_DURATIONS = (0.1, 1.0, 0.025)
 DOMAIN_AMPLITUDES_G = (0.05, 1.5, 0.01)
 """``(start, stop, step)`` [g] of the scan of a failure domain (extended up to
 :data:`DEFAULT_EXTEND_TO_G` where needed)."""
+
+MAX_PULSE_DURATION = 60.0
+"""Longest pulse duration t_p of a failure domain, a comparison or a fragility study [s]: the
+pulses of near-fault records last a few seconds (the paper's reach 1 s); a duration of minutes
+is a unit mistake, and the rigid-block model would take millions of steps for it."""
 
 STUDY_DURATIONS = (0.4, 0.5, 0.6, 0.7)
 """Pulse durations t_p [s] of a fragility study [paper, Sect. 5.3.3]."""
@@ -139,6 +153,22 @@ MAX_ACCELERATION_G = 1000.0
 """Largest ground acceleration accepted [g], in magnitude: far beyond any earthquake and fifty
 times the largest amplitude a failure domain scans by default; at 1e150 g the step sizes of the
 integrator underflow."""
+
+PLAUSIBLE_PEAK_G = 5.0
+"""Largest peak acceleration of a record [g] read without a warning: above it (no record on
+file comes near it; the largest recorded are about 4 g) the values are likely in cm/s^2 or m/s^2,
+not g."""
+
+RECORD_TIME_STEP_RANGE = (1e-6, 1.0)
+"""Accepted time steps between the samples of a record [s]: accelerographs sample at 50 to
+1000 Hz (0.02 to 0.001 s); a step outside this range is a unit or header mistake."""
+
+MAX_RECORD_DURATION = 3600.0
+"""Longest record accepted [s]: an hour, far beyond any earthquake's shaking (some minutes)."""
+
+MAX_RECORD_FILE_BYTES = 256 * 2**20
+"""Largest record file read [bytes]: a record of an hour sampled at 1000 Hz is about 60 MB of
+text."""
 
 MAX_CYCLES = 10_000
 """Most cycles of a harmonic ground motion: each costs the integrator some tens of steps, and

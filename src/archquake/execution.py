@@ -56,6 +56,7 @@ References
 
 from __future__ import annotations
 
+import contextlib
 import copy
 import datetime
 import json
@@ -335,14 +336,64 @@ def _run_chunk(chunk: Chunk, task: Task) -> tuple[int, dict[str, np.ndarray], fl
     return chunk.index, columns, time.perf_counter() - t0
 
 
-def _limit_threads(threads: int, warm_up: Callable[[], Any] | None = None) -> None:
-    """Process-pool initializer: cap the threads of numba and BLAS in a worker process, then
-    run ``warm_up`` (if given) once.
+PARENT_CHECK_INTERVAL = 0.5
+"""How often a worker process checks that the process that started it is alive [s]."""
+
+
+def die_with_parent(parent: int, interval: float = PARENT_CHECK_INTERVAL) -> None:
+    """End this process when its parent ``parent`` (a process id) is gone.
+
+    A worker whose parent was killed (``kill -9``, an out-of-memory kill, a SIGTERM with the
+    default action) would otherwise run its chunk to the end, then wait for work forever,
+    keeping the resource tracker alive with it. On Linux the kernel sends SIGKILL at the
+    parent's death (``prctl(PR_SET_PDEATHSIG)``, when the ``prctl`` call is available); a
+    daemon thread also polls :func:`os.getppid` every ``interval`` seconds, which works on
+    every POSIX system (an orphan is adopted by another process) and whatever thread of the
+    parent started this one.
+
+    Parameters
+    ----------
+    parent : int
+        Process id of the parent, as the parent saw itself (:func:`os.getpid`).
+    interval : float
+        Seconds between two checks.
+    """
+    import threading
+
+    if sys.platform.startswith("linux"):
+        with suppress(Exception):  # no libc, no prctl: the thread below still watches
+            import ctypes
+
+            libc = ctypes.CDLL(None, use_errno=True)
+            libc.prctl(1, signal.SIGKILL, 0, 0, 0)  # PR_SET_PDEATHSIG = 1
+    if os.getppid() != parent:  # the parent died before the watch began
+        os._exit(1)
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(interval)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="archquake-parent-watch", daemon=True).start()
+
+
+def _limit_threads(threads: int, warm_up: Callable[[], Any] | None = None,
+                   parent: int | None = None) -> None:
+    """Process-pool initializer: end with the parent ``parent`` (:func:`die_with_parent`), cap
+    the threads of numba and BLAS in a worker process, then run ``warm_up`` (if given) once.
 
     A worker ignores SIGINT: Ctrl-C in a terminal signals the whole process group, and the
     process that owns the pool stops the workers itself (:meth:`WorkerPool.terminate_workers`)
-    instead of each worker printing a KeyboardInterrupt traceback.
+    instead of each worker printing a KeyboardInterrupt traceback. Its progress bars (tqdm)
+    lock with a thread lock, not tqdm's default multiprocessing one: a worker terminated with a
+    semaphore of its own registered would leave the resource tracker to warn of it ("leaked
+    semaphore objects") at the end of the command.
     """
+    import threading
+
+    if parent is not None:
+        die_with_parent(parent)
+    tqdm.set_lock(threading.RLock())
     with suppress(ValueError):  # not the main thread of the worker: leave signals alone
         signal.signal(signal.SIGINT, signal.SIG_IGN)
     numba_imported = "numba" in sys.modules  # e.g. by the parent's __main__, re-imported here
@@ -386,8 +437,16 @@ class WorkerPool(ProcessPoolExecutor):
             Time [s] the processes are given to exit after SIGTERM, all together, before they
             are killed (SIGKILL).
         """
-        processes = list((getattr(self, "_processes", None) or {}).values())
+        # The pool's table of processes, read only after the shutdown: a submission in flight
+        # starts its worker holding the pool's lock, and the shutdown waits for that lock, so
+        # the table is complete once it returns (a list read before it would miss a worker
+        # started meanwhile, which would survive). The shutdown drops the pool's reference to
+        # the table, not the table.
+        table = getattr(self, "_processes", None)
+        table = {} if table is None else table  # the table itself, even empty: not a copy
         self.shutdown(wait=False, cancel_futures=True)
+        with self._shutdown_lock:
+            processes = list(table.values())
         for process in processes:
             with suppress(ValueError, ProcessLookupError):
                 process.terminate()
@@ -438,7 +497,7 @@ def process_pool(workers: int | None = None, *,
     n = _check_count("workers", workers) if workers is not None else (os.cpu_count() or 1)
     threads = max(1, (os.cpu_count() or 1) // n)
     return WorkerPool(max_workers=n, mp_context=multiprocessing.get_context("spawn"),
-                      initializer=_limit_threads, initargs=(threads, warm_up))
+                      initializer=_limit_threads, initargs=(threads, warm_up, os.getpid()))
 
 
 def _processes(task: Task, chunks: list[Chunk], workers: int,
@@ -463,6 +522,25 @@ def _processes(task: Task, chunks: list[Chunk], workers: int,
         else:  # a pool owned by the caller stays open; drop what this study still queued
             for future in pending:
                 future.cancel()
+
+
+@contextlib.contextmanager
+def _quiet_loggers(prefixes: tuple[str, ...]):
+    """Disable the loggers whose names start with one of ``prefixes`` in the block (restored
+    after it)."""
+    import logging
+
+    names = [name for name in list(logging.root.manager.loggerDict)
+             if name.split(".")[0] in prefixes]
+    loggers = [logging.getLogger(name) for name in names]
+    before = [logger.disabled for logger in loggers]
+    for logger in loggers:
+        logger.disabled = True
+    try:
+        yield
+    finally:
+        for logger, disabled in zip(loggers, before, strict=True):
+            logger.disabled = disabled
 
 
 def _dask_client(scheduler: Any):
@@ -895,12 +973,18 @@ def run_study(
 
     started = time.perf_counter()
     client, owned = _dask_client(scheduler) if backend == "dask" else (None, False)
+    failed = True
     try:
-        return _run(task, plan, out_dir, backend, workers, client, resume, progress, started,
-                    pool)
+        table = _run(task, plan, out_dir, backend, workers, client, resume, progress, started,
+                     pool)
+        failed = False
+        return table
     finally:
         if owned:
-            client.close()
+            # after a lost cluster, closing the client logs distributed's own tracebacks
+            # (its reconnection, cancelled) before our message: ours says it all
+            with _quiet_loggers(("distributed", "tornado") if failed else ()):
+                client.close()
 
 
 def _run(task: Task, plan: StudyPlan, out_dir: str | os.PathLike | None, backend: str,

@@ -211,7 +211,8 @@ def plot_failure_domain(domain, ax=None):
 
     The regions are shaded (no motion, recovery, collapse after impacts, collapse in the first
     half cycle); the boundary of collapse in the first half cycle (Oppenheim's curve) is drawn
-    with asterisks, the failure curve (lowest collapsing amplitude) with dots, and the
+    with asterisks, the failure curve (lowest collapsing amplitude) with dots (an open triangle
+    pointing down where the lowest amplitude scanned already collapses: an upper bound), and the
     limit-analysis multiplier k as a horizontal dashed line.
 
     Parameters
@@ -252,6 +253,12 @@ def plot_failure_domain(domain, ax=None):
                                                   "(Oppenheim's curve)")
     (curve_failure,) = ax.plot(durations, failure, "-o", color="black", markersize=3.5,
                                linewidth=1.2, label="failure curve (lowest collapsing amplitude)")
+    upper = np.array([s.failure_acceleration_bound == "upper" for s in slices])
+    bounds = []
+    if np.any(upper):  # collapse from the lowest amplitude scanned: at most there
+        bounds = ax.plot(durations[upper], failure[upper], "v", color="black",
+                         markerfacecolor="white", markersize=9, zorder=5,
+                         label="collapse from the lowest amplitude scanned (an upper bound)")
     k = domain.limit_multiplier
     line_k = ax.axhline(k, color="black", linestyle="--", linewidth=1.2,
                         label=f"limit analysis, k = {k:.3f}")
@@ -266,7 +273,7 @@ def plot_failure_domain(domain, ax=None):
     c_lr, c_rl = domain.restitution
     c_text = f"{c_lr:.3f}" if abs(c_lr - c_rl) < 5e-4 else f"{c_lr:.3f} / {c_rl:.3f}"
     ax.set_title(f"Failure domain: first pulse {sign}a g ({name}), c$_v$ = {c_text}")
-    ax.legend(handles=[curve_first, curve_failure, line_k] + handles, loc="upper right",
+    ax.legend(handles=[curve_first, curve_failure, *bounds, line_k] + handles, loc="upper right",
               fontsize=8, framealpha=0.9)
     return ax
 
@@ -698,7 +705,8 @@ def plot_model_comparison(comparison, ax=None):
     restitution model; vertical bars at a duration: the recovery bands above a failure
     acceleration (amplitudes at which the arch survives although a lower one collapses it),
     grey for the rigid-block model, coloured (slightly offset) for the four-link model; open
-    triangles at the top of the scan: no collapse in the scan; dashed: the limit-analysis k,
+    triangles at the top of the scan: no collapse in the scan; open triangles pointing down:
+    collapse from the lowest amplitude scanned (an upper bound); dashed: the limit-analysis k,
     below which neither model moves.
 
     Parameters
@@ -721,6 +729,7 @@ def plot_model_comparison(comparison, ax=None):
     top = float(comparison.amplitudes_g[-1])
     span = float(np.ptp(x)) if x.size > 1 else 1.0
     curves = [("rigid_block", "rigid-block model", comparison.rigid_block.slices, "black")]
+    any_upper = False
     for name, domain in comparison.four_link.items():
         c_lr, c_rl = domain.restitution
         c_text = f"{c_lr:.3f}" if abs(c_lr - c_rl) < 5e-4 else f"{c_lr:.3f}/{c_rl:.3f}"
@@ -739,6 +748,11 @@ def plot_model_comparison(comparison, ax=None):
         if np.any(beyond):
             ax.plot(x[beyond] + shift, np.full(beyond.sum(), top), "^", color=colour,
                     markerfacecolor="none", markersize=8, zorder=5)
+        upper = np.array([s.failure_acceleration_bound == "upper" for s in slices])
+        if np.any(upper):
+            any_upper = True
+            ax.plot(x[upper] + shift, failure[upper], "v", color=colour,
+                    markerfacecolor="none", markersize=8, zorder=5)
         for xi, s in zip(x, slices, strict=True):
             for lo, hi in s.recovery_above_g:
                 ax.plot([xi + shift, xi + shift], [lo, hi], "-", color="0.55" if rigid else colour,
@@ -748,6 +762,9 @@ def plot_model_comparison(comparison, ax=None):
                label=f"limit analysis, k = {k:.3f}")
     ax.plot([], [], "^", color="0.3", markerfacecolor="none", label="no collapse up to the "
                                                                       "top of the scan")
+    if any_upper:
+        ax.plot([], [], "v", color="0.3", markerfacecolor="none", label="collapse from the "
+                "lowest amplitude scanned (an upper bound)")
     ax.plot([], [], "-", color="0.55", linewidth=5, label="recovery above the failure "
                                                           "acceleration")
     ax.set_yscale("log")

@@ -37,6 +37,7 @@ import numpy as np
 import pandas as pd
 
 from ._version import __version__
+from .checks import json_dumps, json_loads
 
 RESULTS_PARQUET = "results.parquet"
 """File name of the tidy table in Parquet, in a study directory (the file to load)."""
@@ -98,8 +99,9 @@ def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
         raise
 
 
-FORMULA_PREFIXES = ("=", "+", "-", "@")
-"""First characters that make a spreadsheet read a CSV cell as a formula."""
+FORMULA_PREFIXES = ("=", "+", "-", "@", "\t", "\r")
+"""First characters that make a spreadsheet read a CSV cell as a formula (OWASP's list: a tab
+or a carriage return first is read so by some)."""
 
 
 def spreadsheet_text(text: str) -> str:
@@ -252,24 +254,12 @@ def write_block_history_csv(history, path: str | os.PathLike) -> Path:
     return Path(path)
 
 
-def _json_default(obj: Any) -> Any:
-    """Convert numpy scalars and arrays (and paths) for :func:`json.dumps`."""
-    if isinstance(obj, np.generic):
-        return obj.item()
-    if isinstance(obj, np.ndarray):
-        return obj.tolist()
-    if isinstance(obj, os.PathLike):
-        return os.fspath(obj)
-    raise TypeError(f"object of type {type(obj).__name__} is not JSON serialisable")
-
-
 def to_json_text(obj: Any) -> str:
-    """JSON text of ``obj``; numpy scalars and arrays become numbers and lists.
-
-    Non-finite floats are written as ``NaN`` / ``Infinity`` (as Python's :mod:`json` does), so
-    they round-trip through :func:`read_json`.
+    """Strict JSON text of ``obj`` (:func:`archquake.checks.json_dumps`): numpy scalars and
+    arrays become numbers and lists, nan and infinities ``null`` (never ``NaN``, which strict
+    readers refuse).
     """
-    return json.dumps(obj, indent=2, default=_json_default) + "\n"
+    return json_dumps(obj, indent=2) + "\n"
 
 
 def write_json(path: str | os.PathLike, obj: Any) -> Path:
@@ -285,11 +275,14 @@ def read_json(path: str | os.PathLike) -> Any:
     names it."""
     path = Path(path)
     try:
-        return json.loads(path.read_text(encoding="utf-8"))
+        # NaN allowed: files of earlier versions hold it where a number was missing
+        return json_loads(path.read_text(encoding="utf-8"), allow_nan=True)
     except UnicodeDecodeError as exc:
         raise ValueError(f"{path} is not valid JSON: not UTF-8 text (byte {exc.start})") from exc
     except json.JSONDecodeError as exc:
         raise ValueError(f"{path} is not valid JSON: {exc.msg} (line {exc.lineno})") from exc
+    except ValueError as exc:
+        raise ValueError(f"{path} is not valid JSON: {exc}") from exc
 
 
 @dataclass(frozen=True, eq=False)

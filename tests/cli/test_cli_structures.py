@@ -115,7 +115,7 @@ def test_unequal_piers_and_a_structure_file(capsys, tmp_path):
     (["--fill-cover", "0.5", "--fill-density", "0"], "--fill-density: fill density must be"),
     (["--fill-cover", "0.5", "--fill-passive", "95,0.3"], "--fill-passive: PHI must be in"),
     (["--fill-cover", "0.5", "--fill-passive", "30"], "--fill-passive takes 2 to 2 numbers"),
-    (["--density", "-5"], "--density must be a finite number > 0"),
+    (["--density", "-5"], "--density must be a number in [1, 100000] kg/m^3"),
 ])
 def test_bad_values_name_their_option(capsys, argv, message):
     assert main(["limit", *argv]) == 2

@@ -65,3 +65,17 @@ def test_animation_options_are_checked(history, tmp_path):
         animate_blocks(history, tmp_path / "a.gif", speed=-1.0)
     path = animate_blocks(history, tmp_path / "a.gif", fps=4, speed=4.0, dpi=40)
     assert path.read_bytes()[:6] == b"GIF89a"
+
+
+def test_a_long_history_is_animated_in_at_most_max_frames(history, tmp_path):
+    """A history that would need more frames than the cap at real time is played faster, with
+    a warning that says how fast: the frames of the GIF are the cap (a 700 s record took
+    hours to draw)."""
+    from PIL import Image
+
+    span = float(history.times[-1] - history.times[0])
+    with pytest.warns(UserWarning, match=r"plays at .* times real time \(at most 6 frames"):
+        path = animate_blocks(history, tmp_path / "a.gif", fps=20, dpi=20, max_frames=6)
+    with Image.open(path) as gif:
+        assert gif.n_frames == 6
+    assert span * 20 > 6  # real time would have needed more

@@ -189,8 +189,11 @@ def run_command(module, args: argparse.Namespace) -> int:
     try:
         if "workers" in vars(args):  # one check of --workers for every command
             args.workers = options.check_workers(args.workers)
-        # a study on worker processes: SIGTERM stops it like Ctrl-C, which terminates them
-        with sigterm_as_interrupt(getattr(args, "workers", None) is not None):
+        options.check_paths(args)  # and of every file or directory name
+        # a study on worker processes (or a command that starts one of its own, as the
+        # report does): SIGTERM stops it like Ctrl-C, which terminates them
+        with sigterm_as_interrupt(getattr(args, "workers", None) is not None
+                                  or getattr(module, "STARTS_PROCESSES", False)):
             return int(module.run(args) or 0)
     except KeyboardInterrupt as exc:  # Ctrl-C or SIGTERM: stop without a traceback
         return interrupted(exc, args)

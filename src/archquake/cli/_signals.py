@@ -1,8 +1,10 @@
 """Stopping a command: Ctrl-C (SIGINT), and SIGTERM around worker processes.
 
 Ctrl-C stops any command with ``archquake: interrupted (SIGINT)`` and exit status 130. During a
-study on worker processes SIGTERM does the same (128 + 15), which terminates the workers; the
-study's finished chunks are kept and ``--resume`` continues it. Elsewhere SIGTERM keeps its
+study on worker processes, and in a command that starts a process of its own (``reproduce``),
+SIGTERM does the same (128 + 15), which terminates the workers; the study's finished chunks are
+kept and ``--resume`` continues it. A worker also ends when its parent dies without stopping it
+(``kill -9``): :func:`archquake.execution.die_with_parent`. Elsewhere SIGTERM keeps its
 default action: a Python handler runs only between bytecodes, so it would wait for a long
 compiled loop to return.
 """

@@ -102,19 +102,33 @@ def run(args: argparse.Namespace) -> int:
           f"boundaries to {args.resolution:g} g; (+x %): four-link vs rigid blocks")
     names = list(comparison.four_link)
     print(f"{'t_p [s]':>8} {'rigid blocks':>13}" + "".join(f" {n:>15}" for n in names))
+    upper = []
     for row in rows:
         top = f"> {row['scanned_to']:.3g}"
+        bounds = row.get("failure_acceleration_bound", {})
         rigid = row["rigid_block"]
-        cells = [f"{rigid:>13.3f}" if rigid is not None else f"{top:>13}"]
+        if bounds:
+            upper.append(row["duration"])
+        if rigid is None:
+            cells = [f"{top:>13}"]
+        else:
+            cells = [(f"<= {rigid:.3f}" if "rigid_block" in bounds else f"{rigid:.3f}")
+                     .rjust(13)]
         for name in names:
             value = row["four_link"][name]
             if value is None:
                 cells.append(f"{top:>15}")
-            elif rigid is None:
+            elif name in bounds:
+                cells.append(f"<= {value:.3f}".rjust(15))
+            elif rigid is None or "rigid_block" in bounds:
                 cells.append(f"{value:>15.3f}")
             else:
                 cells.append(f"{value:>7.3f} ({100 * (value / rigid - 1):+4.0f} %)".rjust(15))
         print(f"{row['duration']:>8.3f} " + " ".join(cells))
+    if upper:
+        print("<=: collapse from the lowest amplitude scanned at t_p = "
+              + ", ".join(f"{d:g}" for d in upper) + " s: the failure acceleration is at "
+              "most it (start --amplitudes lower)")
     bands = []
     for row in rows:
         for name, values in (("rigid blocks", row["recovery_above"]["rigid_block"]),

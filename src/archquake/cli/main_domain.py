@@ -118,14 +118,14 @@ def run(args: argparse.Namespace) -> int:
         for iv in sl.intervals:
             what = (f"collapse h={iv.half_cycle}" if iv.status == "collapse" else iv.status)
             parts.append(f"{iv.start:.3f}-{iv.end:.3f} {what}")
-        columns = []
-        for value, width in ((sl.failure_acceleration_g, 12),
-                             (sl.first_half_cycle_acceleration_g, 13)):
-            columns.append(f"{value:>{width}.4f}" if math.isfinite(value)
-                           else f"{'> ' + format(sl.scanned_to_g, '.3g'):>{width}}")
+        columns = [_acceleration(sl, sl.failure_acceleration_g, sl.failure_acceleration_bound,
+                                 12),
+                   _acceleration(sl, sl.first_half_cycle_acceleration_g,
+                                 sl.first_half_cycle_bound, 13)]
         if not math.isfinite(sl.first_half_cycle_acceleration_g):
             beyond.append(sl.duration)
         print(f"{sl.duration:>8.3f} {columns[0]} {columns[1]}  " + "; ".join(parts))
+    _say_upper_bounds(domain)
     if beyond:
         extend_to = domain.extend_to_g
         print("no collapse in the first half cycle up to the end of the scan at t_p = "
@@ -143,10 +143,28 @@ def _print_rigid_block_domain(domain, args: argparse.Namespace) -> int:
     print(f"{'t_p [s]':>8} {'failure [g]':>12} {'analyses':>9}  intervals [g]")
     for sl, count in zip(domain.slices, domain.analyses, strict=True):
         parts = [f"{iv.start:.3f}-{iv.end:.3f} {iv.status}" for iv in sl.intervals]
-        value = sl.failure_acceleration_g
-        column = (f"{value:>12.4f}" if math.isfinite(value)
-                  else f"{'> ' + format(sl.scanned_to_g, '.3g'):>12}")
+        column = _acceleration(sl, sl.failure_acceleration_g, sl.failure_acceleration_bound, 12)
         print(f"{sl.duration:>8.3f} {column} {count:>9d}  " + "; ".join(parts))
+    _say_upper_bounds(domain)
     if args.plot:
         print(f"figure written to {args.plot}")
     return 0
+
+
+def _acceleration(sl, value: float, bound: str | None, width: int) -> str:
+    """An acceleration of a slice as a column: the value, ``<= value`` when the lowest amplitude
+    scanned already collapses (an upper bound), ``> scanned_to`` when none does."""
+    if bound == "lower":
+        return f"{'> ' + format(sl.scanned_to_g, '.3g'):>{width}}"
+    if bound == "upper":
+        return f"{'<= ' + format(value, '.4f'):>{width}}"
+    return f"{value:>{width}.4f}"
+
+
+def _say_upper_bounds(domain) -> None:
+    """One line for the durations whose failure acceleration is only bounded from above."""
+    upper = [s.duration for s in domain.slices if s.failure_acceleration_bound == "upper"]
+    if upper:
+        print("collapse from the lowest amplitude scanned at t_p = "
+              + ", ".join(f"{d:g}" for d in upper) + " s: the failure acceleration is at most "
+              "it (start --amplitudes lower)")

@@ -115,8 +115,13 @@ def run(args: argparse.Namespace) -> int:
     def fmt(x, width, digits=4):
         return f"{'-':>{width}}" if x is None else f"{x:>{width}.{digits}f}"
 
+    def nominal(row, width):
+        if row.get("nominal_failure_acceleration_bound") == "upper":  # collapse from the start
+            return f"<= {row['nominal_failure_acceleration']:.4f}".rjust(width)
+        return fmt(row["nominal_failure_acceleration"], width)
+
     for row in summary["durations"]:
-        print(f"{row['duration']:>8.3f} {fmt(row['nominal_failure_acceleration'], 14)} "
+        print(f"{row['duration']:>8.3f} {nominal(row, 14)} "
               f"{fmt(row['probability_below_nominal'], 12, 3)} "
               f"{fmt(row['lowest_failure_acceleration'], 15, 2)} "
               f"{fmt(row['lognormal_median'], 21)} {fmt(row['lognormal_dispersion'], 6, 3)}")

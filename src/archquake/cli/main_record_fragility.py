@@ -7,10 +7,10 @@ from __future__ import annotations
 import argparse
 import math
 
+from ..defaults import DEFAULT_IM
 from . import options
 from .output import print_json
 
-DEFAULT_IM = "pga"
 """Intensity measure of the stripes unless ``--im`` names one."""
 
 DESCRIPTION = (

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import argparse
 
+from ..defaults import DEFAULT_INTENSITY_MEASURES
 from . import options
 from .output import print_json
 
@@ -23,7 +24,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("paths", nargs="*", metavar="PATH",
                         help="record files and folders of record files")
     options.add_suite_option(parser, "instead of files (--json adds each record's metadata)")
-    parser.add_argument("--im", default="pga,pgv,pgd,arias,d5-95", metavar="LIST",
+    parser.add_argument("--im", default=DEFAULT_INTENSITY_MEASURES, metavar="LIST",
                         help="comma-separated intensity measures, e.g. pga,pgv,sa(0.5) "
                              "(default: %(default)s)")
     options.add_json_option(

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import argparse
 
+from ..defaults import REPORT_SEED
 from . import options
 
 DESCRIPTION = (
@@ -13,6 +14,11 @@ DESCRIPTION = (
     "(9-14), pulse responses (15), the failure domain (16), fragility curves and surface "
     "(17-21), each beside the paper's values. Writes DIR/report.html (self-contained), "
     "DIR/report.md with the PNG figures, and DIR/results.json with every number.")
+
+STARTS_PROCESSES = True
+"""The report runs its long tasks on a second process (on a machine with two processors):
+SIGTERM stops it like Ctrl-C, so that process is stopped too and its queues are released
+(:func:`archquake.cli._signals.sigterm_as_interrupt`)."""
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
@@ -24,7 +30,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="reduced study for a smoke test (h = 6 arches, s = 100, 0.05 g "
                              "steps, 7 failure-domain durations)")
     parser.add_argument("--seed", type=int, default=None,
-                        help="root seed of the irregular arches (default: 2024)")
+                        help=f"root seed of the irregular arches (default: {REPORT_SEED})")
     parser.add_argument("--restitution", default=None, metavar=options.RESTITUTION_METAVAR,
                         help=f"coefficient of restitution c_v of the paper's results, one value "
                              f"for every arch as in the paper: {options.RESTITUTION_HELP}; a "

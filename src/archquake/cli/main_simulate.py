@@ -87,8 +87,11 @@ def run(args: argparse.Namespace) -> int:
                             else f"still rocking at the end of the record, t = "
                                  f"{history.t[-1]:.4f} s (--t-end)"),
             "collapse": f"the arch collapses in half cycle {o.half_cycle} "
-                        f"({o.impacts} impact(s) before), point of no return at "
-                        f"t = {o.collapse_time:.4f} s"}[o.status.label]
+                        f"({o.impacts} impact(s) before), " + (
+                            f"point of no return at t = {o.collapse_time:.4f} s"
+                            if not math.isnan(o.collapse_time) else
+                            "released beyond its point of no return (the critical angle): "
+                            "it falls from t = 0")}[o.status.label]
     print(f"{history.ground_motion.name}; c_v = {coefficients[0]:.4f} (l->r), "
           f"{coefficients[1]:.4f} (r->l)")
     print(f"{text}; largest rotation phi = {o.max_phi:.4f} rad")

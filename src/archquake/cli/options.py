@@ -123,9 +123,11 @@ def option_message(message: str) -> str:
 
 
 def given(args: argparse.Namespace, *names: str) -> list[str]:
-    """The options among ``names`` given on the command line (not None, empty or False)."""
+    """The options among ``names`` given on the command line (not None, empty or False; a
+    number 0 is given: ``--rise 0`` is a rise of zero, which the library refuses by name)."""
     return [f"--{name.replace('_', '-')}" for name in names
-            if getattr(args, name) not in (None, [], False)]
+            if (value := getattr(args, name)) is not None and value is not False
+            and value != []]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -150,7 +152,7 @@ def add_shape_options(group, *, thickness: bool = True) -> None:
     ``thickness=False``), ``--voussoirs`` and ``--faces``: an arch by its shape."""
     defaults = circular_defaults()
     group.add_argument("--shape", choices=SHAPES, default=None,
-                       help="shape of the centreline (default: circular); every shape but the "
+                       help=f"shape of the centreline (default: {SHAPES[0]}); every shape but the "
                             "circle is given by --span and --rise, with its springings on y = 0")
     group.add_argument("--span", type=float, default=None,
                        help="span of the centreline [m] (with --rise)")
@@ -166,12 +168,14 @@ def add_shape_options(group, *, thickness: bool = True) -> None:
         group.add_argument("--thickness", type=float, default=None,
                            help=f"thickness t, normal to the centreline [m] (default: "
                                 f"{defaults['thickness']:g})")
+    voussoirs = defaults["voussoirs"]
     group.add_argument("--voussoirs", type=int, default=None,
                        help=f"number of voussoirs n, of equal centreline length (default: "
-                            f"{defaults['voussoirs']}; even for a pointed arch)")
+                            f"{voussoirs}, {voussoirs + voussoirs % 2} for a pointed arch, "
+                            f"which needs an even number)")
     group.add_argument("--faces", choices=VOUSSOIR_FACES, default=None,
                        help="voussoir faces: curved (following intrados and extrados) or flat "
-                            "(chords between the joint ends) (default: curved)")
+                            f"(chords between the joint ends) (default: {VOUSSOIR_FACES[0]})")
 
 
 def _add_geometry_file_option(group) -> None:
@@ -217,7 +221,7 @@ def add_arch_options(parser: argparse.ArgumentParser) -> None:
                              "irregularity epsilon in [0, 1) of the paper's eq. (1) (formerly "
                              "--tolerance, still accepted)")
     group.add_argument("--seed", type=int, default=None,
-                       help="seed of the irregular draw (default: 0)")
+                       help=f"seed of the irregular draw (default: {DEFAULT_SEED})")
 
 
 def add_nominal_arch_options(parser: argparse.ArgumentParser) -> None:
@@ -250,7 +254,7 @@ def shape_from_args(args: argparse.Namespace) -> tuple[str | None, dict]:
     The values themselves are checked by the library (its messages name the options through
     :func:`option_message`), except the angle of embrace, which the library sees in radians.
     """
-    shape = args.shape or "circular"
+    shape = args.shape or SHAPES[0]
     by_size, by_angle = given(args, "span", "rise"), given(args, "radius", "embrace")
     article = "an" if shape[0] in "aeiou" else "a"
     if shape != "circular" and by_angle:
@@ -260,16 +264,18 @@ def shape_from_args(args: argparse.Namespace) -> tuple[str | None, dict]:
         raise ValueError(f"{', '.join(by_size + by_angle)}: a circular arch is given by --span "
                          "and --rise or by --radius and --embrace, not both")
     voussoirs = option_value(args, "voussoirs")
+    if args.voussoirs is None and shape == "pointed" and voussoirs % 2:
+        voussoirs += 1  # a joint at the crown: half the voussoirs on each side
     if shape != "circular" or by_size:
         if len(by_size) < 2:
             raise ValueError(f"{article} {shape} arch needs --span and --rise [m]")
         return shape, {"span": args.span, "rise": args.rise, "voussoirs": voussoirs,
-                       "faces": args.faces or "curved"}
+                       "faces": args.faces or VOUSSOIR_FACES[0]}
     embrace = option_value(args, "embrace")
     if not 0 < embrace < 360:  # in the option's unit: the library sees radians
         raise ValueError(f"--embrace must be in (0, 360) degrees, got {embrace:g}")
     kwargs = {"radius": option_value(args, "radius"), "embrace": math.radians(embrace),
-              "voussoirs": voussoirs, "faces": args.faces or "curved"}
+              "voussoirs": voussoirs, "faces": args.faces or VOUSSOIR_FACES[0]}
     return (None if kwargs["faces"] == "curved" else "circular"), kwargs
 
 
@@ -380,9 +386,9 @@ def _masonry_density(args: argparse.Namespace) -> float:
     density = getattr(args, "density", None)
     if density is None:
         return DEFAULT_DENSITY
-    if not (math.isfinite(density) and density > 0):
-        raise ValueError(f"--density must be a finite number > 0 [kg/m^3], got {density:g}")
-    return density
+    from ..geometry.blocks import check_density
+
+    return check_density(density, "--density")
 
 
 def structure_from_args(args: argparse.Namespace, arch):
@@ -451,7 +457,7 @@ def arches_from_args(args: argparse.Namespace):
 
     nominal = arch = nominal_arch_from_args(args)
     if args.epsilon is not None:
-        seed = 0 if args.seed is None else args.seed
+        seed = DEFAULT_SEED if args.seed is None else args.seed
         if seed < 0:  # numpy's own message would not name the option
             raise ValueError(f"--seed must be an integer >= 0, got {seed}")
         if not hasattr(arch, "perturbed"):
@@ -460,10 +466,10 @@ def arches_from_args(args: argparse.Namespace):
         try:
             arch = irregular_arch(arch, args.epsilon, rng=seed)
         except ValueError as exc:
-            if str(exc).startswith("epsilon"):
+            if exc.__cause__ is None:  # epsilon itself is out of its range
                 raise
-            raise ValueError(f"{drawn(args)} is not a valid arch: {exc}; epsilon is too "
-                             f"large for this arch") from exc
+            raise ValueError(f"{drawn(args)} is not a valid arch: {exc.__cause__}; epsilon is "
+                             f"too large for this arch") from exc
     elif args.seed is not None:
         raise ValueError("--seed needs --epsilon (the seed of an irregular arch)")
     return nominal, arch
@@ -477,7 +483,7 @@ def arch_from_args(args: argparse.Namespace):
 def drawn(args: argparse.Namespace) -> str:
     """How the command line names the irregular arch of ``--epsilon`` and ``--seed``."""
     return (f"the irregular arch drawn with --epsilon {args.epsilon:g} (seed "
-            f"{0 if args.seed is None else args.seed})")
+            f"{DEFAULT_SEED if args.seed is None else args.seed})")
 
 
 @contextlib.contextmanager
@@ -621,7 +627,7 @@ def range_text(values: tuple[float, float, float]) -> str:
 def parse_values(text: str, name: str) -> list[float]:
     """Values of a list option: comma-separated numbers and ranges ``start:stop:step``.
 
-    A range includes ``stop`` when a step lands within ``step/2`` of it
+    A range never passes ``stop`` and includes it when a step lands on it
     (:func:`archquake.studies.failure_domain.inclusive_range`); ``"0.4,0.5"`` and
     ``"0.2:1.0:0.01"`` and ``"0.1:0.3:0.1,0.5"`` are valid.
     """
@@ -656,6 +662,22 @@ def parse_values(text: str, name: str) -> list[float]:
 # ---------------------------------------------------------------------------------------------
 # execution and output
 # ---------------------------------------------------------------------------------------------
+
+
+PATH_OPTIONS = ("out", "plot_dir", "output", "plot", "animate", "geometry", "record",
+                "records", "export_nrml", "paths")
+"""The options that name a file or a directory (:func:`check_paths`)."""
+
+
+def check_paths(args: argparse.Namespace) -> None:
+    """Refuse an empty file or directory name (``--out ""`` would be the current directory,
+    ``--plot ""`` no file at all), naming the option."""
+    for name in PATH_OPTIONS:
+        value = getattr(args, name, None)
+        values = value if isinstance(value, list) else [value]
+        if any(isinstance(v, str) and not v.strip() for v in values):
+            option = f"--{name.replace('_', '-')}" if name != "paths" else "PATH"
+            raise ValueError(f"{option} must name a file or directory, got {value!r}")
 
 
 def add_workers_option(parser, *, help: str) -> None:

@@ -3,13 +3,15 @@ figures (matplotlib on its file-only backend, imported only when a figure is ask
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 
 def print_json(obj) -> None:
-    """Print ``obj`` as indented JSON (the ``--json`` output of every command)."""
-    print(json.dumps(obj, indent=2))
+    """Print ``obj`` as indented strict JSON (the ``--json`` output of every command): ``null``
+    where a number is nan or infinite, never ``NaN`` (:func:`archquake.checks.json_dumps`)."""
+    from ..checks import json_dumps
+
+    print(json_dumps(obj, indent=2))
 
 
 def pyplot():

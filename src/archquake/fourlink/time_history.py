@@ -28,6 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._equality import value_equality
 from ..ground_motion import GroundMotion, still_ground
 from ..status import Status
 from . import engine
@@ -37,6 +38,7 @@ DEFAULT_EXTRA_TIME = 4.0
 """Seconds recorded after the outcome is decided (or the excitation ends) by default [s]."""
 
 
+@value_equality
 @dataclass(frozen=True)
 class Outcome:
     """Outcome of one dynamic analysis.

@@ -50,6 +50,8 @@ from .blocks import (
     MAX_VOUSSOIRS,
     MIN_VOUSSOIRS,
     BlockArch,
+    check_density,
+    check_voussoir_count,
     float_array,
     is_json_number,
     json_text,
@@ -158,7 +160,7 @@ class CircularArch(BlockArch):
                 f"the angle of embrace (sum of angles) must be in (0, 360) degrees, got "
                 f"{math.degrees(total):.6g} degrees"
             )
-        density = _check_positive("density", self.density, "kg/m^3")
+        density = check_density(self.density)
         for name, arr in (("angles", angles), ("thicknesses", thicknesses), ("radii", radii)):
             arr.setflags(write=False)
             object.__setattr__(self, name, arr)
@@ -587,14 +589,10 @@ def circular_arch(
         raise ValueError(
             f"thickness must be < 2 x radius = {2 * radius} m, got {thickness} m"
         )
-    if isinstance(voussoirs, bool) or not float(voussoirs).is_integer():
-        raise ValueError(f"voussoirs must be an integer >= {MIN_VOUSSOIRS}, got {voussoirs!r}")
-    n = int(voussoirs)
-    if n < MIN_VOUSSOIRS:
-        raise ValueError(
-            f"voussoirs must be >= {MIN_VOUSSOIRS} for a four-hinge mechanism, got {n}"
-        )
-    _check_voussoir_count(n)
+    n = check_voussoir_count(voussoirs)
+    if not embrace / n > 0.0:
+        raise ValueError(f"embrace must give each of the {n} voussoirs an angle > 0, got "
+                         f"{embrace!r} rad")
     return CircularArch(
         np.full(n, embrace / n), np.full(n, thickness), np.full(n, radius),
         (math.pi - embrace) / 2.0, density,

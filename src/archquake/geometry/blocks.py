@@ -31,12 +31,14 @@ from __future__ import annotations
 
 import json
 import math
+import numbers
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from ..checks import json_loads
 from .loads import BlockLoads
 
 MIN_VOUSSOIRS = 4
@@ -55,6 +57,37 @@ LENGTH_RANGE = (1e-3, 1e4)
 outside, floating-point numbers lose the arch (at 1e300 m a 1.5 m thickness vanishes beside the
 radius, at 1e-300 m the masses underflow)."""
 
+DENSITY_RANGE = (1.0, 1e5)
+"""Accepted densities of the masonry [kg/m^3], for every arch, however it is built or read:
+from the density of air to four times that of the densest solid (osmium, 22 590 kg/m^3).
+Outside, the numbers are not of masonry and the masses and forces of the dynamic models
+overflow or underflow (a density of 1e-300 gives masses of zero)."""
+
+
+def check_density(value, name: str = "density") -> float:
+    """``value`` as a float in :data:`DENSITY_RANGE` [kg/m^3], or a ValueError naming ``name``
+    and the range.
+
+    Examples
+    --------
+    >>> check_density(2000)
+    2000.0
+    >>> check_density(1e300)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: density must be a number in [1, 100000] kg/m^3 (...), got 1e+300
+    """
+    low, high = DENSITY_RANGE
+    try:
+        density = float(value)
+    except (TypeError, ValueError):
+        density = math.nan
+    if isinstance(value, bool) or not low <= density <= high:
+        raise ValueError(f"{name} must be a number in [{low:g}, {high:g}] kg/m^3 (air to four "
+                         f"times osmium), got {value!r}")
+    return density
+
+
 MAX_GEOMETRY_FILE_BYTES = 64 * 2**20
 """Largest geometry file read [bytes]: far above a file of :data:`MAX_VOUSSOIRS` voussoirs."""
 
@@ -65,7 +98,11 @@ FACES = ("intrados", "extrados")
 def check_voussoir_count(count, name: str = "voussoirs") -> int:
     """``count`` as an int in [:data:`MIN_VOUSSOIRS`, :data:`MAX_VOUSSOIRS`], or a ValueError
     naming ``name``."""
-    if isinstance(count, bool) or not float(count).is_integer():
+    try:  # an integer too large for a float is too many voussoirs, not an OverflowError
+        whole = isinstance(count, numbers.Integral) or float(count).is_integer()
+    except (TypeError, ValueError, OverflowError):
+        whole = False
+    if isinstance(count, bool) or not whole:
         raise ValueError(f"{name} must be an integer >= {MIN_VOUSSOIRS}, got {count!r}")
     n = int(count)
     if n < MIN_VOUSSOIRS:
@@ -149,9 +186,11 @@ def read_json_file(path: str | Path, expected: str):
     if not text.strip():
         raise ValueError(f"{where} is empty; expected {expected}")
     try:
-        return json.loads(text)
+        return json_loads(text)
     except json.JSONDecodeError as exc:
         raise ValueError(f"{where} is not valid JSON: {exc.msg} (line {exc.lineno})") from exc
+    except ValueError as exc:  # a key given twice, NaN, a nesting too deep
+        raise ValueError(f"{where} is not valid JSON: {exc}") from exc
 
 
 def float_array(name: str, values) -> np.ndarray:

@@ -20,6 +20,8 @@ Each arch may hold a ``"density"``. The kind is told by the keys.
 
 from __future__ import annotations
 
+import os
+import warnings
 from pathlib import Path
 
 from ..constants import DEFAULT_DENSITY
@@ -112,9 +114,18 @@ def load_arch(path: str | Path, *, density: float = DEFAULT_DENSITY) -> BlockArc
         Naming the file, when it cannot be read, is not JSON (with the line) or does not
         describe an arch.
     """
+    if not isinstance(path, str | os.PathLike):
+        raise ValueError(f"path must be the name of a geometry file (str or os.PathLike), got "
+                         f"{path!r}")
     data = read_json_file(path, "a JSON object with 'angles', 'thicknesses' and 'radii', or "
                                 "'blocks', or 'shape'")
-    try:
-        return arch_from_dict(data, density=density)
-    except ValueError as exc:
-        raise ValueError(f"geometry file {str(path)!r}: {exc}") from exc
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            arch = arch_from_dict(data, density=density)
+        except ValueError as exc:
+            raise ValueError(f"geometry file {str(path)!r}: {exc}") from exc
+    for warning in caught:  # said again, naming the file
+        warnings.warn(f"geometry file {str(path)!r}: {warning.message}", warning.category,
+                      stacklevel=2)
+    return arch

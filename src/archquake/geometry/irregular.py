@@ -98,11 +98,19 @@ def irregular_arch(nominal: BlockArch, epsilon: float,
             "irregular arches are drawn around an arch with a centreline (CircularArch or "
             "ShapedArch), "
             f"got {type(nominal).__name__}")
-    rng = np.random.default_rng(rng)
+    try:
+        rng = np.random.default_rng(rng)
+    except (TypeError, ValueError):  # numpy's message would not name the parameter
+        raise ValueError(f"rng must be a numpy.random.Generator, a seed (an integer >= 0) or "
+                         f"None, got {rng!r}") from None
     p = rng.uniform(-1.0, 1.0, size=(3, nominal.n_voussoirs))
     if eps == 0.0:
         return nominal
-    return perturbed(eps, p)
+    try:
+        return perturbed(eps, p)
+    except ValueError as exc:  # the draw is not an arch: say which parameter made it
+        raise ValueError(f"epsilon {eps:g} draws an irregular arch that is not valid: "
+                         f"{exc}") from exc
 
 
 def irregular_sample(nominal: BlockArch, epsilon: float, sample_size: int,

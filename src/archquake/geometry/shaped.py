@@ -49,6 +49,7 @@ from .._equality import value_equality
 from ..constants import DEFAULT_DENSITY
 from .blocks import (
     BlockArch,
+    check_density,
     check_json_numbers,
     check_voussoir_count,
     float_array,
@@ -122,10 +123,7 @@ class ShapedArch(BlockArch):
             raise ValueError(f"lengths must all be > 0 [m], got {lengths.tolist()}")
         if np.any(thicknesses <= 0):
             raise ValueError(f"thicknesses must all be > 0 [m], got {thicknesses.tolist()}")
-        density = float(self.density)
-        if not (math.isfinite(density) and density > 0):
-            raise ValueError(f"density must be a finite number > 0 [kg/m^3], got "
-                             f"{self.density!r}")
+        density = check_density(self.density)
         for name, arr in (("lengths", lengths), ("thicknesses", thicknesses),
                           ("offsets", offsets)):
             arr.setflags(write=False)
@@ -289,9 +287,14 @@ class ShapedArch(BlockArch):
         return self._face(i, 1)
 
     def _mass_properties(self):
-        props = [region_properties(self.boundary(i), self.density, name=f"voussoir {i}",
-                                   check=False)  # closed by construction
-                 for i in range(self.n_voussoirs)]
+        try:
+            props = [region_properties(self.boundary(i), self.density, name=f"voussoir {i}",
+                                       check=False)  # closed by construction
+                     for i in range(self.n_voussoirs)]
+        except ValueError as exc:  # too thin to have an area, or folded where it turns
+            raise ValueError(f"thickness: {exc} (a voussoir of this {self.shape} arch is too "
+                             f"thin to have an area in floating point, or so thick where the "
+                             f"arch turns that its faces cross)") from exc
         return (np.array([p[0] for p in props]), np.array([p[1] for p in props]),
                 np.array([p[2] for p in props]))
 

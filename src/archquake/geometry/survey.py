@@ -5,9 +5,11 @@ A surveyed arch is a JSON object (or the same dict in Python)::
     {"blocks": [[[x, y], [x, y], ...], ...],
      "springings": [[[x, y], [x, y]], [[x, y], [x, y]]]}
 
-- ``blocks``: one polygon per block [m], the blocks left to right; the vertices of a polygon in
-  order, either sense, not repeated at the end (a repeated first vertex is dropped). Curved
-  faces are given by sampling them finely; mass properties are those of the polygons, exact.
+- ``blocks``: one polygon per block [m], the blocks left to right (listed right to left, they
+  are reversed, with a warning: the order names the hinges and the direction of each impact);
+  the vertices of a polygon in order, either sense, not repeated at the end (a repeated first
+  vertex is dropped). Curved faces are given by sampling them finely; mass properties are those
+  of the polygons, exact.
 - Joints: the joint between consecutive blocks is the segment along which their boundaries
   overlap: an edge of one lying on an edge of the other (to :data:`SURVEY_TOLERANCE` of the
   arch's size), or several collinear such edges, merged. Two blocks that do not touch along a
@@ -30,6 +32,7 @@ of it.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -40,13 +43,35 @@ from .blocks import (
     MAX_VOUSSOIRS,
     MIN_VOUSSOIRS,
     BlockArch,
+    check_density,
     check_json_numbers,
 )
 from .mass import Segment, polygon_properties
 
 SURVEY_TOLERANCE = 1e-9
-"""Distance, as a fraction of the arch's size, within which two edges of neighbouring blocks
-are taken to lie on one another, and below which a gap or an overlap is ignored [-]."""
+"""Default contact tolerance of a survey: the distance, as a fraction of the arch's size, within
+which two edges of neighbouring blocks are taken to lie on one another, and below which a gap or
+an overlap is ignored [-]. A survey measured to a millimetre on an arch of 10 m needs 1e-4: give
+it as ``tolerance`` (:func:`surveyed_arch`, the file's ``"tolerance"``), within
+:data:`SURVEY_TOLERANCE_RANGE`."""
+
+SURVEY_TOLERANCE_RANGE = (1e-12, 1e-2)
+"""Accepted contact tolerances of a survey, as fractions of the arch's size [-]: from the
+round-off of its coordinates to a gap of a hundredth of the arch, beyond which the blocks are
+not in contact."""
+
+
+def check_survey_tolerance(tolerance) -> float:
+    """``tolerance`` as a float in :data:`SURVEY_TOLERANCE_RANGE`, or a ValueError naming it."""
+    low, high = SURVEY_TOLERANCE_RANGE
+    try:
+        value = float(tolerance)
+    except (TypeError, ValueError):
+        value = math.nan
+    if isinstance(tolerance, bool) or not low <= value <= high:
+        raise ValueError(f"tolerance must be a number in [{low:g}, {high:g}] (a fraction of the "
+                         f"arch's size), got {tolerance!r}")
+    return value
 
 SPRINGING_ANGLE = 60.0
 """Largest angle [deg] between the outward normal of a springing joint found from the geometry
@@ -273,12 +298,15 @@ class SurveyedArch(BlockArch):
         The left and right springing joints, each as two points [m].
     density : float, default 2000
         Density of the masonry [kg/m^3].
+    tolerance : float, default :data:`SURVEY_TOLERANCE`
+        Contact tolerance, a fraction of the arch's size [-] (:data:`SURVEY_TOLERANCE`).
     """
 
     vertices: np.ndarray
     counts: np.ndarray
     springings: np.ndarray
     density: float = DEFAULT_DENSITY
+    tolerance: float = SURVEY_TOLERANCE
     _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False, hash=False)
 
     def __post_init__(self):
@@ -290,15 +318,15 @@ class SurveyedArch(BlockArch):
             raise ValueError("vertices (K, 2) and counts (n,) >= 3 must describe the blocks")
         if springings.shape != (2, 2, 2) or not np.all(np.isfinite(springings)):
             raise ValueError("springings must be two segments [[x, y], [x, y]] [m]")
-        density = float(self.density)
-        if not (math.isfinite(density) and density > 0):
-            raise ValueError(f"density must be a finite number > 0 [kg/m^3], got "
-                             f"{self.density!r}")
+        density = check_density(self.density)
         for name, arr in (("vertices", vertices), ("counts", counts),
                           ("springings", springings)):
             arr.setflags(write=False)
             object.__setattr__(self, name, arr)
         object.__setattr__(self, "density", density)
+        object.__setattr__(self, "tolerance", check_survey_tolerance(self.tolerance))
+        self._cache["starts"] = np.concatenate(([0], np.cumsum(counts)))
+        self._cache["size"] = float(np.ptp(vertices, axis=0).max())
         self._cache["joints"] = self._find_joints()
 
     # ------------------------------------------------------------------ blocks
@@ -309,13 +337,18 @@ class SurveyedArch(BlockArch):
 
     def polygon(self, i: int) -> np.ndarray:
         """Vertices of block ``i``, counterclockwise [m], shape (k_i, 2)."""
-        start = int(self.counts[:i].sum())
-        return self.vertices[start:start + int(self.counts[i])]
+        starts = self._cache["starts"]
+        return self.vertices[int(starts[i]):int(starts[i + 1])]
 
     @property
     def size(self) -> float:
         """Largest extent of the arch [m]."""
-        return float(np.ptp(self.vertices, axis=0).max())
+        return self._cache["size"]
+
+    @property
+    def contact_distance(self) -> float:
+        """The contact tolerance as a distance: :attr:`tolerance` times :attr:`size` [m]."""
+        return self.tolerance * self.size
 
     def outline(self, i: int, points: int = 24) -> np.ndarray:
         """Closed outline of block ``i`` [m] (its polygon, first vertex repeated)."""
@@ -328,7 +361,7 @@ class SurveyedArch(BlockArch):
         ends of its two joints that does not hold its intrados."""
         v = self.polygon(i)
         start, end = self.joints[i + 1, 1], self.joints[i, 1]
-        path = _boundary_path(v, start, end, SURVEY_TOLERANCE * self.size)[::-1]
+        path = _boundary_path(v, start, end, self.contact_distance)[::-1]
         return [Segment(path[k], path[k + 1]) for k in range(len(path) - 1)]
 
     def _mass_properties(self):
@@ -340,14 +373,18 @@ class SurveyedArch(BlockArch):
     # ------------------------------------------------------------------ joints
     def _find_joints(self) -> np.ndarray:
         n = self.n_voussoirs
-        tol = SURVEY_TOLERANCE * self.size
+        tol = self.contact_distance
         joints = np.empty((n + 1, 2, 2))
         normals = np.empty((n + 1, 2))
         for j in range(1, n):
             contacts = _contacts(self.polygon(j - 1), self.polygon(j), tol)
             if not contacts:
-                raise ValueError(f"blocks {j - 1} and {j} do not touch along a segment: "
-                                 "consecutive blocks must share an edge (their joint)")
+                gap = _distance(self.polygon(j - 1), self.polygon(j))
+                raise ValueError(
+                    f"blocks {j - 1} and {j} do not touch along a segment: consecutive blocks "
+                    f"must share an edge (their joint); they are {gap:.3g} m apart at their "
+                    f"closest, the contact tolerance is {tol:.3g} m ({self.tolerance:g} of the "
+                    f"arch's size {self.size:.4g} m; a larger 'tolerance' accepts a wider gap)")
             merged = _merge(contacts, tol)
             if merged is None:
                 raise ValueError(f"blocks {j - 1} and {j} touch along more than one segment")
@@ -370,7 +407,7 @@ class SurveyedArch(BlockArch):
 
     def _outward_normal(self, block: int, p, q, springing: int | None = None) -> np.ndarray:
         """Outward unit normal of block ``block`` along the segment p-q of its boundary."""
-        tol = SURVEY_TOLERANCE * self.size
+        tol = self.contact_distance
         v = self.polygon(block)
         a, b = _edges(v)
         mid = 0.5 * (np.asarray(p) + np.asarray(q))
@@ -399,45 +436,56 @@ class SurveyedArch(BlockArch):
         blocks = [(self.polygon(i) * flip)[::-1] for i in range(self.n_voussoirs)][::-1]
         springings = (self.springings * flip)[::-1]
         return SurveyedArch(np.vstack(blocks), self.counts[::-1].copy(), springings,
-                            self.density)
+                            self.density, self.tolerance)
 
     def to_dict(self) -> dict:
         """``{"blocks": [...], "springings": [...], "density": ...}`` [m, kg/m^3], as read by
         :meth:`from_dict`."""
-        return {"blocks": [self.polygon(i).tolist() for i in range(self.n_voussoirs)],
-                "springings": self.springings.tolist(), "density": self.density}
+        out = {"blocks": [self.polygon(i).tolist() for i in range(self.n_voussoirs)],
+               "springings": self.springings.tolist(), "density": self.density}
+        if self.tolerance != SURVEY_TOLERANCE:
+            out["tolerance"] = self.tolerance
+        return out
 
     @classmethod
     def from_dict(cls, data: dict, *, density: float = DEFAULT_DENSITY) -> SurveyedArch:
         """The arch of a mapping ``{"blocks": ..., "springings": ... (optional), "density":
-        ... (optional)}`` (see the module's rules)."""
-        unknown = sorted(set(data) - {"blocks", "springings", "density"})
+        ... (optional), "tolerance": ... (optional)}`` (see the module's rules)."""
+        unknown = sorted(set(data) - {"blocks", "springings", "density", "tolerance"})
         if unknown:
             raise ValueError(f"a surveyed arch has unknown key(s) {unknown}; allowed: 'blocks', "
-                             "'springings', 'density'")
+                             "'springings', 'density', 'tolerance'")
         if not isinstance(data.get("blocks"), list):
             raise ValueError("a surveyed arch needs 'blocks': a list of polygons [[x, y], ...]")
         check_json_numbers("blocks", data["blocks"], 3)
         if data.get("springings") is not None:
             check_json_numbers("springings", data["springings"], 3)
-        if "density" in data:
-            check_json_numbers("density", data["density"], 0)
+        for key in ("density", "tolerance"):
+            if key in data:
+                check_json_numbers(key, data[key], 0)
         return surveyed_arch(data["blocks"], data.get("springings"),
-                             density=data.get("density", density))
+                             density=data.get("density", density),
+                             tolerance=data.get("tolerance", SURVEY_TOLERANCE))
 
 
-def surveyed_arch(blocks, springings=None, *, density: float = DEFAULT_DENSITY) -> SurveyedArch:
+def surveyed_arch(blocks, springings=None, *, density: float = DEFAULT_DENSITY,
+                  tolerance: float = SURVEY_TOLERANCE) -> SurveyedArch:
     """An arch from its block polygons [m], left to right (see :mod:`survey <.survey>` rules).
 
     Parameters
     ----------
     blocks : sequence of array_like (k_i, 2)
-        One polygon per block [m], vertices in order (either sense).
+        One polygon per block [m], vertices in order (either sense), left to right; blocks
+        listed right to left (the first block's centroid to the right of the last's) are taken
+        in the reverse order, with a warning.
     springings : array_like (2, 2, 2), optional
         The left and right springing joints, each two points [m]; found from the geometry when
         not given.
     density : float, default 2000
         Density of the masonry [kg/m^3].
+    tolerance : float, default :data:`SURVEY_TOLERANCE`
+        Contact tolerance, a fraction of the arch's size [-]: edges of neighbours closer than
+        it touch; gaps and overlaps below it are ignored.
 
     Returns
     -------
@@ -460,22 +508,35 @@ def surveyed_arch(blocks, springings=None, *, density: float = DEFAULT_DENSITY) 
     if len(blocks) > MAX_VOUSSOIRS:
         raise ValueError(f"a surveyed arch has at most {MAX_VOUSSOIRS} blocks (MAX_VOUSSOIRS), "
                          f"got {len(blocks)}")
-    polygons = []
-    for i, block in enumerate(blocks):
-        v = _polygon(f"block {i}", block)
+    from .overlaps import self_intersections
+
+    polygons = [_polygon(f"block {i}", block) for i, block in enumerate(blocks)]
+    crossing = self_intersections(polygons, 1e-12)
+    for i, v in enumerate(polygons):
+        if crossing[i, 0] >= 0:
+            raise ValueError(f"block {i} is not a simple polygon: its edges {crossing[i, 0]} "
+                             f"and {crossing[i, 1]} cross or touch")
         size = float(np.ptp(v, axis=0).max())
-        pair = _self_intersection(v, 1e-12 * size)
-        if pair is not None:
-            raise ValueError(f"block {i} is not a simple polygon: its edges {pair[0]} and "
-                             f"{pair[1]} cross or touch")
         area = _signed_area(v)
         if not abs(area) > 1e-12 * size * size:
             raise ValueError(f"block {i} encloses no area")
         if area < 0:
-            v = v[::-1].copy()
-        polygons.append(v)
+            polygons[i] = v[::-1].copy()
+    first, last = _centroid(polygons[0])[0], _centroid(polygons[-1])[0]
+    if first > last:  # listed right to left: the hinges and impacts would be mislabelled
+        warnings.warn(f"the blocks are listed right to left (the first block's centroid at x = "
+                      f"{first:.6g} m, the last's at x = {last:.6g} m); they are taken in the "
+                      "reverse order, left to right", stacklevel=2)
+        polygons = polygons[::-1]
+        if springings is not None:
+            try:
+                springings = list(springings)[::-1]
+            except TypeError as exc:
+                raise ValueError("springings must be [[[x, y], [x, y]], [[x, y], [x, y]]] "
+                                 "[m]") from exc
+    tolerance = check_survey_tolerance(tolerance)
     everything = np.vstack(polygons)
-    tol = SURVEY_TOLERANCE * float(np.ptp(everything, axis=0).max())
+    tol = tolerance * float(np.ptp(everything, axis=0).max())
     _check_overlaps(polygons, tol)
     if springings is None:
         springings = [_find_springing(polygons, 0, 1, tol),
@@ -488,23 +549,35 @@ def surveyed_arch(blocks, springings=None, *, density: float = DEFAULT_DENSITY) 
         if springings.shape != (2, 2, 2):
             raise ValueError(f"springings must be two segments [[x, y], [x, y]] [m], got shape "
                              f"{springings.shape}")
-    return SurveyedArch(everything, [len(v) for v in polygons], springings, density)
+    return SurveyedArch(everything, [len(v) for v in polygons], springings, density, tolerance)
 
 
 def _check_overlaps(polygons: list[np.ndarray], tol: float) -> None:
-    boxes = np.array([[*v.min(axis=0), *v.max(axis=0)] for v in polygons])
-    for a in range(len(polygons)):
-        for b in range(a + 1, len(polygons)):
-            if (boxes[a, 0] > boxes[b, 2] + tol or boxes[b, 0] > boxes[a, 2] + tol
-                    or boxes[a, 1] > boxes[b, 3] + tol or boxes[b, 1] > boxes[a, 3] + tol):
-                continue
-            va, vb = polygons[a], polygons[b]
-            if (_crossing(*_edges(va), *_edges(vb), tol)
-                    or np.any(_inside(va, vb, tol)) or np.any(_inside(vb, va, tol))):
-                raise ValueError(f"blocks {a} and {b} overlap")
-            if b > a + 1 and _contacts(va, vb, tol):
-                raise ValueError(f"blocks {a} and {b} touch along a segment but are not "
-                                 "neighbours: list the blocks left to right")
+    """Refuse blocks that overlap, or touch along a segment without being neighbours (a sweep
+    over their boxes: :func:`archquake.geometry.overlaps.first_overlap`)."""
+    from .overlaps import TOUCHING, first_overlap
+
+    found = first_overlap(polygons, tol)
+    if found is None:
+        return
+    a, b, kind = found
+    if kind == TOUCHING:
+        raise ValueError(f"blocks {a} and {b} touch along a segment but are not neighbours: "
+                         "list the blocks left to right")
+    raise ValueError(f"blocks {a} and {b} overlap")
+
+
+def _distance(va: np.ndarray, vb: np.ndarray) -> float:
+    """Smallest distance between the boundaries of polygons a and b [m] (0 if they cross)."""
+    def to_edges(points, v):
+        p, q = _edges(v)
+        e = q - p
+        ll = np.maximum(np.sum(e * e, axis=1), 1e-300)
+        t = np.clip(np.einsum("kij,ij->ki", points[:, None, :] - p[None], e) / ll, 0.0, 1.0)
+        d = points[:, None, :] - p[None] - t[..., None] * e[None]
+        return float(np.min(np.hypot(d[..., 0], d[..., 1])))
+
+    return min(to_edges(va, vb), to_edges(vb, va))
 
 
 def _centroid(v: np.ndarray) -> np.ndarray:

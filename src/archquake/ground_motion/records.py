@@ -22,7 +22,13 @@ is downloaded.
     ``DATA_TYPE`` (must be ``ACCELERATION``) are read, then the NDATA accelerations, one (or
     several) per line, sampled at ``t_i = i SAMPLING_INTERVAL_S``.
 
-Conventions for a record: times must start at or after 0 and increase strictly. If the first time
+Conventions for a record: times must start at or after 0 and increase strictly, by steps within
+:data:`~archquake.defaults.RECORD_TIME_STEP_RANGE`, up to at most
+:data:`~archquake.defaults.MAX_RECORD_DURATION`. Numbers are plain decimals (``1_0`` is refused,
+not read as 10). A peak above :data:`~archquake.defaults.PLAUSIBLE_PEAK_G` is read with a warning
+that names the likely unit (a CSV in cm/s^2 reads as hundreds of g); above
+:data:`~archquake.defaults.MAX_ACCELERATION_G` it is refused. Files are UTF-8 (or ASCII) text;
+UTF-16 with its byte-order mark is read too. If the first time
 is after 0, a point ``(0, 0)`` is inserted, so the ground is at rest at ``t = 0`` and the
 acceleration ramps linearly to the first sample (the ground is never moved before the record
 starts). Between samples the acceleration is interpolated linearly, and the ground is still after
@@ -34,13 +40,20 @@ from __future__ import annotations
 
 import math
 import re
+import warnings
 from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 
 from ..constants import GRAVITY
-from ..defaults import MAX_ACCELERATION_G
+from ..defaults import (
+    MAX_ACCELERATION_G,
+    MAX_RECORD_DURATION,
+    MAX_RECORD_FILE_BYTES,
+    PLAUSIBLE_PEAK_G,
+    RECORD_TIME_STEP_RANGE,
+)
 from .core import LINEAR, GroundMotion, check_number, check_peak
 
 
@@ -51,6 +64,8 @@ def _record_error(path: Path, problem: str) -> ValueError:
 def _parse_number(path: Path, cell: str, line_number: int, what: str) -> float:
     """``cell`` as a finite float, or a ValueError naming the file, the line and the cell."""
     try:
+        if "_" in cell:  # float() reads "1_0" as 10
+            raise ValueError(cell)
         value = float(cell)
     except ValueError:
         raise _record_error(
@@ -73,7 +88,7 @@ def _split_cells(line: str) -> list[str]:
 
 def _is_number(cell: str) -> bool:
     try:
-        float(cell)
+        float(cell.replace("_", "x"))
     except ValueError:
         return False
     return True
@@ -185,12 +200,7 @@ def parse_at2_record(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
         )
     else:
         npts_text, dt_text = npts_match.group(1), dt_match.group(1)
-    try:
-        npts = int(npts_text)
-    except ValueError:
-        raise _record_error(
-            path, f"line 4: NPTS must be a whole number, got {npts_text!r}"
-        ) from None
+    npts = _parse_count(path, npts_text, 4, "NPTS")
     dt = _parse_number(path, dt_text, 4, "DT")
     if npts < 2:
         raise _record_error(path, f"line 4: NPTS must be >= 2, got {npts}")
@@ -207,12 +217,35 @@ def parse_at2_record(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
     return np.arange(npts) * dt, np.array(values)
 
 
+def _parse_count(path: Path, text: str, line_number: int, what: str) -> int:
+    """``text`` as a whole number (digits only), or a ValueError naming the file and line."""
+    if not text.strip().isdigit() or not text.strip().isascii():
+        raise _record_error(path, f"line {line_number}: {what} must be a whole number, got "
+                                  f"{text!r}")
+    return int(text)
+
+
 def _read_lines(path: Path) -> list[str]:
     if not path.exists():
         raise _record_error(path, "no such file")
     if not path.is_file():
         raise _record_error(path, "not a regular file")
-    text = path.read_text(encoding="utf-8-sig", errors="replace")
+    size = path.stat().st_size
+    if size > MAX_RECORD_FILE_BYTES:
+        raise _record_error(path, f"the file has {size} bytes, more than the "
+                                  f"{MAX_RECORD_FILE_BYTES} read (MAX_RECORD_FILE_BYTES)")
+    data = path.read_bytes()
+    if data.startswith((b"\xff\xfe", b"\xfe\xff")):  # UTF-16 with its byte-order mark
+        try:
+            text = data.decode("utf-16")
+        except UnicodeDecodeError:
+            raise _record_error(path, "the file starts as UTF-16 text but is not; save it as "
+                                      "UTF-8 text") from None
+    elif b"\x00" in data:
+        raise _record_error(path, "the file holds NUL bytes: it is not UTF-8 text (UTF-16 "
+                                  "without a byte-order mark, or binary); save it as UTF-8 text")
+    else:
+        text = data.decode("utf-8-sig", errors="replace")
     if not text.strip():
         raise _record_error(path, "the file is empty")
     return text.splitlines()
@@ -242,9 +275,19 @@ def _esm_header(path: Path, lines: list[str]) -> tuple[dict[str, tuple[str, int]
         match = _ESM_KEY.match(line)
         if match is None:
             break
-        header.setdefault(match.group(1), (match.group(2).strip(), i + 1))
+        key, value = match.group(1), match.group(2).strip()
+        if key in header and key in _ESM_READ and header[key][0] != value:
+            first, where = header[key]
+            raise _record_error(path, f"line {i + 1}: {key} is {value!r}, but line {where} gave "
+                                      f"{first!r}; give it once")
+        header.setdefault(key, (value, i + 1))
         i += 1
     return header, i
+
+
+_ESM_READ = ("SAMPLING_INTERVAL_S", "NDATA", "UNITS", "DATA_TYPE")
+"""The keys of an ESM header that are read: given twice with two values, the file is
+refused."""
 
 
 def parse_esm_record(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
@@ -303,12 +346,7 @@ def parse_esm_record(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
     if dt <= 0.0:
         raise _record_error(path, f"line {line}: SAMPLING_INTERVAL_S must be > 0 [s], got {dt!r}")
     npts_text, line = header["NDATA"]
-    try:
-        npts = int(npts_text)
-    except ValueError:
-        raise _record_error(
-            path, f"line {line}: NDATA must be a whole number, got {npts_text!r}"
-        ) from None
+    npts = _parse_count(path, npts_text, line, "NDATA")
     if npts < 2:
         raise _record_error(path, f"line {line}: NDATA must be >= 2, got {npts}")
     values = []
@@ -417,10 +455,23 @@ def read_record(
             path, f"times must increase strictly; sample {i + 2} has a {kind} time "
             f"{float(times[i + 1])!r} s after {float(times[i])!r} s"
         )
+    low, high = RECORD_TIME_STEP_RANGE
+    if not (low <= steps.min() and steps.max() <= high):
+        i = int(np.argmax((steps < low) | (steps > high)))
+        raise _record_error(
+            path, f"the time step {float(steps[i]):.6g} s after sample {i + 1} is outside "
+            f"[{low:g}, {high:g}] s (RECORD_TIME_STEP_RANGE): accelerographs sample at 50 to "
+            f"1000 Hz; are the times in seconds?")
+    if not times[-1] <= MAX_RECORD_DURATION:
+        raise _record_error(
+            path, f"the record lasts {float(times[-1]):.6g} s, more than the "
+            f"{MAX_RECORD_DURATION:g} s accepted (MAX_RECORD_DURATION); are the times in "
+            f"seconds?")
     if times[0] > 0.0:  # the ground is at rest at t = 0 and ramps to the first sample
         times = np.concatenate(([0.0], times))
         accelerations = np.concatenate(([0.0], accelerations))
     name = f"record {path.name}"
+    _check_plausible_peak(path, float(np.max(np.abs(accelerations))))
     if scale_to is not None:
         peak = float(np.max(np.abs(accelerations)))
         if peak == 0.0:
@@ -435,6 +486,17 @@ def read_record(
         raise _record_error(path, f"the peak acceleration {peak:.4g} g is more than the "
                                   f"{MAX_ACCELERATION_G:g} g accepted (are the values in g?)")
     return GroundMotion(LINEAR, times, accelerations * GRAVITY, name=name)
+
+
+def _check_plausible_peak(path: Path, peak: float) -> None:
+    """Warn when the peak [g] as read is above :data:`~archquake.defaults.PLAUSIBLE_PEAK_G`,
+    saying what it would be in the likely units (refused above MAX_ACCELERATION_G later)."""
+    if PLAUSIBLE_PEAK_G < peak <= MAX_ACCELERATION_G:
+        warnings.warn(
+            f"record file '{path}': its peak acceleration {peak:.4g} g is implausible for a "
+            f"record (above {PLAUSIBLE_PEAK_G:g} g); if its values are in cm/s^2 the peak is "
+            f"{peak / 100 / GRAVITY:.3g} g, in m/s^2 {peak / GRAVITY:.3g} g: convert them to g",
+            stacklevel=3)
 
 
 def record(path: str | Path, scale_to: float | None = None) -> GroundMotion:

@@ -31,7 +31,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..checks import check_integer
+from .._equality import frozen_value
+from ..checks import check_integer, json_dumps
+from ..defaults import MAX_ACCELERATION_G
 from .core import GroundMotion
 from .intensity import IntensityMeasure, intensity_measure
 from .records import RECORD_EXTENSIONS, read_record, record_format
@@ -246,6 +248,10 @@ class RecordSuite:
             found.setdefault(path.name, (path, fmt))
         files = []
         for motion in motions:
+            if any(ord(c) < 32 or ord(c) == 127 for c in motion.name):
+                # a line break in a name would break the tables that list the records
+                raise ValueError(f"record file {motion.name!r}: its name holds a control "
+                                 "character (a line break, a tab); rename the file")
             path, fmt = found[motion.name]
             files.append(RecordFile(motion.name, str(path.resolve()), fmt or record_format(path),
                                     file_digest(path)))
@@ -530,21 +536,35 @@ class RecordSuite:
         Raises
         ------
         ValueError
-            As :meth:`intensities`.
+            As :meth:`intensities`; or a level that scales a record to a peak ground
+            acceleration above :data:`archquake.defaults.MAX_ACCELERATION_G` (the cap of every
+            motion the package analyses), naming the level and the record.
         """
         measure = stripe_measure(im)
-        return scale_factors(self.intensities(measure.name), levels, measure.exponent)
+        factors = scale_factors(self.intensities(measure.name), levels, measure.exponent)
+        peaks = self.intensities("pga")[:, None] * factors  # [g]
+        over = np.argwhere(~(peaks <= MAX_ACCELERATION_G * (1 + 1e-12)))  # a level at the cap
+        if over.size:
+            r, j = over[np.lexsort((over[:, 0], over[:, 1]))[0]]  # the lowest level first
+            level = np.atleast_1d(np.asarray(levels, dtype=float))[j]
+            name = self.motions(cached=True)[r].name
+            raise ValueError(f"levels: the level {level:g} {measure.unit} of {measure.name} "
+                             f"scales the record {name!r} to a peak ground acceleration of "
+                             f"{peaks[r, j]:.4g} g, above the {MAX_ACCELERATION_G:g} g of any "
+                             f"motion analysed (MAX_ACCELERATION_G); give lower levels")
+        return factors
 
     def _key(self) -> str:
         """The suite as canonical JSON text: the key of the per-process caches."""
-        return json.dumps(self.to_dict(), sort_keys=True)
+        return json_dumps(self.to_dict(), sort_keys=True)
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, RecordSuite):
             return NotImplemented
         return self.to_dict() == other.to_dict()
 
-    __hash__ = None
+    def __hash__(self) -> int:
+        return hash(("RecordSuite", frozen_value(self.to_dict())))
 
 
 @functools.lru_cache(maxsize=2)

@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass, field
 
-from ..defaults import COMPARE_DURATIONS, COMPARE_RESOLUTION_G
+from ..defaults import COMPARE_DURATIONS, COMPARE_RESOLUTION_G, REPORT_SEED
 from ..fourlink.impact import PAPER_RESTITUTION
 
 ARCH_NAMES = ("NA", "RA-1", "RA-2")
@@ -103,7 +103,7 @@ class ReproductionSettings:
     """
 
     epsilon: float = 0.10
-    seed: int = 2024
+    seed: int = REPORT_SEED
     fragility_sample_size: int = 40
     limit_sample_size: int = 1000
     amplitude_min_g: float = 0.20

@@ -297,7 +297,6 @@ def fragility_curve_caption(result, curve: dict) -> str:
     str
     """
     duration = curve["duration"]
-    q = curve["nominal_failure_acceleration"]
     below = curve["probability_below_nominal"]
     paper = f" (the paper: {paper_q():.2f} g)" if abs(duration - 0.4) < 1e-9 else ""
     return (f"Fragility curve at t_p = {duration:.2f} s: P_F = h_f/h (eq. 9) of "
@@ -307,7 +306,7 @@ def fragility_curve_caption(result, curve: dict) -> str:
             "k~ = min(k~_l, k~_r) of "
             f"s = {result.limit_load_multipliers.size} arches by limit analysis; "
             "vertical lines: the nominal arch's k (blue) and failure acceleration "
-            f"{number(q, 3)} g{paper} (black). The paper's point: irregular arches "
+            f"{nominal_q(curve)} g{paper} (black). The paper's point: irregular arches "
             "may fail below the nominal failure acceleration (P_F > 0 left of the "
             f"black line, where eq. 10 gives 0); ours: P_F = {number(below, 3)} at the "
             f"last step below it - {agree(below_nominal(curve))}.")
@@ -890,9 +889,16 @@ def fragility_rows(curves: list) -> list[list[str]]:
     -------
     list of list of str
     """
-    return [[f"{c['duration']:.2f}", number(c["nominal_failure_acceleration"], 3),
+    return [[f"{c['duration']:.2f}", nominal_q(c),
              number(c["lognormal_median"], 3), number(c["lognormal_dispersion"], 3),
              number(c["probability_below_nominal"], 3)] for c in curves]
+
+
+def nominal_q(curve: dict) -> str:
+    """The nominal failure acceleration of a fragility curve's entry [g], to 3 decimals,
+    ``<= q`` when the nominal arch collapses at the lowest amplitude scanned (an upper bound)."""
+    text = number(curve["nominal_failure_acceleration"], 3)
+    return f"<= {text}" if curve.get("nominal_failure_acceleration_bound") == "upper" else text
 
 
 def run_info(results: dict) -> list:

@@ -8,6 +8,7 @@ of the ground, in which the supports do not move.
 
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -162,9 +163,17 @@ def plot_block_energy(history: BlockHistory, ax=None):
     return ax
 
 
+MAX_ANIMATION_FRAMES = 600
+"""Most frames of an animation of the blocks (30 s at 20 frames per second, a minute or so to
+draw): a longer history is played faster, so a record of minutes does not take hours."""
+
+
 def animate_blocks(history: BlockHistory, path, *, fps: int = 20, speed: float = 1.0,
-                   dpi: int = 80) -> Path:
+                   dpi: int = 80, max_frames: int = MAX_ANIMATION_FRAMES) -> Path:
     """Write an animated GIF of the blocks moving [real time / ``speed``].
+
+    At most ``max_frames`` frames are drawn: a history that would need more at ``speed`` is
+    played faster, with a warning that says how fast.
 
     Parameters
     ----------
@@ -179,6 +188,8 @@ def animate_blocks(history: BlockHistory, path, *, fps: int = 20, speed: float =
         nearest to every ``speed / fps`` seconds.
     dpi : int
         Resolution of the frames [dots per inch].
+    max_frames : int
+        Most frames drawn (:data:`MAX_ANIMATION_FRAMES`).
 
     Returns
     -------
@@ -199,8 +210,16 @@ def animate_blocks(history: BlockHistory, path, *, fps: int = 20, speed: float =
         raise ValueError(f"speed must be > 0 (simulated seconds per second), got {speed!r}")
     if history.times.size == 0:
         raise ValueError("the history holds no records")
+    if isinstance(max_frames, bool) or int(max_frames) != max_frames or max_frames < 2:
+        raise ValueError(f"max_frames must be an integer >= 2, got {max_frames!r}")
     t = history.times
-    frames = np.searchsorted(t, np.arange(t[0], t[-1] + 1e-12, speed / fps))
+    span = float(t[-1] - t[0])
+    fastest = span * fps / (max_frames - 1)  # the speed that draws max_frames frames
+    if fastest > speed:
+        warnings.warn(f"the animation of {span:.4g} s plays at {fastest:.3g} times real time "
+                      f"(at most {max_frames} frames at {int(fps)} per second)", stacklevel=2)
+        speed = fastest
+    frames = np.searchsorted(t, np.arange(t[0], t[-1] + 1e-12, speed / fps)[:max_frames])
     frames = np.unique(np.clip(frames, 0, t.size - 1))
     fig, ax = plt.subplots(figsize=(6.4, 4.0))
     plot_blocks(history, t[0], ax)

@@ -67,7 +67,7 @@ from typing import Any
 
 import numpy as np
 
-from ..checks import check_integer
+from ..checks import check_integer, json_dumps
 from ..defaults import DEFAULT_RESTITUTION
 from ..geometry import BlockArch, arch_from_dict, irregular_arch
 from ..models import DEFAULT_MODEL, check_model
@@ -426,7 +426,7 @@ def nominal_json(nominal: BlockArch) -> str:
     str
         ``json.dumps(nominal.to_dict(), sort_keys=True)``.
     """
-    return json.dumps(nominal.to_dict(), sort_keys=True)
+    return json_dumps(nominal.to_dict(), sort_keys=True)
 
 
 @functools.lru_cache(maxsize=8)

@@ -108,10 +108,15 @@ class ModelComparison:
         """JSON-ready list, one entry per duration: ``duration`` [s], ``rigid_block`` and
         ``four_link`` (``{model: ...}``) failure accelerations [g] (None: none in the scan, see
         ``scanned_to``), the recovery bands above them ``recovery_above`` (``{"rigid_block":
-        [[from, to], ...], "four_link": {model: [...]}}`` [g]) and ``scanned_to`` [g]."""
+        [[from, to], ...], "four_link": {model: [...]}}`` [g]) and ``scanned_to`` [g]; and only
+        where a model collapses at the lowest amplitude scanned, ``failure_acceleration_bound``
+        (``{"rigid_block": "upper", <model>: "upper"}`` for those models: the failure
+        acceleration is at most the value given)."""
         out = []
         for i, rb in enumerate(self.rigid_block.slices):
             fl = {name: domain.slices[i] for name, domain in self.four_link.items()}
+            upper = {name: "upper" for name, s in (("rigid_block", rb), *fl.items())
+                     if s.failure_acceleration_bound == "upper"}
             out.append({
                 "duration": rb.duration,
                 "rigid_block": json_float(rb.failure_acceleration_g),
@@ -121,6 +126,7 @@ class ModelComparison:
                     "four_link": {name: [list(b) for b in s.recovery_above_g]
                                   for name, s in fl.items()}},
                 "scanned_to": rb.scanned_to_g,
+                **({"failure_acceleration_bound": upper} if upper else {}),
             })
         return out
 

@@ -59,6 +59,7 @@ from ..defaults import (
     MAX_ACCELERATION_G,
     MAX_BLOCK_GRID_POINTS,
     MAX_GRID_POINTS,
+    MAX_PULSE_DURATION,
 )
 from ..status import Status
 from .strategies import DEFAULT_STRIDE
@@ -128,6 +129,24 @@ class DomainSlice:
         return math.nan
 
     @property
+    def failure_acceleration_bound(self) -> str | None:
+        """Whether :attr:`failure_acceleration_g` is a bound rather than a value bracketed to
+        the resolution: ``"upper"`` when the lowest amplitude scanned already collapses (the
+        failure acceleration is at most it: the scan started too high), ``"lower"`` when no
+        amplitude of the scan collapses (it is above :attr:`scanned_to_g`), None otherwise."""
+        if math.isnan(self.failure_acceleration_g):
+            return "lower"
+        return "upper" if self.intervals[0].status == "collapse" else None
+
+    @property
+    def first_half_cycle_bound(self) -> str | None:
+        """:attr:`failure_acceleration_bound` of :attr:`first_half_cycle_acceleration_g`."""
+        if math.isnan(self.first_half_cycle_acceleration_g):
+            return "lower"
+        first = self.intervals[0]
+        return "upper" if first.status == "collapse" and first.half_cycle == 1 else None
+
+    @property
     def first_half_cycle_acceleration_g(self) -> float:
         """Lowest amplitude [g] that collapses in the first half cycle, with no impact
         (Oppenheim's boundary in Fig. 16 of the paper; nan if none in the scanned range)."""
@@ -158,15 +177,21 @@ class DomainSlice:
         -------
         dict
             ``duration`` [s], ``failure_acceleration``, ``first_half_cycle_acceleration`` (None
-            for nan) and ``scanned_to`` [g], and the ``intervals`` (:meth:`Interval.to_dict`).
+            for nan: no collapse up to ``scanned_to``, a lower bound) and ``scanned_to`` [g],
+            and the ``intervals`` (:meth:`Interval.to_dict`); and, only when the lowest
+            amplitude scanned already collapses, ``failure_acceleration_bound: "upper"`` (the
+            failure acceleration is at most the value given; :attr:`failure_acceleration_bound`).
         """
-        return {
+        out = {
             "duration": self.duration,
             "failure_acceleration": json_float(self.failure_acceleration_g),
             "first_half_cycle_acceleration": json_float(self.first_half_cycle_acceleration_g),
             "scanned_to": self.scanned_to_g,
             "intervals": [iv.to_dict() for iv in self.intervals],
         }
+        if self.failure_acceleration_bound == "upper":
+            out["failure_acceleration_bound"] = "upper"
+        return out
 
 
 def _key(outcome) -> OutcomeKey:
@@ -363,8 +388,11 @@ def check_durations(durations) -> np.ndarray:
     d = np.atleast_1d(np.asarray(durations, dtype=float))
     if d.ndim != 1 or d.size == 0:
         raise ValueError("durations must be a non-empty sequence of pulse durations t_p [s]")
-    if not np.all(np.isfinite(d)) or np.any(d <= 0):
-        raise ValueError(f"durations must be finite and > 0 [s], got {d.tolist()}")
+    bad = d[~((d > 0) & (d <= MAX_PULSE_DURATION))]  # nan too
+    if bad.size:
+        shown = ", ".join(f"{v:g}" for v in bad[:5]) + (", ..." if bad.size > 5 else "")
+        raise ValueError(f"durations must be pulse durations in (0, {MAX_PULSE_DURATION:g}] s "
+                         f"(MAX_PULSE_DURATION), got {shown}")
     return d
 
 
@@ -407,15 +435,17 @@ def check_direction(direction: str) -> str:
 
 
 def inclusive_range(start: float, stop: float, step: float) -> np.ndarray:
-    """``start, start + step, ...`` up to ``stop`` included (when within ``step/2``).
+    """``start, start + step, ...`` up to ``stop``, never beyond it; ``stop`` included when a
+    step lands on it within :data:`RANGE_TOLERANCE` of the step.
 
     The values are rounded to 12 decimals so that e.g. ``inclusive_range(0.2, 1.0, 0.01)`` gives
-    exactly the decimal grid 0.20, 0.21, ..., 1.00 (as floats).
+    exactly the decimal grid 0.20, 0.21, ..., 1.00 (as floats); ``inclusive_range(0.2, 1.0,
+    0.3)`` is 0.2, 0.5, 0.8 (the next step, 1.1, would pass the stop).
 
     Parameters
     ----------
     start, stop : float
-        First value and last value (included if ``start + k step`` is within ``step/2`` of it).
+        First value and the value not to pass (the last one if ``start + k step`` lands on it).
     step : float
         Spacing, > 0.
 
@@ -429,6 +459,13 @@ def inclusive_range(start: float, stop: float, step: float) -> np.ndarray:
     ValueError
         For a non-finite value, a step <= 0, ``stop < start`` or more than
         :data:`archquake.defaults.MAX_GRID_POINTS` values.
+
+    Examples
+    --------
+    >>> inclusive_range(0.2, 1.0, 0.3).tolist()
+    [0.2, 0.5, 0.8]
+    >>> inclusive_range(0.3, 0.5, 0.1).tolist()
+    [0.3, 0.4, 0.5]
     """
     for name, value in (("start", start), ("stop", stop), ("step", step)):
         if not math.isfinite(value):
@@ -437,11 +474,21 @@ def inclusive_range(start: float, stop: float, step: float) -> np.ndarray:
         raise ValueError(f"range step must be > 0, got {step!r}")
     if stop < start:
         raise ValueError(f"range stop must be >= start, got {start!r}:{stop!r}")
-    count = math.floor((stop - start) / step + 0.5) + 1
-    if count > MAX_GRID_POINTS:
-        raise ValueError(f"the range {start:g}:{stop:g}:{step:g} has {count} values, more than "
-                         f"the {MAX_GRID_POINTS} of the largest grid (MAX_GRID_POINTS)")
-    return np.round(start + step * np.arange(count), 12)
+    steps = (stop - start) / step
+    if steps + 1 > MAX_GRID_POINTS:
+        raise ValueError(f"the range {start:g}:{stop:g}:{step:g} has {math.floor(steps) + 1} "
+                         f"values, more than the {MAX_GRID_POINTS} of the largest grid "
+                         f"(MAX_GRID_POINTS)")
+    count = math.floor(steps + RANGE_TOLERANCE) + 1
+    values = np.round(start + step * np.arange(count), 12)
+    if abs(values[-1] - stop) <= RANGE_TOLERANCE * step:
+        values[-1] = stop  # the stop itself, not a neighbour of it in the last bits
+    return np.minimum(values, stop)
+
+
+RANGE_TOLERANCE = 1e-9
+"""How close [fraction of the step] the last step of :func:`inclusive_range` must land on the
+stop to be the stop."""
 
 
 def domain_of(model, durations=None, amplitudes_g=None, *, direction: str = "l",
@@ -509,6 +556,9 @@ def domain_of(model, durations=None, amplitudes_g=None, *, direction: str = "l",
         :data:`~archquake.defaults.MAX_ACCELERATION_G`), resolution, search, ``extend_to_g``
         or ``workers``, or a scan of more than :data:`~archquake.defaults.MAX_GRID_POINTS`
         analyses (:data:`~archquake.defaults.MAX_BLOCK_GRID_POINTS` for the rigid blocks).
+    archquake.errors.CannotStandError
+        For a rigid-block structure that cannot stand under its own weight with its friction
+        (:func:`archquake.limit_analysis.standing_with_friction`), before any dynamics.
 
     References
     ----------
@@ -542,6 +592,7 @@ def domain_of(model, durations=None, amplitudes_g=None, *, direction: str = "l",
     single = name != "four-link"
     _check_scan_size(d.size, a, extend_to_g, MAX_BLOCK_GRID_POINTS if single else
                      MAX_GRID_POINTS)
+    _check_stands(model)
     screen_model = screen
     if search == "screened" and screen is None:
         screen_model = model if name == "four-link" else _four_link_screen(model.structure)
@@ -559,6 +610,22 @@ def domain_of(model, durations=None, amplitudes_g=None, *, direction: str = "l",
     return FailureDomain(tuple(s for s, _ in slices), direction, limit_k, k, restitution,
                          motion, None if extend_to_g is None else float(extend_to_g),
                          model.describe(), search, tuple(n for _, n in slices))
+
+
+def _check_stands(model) -> None:
+    """Refuse, before any dynamics, a rigid-block structure that cannot stand under its own
+    weight with its friction (:func:`archquake.limit_analysis.standing_with_friction`): every
+    amplitude would collapse it, and the lowest one scanned is no failure acceleration. (The
+    four-link model refuses such an arch when it is built.)"""
+    from ..errors import CannotStandError
+    from ..geometry import BlockArch
+    from ..limit_analysis import standing_with_friction
+
+    if model.name == "four-link" or not isinstance(model.structure, BlockArch):
+        return
+    verdict = standing_with_friction(model.structure, model.settings.friction)
+    if not verdict.stands:
+        raise CannotStandError(verdict.reason)
 
 
 def _four_link_screen(structure):

@@ -84,6 +84,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from .._equality import frozen_value
 from ..checks import check_integer, json_float
 from ..defaults import (
     DEFAULT_EPSILON,
@@ -97,6 +98,7 @@ from ..defaults import (
     MAX_ACCELERATION_G,
     MAX_GRID_POINTS,
     MAX_LIMIT_SAMPLES,
+    MAX_PULSE_DURATION,
     MAX_SAMPLES,
     MAX_STUDY_ANALYSES,
     STUDY_AMPLITUDES_G,
@@ -236,9 +238,12 @@ class FragilitySettings:
         check_integer("sample_size", self.sample_size, maximum=MAX_SAMPLES)
         check_integer("limit_sample_size", self.limit_sample_size, maximum=MAX_LIMIT_SAMPLES)
         d = np.atleast_1d(np.asarray(self.durations, dtype=float))
-        if d.ndim != 1 or d.size == 0 or not np.all(np.isfinite(d)) or np.any(d <= 0):
-            raise ValueError(f"durations must be a non-empty list of pulse durations > 0 [s], "
-                             f"got {np.ravel(d).tolist()}")
+        if (d.ndim != 1 or d.size == 0 or not np.all(np.isfinite(d)) or np.any(d <= 0)
+                or np.any(d > MAX_PULSE_DURATION)):
+            bad = [v for v in np.ravel(d).tolist() if not 0 < v <= MAX_PULSE_DURATION]
+            raise ValueError(f"durations must be a non-empty list of pulse durations in (0, "
+                             f"{MAX_PULSE_DURATION:g}] s (MAX_PULSE_DURATION), got "
+                             f"{bad[:5] if bad else np.ravel(d).tolist()[:5]}")
         if np.unique(d).size != d.size:
             raise ValueError(f"durations must be distinct, got {d.tolist()}")
         a = np.atleast_1d(np.asarray(self.amplitudes_g, dtype=float))
@@ -341,7 +346,9 @@ class FragilitySettings:
             return NotImplemented
         return self.to_dict() == other.to_dict()
 
-    __hash__ = None  # mutable-free but holds arrays: compare by value, do not hash
+    def __hash__(self) -> int:
+        # frozen, and every field an immutable value: hashed as it compares, by its to_dict
+        return hash(("FragilitySettings", frozen_value(self.to_dict())))
 
 
 def arch_outcomes(arch: BlockArch, durations, amplitudes_g, *, restitution=DEFAULT_RESTITUTION,
@@ -664,6 +671,19 @@ class FragilityResult:
                              f"{self.durations.tolist()}")
         return int(hits[0])
 
+    def nominal_failure_bound(self, i: int) -> str | None:
+        """Whether the nominal failure acceleration of duration ``i`` is a bound
+        (:attr:`archquake.studies.failure_domain.DomainSlice.failure_acceleration_bound` of the
+        direction that gives it): ``"upper"`` when the nominal arch collapses at the lowest
+        amplitude scanned, ``"lower"`` when at none, None when bracketed."""
+        q = float(self.nominal_failure_acceleration_g[i])
+        if not math.isfinite(q):
+            return "lower"
+        slices = [domain.slices[i] for domain in self.nominal_domains]
+        return ("upper" if any(s.failure_acceleration_g == q
+                               and s.failure_acceleration_bound == "upper" for s in slices)
+                else None)
+
     def probability_below_nominal(self) -> np.ndarray:
         """P_F at the largest grid amplitude below the nominal failure acceleration, per
         duration: where the step of eq. (10) says P_F = 0.
@@ -758,6 +778,8 @@ class FragilityResult:
                 "lognormal_dispersion": None if lognormal is None else lognormal.dispersion,
                 "lognormal_at_nominal": (None if lognormal is None or not math.isfinite(q)
                                          else float(lognormal(q))),
+                **({"nominal_failure_acceleration_bound": "upper"}
+                   if self.nominal_failure_bound(i) == "upper" else {}),
             })
         def stat(function, values):
             return json_float(float(function(values))) if values.size else None

@@ -120,13 +120,18 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from .._equality import frozen_value
 from ..checks import check_integer
 from ..defaults import (
+    DEFAULT_EPSILON,
     DEFAULT_FRICTION,
+    DEFAULT_IM,
     DEFAULT_LEVEL_STRIDE,
     DEFAULT_RESTITUTION,
     DEFAULT_SEARCH,
+    DEFAULT_SEED,
     MAX_SAMPLES,
+    STUDY_SAMPLE_SIZE,
 )
 from ..geometry import GRAVITY, BlockArch, arch_from_dict
 from ..ground_motion.suites import RecordSuite, stripe_measure
@@ -232,11 +237,11 @@ class RecordFragilitySettings:
 
     suite: RecordSuite
     levels: tuple[float, ...]
-    im: str = "pga"
+    im: str = DEFAULT_IM
     nominal: BlockArch = field(default_factory=oppenheim)
-    sample_size: int = 40
-    epsilon: float = 0.10
-    seed: int = 0
+    sample_size: int = STUDY_SAMPLE_SIZE
+    epsilon: float = DEFAULT_EPSILON
+    seed: int = DEFAULT_SEED
     restitution: str | float = DEFAULT_RESTITUTION
     bootstrap: int = DEFAULT_BOOTSTRAP
     confidence: float = DEFAULT_CONFIDENCE
@@ -361,7 +366,9 @@ class RecordFragilitySettings:
             return NotImplemented
         return self.to_dict() == other.to_dict()
 
-    __hash__ = None
+    def __hash__(self) -> int:
+        # frozen, and every field an immutable value: hashed as it compares, by its to_dict
+        return hash(("RecordFragilitySettings", frozen_value(self.to_dict())))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -1153,8 +1160,9 @@ def run_record_fragility(
     if not isinstance(settings, RecordFragilitySettings):
         raise ValueError(f"settings must be RecordFragilitySettings, got "
                          f"{type(settings).__name__}")
-    # read every record and its IM here, so that a bad file stops the study before it starts
-    settings.suite.intensities(settings.im)
+    # read every record and its IM here, so that a bad file or a level that would scale a
+    # record beyond any acceleration analysed stops the study before it starts
+    settings.suite.scale_factors(settings.im, settings.levels)
     check_nominal(settings.nominal, settings.restitution, model=settings.model)
     out = None if out_dir is None else Path(out_dir)
     if resume and out is not None:

@@ -1,0 +1,202 @@
+"""Command lines that used to give a silent wrong answer, invalid JSON or a traceback: each test
+is named after what it guards."""
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from archquake.cli import main
+from archquake.defaults import MAX_ACCELERATION_G
+from archquake.studies.failure_domain import inclusive_range
+
+DATA = Path(__file__).parents[1] / "data"
+
+
+def _refuse_constant(name):
+    raise AssertionError(f"{name} in the JSON output")
+
+
+def strict_json(text):
+    """``text`` parsed as strict JSON (no NaN, no Infinity)."""
+    return json.loads(text, parse_constant=_refuse_constant)
+
+
+def error_line(capsys) -> str:
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("archquake: error: "), err
+    return err[0]
+
+
+# --- ranges never pass their stop -------------------------------------------------------------
+
+@pytest.mark.parametrize("start, stop, step, expected", [
+    (0.2, 1.0, 0.3, [0.2, 0.5, 0.8]),  # 1.1 was scanned
+    (0.2, 1.0, 0.2, [0.2, 0.4, 0.6, 0.8, 1.0]),
+    (0.3, 0.5, 0.1, [0.3, 0.4, 0.5]),  # 0.3 + 2 * 0.1 = 0.5000000000000001
+    (1.0, 1.0, 0.5, [1.0]),
+    (0.0, 0.99999999, 0.5, [0.0, 0.5]),
+])
+def test_range_never_passes_its_stop(start, stop, step, expected):
+    values = inclusive_range(start, stop, step)
+    assert values.tolist() == pytest.approx(expected, abs=1e-12)
+    assert values.max() <= stop
+
+
+def test_range_includes_a_stop_it_lands_on_within_the_tolerance():
+    values = inclusive_range(0.2, 1.0, 0.01)
+    assert len(values) == 81 and values[-1] == 1.0
+    assert np.all(np.diff(values) > 0)
+
+
+def test_domain_scans_no_amplitude_beyond_the_stop(capsys):
+    assert main(["domain", "--durations", "0.5", "--amplitudes", "0.2:1.0:0.3",
+                 "--extend-to", "0", "--json"]) == 0
+    (row,) = strict_json(capsys.readouterr().out)
+    assert row["scanned_to"] == 0.8  # 1.1 was scanned
+    assert max(iv["to"] for iv in row["intervals"]) == 0.8
+
+
+def test_compare_range_error_names_a_value_of_the_range(capsys):
+    """0.3:1001:1 holds 0.3, 1.3, ..., 1000.3; the error names the first value beyond the cap,
+    not 1001.3, which the range does not hold."""
+    assert main(["compare", "--amplitudes", "0.3:1001:1", "--durations", "0.5"]) == 2
+    line = error_line(capsys)
+    assert "1001.3" not in line and "--amplitudes" in line
+
+
+# --- the 1000 g cap holds for scaled records --------------------------------------------------
+
+@pytest.mark.parametrize("argv, level", [
+    (["--levels", "1,2000"], "2000 g of pga"),
+    (["--levels", "1", "--im", "sa(1e6)"], "1 g of sa(1e6)"),
+])
+def test_record_fragility_refuses_levels_beyond_the_acceleration_cap(capsys, tmp_path, argv,
+                                                                    level):
+    out = tmp_path / "study"
+    assert main(["record-fragility", "--records", str(DATA / "decaying_sine.csv"), *argv,
+                 "--samples", "2", "--out", str(out), "--no-progress"]) == 2
+    line = error_line(capsys)
+    assert f"--levels: the level {level}" in line
+    assert "'decaying_sine.csv'" in line and f"{MAX_ACCELERATION_G:g} g" in line
+    assert not out.exists() or not any(out.iterdir())
+
+
+def test_record_suite_scale_factors_refuse_a_peak_beyond_the_cap():
+    """The cap is on the scaled peak: the factor that brings the record's PGA to the cap is
+    accepted, one just above it is not (the PGA of the file computed here from its samples)."""
+    from archquake.ground_motion.suites import RecordSuite
+
+    suite = RecordSuite.from_paths([DATA / "decaying_sine.csv"])
+    _, a_g = np.loadtxt(DATA / "decaying_sine.csv", delimiter=",", skiprows=3, unpack=True)
+    pga = float(np.max(np.abs(a_g)))
+    factors = suite.scale_factors("pga", [MAX_ACCELERATION_G])
+    assert factors[0, 0] * pga == pytest.approx(MAX_ACCELERATION_G, rel=1e-12)
+    with pytest.raises(ValueError, match="levels: the level 1001 g of pga"):
+        suite.scale_factors("pga", [1.0, 1001.0])
+    assert math.isfinite(pga)
+
+
+# --- a failure at the first amplitude scanned is a bound, not a value ------------------------
+
+def test_domain_marks_a_collapse_from_the_first_amplitude_as_an_upper_bound(capsys):
+    """t = 0.7 m: k = 0.058, and the arch already collapses at 0.2 g, the lowest amplitude
+    scanned; a scan from 0.01 g finds the failure acceleration below 0.2 g, as the bound says."""
+    argv = ["domain", "--thickness", "0.7", "--durations", "0.5"]
+    assert main([*argv, "--amplitudes", "0.2:1:0.05"]) == 0
+    out = capsys.readouterr().out
+    assert "<= 0.2000" in out and "at most it" in out
+    assert main([*argv, "--amplitudes", "0.2:1:0.05", "--json"]) == 0
+    (row,) = strict_json(capsys.readouterr().out)
+    assert row["failure_acceleration"] == 0.2 and row["failure_acceleration_bound"] == "upper"
+    assert main([*argv, "--amplitudes", "0.01:1:0.01", "--json"]) == 0
+    (fine,) = strict_json(capsys.readouterr().out)
+    assert "failure_acceleration_bound" not in fine
+    assert fine["failure_acceleration"] < 0.2
+
+
+def test_domain_json_keeps_its_keys_when_the_failure_is_bracketed(capsys):
+    assert main(["domain", "--durations", "0.5", "--amplitudes", "0.3:1:0.05", "--json"]) == 0
+    (row,) = strict_json(capsys.readouterr().out)
+    assert set(row) == {"duration", "failure_acceleration", "first_half_cycle_acceleration",
+                        "scanned_to", "intervals"}
+
+
+@pytest.mark.parametrize("friction", ["0", "0.2"])
+def test_compare_refuses_an_arch_that_slides_under_its_own_weight(capsys, friction):
+    """Oppenheim's arch needs a friction of 0.206 to stand (limit analysis with friction);
+    below it every amplitude 'collapses' it, and no failure acceleration is printed."""
+    assert main(["compare", "--friction", friction, "--durations", "0.5", "--amplitudes",
+                 "0.3:0.5:0.1", "--no-progress"]) == 2
+    line = error_line(capsys)
+    assert f"with friction {friction} at its joints the arch cannot stand" in line
+
+
+# --- smaller ones ---------------------------------------------------------------------------
+
+def test_rise_zero_is_a_rise_of_zero_not_a_missing_option(capsys):
+    assert main(["limit", "--shape", "parabolic", "--span", "10", "--rise", "0"]) == 2
+    assert "--rise must be a finite number > 0" in error_line(capsys)
+
+
+def test_pointed_arch_takes_an_even_default_number_of_voussoirs(capsys):
+    """7 (the default of the other shapes) is refused for a pointed arch: it takes 8."""
+    assert main(["limit", "--shape", "pointed", "--span", "10", "--rise", "6"]) == 0
+    assert "n = 8 voussoirs" in capsys.readouterr().out
+    assert main(["limit", "--shape", "pointed", "--span", "10", "--rise", "6",
+                 "--voussoirs", "7"]) == 2
+    assert "divisible by 2" in error_line(capsys)
+
+
+def test_free_vibration_beyond_the_point_of_no_return_prints_no_nan(capsys):
+    assert main(["simulate", "--phi0", "0.5"]) == 0
+    out = capsys.readouterr().out
+    assert "nan" not in out and "released beyond its point of no return" in out
+
+
+def test_outcomes_of_identical_runs_are_equal_and_hash_alike():
+    from archquake import ArchDynamics, oppenheim
+    from archquake.ground_motion import oppenheim_pulse
+
+    dynamics = ArchDynamics.from_arch(oppenheim())
+    pulse = oppenheim_pulse(-0.3 * 9.81, 0.4)  # below k: rest, collapse_time nan
+    a, b = dynamics.outcome(pulse), dynamics.outcome(pulse)
+    assert math.isnan(a.collapse_time)
+    assert a == b and hash(a) == hash(b)
+    assert a != dynamics.outcome(oppenheim_pulse(-0.8 * 9.81, 0.4))
+
+
+def test_study_settings_are_hashable_as_they_compare():
+    from archquake.studies.fragility import FragilitySettings
+
+    assert len({FragilitySettings(), FragilitySettings(), FragilitySettings(seed=1)}) == 2
+
+
+def test_sigterm_stops_reproduce_like_ctrl_c(monkeypatch):
+    """The report starts a process of its own: SIGTERM must stop it cleanly (its helper and
+    queues released), not kill the report and leave them."""
+    import signal
+
+    from archquake.cli import _signals, main_reproduce
+
+    seen = []
+    monkeypatch.setattr(main_reproduce, "run",
+                        lambda args: seen.append(signal.getsignal(signal.SIGTERM)) or 0)
+    assert main(["reproduce", "--out", "unused"]) == 0
+    assert seen == [_signals.raise_terminated]
+
+
+def test_a_pulse_duration_of_days_is_refused_naming_the_option(capsys):
+    """compare --durations 1e6 suggested a --t-end compare does not have."""
+    assert main(["compare", "--durations", "1e6", "--no-progress"]) == 2
+    line = error_line(capsys)
+    assert "--durations must be pulse durations in (0, 60] s" in line and "t_end" not in line
+
+
+@pytest.mark.parametrize("argv", [["fragility", "--out", ""], ["reproduce", "--out", " "],
+                                  ["limit", "--plot", ""], ["records", ""]])
+def test_an_empty_file_name_is_refused(capsys, argv):
+    assert main(argv) == 2
+    assert "must name a file or directory" in error_line(capsys)
