@@ -83,10 +83,6 @@ RIGID_BLOCK_LINES = st.tuples(st.just(["rigid-blocks"]), options({
     "--t-end": numbers(0.1, 5.0), "--json": None}))
 
 
-@pytest.mark.xfail(strict=False, reason="the rigid-block model's scaling, time step, undecided "
-                                        "runs and recording (items 1, 2, 6 and 9 of the "
-                                        "hardening list) are being reworked in "
-                                        "rigid_blocks/solver.py and dynamics.py")
 @given(RIGID_BLOCK_LINES)
 def test_a_rigid_block_command_line_gives_a_result_or_one_error_line(parts):
     command, rest = parts

@@ -84,6 +84,7 @@ def record_files(draw):
             str.encode)))
 
 
+@pytest.mark.filterwarnings("ignore:record file .* is implausible:UserWarning")
 @settings(suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
 @given(record_files())
 def test_a_record_file_gives_a_motion_or_an_error_naming_it(tmp_path, record):
