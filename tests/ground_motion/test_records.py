@@ -21,7 +21,7 @@ from archquake.ground_motion import (
     record_format,
 )
 
-DATA = Path(__file__).parent / "data"
+DATA = Path(__file__).parents[1] / "data"
 CSV = DATA / "decaying_sine.csv"
 AT2 = DATA / "decaying_sine.AT2"
 

@@ -24,7 +24,7 @@ from archquake.ground_motion import (
 from archquake.status import Status
 from rocking_block import RockingBlock, block_pair
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def _baseline_module():

@@ -33,7 +33,7 @@ from archquake.ground_motion.intensity import (
     significant_duration,
 )
 
-DATA = Path(__file__).parent / "data"
+DATA = Path(__file__).parents[1] / "data"
 ZETA = 0.05
 
 
