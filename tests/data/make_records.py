@@ -9,7 +9,8 @@ All sample the same kind of analytic accelerogram (not a real record)::
 The ESM file has the 64-line header of the Engineering Strong Motion database's ASCII files
 (header format DYNA 1.2), filled with made-up event and station values.
 
-``tests/ground_motion/test_records.py`` holds its own copy of the formula and compares the files against it.
+``tests/ground_motion/test_records.py`` holds its own copy of the formula and compares the
+files against it.
 Run ``python tests/data/make_records.py`` to rewrite the files.
 """
 

@@ -96,7 +96,7 @@ def test_pulse_outcomes_and_point_q_match_the_paper(report, paper):
     # the computed coefficient of restitution is the one of archquake.fourlink.impact, not the
     # paper's
     assert results["restitution"]["computed"][0] == pytest.approx(0.645, abs=1e-3)
-    # the report names the three models and the number each gives (link: tests/fourlink/test_impact.py)
+    # the report names the models and the number each gives (link: tests/fourlink/test_impact.py)
     assert results["restitution"]["link"][0] == pytest.approx(0.883, abs=1e-3)
     notes = (out / "report.md").read_text()
     assert "'link'" in notes and "0.8831" in notes and "'computed'" in notes

@@ -220,3 +220,23 @@ def test_tall_structure_is_decided_within_its_own_period(nominal):
     assert history.outcome.to_dict() == outcome.to_dict()
     assert np.all(history.kinetic_energy[after] < 1e-6 * structure.total_mass * GRAVITY)
     assert history.openings[-1].max() < 1e-4 * structure.thickness
+
+
+def test_identical_runs_compare_equal_and_histories_compare_by_identity():
+    """Hardening: ``BlockHistory ==`` raised (arrays in a frozen dataclass), and two identical
+    runs' outcomes (nan collapse time when the arch recovers) compared unequal."""
+    from archquake import oppenheim
+    from archquake.geometry import GRAVITY
+    from archquake.ground_motion import oppenheim_pulse
+    from archquake.rigid_blocks import block_outcome, simulate_blocks
+
+    arch = oppenheim()
+    recovery = oppenheim_pulse(-0.4 * GRAVITY, 0.5)  # below 0.439 g
+    first, second = block_outcome(arch, recovery), block_outcome(arch, recovery)
+    assert first.status.label == "recovery" and first.collapse_time != first.collapse_time
+    assert first == second and hash(first) == hash(second)
+    assert first != block_outcome(arch, oppenheim_pulse(-0.6 * GRAVITY, 0.4))
+    one = simulate_blocks(arch, recovery, t_end=0.5)
+    other = simulate_blocks(arch, recovery, t_end=0.5)
+    assert one == one and one != other  # results compare by identity (archquake._equality)
+    assert one.outcome == other.outcome

@@ -57,7 +57,7 @@ def _frozen(array, dtype=float) -> np.ndarray:
     return arr
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Assembly:
     r"""Rigid blocks and joints in the undeformed configuration (SI units, per unit depth).
 

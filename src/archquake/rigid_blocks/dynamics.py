@@ -97,6 +97,7 @@ from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
 
+from .._equality import value_equality
 from ..checks import json_float
 from ..defaults import DEFAULT_FRICTION, DEFAULT_TIME_STEP, MAX_BLOCK_STEPS
 from ..geometry import GRAVITY, BlockArch
@@ -253,6 +254,7 @@ class BlockSettings:
                 raise ValueError(f"{name} must be > 0, got {getattr(self, name)!r}")
 
 
+@value_equality
 @dataclass(frozen=True)
 class BlockOutcome:
     """What a rigid-block analysis decided.
@@ -335,7 +337,7 @@ class BlockOutcome:
         return out
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class BlockHistory:
     """Recorded time history of a rigid-block analysis (arrays over the records, SI units).
 

@@ -97,7 +97,7 @@ def _check_mode(assembly, mode, name: str) -> np.ndarray:
     return u
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class ClosingImpact:
     """The impact of a structure that closes with a given velocity field (module docstring).
 
