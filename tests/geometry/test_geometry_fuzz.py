@@ -96,6 +96,7 @@ def _readable(path):
         return None
 
 
+@pytest.mark.filterwarnings("ignore:geometry file .* listed right to left:UserWarning")
 @settings(suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
 @given(CONTENT)
 def test_a_geometry_file_gives_an_arch_or_an_error_naming_it(tmp_path, content):

@@ -24,6 +24,7 @@ from archquake.ground_motion import (
     ground_motion,
     harmonic,
     mavroeidis_papageorgiou_pulse,
+    oppenheim_pulse,
     ricker_wavelet,
     sine_pulse,
 )
@@ -232,3 +233,14 @@ def test_exact_pulse_and_its_fine_table_give_the_same_response(arch_tables):
     assert exact.status == table.status and exact.impacts == table.impacts
     assert exact.max_phi > 0.01
     assert table.max_phi == pytest.approx(exact.max_phi, rel=1e-5)
+
+
+@pytest.mark.parametrize("build", [lambda t: oppenheim_pulse(-GRAVITY, t),
+                                   lambda t: harmonic(GRAVITY, t, cycles=2)])
+def test_a_pulse_of_centuries_is_refused_naming_its_parameter(build):
+    """Hardening (found by the fuzzer): a duration of 6e307 s overflowed the pulse's end to
+    infinity and was refused as "ground motion times must be finite numbers"."""
+    with pytest.raises(ValueError, match=r"(duration|period) must be at most 60 .*"
+                                         r"MAX_PULSE_DURATION"):
+        build(5.99e307)
+    assert build(60.0).duration >= 60.0

@@ -49,6 +49,16 @@ def test_cli_dem_refuses_a_time_step_of_a_second(capsys):
     assert "never moves" not in err
 
 
+@pytest.mark.parametrize("extra", [["--t-end", "1e300"], ["--duration", "50"]])
+def test_a_step_count_beyond_any_integer_is_refused_naming_the_limit(capsys, extra):
+    """Hardening (found by the fuzzer): --time-step 1e-300 with --t-end 1e300 overflowed the
+    number of steps ("cannot convert float infinity to integer") instead of a refusal."""
+    assert main(["rigid-blocks", "--time-step", "1e-300", *extra, "--json"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("archquake: error:") and "MAX_BLOCK_STEPS" in err
+    assert "Traceback" not in err and err.count("\n") == 1
+
+
 def test_time_step_limits_of_the_contact_law_the_pulse_and_the_record(tmp_path):
     """Each limit on its own: 0.02 sqrt(t/g) for the contacts (4.04 ms for a block 0.4 m
     wide on a still ground), 1/20 of a pulse's shortest piece, a record's sample spacing."""

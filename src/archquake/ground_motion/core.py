@@ -322,8 +322,10 @@ def check_peak(what: str, peak: float) -> None:
                          f"{peak / GRAVITY:.4g} g")
 
 
-def check_number(name: str, value: float, unit: str, *, positive: bool = True) -> float:
-    """``value`` as a finite float (``> 0`` if ``positive``), or a ValueError naming it."""
+def check_number(name: str, value: float, unit: str, *, positive: bool = True,
+                 at_most: float | None = None, limit_name: str = "") -> float:
+    """``value`` as a finite float (``> 0`` if ``positive``, ``<= at_most`` if given), or a
+    ValueError naming it (and ``limit_name``, the constant that sets ``at_most``)."""
     try:
         value = float(value)
     except (TypeError, ValueError) as exc:
@@ -331,6 +333,9 @@ def check_number(name: str, value: float, unit: str, *, positive: bool = True) -
     if not math.isfinite(value) or (positive and value <= 0):
         condition = "a finite number > 0" if positive else "a finite number"
         raise ValueError(f"{name} must be {condition} [{unit}], got {value!r}")
+    if at_most is not None and value > at_most:
+        named = f" ({limit_name})" if limit_name else ""
+        raise ValueError(f"{name} must be at most {at_most:g} [{unit}]{named}, got {value!r}")
     return value
 
 

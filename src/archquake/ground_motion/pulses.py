@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import math
 
-from ..defaults import MAX_CYCLES
+from ..defaults import MAX_CYCLES, MAX_PULSE_DURATION
 from .core import GRAVITY as _G
 from .core import (
     HARMONIC,
@@ -38,6 +38,10 @@ def _g(a: float) -> str:
     return f"{a / _G:+.3g} g"
 
 
+_PULSE_TIME = {"at_most": MAX_PULSE_DURATION, "limit_name": "MAX_PULSE_DURATION"}
+"""The bound of a pulse's duration or period: a duration of minutes is a unit mistake."""
+
+
 def oppenheim_pulse(amplitude: float, duration: float) -> GroundMotion:
     """Oppenheim's pulse [paper, Sect. 5.3.1]: ``amplitude`` for ``duration`` t_p, then
     ``-amplitude/2`` for ``2 t_p``, then rest (zero net ground velocity).
@@ -51,7 +55,7 @@ def oppenheim_pulse(amplitude: float, duration: float) -> GroundMotion:
         Duration t_p of the first pulse [s].
     """
     a = check_number("amplitude", amplitude, "m/s^2", positive=False)
-    tp = check_number("duration", duration, "s")
+    tp = check_number("duration", duration, "s", **_PULSE_TIME)
     return GroundMotion(STEP, [0.0, tp, 3.0 * tp], [a, -a / 2.0],
                         name=f"Oppenheim pulse {_g(a)}, t_p = {tp:.3g} s")
 
@@ -59,7 +63,7 @@ def oppenheim_pulse(amplitude: float, duration: float) -> GroundMotion:
 def rectangular_pulse(amplitude: float, duration: float) -> GroundMotion:
     """One rectangular pulse: ``amplitude`` [m/s^2] for ``duration`` [s], then rest."""
     a = check_number("amplitude", amplitude, "m/s^2", positive=False)
-    tp = check_number("duration", duration, "s")
+    tp = check_number("duration", duration, "s", **_PULSE_TIME)
     return GroundMotion(STEP, [0.0, tp], [a], name=f"rectangular pulse {_g(a)}, {tp:.3g} s")
 
 
@@ -93,7 +97,7 @@ def harmonic(amplitude: float, period: float, cycles: float = 1, *,
         :data:`archquake.defaults.MAX_CYCLES`.
     """
     a = check_number("amplitude", amplitude, "m/s^2", positive=False)
-    period = check_number("period", period, "s")
+    period = check_number("period", period, "s", **_PULSE_TIME)
     cycles = check_number("cycles", cycles, "-")
     if cycles > MAX_CYCLES:
         raise ValueError(f"cycles must be at most {MAX_CYCLES} (MAX_CYCLES), got {cycles:g}")
@@ -129,7 +133,7 @@ def ricker_wavelet(amplitude: float, period: float) -> GroundMotion:
        structure. Bulletin of the Seismological Society of America 33(3), 197-228.
     """
     a = check_number("amplitude", amplitude, "m/s^2", positive=False)
-    period = check_number("period", period, "s")
+    period = check_number("period", period, "s", **_PULSE_TIME)
     return GroundMotion(RICKER, params=[a, period, RICKER_CENTRE["symmetric"], 0.0],
                         name=f"symmetric Ricker wavelet {_g(a)}, T_p = {period:.3g} s")
 
@@ -161,7 +165,7 @@ def antisymmetric_ricker_wavelet(amplitude: float, period: float) -> GroundMotio
        Structural Dynamics 41(2), 177-196.
     """
     a = check_number("amplitude", amplitude, "m/s^2", positive=False)
-    period = check_number("period", period, "s")
+    period = check_number("period", period, "s", **_PULSE_TIME)
     return GroundMotion(RICKER, params=[a, period, RICKER_CENTRE["antisymmetric"], 1.0],
                         name=f"antisymmetric Ricker wavelet {_g(a)}, T_p = {period:.3g} s")
 
@@ -230,7 +234,7 @@ def cycloidal_pulse(amplitude: float, period: float, pulse_type: str = "A",
        cycloidal pulses. Journal of Engineering Mechanics 127(5), 473-483.
     """
     a = check_number("amplitude", amplitude, "m/s^2", positive=False)
-    period = check_number("period", period, "s")
+    period = check_number("period", period, "s", **_PULSE_TIME)
     kind = str(pulse_type).upper()
     if kind not in ("A", "B", "C"):
         raise ValueError(f"pulse_type must be 'A', 'B' or 'C' (C_n), got {pulse_type!r}")
@@ -326,7 +330,7 @@ def mavroeidis_papageorgiou_pulse(amplitude: float, period: float, gamma: float 
        1099-1131.
     """
     a = check_number("amplitude", amplitude, "m/s^2", positive=False)
-    period = check_number("period", period, "s")
+    period = check_number("period", period, "s", **_PULSE_TIME)
     gamma = check_number("gamma", gamma, "-")
     phase = check_number("phase", phase, "rad", positive=False)
     if not 1.0 < gamma <= 2 * MAX_CYCLES:

@@ -652,16 +652,20 @@ def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None,
     if t_end is not None:
         if not (math.isfinite(t_end) and t_end > 0):
             raise ValueError(f"t_end must be a finite time > 0 [s], got {t_end!r}")
-        n_steps = int(math.ceil(t_end / h - 1e-9))
+        steps = math.ceil(t_end / h - 1e-9) if t_end / h <= MAX_BLOCK_STEPS else math.inf
         tail_steps = -1
     else:
-        n_steps = int(math.ceil((excitation_end + observation_windows(assembly, settings)[0])
-                                / h))
-        tail_steps = int(round(tail / h))
-        n_steps += max(tail_steps, 0) if record_every else 0
+        steps = (excitation_end + observation_windows(assembly, settings)[0]) / h
+        tail_steps = round(tail / h) if tail / h <= MAX_BLOCK_STEPS else MAX_BLOCK_STEPS + 1
+        steps = (math.ceil(steps) if steps <= MAX_BLOCK_STEPS else math.inf) + (
+            max(tail_steps, 0) if record_every else 0)
+    n_steps = steps  # an int, or inf when the count would not even fit in one
     if n_steps > MAX_BLOCK_STEPS:
-        raise ValueError(f"the analysis would take {n_steps:.3g} time steps of {h:g} s (to "
-                         f"{n_steps * h:.4g} s), more than {MAX_BLOCK_STEPS} (MAX_BLOCK_STEPS): "
+        span = (t_end if t_end is not None else excitation_end
+                + observation_windows(assembly, settings)[0])
+        count = f"{span / h:.3g}" if math.isfinite(span / h) else "too many"
+        raise ValueError(f"the analysis would take {count} time steps of {h:g} s (to "
+                         f"{span:.4g} s), more than {MAX_BLOCK_STEPS} (MAX_BLOCK_STEPS): "
                          f"use a larger time step or a shorter t_end")
     thickness = assembly.thickness
     total_mass = assembly.total_mass
