@@ -372,7 +372,9 @@ def test_cli_records_of_a_builtin_suite(suites, capsys):
     assert rows[0]["event"] == first.metadata.event
     assert main(["records", "--suite", "fema-p695-far-field", "--im", "pga"]) == 0
     lines = capsys.readouterr().out.splitlines()
-    assert lines[0].split()[:1] == ["record"] and len(lines) == 45
+    assert lines[0].split()[:1] == ["record"] and len(lines) == 46
+    assert lines[-1] == ("fema-p695-far-field: 22 records, 44 horizontal components "
+                         "(record_number and component in --json)")  # 22 records, two components each
 
 
 @pytest.mark.parametrize("argv, message", [

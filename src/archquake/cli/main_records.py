@@ -61,6 +61,10 @@ def run(args: argparse.Namespace) -> int:
         cells = [line[0].ljust(widths[0])] + [c.rjust(w) for c, w in zip(line[1:], widths[1:],
                                                                        strict=True)]
         print("  ".join(cells).rstrip())
+    if args.suite is not None:  # a built-in suite lists every horizontal component
+        events = len({row["record_number"] for row in rows})
+        print(f"{args.suite}: {events} records, {len(rows)} horizontal components "
+              f"(record_number and component in --json)")
     return 0
 
 
