@@ -374,7 +374,7 @@ def test_cli_records_of_a_builtin_suite(suites, capsys):
     lines = capsys.readouterr().out.splitlines()
     assert lines[0].split()[:1] == ["record"] and len(lines) == 46
     assert lines[-1] == ("fema-p695-far-field: 22 records, 44 horizontal components "
-                         "(record_number and component in --json)")  # 22 records, two components each
+                         "(record_number and component in --json)")  # two components a record
 
 
 @pytest.mark.parametrize("argv, message", [
