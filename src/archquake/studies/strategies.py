@@ -32,8 +32,8 @@ and at isolated amplitudes, one or two grid steps of 0.01 g wide, it recovers in
 outcomes are converged in the time step: they are the model's, not the integrator's). They lie
 among the collapses decided after the excitation, which is why ``screened`` analyses those
 stretches whole; between a rest and a rest, or a collapse during the pulse and another, no band
-was found in any case we ran (the test suite and ``benchmarks/search_strategies.py`` compare
-with the exhaustive grid). With ``stride = 1`` both are the exhaustive grid.
+was found in any case we ran (the test suite and ``benchmarks/rigid_block_fragility.py``
+compare with the exhaustive grid). With ``stride = 1`` both are the exhaustive grid.
 :func:`search_grid` reports which points were analysed, so a result can say which outcomes are
 inferred.
 
