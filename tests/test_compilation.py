@@ -9,14 +9,9 @@ a pulse response, a free vibration, a grid of pulses, a failure domain -- must a
 compilation of each function. Run in a fresh process so that other tests' calls do not count.
 """
 
-import json
-import subprocess
-import sys
-from pathlib import Path
-
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
+from compilation_probe import compiled_signatures as probe
 
 SCRIPT = """
 import json
@@ -42,24 +37,11 @@ tables = [engine.tabulate(m) for m in pair]
 tables[0].functions(np.linspace(tables[0].theta_lo, tables[0].theta_u, 5))
 from archquake.fourlink.engine import driver, rules, stepper, tables
 import archquake.ground_motion as gm
-counts = {{}}
-for module in (driver, rules, stepper, tables, gm):
-    for name, f in vars(module).items():
-        if isinstance(f, numba.core.registry.CPUDispatcher) and f.signatures:
-            counts[name] = len(f.signatures)
-print(json.dumps(counts))
 """
 
 
 def compiled_signatures(cache_dir=None) -> dict:
-    env = {"PYTHONPATH": str(ROOT / "src")}
-    if cache_dir is not None:
-        env["NUMBA_CACHE_DIR"] = str(cache_dir)
-    record = str(ROOT / "tests" / "data" / "decaying_sine.AT2")
-    out = subprocess.run([sys.executable, "-c", SCRIPT.format(record=record)],
-                         capture_output=True, text=True, cwd=ROOT, env=env)
-    assert out.returncode == 0, out.stderr
-    return json.loads(out.stdout.splitlines()[-1])
+    return probe(SCRIPT, "driver, rules, stepper, tables, gm", cache_dir)
 
 
 def test_every_engine_entry_point_is_compiled_once():

@@ -8,15 +8,11 @@ two compilations of seconds each on a fresh clone. Run in a fresh process so tha
 calls do not count.
 """
 
-import json
 import pickle
-import subprocess
-import sys
-from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
+from compilation_probe import compiled_signatures as probe
 
 SCRIPT = """
 import json
@@ -43,24 +39,11 @@ block_outcome(rectangular_block(0.4, 2.0), None)
 closing_impact(arch, np.ones((7, 3)))
 from archquake.rigid_blocks import solver
 import archquake.ground_motion as gm
-counts = {{}}
-for module in (solver, gm):
-    for name, f in vars(module).items():
-        if isinstance(f, numba.core.registry.CPUDispatcher) and f.signatures:
-            counts[name] = len(f.signatures)
-print(json.dumps(counts))
 """
 
 
 def compiled_signatures(cache_dir=None) -> dict:
-    env = {"PYTHONPATH": str(ROOT / "src")}
-    if cache_dir is not None:
-        env["NUMBA_CACHE_DIR"] = str(cache_dir)
-    record = str(ROOT / "tests" / "data" / "decaying_sine.AT2")
-    out = subprocess.run([sys.executable, "-c", SCRIPT.format(record=record)],
-                         capture_output=True, text=True, cwd=ROOT, env=env)
-    assert out.returncode == 0, out.stderr
-    return json.loads(out.stdout.splitlines()[-1])
+    return probe(SCRIPT, "solver, gm", cache_dir)
 
 
 def test_every_rigid_block_entry_point_is_compiled_once():
