@@ -649,27 +649,25 @@ def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None,
     h = float(settings.time_step)
     check_time_step(h, motion, assembly.thickness)
     excitation_end = motion.duration
-    if t_end is not None:
-        if not (math.isfinite(t_end) and t_end > 0):
-            raise ValueError(f"t_end must be a finite time > 0 [s], got {t_end!r}")
-        steps = math.ceil(t_end / h - 1e-9) if t_end / h <= MAX_BLOCK_STEPS else math.inf
-        tail_steps = -1
-    else:
-        steps = (excitation_end + observation_windows(assembly, settings)[0]) / h
-        tail_steps = round(tail / h) if tail / h <= MAX_BLOCK_STEPS else MAX_BLOCK_STEPS + 1
-        steps = (math.ceil(steps) if steps <= MAX_BLOCK_STEPS else math.inf) + (
-            max(tail_steps, 0) if record_every else 0)
-    n_steps = steps  # an int, or inf when the count would not even fit in one
-    if n_steps > MAX_BLOCK_STEPS:
-        span = (t_end if t_end is not None else excitation_end
-                + observation_windows(assembly, settings)[0])
+    windows = observation_windows(assembly, settings)
+    if t_end is not None and not (math.isfinite(t_end) and t_end > 0):
+        raise ValueError(f"t_end must be a finite time > 0 [s], got {t_end!r}")
+    # the time run [s]: to t_end, or to the end of the excitation and its first window, and the
+    # tail recorded after the decision; counted in steps only once the count is known to fit
+    span = t_end if t_end is not None else excitation_end + windows[0]
+    recorded_tail = tail if t_end is None and record_every else 0.0
+    if not (span + recorded_tail) / h <= MAX_BLOCK_STEPS:  # inf and 1e300 steps alike
         count = f"{span / h:.3g}" if math.isfinite(span / h) else "too many"
         raise ValueError(f"the analysis would take {count} time steps of {h:g} s (to "
                          f"{span:.4g} s), more than {MAX_BLOCK_STEPS} (MAX_BLOCK_STEPS): "
                          f"use a larger time step or a shorter t_end")
+    if t_end is not None:
+        n_steps, tail_steps = int(math.ceil(t_end / h - 1e-9)), -1
+    else:
+        tail_steps = int(round(min(tail / h, MAX_BLOCK_STEPS + 1)))
+        n_steps = int(math.ceil(span / h)) + (tail_steps if record_every else 0)
     thickness = assembly.thickness
     total_mass = assembly.total_mass
-    windows = observation_windows(assembly, settings)
     arrays = contact_arrays(assembly)
     # writeable copies: one compiled signature whether the arrays are frozen or unpickled
     kind, params, times, values = (np.array(x, dtype=float) if i else x
