@@ -265,7 +265,9 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
         model = _four_link(dynamics, name, settings)
         c = np.asarray(model.restitution, dtype=float)
         if not np.all(np.isfinite(c) & (c > 0)):  # e.g. the paper's link rule on piers
-            skipped[name] = (f"its coefficients of restitution are {c[0]:.4g} and {c[1]:.4g}: "
+            shown = c + 0.0  # -0.0 printed as 0
+            skipped[name] = (f"its coefficients of restitution are {shown[0]:.4g} and "
+                             f"{shown[1]:.4g}: "
                              f"the rule does not apply to this structure's mechanisms")
             continue
         four_link[name] = domain_of(model, d, grid, direction=direction,
