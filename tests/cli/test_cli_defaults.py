@@ -66,12 +66,14 @@ LIBRARY = {
                   "limit_method": _field_default(FragilitySettings, "limit_method"),
                   "model": _field_default(FragilitySettings, "model"),
                   "friction": _field_default(FragilitySettings, "friction"),
+                  "time_step": _field_default(FragilitySettings, "time_step"),
                   "durations": tuple(_field_default(FragilitySettings, "durations")),
                   "amplitudes": tuple(_field_default(FragilitySettings, "amplitudes_g"))},
     "record-fragility": {name: _field_default(RecordFragilitySettings, field) for name, field in
                          (("samples", "sample_size"), ("epsilon", "epsilon"), ("seed", "seed"),
                           ("restitution", "restitution"), ("model", "model"),
-                          ("friction", "friction"), ("im", "im"))},
+                          ("friction", "friction"), ("time_step", "time_step"),
+                          ("im", "im"))},
     "reproduce": {"seed": _field_default(ReproductionSettings, "seed")},
     "records": {"im": DEFAULT_INTENSITY_MEASURES},
 }

@@ -79,3 +79,24 @@ def test_an_interrupted_study_resumes_and_a_change_of_model_is_refused(serial, t
     four_link = FragilitySettings(**{**TINY, "model": "four-link"})
     with pytest.raises(ValueError, match="differ"):
         run_fragility(four_link, out, backend="serial", resume=True, **FAST)
+    coarser = FragilitySettings(**TINY, time_step=0.002)
+    with pytest.raises(ValueError, match="differ"):
+        run_fragility(coarser, out, backend="serial", resume=True, **FAST)
+
+
+def test_the_time_step_reaches_every_analysis():
+    """A study at h = 2 ms: its rows are the outcomes of the model with that step (and it says
+    so), and the settings round-trip through their JSON form."""
+    settings = FragilitySettings(**{**TINY, "sample_size": 1, "search": "exhaustive"},
+                                 time_step=0.002)
+    assert FragilitySettings.from_dict(settings.to_dict()) == settings
+    assert settings.to_dict()["time_step"] == 0.002
+    result = run_fragility(settings, backend="serial", **FAST)
+    model = RigidBlockModel(settings.sample.arch(0), settings.block_settings)
+    assert model.settings.time_step == 0.002
+    rows = result.table[result.table["direction"] == "r"]
+    for _, row in rows.iloc[::3].iterrows():
+        pulse = oppenheim_pulse(row["amplitude_g"] * GRAVITY, row["duration"])
+        assert int(model.outcome(pulse).status) == row["status"]
+    with pytest.raises(ValueError, match="time_step"):
+        FragilitySettings(**TINY, time_step=-1.0)

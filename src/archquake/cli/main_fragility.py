@@ -52,7 +52,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
                              f"most {MAX_STUDY_ANALYSES} analyses (default: %(default)s)")
     options.add_model_options(parser)
     options.add_restitution_option(parser)
-    options.add_rigid_block_options(parser, time_step=False)
+    options.add_rigid_block_options(parser)
     parser.add_argument("--limit-samples", type=int, default=LIMIT_SAMPLE_SIZE, metavar="S",
                         help=f"number s of arches of the limit-analysis CDF of k~, at most "
                              f"{MAX_LIMIT_SAMPLES} (default: %(default)s)")
@@ -78,7 +78,7 @@ def run(args: argparse.Namespace) -> int:
         amplitudes_g=tuple(options.parse_values(args.amplitudes, "--amplitudes")),
         seed=args.seed, restitution=args.restitution, limit_sample_size=args.limit_samples,
         limit_method=args.limit_method, model=args.model, search=args.search,
-        stride=args.stride, friction=args.friction)
+        stride=args.stride, friction=args.friction, time_step=args.time_step)
     result = run_fragility(settings, args.out, workers=args.workers, scheduler=args.scheduler,
                            resume=args.resume, progress=not args.no_progress)
     written = []
@@ -94,7 +94,8 @@ def run(args: argparse.Namespace) -> int:
         model = f"restitution {settings.restitution!r} (nominal arch: {c_lr:.4f})"
     else:
         analysed = int(result.table["analysed"].sum())
-        model = (f"rigid-block model (friction {settings.friction:g}), search "
+        model = (f"rigid-block model (friction {settings.friction:g}, time step "
+                 f"{settings.time_step:g} s), search "
                  f"{settings.search!r}: {analysed} analysed, the others inferred")
     print(f"Fragility study: h = {settings.sample_size} irregular arches (epsilon = "
           f"{settings.epsilon:g}, seed {settings.seed}), {len(settings.durations)} durations x "

@@ -58,7 +58,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     options.add_samples_option(parser)
     options.add_model_options(parser)
     options.add_restitution_option(parser)
-    options.add_rigid_block_options(parser, time_step=False)
+    options.add_rigid_block_options(parser)
     add_record_options(parser)
     options.add_study_output_options(parser)
 
@@ -87,7 +87,8 @@ def run(args: argparse.Namespace) -> int:
         nominal=options.nominal_arch_from_args(args), sample_size=args.samples,
         epsilon=args.epsilon, seed=args.seed,
         restitution=check_restitution_model(args.restitution), model=args.model,
-        search=args.search, stride=args.stride, friction=args.friction)
+        search=args.search, stride=args.stride, friction=args.friction,
+        time_step=args.time_step)
     result = run_record_fragility(settings, args.out, workers=args.workers,
                                   scheduler=args.scheduler, resume=args.resume,
                                   progress=not args.no_progress)

@@ -93,6 +93,7 @@ from ..defaults import (
     DEFAULT_SAMPLE_LIMIT_METHOD,
     DEFAULT_SEARCH,
     DEFAULT_SEED,
+    DEFAULT_TIME_STEP,
     LIMIT_METHODS,
     LIMIT_SAMPLE_SIZE,
     MAX_ACCELERATION_G,
@@ -196,6 +197,11 @@ class FragilitySettings:
     stride : int, optional
         Grid steps between the coarse points of ``bisection`` and ``screened`` [-] (default
         :data:`archquake.defaults.DEFAULT_STRIDE`).
+    time_step : float
+        Time step h of the rigid-block model [s] (default
+        :data:`archquake.defaults.DEFAULT_TIME_STEP`; ignored by the four-link model). The
+        outcomes of the arches that rock for seconds after a pulse depend on it at a few grid
+        points in a hundred, as they do on round-off (``benchmarks/rigid_block_time_step.py``).
     friction : float
         Coulomb friction coefficient of the rigid-block model's joints [-] (ignored by the
         four-link model).
@@ -221,6 +227,7 @@ class FragilitySettings:
     search: str | None = None
     stride: int | None = None
     friction: float = DEFAULT_FRICTION
+    time_step: float = DEFAULT_TIME_STEP
 
     def __post_init__(self) -> None:
         from ..fourlink.impact import check_restitution_model
@@ -233,7 +240,7 @@ class FragilitySettings:
             DEFAULT_SEARCH[self.model] if self.search is None else self.search))
         object.__setattr__(self, "stride", check_stride(
             DEFAULT_STRIDE if self.stride is None else self.stride))
-        _ = self.block_settings  # checks the friction
+        _ = self.block_settings  # checks the friction and the time step
         sample = ArchSample(self.nominal, self.epsilon, self.seed)  # nominal, epsilon, seed
         check_integer("sample_size", self.sample_size, maximum=MAX_SAMPLES)
         check_integer("limit_sample_size", self.limit_sample_size, maximum=MAX_LIMIT_SAMPLES)
@@ -284,7 +291,7 @@ class FragilitySettings:
         """The rigid-block model's settings (:class:`archquake.rigid_blocks.BlockSettings`)."""
         from ..rigid_blocks import BlockSettings
 
-        return BlockSettings(friction=self.friction)
+        return BlockSettings(friction=self.friction, time_step=self.time_step)
 
     @property
     def sample(self) -> ArchSample:
@@ -316,6 +323,7 @@ class FragilitySettings:
             "search": self.search,
             "stride": self.stride,
             "friction": self.friction,
+            "time_step": self.time_step,
         }
 
     @classmethod
@@ -339,7 +347,8 @@ class FragilitySettings:
                    limit_method=data["limit_method"], motion=data["motion"],
                    model=data.get("model", DEFAULT_MODEL), search=data.get("search"),
                    stride=data.get("stride", DEFAULT_STRIDE),
-                   friction=data.get("friction", DEFAULT_FRICTION))
+                   friction=data.get("friction", DEFAULT_FRICTION),
+                   time_step=data.get("time_step", DEFAULT_TIME_STEP))
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, FragilitySettings):
