@@ -251,7 +251,7 @@ def main(argv=None) -> int:
             four_link[restitution] = domain.failure_accelerations_g
     print(f"  {'t_p [s]':>8} {'rigid blocks [g]':>17} {'recovery above':>16}"
           + "".join(f" {'four-link ' + r + ' [g]':>24}" for r in four_link))
-    bands = curve.recovery_bands()
+    bands = [curve.slice(tp).recovery_above_g for tp in curve.durations]
     for i, tp in enumerate(curve.durations):
         blocks = curve.failure_accelerations_g[i]
         text = "-" if not bands[i] else ", ".join(f"{a:.3f}-{b:.3f}" for a, b in bands[i])
