@@ -235,12 +235,13 @@ the paper's grid of 0.01 g, a coarse scan every 0.08 g."""
 
 DEFAULT_SEARCH = {"four-link": "exhaustive", "rigid-blocks": "screened"}
 """Search strategy of a grid per model: the four-link model analyses a whole grid in one compiled
-call (about 15 µs a point), so every point is analysed; a rigid-block analysis costs 10-60 ms,
-so the grid is scanned coarsely, every change of outcome bisected, and the stretches where its
-outcome is not smooth in the amplitude analysed point by point (``"screened"``,
-:mod:`archquake.studies.strategies`: the outcomes of the exhaustive grid in every case compared).
-``"bisection"`` is faster still, and misses the isolated recoveries of the rigid-block model
-among its late collapses."""
+call (about 15 µs a point), so every point is analysed; a rigid-block analysis costs 3-10 ms
+under a pulse (0.2 ms at rest), so the grid is scanned coarsely, every change of outcome
+bisected, and the stretches where its outcome is not smooth in the amplitude analysed point by
+point (``"screened"``, :mod:`archquake.studies.strategies`: the outcomes of the exhaustive grid
+in every case compared). Under records it analyses nearly every level (only rest is smooth
+there) and costs what ``"exhaustive"`` costs. ``"bisection"`` is faster still, and misses the
+isolated recoveries of the rigid-block model among its late collapses."""
 
 # --- fill over an arch (archquake.geometry.fill)
 
