@@ -3,7 +3,7 @@ r"""How a study finds the outcomes along a grid: every point, or a coarse scan a
 A study asks, for one structure, one pulse duration (or record) and one direction, the outcome
 class at every point of an increasing grid of amplitudes (or intensity levels)
 :math:`a_0 < a_1 < \dots < a_{n-1}`. The four-link model answers a whole grid in one compiled
-call (about 15 µs a point), the rigid-block model one analysis at a time (10-60 ms): for it the
+call (about 15 µs a point), the rigid-block model one analysis at a time (3-10 ms): for it the
 search strategy is where the speed comes from. Three strategies (:data:`SEARCHES`):
 
 ``exhaustive``
