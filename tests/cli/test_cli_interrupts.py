@@ -19,15 +19,15 @@ from archquake.studies.fragility import FragilitySettings, run_fragility
 pytestmark = pytest.mark.skipif(not Path("/proc/self/stat").exists(),
                                 reason="lists processes through /proc (Linux)")
 SRC = Path(__file__).parents[2] / "src"
-# long enough (about 4 s of work after the first chunk) that the signal always finds it running,
+# long enough (about 2 s of work after the first chunk) that the signal always finds it running,
 # even when the first chunk is late because the workers compile the engine (a fresh clone)
-STUDY = ["fragility", "--samples", "200", "--durations", "0.4", "--amplitudes", "0.3:0.9:0.001",
+STUDY = ["fragility", "--samples", "100", "--durations", "0.4", "--amplitudes", "0.3:0.9:0.001",
          "--limit-samples", "4", "--seed", "11", "--no-progress"]
 
 
 @pytest.fixture(scope="module")
 def uninterrupted():
-    settings = FragilitySettings(sample_size=200, durations=(0.4,),
+    settings = FragilitySettings(sample_size=100, durations=(0.4,),
                                  amplitudes_g=tuple(inclusive_range(0.3, 0.9, 0.001)),
                                  limit_sample_size=4, seed=11)
     return run_fragility(settings, backend="serial", progress=False).table
