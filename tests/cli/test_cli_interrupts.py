@@ -33,6 +33,10 @@ def uninterrupted():
     return run_fragility(settings, backend="serial", progress=False).table
 
 
+def _sigint_default() -> None:
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def _running_in_group(pgid: int) -> list[int]:
     """Processes of process group ``pgid`` that are still running (zombies left to an init
     that does not reap them are not)."""
@@ -53,8 +57,11 @@ def test_a_signal_stops_the_study_cleanly_and_it_resumes(tmp_path, capsys, unint
                                                          signum, whole_group):
     out = tmp_path / "study"
     env = {**os.environ, "PYTHONPATH": str(SRC)}
+    # a command started in the background by a shell without job control inherits SIGINT
+    # ignored, and so would the study: it is started here as from a terminal, SIGINT default
     proc = subprocess.Popen([sys.executable, "-m", "archquake.cli", *STUDY, "--workers", "2",
                              "--out", str(out)], env=env, start_new_session=True,
+                            preexec_fn=_sigint_default,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         deadline = time.monotonic() + 60
