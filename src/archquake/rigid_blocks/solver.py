@@ -238,9 +238,9 @@ closed joint's round-off gap (1e-16 m) must not drop it from the contact problem
 ARCH_BANDWIDTH = 7
 """Half-bandwidth of the impulses of an arch's contact problem [-]: each block touches the two
 contacts of each of its two joints, so contacts up to 3 apart couple, and the impulses (two per
-contact) up to ``2 * 3 + 1``. :func:`solve_active_set` compiles its method once more for this
-value as a constant (measured: the band loops of a known length run about twice as fast); any
-other structure takes the general path, with the same results."""
+contact) up to ``2 * 3 + 1``. :func:`solve_active_set` solves an arch's systems with the band
+solvers written out for this value (:func:`arch_cholesky_solve`, :func:`arch_lu_solve`), any
+other structure's with the general ones, to the same results."""
 
 STEADY_ENERGY = 1e-12
 r"""Kinetic energy below which a step is at rest, as a fraction of the energy of rest
@@ -922,8 +922,8 @@ def _assemble_delassus(v, inv_mass, contact_bodies, jac, m, idx, pos, pointer, i
                     _coupling(scaled, c, side_c, d, 6 * incident[e2, 1], wband, i, k)
 
 
-@numba.njit(cache=True, inline="always")
-def _band_cholesky(ab, b, n, kl):
+@numba.njit(cache=True, _nrt=False)
+def band_cholesky_solve(ab, b, n, kl):
     r"""Solve ``A x = b`` for a symmetric positive definite band matrix ``A`` (n x n, ``kl``
     diagonals on either side of the main one) by Cholesky's factorisation
     :math:`A = U^T U` [1]_, in place.
@@ -995,8 +995,8 @@ def _band_cholesky(ab, b, n, kl):
     return True
 
 
-@numba.njit(cache=True, inline="always")
-def _band_lu(ab, b, n, kl, scale):
+@numba.njit(cache=True, _nrt=False)
+def band_lu_solve(ab, b, n, kl, scale):
     r"""Solve ``A x = b`` for a band matrix ``A`` (n x n, ``kl`` diagonals on either side of
     the main one) by Gaussian elimination without pivoting, in place; False if a pivot falls
     below ``1e-10`` times its row's ``scale`` (the caller then pivots, :func:`band_solve`).
@@ -1050,9 +1050,9 @@ def _band_lu(ab, b, n, kl, scale):
     return True
 
 
-@numba.njit(cache=True, inline="always")
-def _arch_cholesky(ab, b, n):
-    r""":func:`_band_cholesky` for the half-bandwidth of an arch, :data:`ARCH_BANDWIDTH` = 7,
+@numba.njit(cache=True, _nrt=False)
+def arch_cholesky_solve(ab, b, n):
+    r""":func:`band_cholesky_solve` for the half-bandwidth of an arch, :data:`ARCH_BANDWIDTH` = 7,
     written out: the same operations in the same order on the same numbers (the results are
     equal bit for bit, tested), with the forward substitution done row by row as the factor
     is made, and nothing read outside the upper band (columns 7 to 14; the padding is not
@@ -1139,10 +1139,10 @@ def _arch_cholesky(ab, b, n):
     return True
 
 
-@numba.njit(cache=True, inline="always")
-def _arch_lu(ab, b, n, scale):
-    r""":func:`_band_lu` for the half-bandwidth of an arch, :data:`ARCH_BANDWIDTH` = 7,
-    written out as :func:`_arch_cholesky`: the same operations in the same order (equal bit for
+@numba.njit(cache=True, _nrt=False)
+def arch_lu_solve(ab, b, n, scale):
+    r""":func:`band_lu_solve` for the half-bandwidth of an arch, :data:`ARCH_BANDWIDTH` = 7,
+    written out as :func:`arch_cholesky_solve`: the same operations in the same order (equal bit for
     bit, tested), row ``k`` of ``U`` held in registers while it updates the seven rows below
     it. Elimination without pivoting reads and writes the band only, never its padding."""
     for k in range(n):
@@ -1252,20 +1252,6 @@ def _arch_lu(ab, b, n, scale):
     return True
 
 
-@numba.njit(cache=True, _nrt=False)
-def band_cholesky_solve(ab, b, n, kl):
-    """:func:`_band_cholesky` compiled on its own: solve a symmetric positive definite band
-    system ``A x = b`` in place (its docstring); False if ``A`` is not positive definite."""
-    return _band_cholesky(ab, b, n, kl)
-
-
-@numba.njit(cache=True, _nrt=False)
-def band_lu_solve(ab, b, n, kl, scale):
-    """:func:`_band_lu` compiled on its own: solve a band system ``A x = b`` in place without
-    pivoting (its docstring); False if a pivot is small."""
-    return _band_lu(ab, b, n, kl, scale)
-
-
 @numba.njit(cache=True, inline="always")
 def _state_system(m, idx, state, mu, kl, wband, uf, aband, rhs, scale, full):
     r"""The linear system of the active-set method for the current ``state`` of every active
@@ -1278,15 +1264,15 @@ def _state_system(m, idx, state, mu, kl, wband, uf, aband, rhs, scale, full):
     Returns whether a contact slides. If none does, the system is symmetric positive definite
     and only its upper half is written (what :func:`band_cholesky_solve` reads), unless
     ``full``. For an arch's half-bandwidth (:data:`ARCH_BANDWIDTH`) the entries outside the
-    band are not written (:func:`_arch_cholesky` and :func:`_arch_lu` do not read them), unless
-    ``full`` (for :func:`band_solve`, whose row interchanges fill the padding)."""
+    band are not written for Cholesky's factorisation (:func:`arch_cholesky_solve` does not
+    read them), unless ``full`` (for :func:`band_solve`, whose row interchanges fill the
+    padding)."""
     size = 2 * m
     sliding = False
     for i in range(m):
         sliding = sliding or state[idx[i]] >= 2
     ukl = np.uint64(kl)
-    # the arch's solvers (:func:`_arch_cholesky`, :func:`_arch_lu`) read nothing outside the
-    # band (and the Cholesky nothing of its lower half, which is then not written either)
+    # the arch's Cholesky (arch_cholesky_solve) reads the upper band and nothing else
     lean = kl == ARCH_BANDWIDTH and not (sliding or full)
     for r in range(size):
         ur = np.uint64(r)
@@ -1458,21 +1444,7 @@ def solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse, state, m
     converged : bool
         Whether a consistent set of states was found.
     """
-    kl = work[4]
-    if kl == ARCH_BANDWIDTH:  # the same method, its loops of a known length
-        return _active_set_method(v, inv_mass, contact_bodies, jac, active, impulse, state, mu,
-                                  p_tol, u_tol, work, ARCH_BANDWIDTH)
-    return _active_set_method(v, inv_mass, contact_bodies, jac, active, impulse, state, mu,
-                              p_tol, u_tol, work, kl)
-
-
-@numba.njit(cache=True, inline="always")
-def _active_set_method(v, inv_mass, contact_bodies, jac, active, impulse, state, mu, p_tol,
-                       u_tol, work, kl):
-    """The body of :func:`solve_active_set`, for the half-bandwidth ``kl`` of the impulses
-    (``work[4]``, or the same value as a constant: inlined, the loops over a band then have a
-    length known when compiled)."""
-    idx, pos, pointer, incident, _, wband, aband, rhs, uf, scale, scaled = work
+    idx, pos, pointer, incident, kl, wband, aband, rhs, uf, scale, scaled = work
     nc = contact_bodies.shape[0]
     m = 0
     for c in range(nc):
@@ -1496,13 +1468,13 @@ def _active_set_method(v, inv_mass, contact_bodies, jac, active, impulse, state,
     while solves < ACTIVE_SET_SOLVES:
         sliding = _state_system(m, idx, state, mu, kl, wband, uf, aband, rhs, scale, False)
         if sliding and kl == ARCH_BANDWIDTH:
-            solved = _arch_lu(aband, rhs, 2 * m, scale)
+            solved = arch_lu_solve(aband, rhs, 2 * m, scale)
         elif sliding:
-            solved = _band_lu(aband, rhs, 2 * m, kl, scale)
+            solved = band_lu_solve(aband, rhs, 2 * m, kl, scale)
         elif kl == ARCH_BANDWIDTH:
-            solved = _arch_cholesky(aband, rhs, 2 * m)
+            solved = arch_cholesky_solve(aband, rhs, 2 * m)
         else:
-            solved = _band_cholesky(aband, rhs, 2 * m, kl)
+            solved = band_cholesky_solve(aband, rhs, 2 * m, kl)
         if not solved:  # a small pivot: assemble again and pivot
             _state_system(m, idx, state, mu, kl, wband, uf, aband, rhs, scale, True)
             band_solve(aband, rhs, 2 * m, kl)
