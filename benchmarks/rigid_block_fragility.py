@@ -2,7 +2,7 @@
 the exhaustive grid, side by side on the same arches, and P_F compared at every amplitude.
 
     python benchmarks/rigid_block_fragility.py [--arches 40] [--exhaustive-arches 10]
-                                               [--workers 2] [--skip-full]
+                                               [--workers 2] [--skip-full] [--time-step H]
 
 The paper's study [Sect. 5.3.3]: h = 40 irregular arches (epsilon = 0.10), t_p = 0.4, 0.5, 0.6,
 0.7 s, 0.20-0.80 g in 0.01 g steps, both directions: 19,520 grid points. Printed:
@@ -65,7 +65,12 @@ def main(argv: list[str] | None = None) -> int:
                         help="arches of the side-by-side comparison with the exhaustive grid")
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--skip-full", action="store_true", help="only the side-by-side part")
+    parser.add_argument("--time-step", type=float, default=None,
+                        help="the rigid-block model's time step [s] (default: the model's, "
+                             "1 ms; benchmarks/rigid_block_time_step.py shows what it changes)")
     args = parser.parse_args(argv)
+    if args.time_step is not None:
+        PAPER["time_step"] = args.time_step
 
     status = 0
     with process_pool(args.workers, warm_up=warm_up) as pool:
