@@ -922,6 +922,22 @@ def _assemble_delassus(v, inv_mass, contact_bodies, jac, m, idx, pos, pointer, i
                     _coupling(scaled, c, side_c, d, 6 * incident[e2, 1], wband, i, k)
 
 
+@numba.njit(cache=True, inline="always")
+def _back_substitution(ab, b, n, kl):
+    """Solve ``U x = y`` in place (``b`` holds ``y``, then ``x``) for the upper factor ``U`` of
+    the band solvers, stored by rows with the inverse of its diagonal at ``ab[k, kl]`` and
+    :math:`U_{k, k + s}` at ``ab[k, kl + s]``; by columns, unsigned indices
+    (:func:`band_cholesky_solve`)."""
+    ukl = np.uint64(kl)
+    for k in range(n - 1, -1, -1):
+        uk = np.uint64(k)
+        b[uk] *= ab[uk, ukl]
+        xk = b[uk]
+        for s in range(1, min(kl, k) + 1):
+            us = np.uint64(s)
+            b[uk - us] -= ab[uk - us, ukl + us] * xk
+
+
 @numba.njit(cache=True, _nrt=False)
 def band_cholesky_solve(ab, b, n, kl):
     r"""Solve ``A x = b`` for a symmetric positive definite band matrix ``A`` (n x n, ``kl``
@@ -985,13 +1001,7 @@ def band_cholesky_solve(ab, b, n, kl):
         for s in range(1, min(kl, n - 1 - k) + 1):
             us = np.uint64(s)
             b[uk + us] -= ab[uk, ukl + us] * yk
-    for k in range(n - 1, -1, -1):  # U x = y, by columns
-        uk = np.uint64(k)
-        b[uk] *= ab[uk, ukl]
-        xk = b[uk]
-        for s in range(1, min(kl, k) + 1):
-            us = np.uint64(s)
-            b[uk - us] -= ab[uk - us, ukl + us] * xk
+    _back_substitution(ab, b, n, kl)
     return True
 
 
@@ -1040,13 +1050,7 @@ def band_lu_solve(ab, b, n, kl, scale):
                     ut = np.uint64(t)
                     ab[ui, ukl - us + ut] -= f * ab[uk, ukl + ut]
                 b[ui] -= f * b[uk]
-    for k in range(n - 1, -1, -1):  # U x = y, by columns
-        uk = np.uint64(k)
-        b[uk] *= ab[uk, ukl]
-        xk = b[uk]
-        for s in range(1, min(kl, k) + 1):
-            us = np.uint64(s)
-            b[uk - us] -= ab[uk - us, ukl + us] * xk
+    _back_substitution(ab, b, n, kl)
     return True
 
 
@@ -1131,11 +1135,7 @@ def arch_cholesky_solve(ab, b, n):
             i = k + 7
             ab[i, 7] -= r7 * r7
             b[i] -= r7 * yk
-    for k in range(n - 1, -1, -1):  # U x = y, by columns
-        b[k] *= ab[k, 7]
-        xk = b[k]
-        for s in range(1, min(7, k) + 1):
-            b[k - s] -= ab[k - s, 7 + s] * xk
+    _back_substitution(ab, b, n, 7)
     return True
 
 
@@ -1244,11 +1244,7 @@ def arch_lu_solve(ab, b, n, scale):
                 ab[i, 6] -= f * u6
                 ab[i, 7] -= f * u7
                 b[i] -= f * bk
-    for k in range(n - 1, -1, -1):  # U x = y, by columns
-        b[k] *= ab[k, 7]
-        xk = b[k]
-        for s in range(1, min(7, k) + 1):
-            b[k - s] -= ab[k - s, 7 + s] * xk
+    _back_substitution(ab, b, n, 7)
     return True
 
 
@@ -1892,12 +1888,13 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
         if not decided and max(kinetic_before, energies[0]) <= steady_energy:
             skip = min(steady_steps(step, h, ag, kind, params, times, values, settings,
                                     rest_count, closed), stop_step - step)
-            for k in range(step, step + skip):
-                if recording and k % record_stride == 0:
-                    rec_energy, rec_q, rec_contacts = _record(n_rec, k * h, q, gap, slip,
-                                                              impulse, h, energies, rec_energy,
-                                                              rec_q, rec_contacts)
-                    n_rec += 1
+            if recording:  # the skipped steps' records: the same state
+                for k in range(step, step + skip):
+                    if k % record_stride == 0:
+                        rec_energy, rec_q, rec_contacts = _record(
+                            n_rec, k * h, q, gap, slip, impulse, h, energies, rec_energy,
+                            rec_q, rec_contacts)
+                        n_rec += 1
             if skip > 0 and step * h >= settings[S_EXCITATION_END]:
                 rest_count += skip
             step += skip

@@ -138,7 +138,6 @@ from ..geometry import GRAVITY, BlockArch, arch_from_dict
 from ..ground_motion.suites import RecordSuite, stripe_measure
 from ..models import DEFAULT_MODEL
 from ..reference_arches import oppenheim
-from ..status import Status
 from .arch_sample import (
     STATUS_EXCLUDED,
     ArchSample,
@@ -456,11 +455,8 @@ def searched_record_outcomes(model, motion, factors, *, search: str = "screened"
     scanned coarsely and every change bisected; with ``"screened"`` every stretch between two
     analysed levels that are not both at rest is analysed level by level, and the screening
     model's changes refine the coarse scan. Under a record only rest is smooth in the level
-    (:mod:`~archquake.studies.strategies`): a structure at rest under the record scaled by a
-    factor stays at rest under any smaller factor (every instant's acceleration is smaller, and
-    the accelerations a structure carries at rest form an interval about 0). A collapse during a
-    record is not, unlike one during a pulse: a record lasts tens of seconds, and a later
-    excursion topples the arch at one level and not at the next (measured on the nominal and one
+    (:func:`~archquake.studies.strategies.smooth_outcomes` with no end of excitation). A
+    collapse during a record is not, unlike one during a pulse (measured on the nominal and one
     irregular arch under the 28 near-field pulse records at 0.2-2.0 g: taking collapses during
     the record as smooth inferred 2 of 1,120 outcomes wrongly).
 
@@ -486,7 +482,7 @@ def searched_record_outcomes(model, motion, factors, *, search: str = "screened"
         :data:`POLARITIES`); ``integrated`` is False where the outcome was inferred; ``impacts``
         -1, ``max_phi`` nan and ``half_cycle`` 0 for a model that does not count them.
     """
-    from .strategies import search_grid
+    from .strategies import search_grid, smooth_outcomes
 
     f = np.asarray(factors, dtype=float).ravel()
     n = f.size * len(POLARITIES)
@@ -507,7 +503,7 @@ def searched_record_outcomes(model, motion, factors, *, search: str = "screened"
                 outcome = model.outcome(motion.scaled(polarity * f[i]))
                 status[m], time[m] = int(outcome.status), outcome.collapse_time
             out["collapse_time"][rows[indices]] = time
-            return status, status == int(Status.REST)  # under a record only rest is smooth
+            return status, smooth_outcomes({"status": status}, None)  # only rest
 
         keys, analysed = search_grid(classify, f.size, search=search, stride=stride,
                                      screen=screen_keys)

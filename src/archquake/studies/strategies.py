@@ -290,10 +290,17 @@ def excitation_end(motion: str, duration: float) -> float:
     return float(ground_motion(motion, 1.0, duration).duration)
 
 
-def smooth_outcomes(out: dict, excitation_end: float) -> np.ndarray:
+def smooth_outcomes(out: dict, excitation_end: float | None) -> np.ndarray:
     """Which outcomes of a model's ``outcomes`` are smooth in the amplitude (module docstring):
-    rest, or a collapse decided by ``excitation_end`` [s]."""
+    rest, or a collapse decided by ``excitation_end`` [s] under a pulse. Under a record
+    (``excitation_end=None``) only rest: a record lasts tens of seconds, and a later excursion
+    topples a structure at one level and not at the next, so a collapse during it is not
+    smooth in the level (:func:`archquake.studies.record_fragility.searched_record_outcomes`);
+    a rest is (every instant's acceleration scales down with the level, and those a structure
+    carries at rest form an interval about 0)."""
     status = np.atleast_1d(np.asarray(out["status"], dtype=np.int64))
+    if excitation_end is None:
+        return status == 0
     time = np.atleast_1d(np.asarray(out["collapse_time"], dtype=float))
     return (status == 0) | ((status == 2) & (time <= excitation_end))
 
