@@ -1,11 +1,14 @@
 """The fragility study with the rigid-block model: the same execution layer (serial, processes,
 Dask, resume), results that say which model made them, and rows equal to direct analyses."""
 
+import math
+
 import numpy as np
 import pandas as pd
 import pytest
 
 from archquake import GRAVITY
+from archquake.cli import main
 from archquake.ground_motion import oppenheim_pulse
 from archquake.results_io import load_study
 from archquake.rigid_blocks import RigidBlockModel
@@ -100,3 +103,21 @@ def test_the_time_step_reaches_every_analysis():
         assert int(model.outcome(pulse).status) == row["status"]
     with pytest.raises(ValueError, match="time_step"):
         FragilitySettings(**TINY, time_step=-1.0)
+
+
+def test_a_step_that_cannot_resolve_the_study_is_refused_before_any_analysis(capsys):
+    """The limit of the contact law on the nominal arch, 0.02 sqrt(t/g) with Oppenheim's
+    t = 1.5 m (7.82 ms), and 1/20 of the shortest pulse duration, are checked when the settings
+    are made, not when the first arch is analysed; the four-link model ignores the step."""
+    limit = 0.02 * math.sqrt(1.5 / GRAVITY)
+    assert limit == pytest.approx(0.00782, abs=1e-5)
+    FragilitySettings(**TINY, time_step=0.999 * limit)
+    with pytest.raises(ValueError, match=r"time_step must be at most 0.00782 s .* 1.5 m thick"):
+        FragilitySettings(**TINY, time_step=1.01 * limit)
+    with pytest.raises(ValueError, match=r"at most 0.003 s .* shortest piece 0.06 s"):
+        FragilitySettings(**{**TINY, "durations": (0.06, 0.4)}, time_step=0.004)
+    FragilitySettings(**{**TINY, "model": "four-link"}, time_step=0.5)
+    assert main(["fragility", "--model", "rigid-blocks", "--time-step", "0.009", "--samples",
+                 "2", "--out", "never-written"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("archquake: error: --time-step must be at most 0.00782 s")

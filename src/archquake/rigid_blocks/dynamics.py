@@ -580,8 +580,8 @@ def check_time_step(time_step: float, motion: GroundMotion, thickness: float) ->
     longest, why = min(limits)
     if time_step > longest * (1.0 + 1e-9):
         name = motion.name or "the ground motion"
-        raise ValueError(f"time_step {time_step:g} s cannot resolve the motion ({name}): at most "
-                         f"{longest:.3g} s, {why}")
+        raise ValueError(f"time_step must be at most {longest:.3g} s to resolve the motion "
+                         f"({name}): {why}; got {time_step:g} s")
 
 
 def observation_windows(assembly: Assembly, settings: BlockSettings) -> tuple[float, float,

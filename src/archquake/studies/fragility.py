@@ -106,7 +106,7 @@ from ..defaults import (
     STUDY_DURATIONS,
     STUDY_SAMPLE_SIZE,
 )
-from ..geometry import BlockArch, arch_from_dict
+from ..geometry import GRAVITY, BlockArch, arch_from_dict
 from ..models import DEFAULT_MODEL
 from ..reference_arches import oppenheim
 from .arch_sample import (
@@ -287,6 +287,22 @@ class FragilitySettings:
         object.__setattr__(self, "epsilon", sample.epsilon)
         object.__setattr__(self, "durations", tuple(float(x) for x in d))
         object.__setattr__(self, "amplitudes_g", tuple(float(x) for x in a))
+        if self.model == "rigid-blocks":
+            self._check_time_step(float(d.min()))
+
+    def _check_time_step(self, shortest: float) -> None:
+        """Refuse, before any analysis, a time step that cannot resolve the shortest pulse on
+        the nominal arch (:func:`archquake.rigid_blocks.dynamics.check_time_step`; an irregular
+        arch thinner than the nominal one by epsilon may still refuse a step at the limit when
+        it is analysed)."""
+        from ..ground_motion import ground_motion
+        from ..rigid_blocks.dynamics import check_time_step
+
+        thickness = getattr(self.nominal, "thickness_scale", None)
+        if thickness is None:
+            return
+        check_time_step(self.time_step, ground_motion(self.motion, GRAVITY, shortest),
+                        float(thickness))
 
     @property
     def block_settings(self):
