@@ -66,3 +66,18 @@ def test_a_collapse_during_a_record_is_not_inferred_between_two_collapses():
     exhaustive = tables["exhaustive"]
     assert exhaustive["status"].tolist()[::2] == [2, 1, 2]  # polarity -1
     np.testing.assert_array_equal(tables["screened"]["status"], exhaustive["status"])
+
+
+def test_a_step_longer_than_a_records_spacing_is_refused_before_any_analysis(tmp_path):
+    """The record's sample spacing (4 ms here) bounds the step (check_time_step): the study
+    refuses a longer one before it starts, and writes nothing."""
+    t = np.arange(0.0, 2.0, 0.004)
+    record = tmp_path / "r.csv"
+    record.write_text("time_s,acc_g\n" + "".join(f"{x:.3f},{0.2 * np.sin(9.0 * x):.6f}\n"
+                                                  for x in t))
+    suite = RecordSuite.from_paths([record])
+    settings = RecordFragilitySettings(suite=suite, levels=LEVELS, sample_size=1, seed=2,
+                                       model="rigid-blocks", time_step=0.005)
+    with pytest.raises(ValueError, match=r"time_step must be at most 0.004 s .* sample spacing"):
+        run_record_fragility(settings, tmp_path / "study", backend="serial", progress=False)
+    assert not (tmp_path / "study").exists()

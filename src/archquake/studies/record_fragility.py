@@ -1176,6 +1176,12 @@ def run_record_fragility(
     # record beyond any acceleration analysed stops the study before it starts
     settings.suite.scale_factors(settings.im, settings.levels)
     check_nominal(settings.nominal, settings.restitution, model=settings.model)
+    if settings.model == "rigid-blocks":  # a step that cannot follow a record: before any analysis
+        from ..rigid_blocks.dynamics import check_time_step
+
+        thickness = getattr(settings.nominal, "thickness_scale", None)
+        for motion in settings.suite.motions(cached=True) if thickness is not None else ():
+            check_time_step(settings.time_step, motion, float(thickness))
     out = None if out_dir is None else Path(out_dir)
     if resume and out is not None:
         _check_resume(out, settings)
