@@ -188,7 +188,14 @@ DEFAULT_FRICTION = 0.8
 """Coulomb friction coefficient of the joints of the rigid-block model [-]."""
 
 DEFAULT_TIME_STEP = 1e-3
-"""Time step of the rigid-block model [s]."""
+"""Time step of the rigid-block model for a structure of :data:`REFERENCE_THICKNESS` [s]; any
+other structure's default step is scaled from it
+(:func:`archquake.rigid_blocks.dynamics.structure_time_step`)."""
+
+REFERENCE_THICKNESS = 1.5
+"""Thickness at which :data:`DEFAULT_TIME_STEP` resolves the rigid-block model (Oppenheim's arch:
+its failure accelerations within 0.001 g of those at a quarter of the step for t_p = 0.4-0.7 s,
+``benchmarks/rigid_block_time_step.py``) [m]."""
 
 COMPARE_DURATIONS = (0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 1.0)
 """Pulse durations t_p [s] of a comparison of the two models (``archquake compare``)."""

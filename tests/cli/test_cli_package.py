@@ -81,7 +81,13 @@ def test_choices_and_defaults_shown_are_those_the_library_uses():
     assert tuple(CENTRELINES) == defaults.SHAPES
     assert VOUSSOIR_FACES == defaults.VOUSSOIR_FACES
     assert set(ANALYTIC_GROUND_MOTIONS) < set(GROUND_MOTIONS)
-    assert BlockSettings().time_step == defaults.DEFAULT_TIME_STEP
+    # the rigid-block step is chosen from the structure: 1 ms exactly for Oppenheim's arch
+    from archquake import oppenheim
+    from archquake.rigid_blocks.dynamics import structure_time_step, time_step_for
+
+    assert BlockSettings().time_step is None
+    assert structure_time_step(defaults.REFERENCE_THICKNESS) == defaults.DEFAULT_TIME_STEP
+    assert time_step_for(oppenheim()) == defaults.DEFAULT_TIME_STEP
     names = set(RESTITUTION_MODELS) - set(RESTITUTION_ALIASES)
     assert set(RESTITUTION_METAVAR.split("|")) == names | {"VALUE"}
     # Oppenheim's arch of the help is the paper's [Sect. 2]: R = 10 m, 157.5 deg, 1.5 m, n = 7

@@ -35,7 +35,6 @@ from ..defaults import (
     DEFAULT_RESTITUTION,
     DEFAULT_SEED,
     DEFAULT_STRIDE,
-    DEFAULT_TIME_STEP,
     FILL_INERTIA_MODELS,
     MAX_ACCELERATION_G,
     MAX_CYCLES,
@@ -545,9 +544,10 @@ def add_rigid_block_options(parser: argparse.ArgumentParser, *, time_step: bool 
                         help="Coulomb friction coefficient of the joints of the rigid-block "
                              "model, >= 0 (default: %(default)s)")
     if time_step:
-        parser.add_argument("--time-step", type=float, default=DEFAULT_TIME_STEP, metavar="H",
-                            help="time step of the rigid-block model [s] (default: "
-                                 "%(default)s)")
+        parser.add_argument("--time-step", type=float, default=None, metavar="H",
+                            help="time step of the rigid-block model [s] (default: chosen from "
+                                 "the structure, 1 ms x sqrt(t / 1.5 m) for a thickness t: "
+                                 "1 ms for Oppenheim's arch)")
 
 
 def block_settings_from_args(args: argparse.Namespace):

@@ -99,7 +99,7 @@ import numpy as np
 
 from .._equality import value_equality
 from ..checks import json_float
-from ..defaults import DEFAULT_FRICTION, DEFAULT_TIME_STEP, MAX_BLOCK_STEPS
+from ..defaults import DEFAULT_FRICTION, DEFAULT_TIME_STEP, MAX_BLOCK_STEPS, REFERENCE_THICKNESS
 from ..geometry import GRAVITY, BlockArch
 from ..ground_motion import LINEAR, STEP, GroundMotion
 from ..status import Status
@@ -151,8 +151,10 @@ class BlockSettings:
     ----------
     friction : float
         Coulomb friction coefficient mu of every joint [-], >= 0.
-    time_step : float
-        Time step h [s], > 0.
+    time_step : float or None
+        Time step h [s], > 0; None (the default) chooses it from the structure when an analysis
+        starts (:func:`structure_time_step`: 1 ms for Oppenheim's arch, 1.5 m thick, and
+        :math:`\sqrt{t / 1.5\,\mathrm{m}}` ms for a structure ``t`` thick).
     theta : float
         Parameter of the theta-method, in [0.5, 1] [-]; 0.5 (the default) is the trapezoidal
         rule, whose energy bookkeeping is exact.
@@ -220,7 +222,7 @@ class BlockSettings:
     """
 
     friction: float = DEFAULT_FRICTION
-    time_step: float = DEFAULT_TIME_STEP
+    time_step: float | None = None
     theta: float = 0.5
     tolerance: float = 1e-6
     max_iterations: int = 1000
@@ -236,6 +238,8 @@ class BlockSettings:
     def __post_init__(self):
         for f in fields(self):
             value = getattr(self, f.name)
+            if f.name == "time_step" and value is None:  # chosen from the structure
+                continue
             if isinstance(value, bool) or not isinstance(value, (int, float)):
                 raise ValueError(f"{f.name} must be a number, got {value!r}")
             if not math.isfinite(value):
@@ -250,7 +254,7 @@ class BlockSettings:
         for name in ("time_step", "tolerance", "collapse_drop", "energy_margin", "rest_speed",
                      "closed_gap", "moved_opening", "rest_window", "open_rest_window",
                      "settle_time"):
-            if getattr(self, name) <= 0:
+            if getattr(self, name) is not None and getattr(self, name) <= 0:
                 raise ValueError(f"{name} must be > 0, got {getattr(self, name)!r}")
 
 
@@ -528,6 +532,48 @@ def structure_assembly(structure) -> Assembly:
     raise ValueError(f"structure must be an arch or an Assembly, got {type(structure).__name__}")
 
 
+def structure_time_step(thickness: float) -> float:
+    r"""The default time step of the rigid-block model for a structure ``thickness`` thick [s].
+
+    .. math::
+
+        h = h_0 \sqrt{t / t_0}, \qquad h_0 = 1\ \mathrm{ms}, \quad t_0 = 1.5\ \mathrm{m}
+
+    (:data:`archquake.defaults.DEFAULT_TIME_STEP`, :data:`archquake.defaults.REFERENCE_THICKNESS`):
+    rigid blocks under gravity obey no length scale of their own, so a structure ``k`` times
+    smaller moves :math:`\sqrt{k}` times faster, and the same step relative to
+    :math:`\sqrt{t / g}` resolves it as well. Measured: Oppenheim's arch scaled down four times
+    (R = 2.5 m, t = 0.375 m) under pulses half as long fails at 1 ms at exactly the accelerations
+    of the full arch at 2 ms (0.005 g too high at t_p = 0.2 s), and at 0.5 ms at those of the
+    full arch at 1 ms. The step of Oppenheim's arch itself is 1 ms exactly.
+
+    Parameters
+    ----------
+    thickness : float
+        Thickness (length scale) of the structure [m], > 0.
+
+    Returns
+    -------
+    float
+        The time step [s].
+    """
+    return DEFAULT_TIME_STEP * math.sqrt(float(thickness) / REFERENCE_THICKNESS)
+
+
+def time_step_for(structure) -> float:
+    """The default time step of a structure (an arch or an :class:`Assembly`) [s]:
+    :func:`structure_time_step` of its thickness."""
+    return structure_time_step(structure_assembly(structure).thickness)
+
+
+def resolved_settings(settings: BlockSettings, thickness: float) -> BlockSettings:
+    """``settings`` with a time step: its own, or the structure's (:func:`structure_time_step`)
+    when it has none."""
+    if settings.time_step is not None:
+        return settings
+    return replace(settings, time_step=structure_time_step(thickness))
+
+
 def check_time_step(time_step: float, motion: GroundMotion, thickness: float) -> None:
     r"""Refuse a time step that cannot resolve the motion.
 
@@ -546,8 +592,9 @@ def check_time_step(time_step: float, motion: GroundMotion, thickness: float) ->
     a still ground sets no limit. A longer step averages the pulse away (a 1 s step leaves
     Oppenheim's arch at rest under a -1 g pulse of 0.27 s that collapses it: the mean ground
     acceleration of a step over the whole pulse is zero) or lets contacts sink into one
-    another. At the default step (1 ms), halving it leaves the outcomes 0.01 g on either side
-    of Oppenheim's failure accelerations unchanged (tested).
+    another. At the default step (1 ms for Oppenheim's arch, :func:`structure_time_step`),
+    halving it leaves the outcomes 0.01 g on either side of Oppenheim's failure accelerations
+    unchanged (tested).
 
     Parameters
     ----------
@@ -646,6 +693,7 @@ def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None,
     if not isinstance(motion, GroundMotion):
         raise ValueError(f"motion must be a GroundMotion, got {type(motion).__name__}")
     q0, v0 = _initial_state(assembly, initial)
+    settings = resolved_settings(settings, assembly.thickness)
     h = float(settings.time_step)
     check_time_step(h, motion, assembly.thickness)
     excitation_end = motion.duration
@@ -836,4 +884,5 @@ def with_settings(settings: BlockSettings | None, **changes) -> BlockSettings:
 __all__ = ["CONTACT_STEP_FRACTION", "GROUND", "MAX_BLOCKS", "OPEN_REST_PERIODS", "PULSE_STEPS",
            "REST_PERIODS", "SETTLE_PERIODS", "BlockHistory", "BlockOutcome", "BlockSettings",
            "block_outcome", "check_size", "check_time_step", "contact_arrays",
-           "observation_windows", "simulate_blocks", "with_settings"]
+           "observation_windows", "resolved_settings", "simulate_blocks", "structure_time_step",
+           "time_step_for", "with_settings"]

@@ -68,7 +68,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..constants import GRAVITY
-from .dynamics import BlockSettings, simulate_blocks, structure_assembly
+from .dynamics import BlockSettings, resolved_settings, simulate_blocks, structure_assembly
 
 IMPACT_SPEED = 1e4
 """Speed of the fastest centroid before the impact, in units of ``g h`` (the velocity the
@@ -199,6 +199,7 @@ def closing_impact(structure, velocities, settings: BlockSettings | None = None
     assembly = structure_assembly(structure)
     settings = BlockSettings() if settings is None else settings
     v0 = _check_mode(assembly, velocities, "velocities")
+    settings = resolved_settings(settings, assembly.thickness)
     h = float(settings.time_step)
     scale = IMPACT_SPEED * GRAVITY * h / float(np.abs(v0[:, :2]).max())
     start = v0 * scale

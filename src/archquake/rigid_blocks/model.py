@@ -29,6 +29,7 @@ from .dynamics import (
     BlockOutcome,
     BlockSettings,
     block_outcome,
+    resolved_settings,
     simulate_blocks,
     structure_assembly,
 )
@@ -64,7 +65,9 @@ class RigidBlockModel:
         if not isinstance(self.settings, BlockSettings):
             raise ValueError(f"settings must be a BlockSettings, got "
                              f"{type(self.settings).__name__}")
-        structure_assembly(self.structure)  # checks the type, converts once
+        assembly = structure_assembly(self.structure)  # checks the type, converts once
+        # the step chosen from the structure unless given: the model states the one it uses
+        object.__setattr__(self, "settings", resolved_settings(self.settings, assembly.thickness))
 
     @property
     def assembly(self) -> Assembly:

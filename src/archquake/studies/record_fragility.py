@@ -227,9 +227,11 @@ class RecordFragilitySettings:
     stride : int, optional
         Levels between the coarse points of ``bisection`` and ``screened`` [-] (default
         :data:`archquake.defaults.DEFAULT_LEVEL_STRIDE`).
-    time_step : float
-        Time step h of the rigid-block model [s] (default
-        :data:`archquake.defaults.DEFAULT_TIME_STEP`; ignored by the four-link model). The
+    time_step : float, optional
+        Time step h of the rigid-block model [s], one for every arch of the study (default:
+        chosen from the nominal structure,
+        :func:`archquake.rigid_blocks.dynamics.structure_time_step`: 1 ms for Oppenheim's arch;
+        ignored by the four-link model). The
         outcomes of the arches that rock for seconds after a pulse depend on it at about one grid
         point in a hundred, as they do at a few in a thousand on a millionth of g in the
         amplitude; a coarser step makes the arches look stronger (at 2 ms Oppenheim's arch fails
@@ -257,7 +259,7 @@ class RecordFragilitySettings:
     search: str | None = None
     stride: int | None = None
     friction: float = DEFAULT_FRICTION
-    time_step: float = DEFAULT_TIME_STEP
+    time_step: float | None = None
 
     def __post_init__(self) -> None:
         from ..fourlink.impact import check_restitution_model
@@ -269,6 +271,14 @@ class RecordFragilitySettings:
             DEFAULT_SEARCH[self.model] if self.search is None else self.search))
         object.__setattr__(self, "stride", check_stride(
             DEFAULT_LEVEL_STRIDE if self.stride is None else self.stride))
+        if self.time_step is None:  # chosen from the nominal structure, then recorded
+            from ..rigid_blocks.dynamics import time_step_for
+
+            try:
+                step = time_step_for(self.nominal)
+            except ValueError:  # not a structure: said below, where the nominal is checked
+                step = DEFAULT_TIME_STEP
+            object.__setattr__(self, "time_step", step)
         _ = self.block_settings  # checks the friction and the time step
 
         if not isinstance(self.suite, RecordSuite):
