@@ -566,6 +566,18 @@ def time_step_for(structure) -> float:
     return structure_time_step(structure_assembly(structure).thickness)
 
 
+def study_time_step(time_step: float | None, nominal) -> float:
+    """The time step of a study [s]: ``time_step`` if given, else that of its ``nominal``
+    structure (:func:`time_step_for`; :data:`archquake.defaults.DEFAULT_TIME_STEP` for what is
+    not a structure, which the study's own checks then refuse)."""
+    if time_step is not None:
+        return time_step
+    try:
+        return time_step_for(nominal)
+    except ValueError:  # not a structure: said where the study checks its nominal
+        return DEFAULT_TIME_STEP
+
+
 def resolved_settings(settings: BlockSettings, thickness: float) -> BlockSettings:
     """``settings`` with a time step: its own, or the structure's (:func:`structure_time_step`)
     when it has none."""
@@ -885,4 +897,4 @@ __all__ = ["CONTACT_STEP_FRACTION", "GROUND", "MAX_BLOCKS", "OPEN_REST_PERIODS",
            "REST_PERIODS", "SETTLE_PERIODS", "BlockHistory", "BlockOutcome", "BlockSettings",
            "block_outcome", "check_size", "check_time_step", "contact_arrays",
            "observation_windows", "resolved_settings", "simulate_blocks", "structure_time_step",
-           "time_step_for", "with_settings"]
+           "study_time_step", "time_step_for", "with_settings"]

@@ -201,11 +201,9 @@ class FragilitySettings:
         Time step h of the rigid-block model [s], one for every arch of the study (default:
         chosen from the nominal structure,
         :func:`archquake.rigid_blocks.dynamics.structure_time_step`: 1 ms for Oppenheim's arch;
-        ignored by the four-link model). The
-        outcomes of the arches that rock for seconds after a pulse depend on it at about one grid
-        point in a hundred, as they do at a few in a thousand on a millionth of g in the
-        amplitude; a coarser step makes the arches look stronger (at 2 ms Oppenheim's arch fails
-        0.005 g higher at t_p = 0.4 s; ``benchmarks/rigid_block_time_step.py``).
+        ignored by the four-link model). How the study's outcomes depend on it:
+        :func:`~archquake.rigid_blocks.dynamics.structure_time_step` and the user guide, "What
+        a rigid-block study costs".
     friction : float
         Coulomb friction coefficient of the rigid-block model's joints [-] (ignored by the
         four-link model).
@@ -244,14 +242,10 @@ class FragilitySettings:
             DEFAULT_SEARCH[self.model] if self.search is None else self.search))
         object.__setattr__(self, "stride", check_stride(
             DEFAULT_STRIDE if self.stride is None else self.stride))
-        if self.time_step is None:  # chosen from the nominal structure, then recorded
-            from ..rigid_blocks.dynamics import time_step_for
+        from ..rigid_blocks.dynamics import study_time_step
 
-            try:
-                step = time_step_for(self.nominal)
-            except ValueError:  # not a structure: said below, where the nominal is checked
-                step = DEFAULT_TIME_STEP
-            object.__setattr__(self, "time_step", step)
+        # chosen from the nominal structure unless given, then recorded
+        object.__setattr__(self, "time_step", study_time_step(self.time_step, self.nominal))
         _ = self.block_settings  # checks the friction and the time step
         sample = ArchSample(self.nominal, self.epsilon, self.seed)  # nominal, epsilon, seed
         check_integer("sample_size", self.sample_size, maximum=MAX_SAMPLES)
