@@ -66,8 +66,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--skip-full", action="store_true", help="only the side-by-side part")
     parser.add_argument("--time-step", type=float, default=None,
-                        help="the rigid-block model's time step [s] (default: the model's, "
-                             "1 ms; benchmarks/rigid_block_time_step.py shows what it changes)")
+                        help="the rigid-block model's time step [s] (default: that of the "
+                             "nominal arch, 1 ms for Oppenheim's; "
+                             "benchmarks/rigid_block_time_step.py shows what it changes)")
     args = parser.parse_args(argv)
     if args.time_step is not None:
         PAPER["time_step"] = args.time_step

@@ -88,10 +88,11 @@ def main(argv: list[str] | None = None) -> int:
         if args.perturb > 0:
             raised = dict(PAPER, amplitudes_g=tuple(a + args.perturb
                                                     for a in PAPER["amplitudes_g"]))
+            default = (results[DEFAULT_TIME_STEP][0] if DEFAULT_TIME_STEP in results
+                       else run_fragility(FragilitySettings(**PAPER, sample_size=args.arches),
+                                          pool=pool, progress=False))
             perturbed = (run_fragility(FragilitySettings(**raised, sample_size=args.arches),
-                                       pool=pool, progress=False),
-                         run_fragility(FragilitySettings(**PAPER, sample_size=args.arches),
-                                       pool=pool, progress=False))
+                                       pool=pool, progress=False), default)
     reference, _ = results[steps[0]]
     grid = len(reference.table)
     ref_first = first_failures(reference.table)

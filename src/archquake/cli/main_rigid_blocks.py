@@ -42,12 +42,12 @@ def configure(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """The rigid-block analysis of the arch of the options under the motion of the options."""
     from ..rigid_blocks import block_outcome, simulate_blocks
-    from ..rigid_blocks.dynamics import resolved_settings, structure_assembly
+    from ..rigid_blocks.dynamics import resolved_settings
 
     arch = options.arch_from_args(args)
     motion = options.motion_from_args(args)
     settings = options.block_settings_from_args(args)
-    settings = resolved_settings(settings, structure_assembly(arch).thickness)  # the step used
+    settings = resolved_settings(settings, arch)  # the time step used
     if args.animate:  # checked before the analysis, which may take a while
         from pathlib import Path
 

@@ -578,12 +578,13 @@ def study_time_step(time_step: float | None, nominal) -> float:
         return DEFAULT_TIME_STEP
 
 
-def resolved_settings(settings: BlockSettings, thickness: float) -> BlockSettings:
-    """``settings`` with a time step: its own, or the structure's (:func:`structure_time_step`)
-    when it has none."""
+def resolved_settings(settings: BlockSettings | None, structure) -> BlockSettings:
+    """``settings`` (None: the defaults) with a time step: its own, or that of ``structure``
+    (an arch or an :class:`Assembly`; :func:`time_step_for`) when it has none."""
+    settings = BlockSettings() if settings is None else settings
     if settings.time_step is not None:
         return settings
-    return replace(settings, time_step=structure_time_step(thickness))
+    return replace(settings, time_step=time_step_for(structure))
 
 
 def check_time_step(time_step: float, motion: GroundMotion, thickness: float) -> None:
@@ -705,7 +706,7 @@ def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None,
     if not isinstance(motion, GroundMotion):
         raise ValueError(f"motion must be a GroundMotion, got {type(motion).__name__}")
     q0, v0 = _initial_state(assembly, initial)
-    settings = resolved_settings(settings, assembly.thickness)
+    settings = resolved_settings(settings, assembly)
     h = float(settings.time_step)
     check_time_step(h, motion, assembly.thickness)
     excitation_end = motion.duration

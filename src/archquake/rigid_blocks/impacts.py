@@ -197,9 +197,8 @@ def closing_impact(structure, velocities, settings: BlockSettings | None = None
         ``structure`` is not an arch or an :class:`~archquake.rigid_blocks.assembly.Assembly`.
     """
     assembly = structure_assembly(structure)
-    settings = BlockSettings() if settings is None else settings
     v0 = _check_mode(assembly, velocities, "velocities")
-    settings = resolved_settings(settings, assembly.thickness)
+    settings = resolved_settings(settings, assembly)
     h = float(settings.time_step)
     scale = IMPACT_SPEED * GRAVITY * h / float(np.abs(v0[:, :2]).max())
     start = v0 * scale

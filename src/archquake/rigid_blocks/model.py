@@ -65,9 +65,9 @@ class RigidBlockModel:
         if not isinstance(self.settings, BlockSettings):
             raise ValueError(f"settings must be a BlockSettings, got "
                              f"{type(self.settings).__name__}")
-        assembly = structure_assembly(self.structure)  # checks the type, converts once
+        structure_assembly(self.structure)  # checks the type, converts once
         # the step chosen from the structure unless given: the model states the one it uses
-        object.__setattr__(self, "settings", resolved_settings(self.settings, assembly.thickness))
+        object.__setattr__(self, "settings", resolved_settings(self.settings, self.structure))
 
     @property
     def assembly(self) -> Assembly:

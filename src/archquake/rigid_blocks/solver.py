@@ -171,9 +171,9 @@ its distance from the centroid), and once :math:`\theta h^2 \omega^2 r` passes t
 activation gap it leaves the active set for one step, falls freely and lands again, losing
 about :math:`\tfrac12 m (g h)^2` and sinking by :math:`g h^2`. A block 0.4 m x 2 m released
 at half its slenderness loses so 0.018, 0.055, 0.11 and 0.53 J (of 233 J) before its first
-impact at h = 0.25, 0.5, 1 and 2 ms. One reason why a
-coarser step makes an arch look stronger (``benchmarks/rigid_block_time_step.py``: at 2 ms
-Oppenheim's arch fails 0.005 g higher under a pulse of 0.4 s).
+impact at h = 0.25, 0.5, 1 and 2 ms. One reason why a coarser step makes an arch look stronger
+(``benchmarks/rigid_block_time_step.py``: at 2 ms Oppenheim's arch fails 0.005 g higher under
+a pulse of 0.4 s).
 
 The driver
 ----------

@@ -144,12 +144,10 @@ def _four_link(dynamics, model: str, settings):
     ``"blocks"``) measured with the rigid-block model's ``settings`` (its friction and time step)
     when they are not the defaults."""
     from ..fourlink.impact import canonical_restitution_model
-    from ..rigid_blocks import BlockSettings
-    from ..rigid_blocks.dynamics import resolved_settings, structure_assembly
+    from ..rigid_blocks.dynamics import resolved_settings
 
     if (canonical_restitution_model(model) == "rigid-blocks" and settings is not None
-            and settings != resolved_settings(BlockSettings(),
-                                              structure_assembly(dynamics.arch).thickness)):
+            and settings != resolved_settings(None, dynamics.arch)):
         from ..fourlink.impact import blocks_restitution
 
         mech_l, mech_r = dynamics.mechanisms
@@ -231,8 +229,8 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
     """
     from ..fourlink.dynamics import ArchDynamics
     from ..fourlink.impact import check_restitution_model
-    from ..rigid_blocks import BlockSettings, RigidBlockModel
-    from ..rigid_blocks.dynamics import resolved_settings, structure_assembly
+    from ..rigid_blocks import RigidBlockModel
+    from ..rigid_blocks.dynamics import resolved_settings
     from .failure_domain import check_direction, check_durations, domain_of
 
     if not isinstance(arch, BlockArch):
@@ -254,8 +252,7 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
         dynamics = ArchDynamics.from_arch(arch)
     elif not isinstance(dynamics, ArchDynamics) or dynamics.arch is not arch:
         raise ValueError("dynamics must be the ArchDynamics of arch")
-    settings = BlockSettings() if settings is None else settings
-    settings = resolved_settings(settings, structure_assembly(arch).thickness)  # the step used
+    settings = resolved_settings(settings, arch)  # the time step used
     if rigid_block is None:
         blocks = RigidBlockModel(arch, settings)
         rigid_block = domain_of(blocks, d, grid, direction=direction, motion=motion,

@@ -300,13 +300,10 @@ class FragilitySettings:
         arch thinner than the nominal one by epsilon may still refuse a step at the limit when
         it is analysed)."""
         from ..ground_motion import ground_motion
-        from ..rigid_blocks.dynamics import check_time_step
+        from ..rigid_blocks.dynamics import check_time_step, structure_assembly
 
-        thickness = getattr(self.nominal, "thickness_scale", None)
-        if thickness is None:
-            return
         check_time_step(self.time_step, ground_motion(self.motion, GRAVITY, shortest),
-                        float(thickness))
+                        structure_assembly(self.nominal).thickness)
 
     @property
     def block_settings(self):
