@@ -188,6 +188,11 @@ class BlockSettings:
     settle_time : float
         Longest time observed after the end of the excitation [s], > 0; at least
         :data:`SETTLE_PERIODS` periods of the structure.
+    coarse_factor : int
+        Steps ``h`` taken as one while no contact starts or stops carrying an impulse [-],
+        >= 1; a step in which one does is taken again at ``h`` (2, the default, halves the
+        steps of a rocking arch and resolves every impact, lift-off and landing at ``h``:
+        :mod:`archquake.rigid_blocks.solver`, "Coarse steps"); 1 takes every step at ``h``.
 
     Raises
     ------
@@ -234,6 +239,7 @@ class BlockSettings:
     rest_window: float = 0.1
     open_rest_window: float = 1.0
     settle_time: float = 20.0
+    coarse_factor: int = 1
 
     def __post_init__(self):
         for f in fields(self):
@@ -248,9 +254,10 @@ class BlockSettings:
             raise ValueError(f"friction must be >= 0 [-], got {self.friction!r}")
         if not 0.5 <= self.theta <= 1.0:
             raise ValueError(f"theta must be in [0.5, 1] [-], got {self.theta!r}")
-        if int(self.max_iterations) != self.max_iterations or self.max_iterations < 1:
-            raise ValueError(f"max_iterations must be an integer >= 1, got "
-                             f"{self.max_iterations!r}")
+        for name in ("max_iterations", "coarse_factor"):
+            value = getattr(self, name)
+            if int(value) != value or value < 1:
+                raise ValueError(f"{name} must be an integer >= 1, got {value!r}")
         for name in ("time_step", "tolerance", "collapse_drop", "energy_margin", "rest_speed",
                      "closed_gap", "moved_opening", "rest_window", "open_rest_window",
                      "settle_time"):
@@ -747,7 +754,8 @@ def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None,
         moved_threshold=settings.moved_opening * thickness,
         energy_margin=settings.energy_margin * total_mass * GRAVITY * thickness,
         record_stride=int(record_every), tail_steps=tail_steps,
-        crown_block=crown_block, crown_x=crown_r[0], crown_y=crown_r[1])
+        crown_block=crown_block, crown_x=crown_r[0], crown_y=crown_r[1],
+        coarse_factor=settings.coarse_factor)
     summary, records = solver.run(arrays["bodies"], arrays["contacts"], arrays["contact_bodies"],
                                   q0, v0, int(kind), params, times, values, packed)
     s = dict(zip(solver.SUMMARY_FIELDS, summary.tolist(), strict=True))

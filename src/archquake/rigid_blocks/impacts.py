@@ -63,7 +63,7 @@ References
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import replace, dataclass
 
 import numpy as np
 
@@ -198,7 +198,8 @@ def closing_impact(structure, velocities, settings: BlockSettings | None = None
     """
     assembly = structure_assembly(structure)
     v0 = _check_mode(assembly, velocities, "velocities")
-    settings = resolved_settings(settings, assembly)
+    # one step of h: the law of a single step (a coarse step would be taken again at h anyway)
+    settings = replace(resolved_settings(settings, assembly), coarse_factor=1)
     h = float(settings.time_step)
     scale = IMPACT_SPEED * GRAVITY * h / float(np.abs(v0[:, :2]).max())
     start = v0 * scale

@@ -268,12 +268,13 @@ REST, RECOVERY, COLLAPSE = 0, 1, 2
 SUMMARY_FIELDS = (
     "status", "decided", "collapse_time", "decision_time", "max_rotation", "max_crown_drop",
     "max_slip", "max_opening", "max_drop", "steps", "iterations", "max_iterations_used",
-    "unconverged_steps", "final_time", "closed", "fallbacks",
+    "unconverged_steps", "final_time", "closed", "fallbacks", "steps_taken",
 )
 """Layout of the summary vector returned by :func:`run`: outcome code; 1 if decided; collapse and
 decision times [s] (nan if none); largest block rotation [rad], crown drop, slip, opening and
 drop [m]; steps, linear solves or sweeps in all, most in one step, unconverged steps [-]; final
-time of the run [s]; 1 if every joint was closed; steps left to Gauss-Seidel [-]. Everything but
+time of the run [s]; 1 if every joint was closed; steps left to Gauss-Seidel; steps taken (a
+coarse step counts once, ``steps`` counts it as the steps ``h`` it spans) [-]. Everything but
 the final time is that of the decision (of the last step if undecided): a recording that goes on
 after the decision changes nothing of it."""
 
@@ -445,7 +446,7 @@ SETTINGS_FIELDS = (
     "time_step", "theta", "friction", "tolerance", "max_iterations", "gravity",
     "excitation_end", "n_steps", "drop_limit", "rest_energy", "closed_gap", "rest_steps",
     "open_rest_steps", "moved_threshold", "energy_margin", "record_stride", "tail_steps",
-    "crown_block", "crown_x", "crown_y",
+    "crown_block", "crown_x", "crown_y", "coarse_factor",
 )
 """Entries of the settings vector of :func:`run` (:func:`pack_settings`; counts and indices stored
 as floats): time step h [s]; theta [-]; friction coefficient mu [-]; Gauss-Seidel tolerance as a
@@ -456,12 +457,13 @@ contact [m]; steps of rest that decide with every joint closed, and with a joint
 and slip at or below which the structure never moved [m]; :math:`E_{margin}` of the energy test
 of collapse [J/m]; ``record_stride`` (every ``record_stride``-th state recorded, 0: no record)
 and ``tail_steps`` (steps recorded after the decision, -1: to ``n_steps``) [-]; the block that
-carries the crown point and that point relative to its centroid [m]."""
+carries the crown point and that point relative to its centroid [m]; the steps of ``h`` taken as
+one while no contact starts or stops carrying an impulse (:func:`run`) [-]."""
 
 (S_TIME_STEP, S_THETA, S_FRICTION, S_TOLERANCE, S_MAX_ITERATIONS, S_GRAVITY, S_EXCITATION_END,
  S_N_STEPS, S_DROP_LIMIT, S_REST_ENERGY, S_CLOSED_GAP, S_REST_STEPS, S_OPEN_REST_STEPS,
  S_MOVED_THRESHOLD, S_ENERGY_MARGIN, S_RECORD_STRIDE, S_TAIL_STEPS, S_CROWN_BLOCK, S_CROWN_X,
- S_CROWN_Y) = range(20)
+ S_CROWN_Y, S_COARSE_FACTOR) = range(21)
 
 RECORD_ENERGY_FIELDS = ("t", "kinetic", "potential", "dissipated", "input")
 """Columns of the record of times and energies: t [s], T, V, D, W [J/m]."""
@@ -1592,17 +1594,19 @@ def _record(n, t, q, gap, slip, impulse, h, energies, rec_energy, rec_q, rec_con
 
 
 @numba.njit(cache=True, inline="always")
-def _decide(t, drop, kinetic, potential, closed, max_opening, max_slip, rest_count, settings):
-    r"""The outcome tests at ``t`` [s] (docstring of :func:`run`).
+def _decide(t, drop, kinetic, potential, closed, max_opening, max_slip, rest_count, last,
+            settings):
+    r"""The outcome tests at ``t`` [s] (docstring of :func:`run`), at the end of a step of
+    ``last`` steps ``h`` (a coarse step counts as the steps it spans).
 
     Returns ``(status, rest_count)``: :data:`COLLAPSE`, :data:`RECOVERY`, :data:`REST` or -1
-    (undecided), and the count of consecutive still steps."""
+    (undecided), and the count of consecutive still steps ``h``."""
     after = t >= settings[S_EXCITATION_END]
     if drop >= settings[S_DROP_LIMIT] or (after and kinetic + potential
                                           < -settings[S_ENERGY_MARGIN]):
         return COLLAPSE, rest_count
     if after and kinetic <= settings[S_REST_ENERGY]:
-        rest_count += 1
+        rest_count += last
         needed = settings[S_REST_STEPS] if closed else settings[S_OPEN_REST_STEPS]
         if rest_count >= needed:
             moved = (max_opening > settings[S_MOVED_THRESHOLD]
@@ -1629,14 +1633,15 @@ def _free_velocities(v, v_old, v_free, h, ag, gravity):
 
 
 @numba.njit(cache=True, _nrt=False)
-def _active_set(gap, valid, v_old, contact_bodies, contacts, jac, theta, h, active):
-    r"""The active set: the valid contacts whose predicted gap
-    :math:`g + \theta h u_n(v_k)` is at most :data:`ACTIVATION_GAP` times their joint's
-    length."""
+def _active_set(gap, valid, v_old, contact_bodies, contacts, jac, theta, h, carried, active):
+    r"""The active set: the valid contacts that carried an impulse at the end of the last step
+    (``carried``), and those whose predicted gap :math:`g + \theta h u_n(v_k)` is at most
+    :data:`ACTIVATION_GAP` times their joint's length."""
     for c in range(gap.size):
         if valid[c]:
             un, _ = _relative_velocity(v_old, contact_bodies[c, 0], contact_bodies[c, 1], jac, c)
-            active[c] = gap[c] + theta * h * un <= ACTIVATION_GAP * contacts[c, LENGTH]
+            active[c] = carried[c] or (gap[c] + theta * h * un
+                                       <= ACTIVATION_GAP * contacts[c, LENGTH])
         else:
             active[c] = False
 
@@ -1677,6 +1682,17 @@ def _advance(q, v_old, v, bodies, h, theta, ag):
         for k in range(3):
             q[i, k] += h * ((1.0 - theta) * v_old[i, k] + theta * v[i, k])
     return work, kinetic
+
+
+@numba.njit(cache=True, _nrt=False)
+def _changed(active, state, carried):
+    """Whether a contact starts or stops carrying an impulse in this step (``carried``: the
+    contacts that carried one at the end of the last step; a contact carries one when it is
+    active and sticks or slides, ``state > 0``)."""
+    for c in range(active.size):
+        if (active[c] and state[c] > 0) != carried[c]:
+            return True
+    return False
 
 
 @numba.njit(cache=True, _nrt=False)
@@ -1786,10 +1802,8 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     tail_steps = int(settings[S_TAIL_STEPS])
     crown_block = int(settings[S_CROWN_BLOCK])
     crown_x, crown_y = settings[S_CROWN_X], settings[S_CROWN_Y]
+    coarse = max(1, int(settings[S_COARSE_FACTOR]))
     mean_mass = bodies[:, BODY_MASS].mean()
-    tol_impulse = settings[S_TOLERANCE] * mean_mass * gravity * h
-    p_tol = 1e-12 * mean_mass * gravity * h
-    u_tol = 1e-12 * gravity * h
     inv_mass = np.empty((nb, 4))  # 1/m, 1/I, their square roots
     for i in range(nb):
         inv_mass[i, 0] = 1.0 / bodies[i, BODY_MASS]
@@ -1805,10 +1819,13 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     slip = np.zeros(nc)
     valid = np.zeros(nc, dtype=np.bool_)
     active = np.zeros(nc, dtype=np.bool_)
+    carried = np.zeros(nc, dtype=np.bool_)  # carried an impulse at the end of the last step
     jac = np.zeros((nc, 12))
     w = np.zeros((nc, 3))
     impulse = np.zeros((nc, 2))
+    impulse_k = np.zeros((nc, 2))  # the last step's, to take a coarse step again
     state = -np.ones(nc, dtype=np.int64)
+    state_k = -np.ones(nc, dtype=np.int64)
     pointer, incident, half_bandwidth = incidence(contact_bodies, nb)
     kl = 2 * half_bandwidth + 1  # of the unknowns: two per contact
     problem = (np.zeros(nc, dtype=np.int64), np.zeros(nc, dtype=np.int64), pointer, incident,
@@ -1820,6 +1837,7 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     rec_q = np.zeros((capacity, 3 * nb))
     rec_contacts = np.zeros((capacity, 4 * nc))
     n_rec = 0
+    next_record = 0  # the first step h at or after which the next state is recorded
     energies = np.zeros(4)  # kinetic, potential, dissipated, input [J/m]
 
     energies[0] = _kinetic_energy(bodies, v)
@@ -1833,7 +1851,9 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     closed = True
     iterations = max_used = unconverged = fallbacks = 0
     stop_step = n_steps
-    step = decision_step = 0
+    step = decision_step = taken = taken_at_decision = 0
+    last = 1  # steps h of the last step taken
+    hs = h  # its length [s]
     while step < stop_step:
         t = step * h
         # -------- 1. geometry
@@ -1849,60 +1869,90 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
             max_slip, max_opening, closed = _joints(gap, slip, valid, settings[S_CLOSED_GAP],
                                                     max_slip, max_opening)
         # -------- 3. record
-        if recording and step % record_stride == 0:
-            rec_energy, rec_q, rec_contacts = _record(n_rec, t, q, gap, slip, impulse, h,
+        if recording and step >= next_record:
+            rec_energy, rec_q, rec_contacts = _record(n_rec, t, q, gap, slip, impulse, hs,
                                                       energies, rec_energy, rec_q, rec_contacts)
             n_rec += 1
+            next_record = (step // record_stride + 1) * record_stride
         # -------- 4. decide
         if not decided:
             status, rest_count = _decide(t, drop, energies[0], energies[1], closed, max_opening,
-                                         max_slip, rest_count, settings)
+                                         max_slip, rest_count, last, settings)
             if status == COLLAPSE:
                 collapse_time = t
             if status >= 0:
                 decided = True
                 decision_time = t
                 decision_step = step
+                taken_at_decision = taken
                 # -------- 5. stop?
                 if not recording:
                     break
                 stop_step = n_steps if tail_steps < 0 else min(n_steps, step + tail_steps + 1)
                 if step + 1 >= stop_step:
                     break
-        # -------- 6. free velocities
-        ag = mean_acceleration(t, t + h, kind, params, times, values)
-        _free_velocities(v, v_old, v_free, h, ag, gravity)
-        # -------- 7. active set
-        _active_set(gap, valid, v_old, contact_bodies, contacts, jac, theta, h, active)
-        # -------- 8. the contact problem
-        sweeps, converged = solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse,
-                                             state, mu, p_tol, u_tol, problem)
-        if not converged:  # fall back to Gauss-Seidel from the last impulses
-            fallbacks += 0 if decided else 1
-            sweeps, converged = solve_contacts(v, inv_mass, contact_bodies, jac, w, active,
-                                               impulse, mu, tol_impulse, max_iterations)
-        if not decided:  # the outcome's counts stop at the decision too
-            iterations += sweeps
-            max_used = max(max_used, sweeps)
-            if not converged:
-                unconverged += 1
+        # -------- 6.-8. a coarse step if one fits, taken again at h if a contact changes
+        m = coarse if (step % coarse == 0 and step + coarse <= stop_step) else 1
+        if m > 1:
+            impulse_k[:] = impulse
+            state_k[:] = state
+        while True:
+            hs = m * h
+            tol_impulse = settings[S_TOLERANCE] * mean_mass * gravity * hs
+            p_tol = 1e-12 * mean_mass * gravity * hs
+            u_tol = 1e-12 * gravity * hs
+            # -------- 6. free velocities
+            ag = mean_acceleration(t, t + hs, kind, params, times, values)
+            _free_velocities(v, v_old, v_free, hs, ag, gravity)
+            # -------- 7. active set
+            _active_set(gap, valid, v_old, contact_bodies, contacts, jac, theta, hs, carried,
+                        active)
+            # -------- 8. the contact problem
+            sweeps, converged = solve_active_set(v, inv_mass, contact_bodies, jac, active,
+                                                 impulse, state, mu, p_tol, u_tol, problem)
+            direct = converged
+            if not converged and m == 1:  # fall back to Gauss-Seidel from the last impulses
+                fallbacks += 0 if decided else 1
+                sweeps, converged = solve_contacts(v, inv_mass, contact_bodies, jac, w, active,
+                                                   impulse, mu, tol_impulse, max_iterations)
+            if not decided:  # the outcome's counts stop at the decision too
+                iterations += sweeps
+                max_used = max(max_used, sweeps)
+            if m == 1 or (direct and not _changed(active, state, carried)):
+                break
+            # a contact starts or stops carrying an impulse: the step again, at h
+            for i in range(nb):
+                v[i, 0] = v_old[i, 0]
+                v[i, 1] = v_old[i, 1]
+                v[i, 2] = v_old[i, 2]
+            impulse[:] = impulse_k
+            state[:] = state_k
+            m = 1
+        if not decided and not converged:
+            unconverged += 1
+        if coarse > 1:  # the contacts that carry an impulse stay active (Coarse steps)
+            for c in range(nc):
+                carried[c] = active[c] and (state[c] > 0 if direct else impulse[c, 0] > 0.0)
         # -------- 9. advance: energy bookkeeping (exact for theta = 1/2) and positions
         energies[2] -= _contact_work(v_old, v, v_free, bodies)
         kinetic_before = energies[0]
-        work, energies[0] = _advance(q, v_old, v, bodies, h, theta, ag)
+        work, energies[0] = _advance(q, v_old, v, bodies, hs, theta, ag)
         energies[3] += work
-        step += 1
+        step += m
+        taken += 1
+        last = m
         # -------- 10. at rest under a constant load: skip the steps that repeat it
         if not decided and max(kinetic_before, energies[0]) <= steady_energy:
             skip = min(steady_steps(step, h, ag, kind, params, times, values, settings,
                                     rest_count, closed), stop_step - step)
             if recording:  # the skipped steps' records: the same state
                 for k in range(step, step + skip):
-                    if k % record_stride == 0:
+                    if k >= next_record:
                         rec_energy, rec_q, rec_contacts = _record(
-                            n_rec, k * h, q, gap, slip, impulse, h, energies, rec_energy,
+                            n_rec, k * h, q, gap, slip, impulse, hs, energies, rec_energy,
                             rec_q, rec_contacts)
                         n_rec += 1
+                        next_record = (k // record_stride + 1) * record_stride
             if skip > 0 and step * h >= settings[S_EXCITATION_END]:
                 rest_count += skip
             step += skip
@@ -1917,6 +1967,7 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     summary[7] = max_opening
     summary[8] = max_drop
     summary[9] = decision_step if decided else step
+    summary[16] = taken_at_decision if decided else taken
     summary[10] = iterations
     summary[11] = max_used
     summary[12] = unconverged
