@@ -3,6 +3,7 @@ the exhaustive grid, side by side on the same arches, and P_F compared at every 
 
     python benchmarks/rigid_block_fragility.py [--arches 40] [--exhaustive-arches 10]
                                                [--workers 2] [--skip-full] [--time-step H]
+                                               [--coarse-factor K]
 
 The paper's study [Sect. 5.3.3]: h = 40 irregular arches (epsilon = 0.10), t_p = 0.4, 0.5, 0.6,
 0.7 s, 0.20-0.80 g in 0.01 g steps, both directions: 19,520 grid points. Printed:
@@ -69,9 +70,13 @@ def main(argv: list[str] | None = None) -> int:
                         help="the rigid-block model's time step [s] (default: that of the "
                              "nominal arch, 1 ms for Oppenheim's; "
                              "benchmarks/rigid_block_time_step.py shows what it changes)")
+    parser.add_argument("--coarse-factor", type=int, default=1,
+                        help="steps of the time step taken as one while no contact changes "
+                             "(BlockSettings.coarse_factor; 2 halves the time)")
     args = parser.parse_args(argv)
     if args.time_step is not None:
         PAPER["time_step"] = args.time_step
+    PAPER["coarse_factor"] = args.coarse_factor
 
     status = 0
     with process_pool(args.workers, warm_up=warm_up) as pool:
@@ -83,7 +88,8 @@ def main(argv: list[str] | None = None) -> int:
             settings = FragilitySettings(**PAPER, sample_size=args.arches, model="rigid-blocks")
             result, wall = _study(settings, pool)
             done, grid = _analysed(result)
-            print(f"Full study, rigid blocks, search {settings.search!r} (stride "
+            print(f"Full study, rigid blocks (h = {settings.time_step * 1e3:g} ms, coarse "
+                  f"factor {settings.coarse_factor}), search {settings.search!r} (stride "
                   f"{settings.stride}): {args.arches} arches x {len(PAPER['durations'])} "
                   f"durations x {len(PAPER['amplitudes_g'])} amplitudes x 2 directions = "
                   f"{grid} grid points")

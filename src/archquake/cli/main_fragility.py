@@ -78,7 +78,8 @@ def run(args: argparse.Namespace) -> int:
         amplitudes_g=tuple(options.parse_values(args.amplitudes, "--amplitudes")),
         seed=args.seed, restitution=args.restitution, limit_sample_size=args.limit_samples,
         limit_method=args.limit_method, model=args.model, search=args.search,
-        stride=args.stride, friction=args.friction, time_step=args.time_step)
+        stride=args.stride, friction=args.friction, time_step=args.time_step,
+        coarse_factor=args.coarse_factor)
     result = run_fragility(settings, args.out, workers=args.workers, scheduler=args.scheduler,
                            resume=args.resume, progress=not args.no_progress)
     written = []

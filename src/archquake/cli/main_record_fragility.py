@@ -88,7 +88,8 @@ def run(args: argparse.Namespace) -> int:
         epsilon=args.epsilon, seed=args.seed,
         restitution=check_restitution_model(args.restitution), model=args.model,
         search=args.search, stride=args.stride, friction=args.friction,
-        time_step=args.time_step)
+        time_step=args.time_step,
+        coarse_factor=args.coarse_factor)
     result = run_record_fragility(settings, args.out, workers=args.workers,
                                   scheduler=args.scheduler, resume=args.resume,
                                   progress=not args.no_progress)

@@ -204,6 +204,10 @@ class FragilitySettings:
         ignored by the four-link model). How the study's outcomes depend on it:
         :func:`~archquake.rigid_blocks.dynamics.structure_time_step` and the user guide, "What
         a rigid-block study costs".
+    coarse_factor : int
+        Steps of ``time_step`` the rigid-block model takes as one while no contact starts or
+        stops carrying an impulse [-], >= 1 (default 1: every step at ``time_step``;
+        :class:`archquake.rigid_blocks.BlockSettings`).
     friction : float
         Coulomb friction coefficient of the rigid-block model's joints [-] (ignored by the
         four-link model).
@@ -230,6 +234,7 @@ class FragilitySettings:
     stride: int | None = None
     friction: float = DEFAULT_FRICTION
     time_step: float | None = None
+    coarse_factor: int = 1
 
     def __post_init__(self) -> None:
         from ..fourlink.impact import check_restitution_model
@@ -310,7 +315,8 @@ class FragilitySettings:
         """The rigid-block model's settings (:class:`archquake.rigid_blocks.BlockSettings`)."""
         from ..rigid_blocks import BlockSettings
 
-        return BlockSettings(friction=self.friction, time_step=self.time_step)
+        return BlockSettings(friction=self.friction, time_step=self.time_step,
+                             coarse_factor=self.coarse_factor)
 
     @property
     def sample(self) -> ArchSample:
@@ -343,6 +349,7 @@ class FragilitySettings:
             "stride": self.stride,
             "friction": self.friction,
             "time_step": self.time_step,
+            "coarse_factor": self.coarse_factor,
         }
 
     @classmethod
@@ -367,7 +374,8 @@ class FragilitySettings:
                    model=data.get("model", DEFAULT_MODEL), search=data.get("search"),
                    stride=data.get("stride", DEFAULT_STRIDE),
                    friction=data.get("friction", DEFAULT_FRICTION),
-                   time_step=data.get("time_step", DEFAULT_TIME_STEP))
+                   time_step=data.get("time_step", DEFAULT_TIME_STEP),
+                   coarse_factor=data.get("coarse_factor", 1))
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, FragilitySettings):

@@ -231,6 +231,10 @@ class RecordFragilitySettings:
         Time step of the rigid-block model [s], as in
         :class:`~archquake.studies.fragility.FragilitySettings` (default: that of the nominal
         structure; at most the records' sample spacing).
+    coarse_factor : int
+        Steps of ``time_step`` the rigid-block model takes as one while no contact starts or
+        stops carrying an impulse [-], >= 1 (default 1: every step at ``time_step``;
+        :class:`archquake.rigid_blocks.BlockSettings`).
     friction : float
         Coulomb friction coefficient of the rigid-block model's joints [-].
 
@@ -255,6 +259,7 @@ class RecordFragilitySettings:
     stride: int | None = None
     friction: float = DEFAULT_FRICTION
     time_step: float | None = None
+    coarse_factor: int = 1
 
     def __post_init__(self) -> None:
         from ..fourlink.impact import check_restitution_model
@@ -317,7 +322,8 @@ class RecordFragilitySettings:
         """The rigid-block model's settings (:class:`archquake.rigid_blocks.BlockSettings`)."""
         from ..rigid_blocks import BlockSettings
 
-        return BlockSettings(friction=self.friction, time_step=self.time_step)
+        return BlockSettings(friction=self.friction, time_step=self.time_step,
+                             coarse_factor=self.coarse_factor)
 
     def to_dict(self) -> dict:
         """The settings as JSON-ready data, as stored with the results.
@@ -345,6 +351,7 @@ class RecordFragilitySettings:
             "stride": self.stride,
             "friction": self.friction,
             "time_step": self.time_step,
+            "coarse_factor": self.coarse_factor,
         }
 
     @classmethod
@@ -370,7 +377,8 @@ class RecordFragilitySettings:
                    search=data.get("search"),
                    stride=data.get("stride", DEFAULT_LEVEL_STRIDE),
                    friction=data.get("friction", DEFAULT_FRICTION),
-                   time_step=data.get("time_step", DEFAULT_TIME_STEP))
+                   time_step=data.get("time_step", DEFAULT_TIME_STEP),
+                   coarse_factor=data.get("coarse_factor", 1))
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, RecordFragilitySettings):

@@ -1,0 +1,76 @@
+"""Coarse steps (``BlockSettings.coarse_factor``): steps of k h while no contact starts or stops
+carrying an impulse, the step taken again at h where one does. Checked against the same model
+at a step four times finer (an independent discretisation of the same equations), against the
+energy balance, and against recording."""
+
+import numpy as np
+import pytest
+
+from archquake import GRAVITY, oppenheim
+from archquake.ground_motion import oppenheim_pulse
+from archquake.rigid_blocks import BlockSettings, RigidBlockModel, block_outcome, simulate_blocks
+from archquake.studies.failure_domain import domain_of
+
+COARSE = BlockSettings(coarse_factor=2)  # steps of 2 ms between the events, 1 ms at them
+
+
+@pytest.mark.parametrize("duration", [0.4, 0.5])
+def test_coarse_steps_find_the_failure_acceleration_of_a_four_times_finer_step(duration):
+    """The paper's pulse durations: the failure acceleration of Oppenheim's arch, bisected to
+    0.001 g, at coarse steps of 2 ms (1 ms at the events) is that of uniform steps of 0.25 ms
+    within 0.002 g (``benchmarks/rigid_block_time_step.py``: 0.5559 and 0.4395 g for both)."""
+    found = {}
+    for name, settings in (("coarse", COARSE), ("fine", BlockSettings(time_step=2.5e-4))):
+        model = RigidBlockModel(oppenheim(), settings)
+        domain = domain_of(model, (duration,), (0.3, 0.4, 0.5, 0.6, 0.7), resolution=0.001,
+                           workers=1)
+        found[name] = domain.slices[0].failure_acceleration_g
+    assert found["coarse"] == pytest.approx(found["fine"], abs=0.002)
+
+
+def test_coarse_steps_halve_the_contact_problems_of_a_rocking_arch():
+    """Oppenheim's pulse (0.6 g, 0.4 s): the same outcome at about half the contact problems
+    (the solves counted by the outcome, not timed)."""
+    motion = oppenheim_pulse(-0.6 * GRAVITY, 0.4)
+    uniform = block_outcome(oppenheim(), motion)
+    coarse = block_outcome(oppenheim(), motion, COARSE)
+    assert uniform.status == coarse.status
+    assert coarse.decision_time == pytest.approx(uniform.decision_time, abs=0.05)
+    solves = [o.mean_iterations * o.steps for o in (uniform, coarse)]
+    assert solves[1] < 0.7 * solves[0]
+
+
+def test_the_energy_balance_closes_with_coarse_steps():
+    """theta = 1/2: the balance of every step closes to round-off whatever its length, so it
+    closes over a run of coarse and fine steps alike; after the pulse the energy rises above
+    its running minimum by no more than the discretisation error (as at uniform steps,
+    ``test_arch_energy_after_the_pulse``)."""
+    motion = oppenheim_pulse(-0.6 * GRAVITY, 0.3)
+    history = simulate_blocks(oppenheim(), motion, COARSE, tail=0.5)
+    assert history.outcome.status.label == "recovery"
+    energy = history.total_energy
+    balance = energy - energy[0] + history.dissipated_energy - history.input_work
+    assert np.abs(balance).max() < 1e-8 * np.abs(history.input_work).max()
+    after = energy[history.times >= motion.duration]
+    rise = float((after - np.minimum.accumulate(after)).max())
+    assert rise < 5e-3 * after[0]
+    # both step lengths were taken: the records (every step) lie 1 and 2 ms apart
+    spacing = np.unique(np.round(np.diff(history.times), 9))
+    assert set(spacing) == {0.001, 0.002}
+
+
+@pytest.mark.parametrize("amplitude, duration", [(0.6, 0.4), (0.6, 0.3), (0.2, 0.4)])
+def test_recording_does_not_change_a_coarse_outcome(amplitude, duration):
+    """A collapse, a recovery and a rest: recorded at every 5th step or not, the same steps,
+    so the same outcome to the last bit."""
+    motion = oppenheim_pulse(-amplitude * GRAVITY, duration)
+    alone = block_outcome(oppenheim(), motion, COARSE)
+    recorded = simulate_blocks(oppenheim(), motion, COARSE, record_every=5).outcome
+    assert recorded == alone
+
+
+@pytest.mark.parametrize("value", [0, -2, 1.5, True, "2"])
+def test_coarse_factor_must_be_a_whole_number_of_steps(value):
+    with pytest.raises(ValueError, match="coarse_factor must be an integer >= 1|"
+                                         "coarse_factor must be a number"):
+        BlockSettings(coarse_factor=value)
