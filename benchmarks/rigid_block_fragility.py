@@ -70,13 +70,15 @@ def main(argv: list[str] | None = None) -> int:
                         help="the rigid-block model's time step [s] (default: that of the "
                              "nominal arch, 1 ms for Oppenheim's; "
                              "benchmarks/rigid_block_time_step.py shows what it changes)")
-    parser.add_argument("--coarse-factor", type=int, default=1,
+    parser.add_argument("--coarse-factor", type=int, default=None,
                         help="steps of the time step taken as one while no contact changes "
-                             "(BlockSettings.coarse_factor; 2 halves the time)")
+                             "(BlockSettings.coarse_factor; default 2; 1: every step at the "
+                             "time step, twice the time)")
     args = parser.parse_args(argv)
     if args.time_step is not None:
         PAPER["time_step"] = args.time_step
-    PAPER["coarse_factor"] = args.coarse_factor
+    if args.coarse_factor is not None:
+        PAPER["coarse_factor"] = args.coarse_factor
 
     status = 0
     with process_pool(args.workers, warm_up=warm_up) as pool:

@@ -1,9 +1,13 @@
 """How the rigid-block fragility study depends on the model's time step: the paper's study on
 the first ``--arches`` arches, exhaustive grid, at several time steps side by side.
 
-    python benchmarks/rigid_block_time_step.py [--arches 12] [--steps 0.0005,0.001,0.002]
+    python benchmarks/rigid_block_time_step.py [--arches 12]
+                                               [--steps 0.0005,0.001,0.001x2,0.002]
                                                [--workers 2] [--perturb 1e-6]
-                                               [--domain-steps 0.004,...,0.00025] [--no-domain]
+                                               [--domain-steps 0.002,...,0.00025] [--no-domain]
+
+A step ``H`` takes every step at ``H``; ``HxK`` takes coarse steps of ``K H`` between the events
+of the contacts (``BlockSettings.coarse_factor``; the default is ``0.001x2``).
 
 The paper's grid [Sect. 5.3.3] (t_p = 0.4-0.7 s, 0.20-0.80 g in 0.01 g steps, both directions)
 on the same irregular arches (seed 0, epsilon = 0.10), every point analysed. Against the finest
@@ -40,7 +44,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 
 from archquake import oppenheim  # noqa: E402
-from archquake.defaults import DEFAULT_TIME_STEP  # noqa: E402
+from archquake.defaults import DEFAULT_COARSE_FACTOR, DEFAULT_TIME_STEP  # noqa: E402
 from archquake.execution import process_pool  # noqa: E402
 from archquake.rigid_blocks import BlockSettings, RigidBlockModel  # noqa: E402
 from archquake.rigid_blocks.model import warm_up  # noqa: E402
@@ -51,6 +55,21 @@ PAPER = {"durations": (0.4, 0.5, 0.6, 0.7),
          "amplitudes_g": tuple(inclusive_range(0.2, 0.8, 0.01).tolist()),
          "epsilon": 0.10, "seed": 0, "limit_sample_size": 4, "model": "rigid-blocks",
          "search": "exhaustive"}
+
+
+def configurations(text: str) -> list[tuple[float, int]]:
+    """``"0.0005,0.001,0.001x2"`` -> ``[(0.0005, 1), (0.001, 1), (0.001, 2)]``: time steps [s],
+    each with every step at h (``H``) or coarse steps of k h (``HxK``, ``coarse_factor`` k)."""
+    out = []
+    for item in text.split(","):
+        h, _, k = item.partition("x")
+        out.append((float(h), int(k) if k else 1))
+    return out
+
+
+def label(config: tuple[float, int]) -> str:
+    h, k = config
+    return f"h = {h * 1e3:5g} ms" + (f" x{k}" if k > 1 else "   ")
 
 
 def first_failures(table) -> np.ndarray:
@@ -65,30 +84,34 @@ def first_failures(table) -> np.ndarray:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--arches", type=int, default=12)
-    parser.add_argument("--steps", default="0.0005,0.001,0.002",
-                        help="time steps [s], the finest first (the reference)")
+    parser.add_argument("--steps", default="0.0005,0.001,0.001x2,0.002",
+                        help="time steps [s], the finest first (the reference); HxK: coarse "
+                             "steps of K h (BlockSettings.coarse_factor), H alone: every step "
+                             "at h")
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--perturb", type=float, default=1e-6,
                         help="raise of every amplitude [g] at the default step (0: skip)")
-    parser.add_argument("--domain-steps", default="0.004,0.002,0.001,0.0005,0.00025",
+    parser.add_argument("--domain-steps", default="0.002,0.001,0.001x2,0.0005,0.00025",
                         help="time steps [s] of Oppenheim's arch's failure accelerations, the "
-                             "finest last (the reference)")
+                             "finest last (the reference); HxK as in --steps")
     parser.add_argument("--no-domain", action="store_true")
     args = parser.parse_args(argv)
-    steps = [float(h) for h in args.steps.split(",")]
+    steps = configurations(args.steps)
+    default_config = (DEFAULT_TIME_STEP, DEFAULT_COARSE_FACTOR)
 
     results = {}
     with process_pool(args.workers, warm_up=warm_up) as pool:
-        for h in steps:
-            settings = FragilitySettings(**PAPER, sample_size=args.arches, time_step=h)
+        for h, k in steps:
+            settings = FragilitySettings(**PAPER, sample_size=args.arches, time_step=h,
+                                         coarse_factor=k)
             start = time.perf_counter()
-            results[h] = (run_fragility(settings, pool=pool, progress=False),
-                          time.perf_counter() - start)
+            results[h, k] = (run_fragility(settings, pool=pool, progress=False),
+                             time.perf_counter() - start)
         perturbed = None
         if args.perturb > 0:
             raised = dict(PAPER, amplitudes_g=tuple(a + args.perturb
                                                     for a in PAPER["amplitudes_g"]))
-            default = (results[DEFAULT_TIME_STEP][0] if DEFAULT_TIME_STEP in results
+            default = (results[default_config][0] if default_config in results
                        else run_fragility(FragilitySettings(**PAPER, sample_size=args.arches),
                                           pool=pool, progress=False))
             perturbed = (run_fragility(FragilitySettings(**raised, sample_size=args.arches),
@@ -97,16 +120,16 @@ def main(argv: list[str] | None = None) -> int:
     grid = len(reference.table)
     ref_first = first_failures(reference.table)
     print(f"The paper's grid on {args.arches} arches ({grid} grid points), exhaustive, against "
-          f"h = {steps[0] * 1e3:g} ms:")
-    for h in steps:
-        result, wall = results[h]
+          f"{label(steps[0]).strip()}:")
+    for config in steps:
+        result, wall = results[config]
         differ = int((result.table["status"] != reference.table["status"]).sum())
         dpf = np.abs(result.probability - reference.probability)
         first = first_failures(result.table)
         moved = ~((first == ref_first) | (np.isnan(first) & np.isnan(ref_first)))
         shift = np.nanmax(np.abs(first - ref_first)) if moved.any() else 0.0
         signed = float((result.probability - reference.probability).mean())
-        print(f"  h = {h * 1e3:4g} ms: {wall:6.1f} s wall; statuses differ at {differ} points "
+        print(f"  {label(config)}: {wall:6.1f} s wall; statuses differ at {differ} points "
               f"({differ / grid:.2%}); |P_F difference| largest {dpf.max():.3f}, mean "
               f"{dpf.mean():.4f} (signed {signed:+.4f}); first failure differs for "
               f"{int(moved.sum())} of {moved.size} lines, by up to {shift:.2f} g")
@@ -114,29 +137,31 @@ def main(argv: list[str] | None = None) -> int:
         raised, default = perturbed
         differ = int((raised.table["status"] != default.table["status"]).sum())
         dpf = np.abs(raised.probability - default.probability)
-        print(f"  every amplitude + {args.perturb:g} g at h = {DEFAULT_TIME_STEP * 1e3:g} ms: "
+        print(f"  every amplitude + {args.perturb:g} g at the default "
+              f"({label(default_config).strip()}): "
               f"statuses differ at {differ} points ({differ / grid:.2%}); |P_F difference| "
               f"largest {dpf.max():.3f}, mean {dpf.mean():.4f}")
     if not args.no_domain:
-        domain_convergence([float(h) for h in args.domain_steps.split(",")], args.workers)
+        domain_convergence(configurations(args.domain_steps), args.workers)
     return 0
 
 
-def domain_convergence(steps: list[float], workers: int) -> None:
+def domain_convergence(steps: list[tuple[float, int]], workers: int) -> None:
     """Print the failure accelerations of Oppenheim's arch at every step, against the last."""
     durations = (0.25, 0.3, 0.4, 0.5, 0.6, 0.7)
     print(f"\nFailure accelerations [g] of Oppenheim's arch (0.3-3.0 g by 0.1 g, bisected to "
-          f"0.001 g), minus those at h = {steps[-1] * 1e3:g} ms:")
+          f"0.001 g), minus those at {label(steps[-1]).strip()}:")
     found = {}
-    for h in steps:
-        model = RigidBlockModel(oppenheim(), settings=BlockSettings(time_step=h))
+    for h, k in steps:
+        model = RigidBlockModel(oppenheim(), settings=BlockSettings(time_step=h, coarse_factor=k))
         domain = domain_of(model, durations, inclusive_range(0.3, 3.0, 0.1), resolution=0.001,
                            workers=workers)
-        found[h] = np.array([s.failure_acceleration_g for s in domain.slices])
-    print("  t_p [s]     " + "".join(f"{d:9.2f}" for d in durations))
-    for h in steps:
-        values = found[h] if h == steps[-1] else found[h] - found[steps[-1]]
-        print(f"  h = {h * 1e3:5g} ms" + "".join(f"{x:+9.4f}" if h != steps[-1] else f"{x:9.4f}"
+        found[h, k] = np.array([s.failure_acceleration_g for s in domain.slices])
+    print("  t_p [s]        " + "".join(f"{d:9.2f}" for d in durations))
+    for config in steps:
+        last = config == steps[-1]
+        values = found[config] if last else found[config] - found[steps[-1]]
+        print(f"  {label(config)}" + "".join(f"{x:9.4f}" if last else f"{x:+9.4f}"
                                               for x in values))
 
 

@@ -192,6 +192,13 @@ DEFAULT_TIME_STEP = 1e-3
 other structure's default step is scaled from it
 (:func:`archquake.rigid_blocks.dynamics.structure_time_step`)."""
 
+DEFAULT_COARSE_FACTOR = 2
+"""Steps of the time step that the rigid-block model takes as one while no contact starts or
+stops carrying an impulse (:class:`archquake.rigid_blocks.BlockSettings`; every impact,
+lift-off and landing is taken at the time step) [-]: half the contact problems of a rocking
+arch, the failure accelerations of Oppenheim's arch at t_p = 0.3-0.7 s within 0.0008 g of
+those at a quarter of the step (``benchmarks/rigid_block_time_step.py``)."""
+
 REFERENCE_THICKNESS = 1.5
 """Thickness at which :data:`DEFAULT_TIME_STEP` resolves the rigid-block model (Oppenheim's arch:
 its failure accelerations within 0.001 g of those at a quarter of the step for t_p = 0.4-0.7 s,

@@ -138,15 +138,15 @@ def test_failure_accelerations_are_those_of_domain_of(quick):
     assert p["rows"][i]["rigid_blocks"] == one.slices[0].failure_acceleration_g
     row = p["rows"][i]
     assert row["difference"] == pytest.approx(row["four_link"] / row["rigid_blocks"] - 1.0)
-    # and the pulse at that amplitude collapses the rigid blocks, a little below it not
+    # and the pulse collapses the rigid blocks just above it, not just below it (the failure
+    # acceleration is the middle of the last bracket, at most a resolution wide)
     from archquake.ground_motion import oppenheim_pulse
 
     sign = -1.0 if p["direction"] == "l" else 1.0
-    a = row["rigid_blocks"]
-    at = blocks.outcome(oppenheim_pulse(sign * a * 9.80665, p["durations"][i]))
-    below = blocks.outcome(oppenheim_pulse(sign * (a - p["resolution_g"]) * 9.80665,
-                                           p["durations"][i]))
-    assert at.collapsed and not below.collapsed
+    a, half = row["rigid_blocks"], p["resolution_g"] / 2
+    above = blocks.outcome(oppenheim_pulse(sign * (a + half) * 9.80665, p["durations"][i]))
+    below = blocks.outcome(oppenheim_pulse(sign * (a - half) * 9.80665, p["durations"][i]))
+    assert above.collapsed and not below.collapsed
 
 
 def test_the_irregular_arches_are_those_of_run_fragility(quick):

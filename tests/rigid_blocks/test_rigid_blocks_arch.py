@@ -202,11 +202,19 @@ def test_arch_wedged_open_at_rest_is_a_recovery(nominal, amplitude):
     fraction of a millimetre come to rest with a joint held open a little wider than a closed
     gap. That is a recovery in a displaced configuration (``closed`` False), decided after a
     second of stillness, not an undecided run counted as a collapse; running 5 s past the
-    decision confirms it: the arch stays where it stopped, still, its crown up."""
+    decision confirms it: the arch stays where it stopped, still, its crown up.
+
+    The wedging is made by the steps: every step at 1 ms wedges here, while every step at 0.5
+    or 0.25 ms, and the default coarse steps, close the arch (a recovery, ``closed`` True); the
+    uniform 1 ms steps are kept for the decision they exercise."""
+    settings = BlockSettings(coarse_factor=1)
     motion = oppenheim_pulse(-amplitude * GRAVITY, 0.2)
-    decided = block_outcome(nominal, motion)
+    for converged in (BlockSettings(), BlockSettings(time_step=2.5e-4, coarse_factor=1)):
+        closed = block_outcome(nominal, motion, converged)
+        assert closed.status.label == "recovery" and closed.closed
+    decided = block_outcome(nominal, motion, settings)
     assert decided.status.label == "recovery" and decided.decided and not decided.closed
-    history = simulate_blocks(nominal, motion, t_end=decided.decision_time + 5.0,
+    history = simulate_blocks(nominal, motion, settings, t_end=decided.decision_time + 5.0,
                               record_every=50)
     after = history.times >= decided.decision_time
     assert np.all(history.kinetic_energy[after] < 1e-9 * nominal.total_mass * GRAVITY)

@@ -50,4 +50,5 @@ def test_a_smaller_arch_at_its_own_step_moves_as_the_large_one(duration, amplitu
     doubled = block_outcome(oppenheim(), oppenheim_pulse(-amplitude * GRAVITY, duration),
                             BlockSettings(time_step=2 * DEFAULT_TIME_STEP))
     assert coarse.status == doubled.status
-    assert coarse.max_rotation == pytest.approx(doubled.max_rotation, rel=1e-9, abs=1e-12)
+    # (a rest turns by round-off only, 1e-10 rad, which the steps chosen may change)
+    assert coarse.max_rotation == pytest.approx(doubled.max_rotation, rel=1e-9, abs=1e-9)

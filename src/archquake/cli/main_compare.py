@@ -98,7 +98,8 @@ def run(args: argparse.Namespace) -> int:
     print(f"Failure acceleration [g] under Oppenheim's pulse, first pulse "
           f"{'-' if args.direction == 'l' else '+'}a g; k = {comparison.load_multiplier:.4f}")
     settings = comparison.settings  # its time step chosen from the structure unless given
-    print(f"rigid blocks: friction {settings.friction:g}, time step {settings.time_step:g} s; "
+    print(f"rigid blocks: friction {settings.friction:g}, time step {settings.time_step:g} s "
+          f"(coarse factor {settings.coarse_factor}); "
           f"four-link c_v: {coefficients}; scan {amplitudes[0]:g}-{amplitudes[-1]:g} g, "
           f"boundaries to {args.resolution:g} g; (+x %): four-link vs rigid blocks")
     names = list(comparison.four_link)

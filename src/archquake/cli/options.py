@@ -24,6 +24,7 @@ import sys
 
 from ..constants import DEFAULT_DENSITY, DEFAULT_FILL_DENSITY
 from ..defaults import (
+    DEFAULT_COARSE_FACTOR,
     ANALYTIC_GROUND_MOTIONS,
     DEFAULT_EPSILON,
     DEFAULT_FILL_INERTIA,
@@ -549,7 +550,8 @@ def add_rigid_block_options(parser: argparse.ArgumentParser, *, time_step: bool 
                             help="time step of the rigid-block model [s] (default: chosen from "
                                  "the structure, 1 ms x sqrt(t / 1.5 m) for a thickness t: "
                                  "1 ms for Oppenheim's arch)")
-        parser.add_argument("--coarse-factor", type=int, default=1, metavar="K",
+        parser.add_argument("--coarse-factor", type=int, default=DEFAULT_COARSE_FACTOR,
+                            metavar="K",
                             help="take steps of K time steps while no contact starts or stops "
                                  "carrying an impulse, and every step where one does at the "
                                  "time step: 2 halves the time of a study at the accuracy of "
@@ -563,7 +565,7 @@ def block_settings_from_args(args: argparse.Namespace):
     from ..rigid_blocks import BlockSettings
 
     return BlockSettings(friction=args.friction, time_step=args.time_step,
-                         coarse_factor=getattr(args, "coarse_factor", 1))
+                         coarse_factor=getattr(args, "coarse_factor", DEFAULT_COARSE_FACTOR))
 
 
 # ---------------------------------------------------------------------------------------------

@@ -99,7 +99,8 @@ import numpy as np
 
 from .._equality import value_equality
 from ..checks import json_float
-from ..defaults import DEFAULT_FRICTION, DEFAULT_TIME_STEP, MAX_BLOCK_STEPS, REFERENCE_THICKNESS
+from ..defaults import (DEFAULT_COARSE_FACTOR, DEFAULT_FRICTION, DEFAULT_TIME_STEP, MAX_BLOCK_STEPS,
+                        REFERENCE_THICKNESS)
 from ..geometry import GRAVITY, BlockArch
 from ..ground_motion import LINEAR, STEP, GroundMotion
 from ..status import Status
@@ -239,7 +240,7 @@ class BlockSettings:
     rest_window: float = 0.1
     open_rest_window: float = 1.0
     settle_time: float = 20.0
-    coarse_factor: int = 1
+    coarse_factor: int = DEFAULT_COARSE_FACTOR
 
     def __post_init__(self):
         for f in fields(self):

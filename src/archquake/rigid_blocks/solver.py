@@ -1717,7 +1717,8 @@ def _changed(active, state, carried):
 
 
 @numba.njit(cache=True, _nrt=False)
-def steady_steps(step, h, ag, kind, params, times, values, settings, rest_count, closed):
+def steady_steps(step, h, ag, kind, params, times, values, settings, rest_count, closed,
+                 last):
     r"""How many steps from ``step`` on repeat a static equilibrium (0 if none can be skipped).
 
     Called after two consecutive steps at rest (kinetic energy at most
@@ -1732,8 +1733,9 @@ def steady_steps(step, h, ag, kind, params, times, values, settings, rest_count,
       times[i + 1]``, up to the step that meets ``times[i + 1]``);
     - after it, on a still ground: the steps of the count of rest up to the one that decides
       (its window, ``rest_steps`` if every joint is ``closed``, else ``open_rest_steps``, less
-      the ``rest_count`` steps already counted and the deciding one), so that the decision
-      falls on the same step as without the skip.
+      the ``rest_count`` steps already counted and the ``last`` steps ``h`` of the step just
+      taken, which the next test counts), so that the decision falls on the same step as
+      without the skip.
 
     Nothing of the outcome changes but the round-off of the skipped steps (velocities of
     :math:`10^{-13}` m/s). Returns the number of steps to skip [-]."""
@@ -1742,7 +1744,7 @@ def steady_steps(step, h, ag, kind, params, times, values, settings, rest_count,
         if ag != 0.0:
             return 0
         needed = settings[S_REST_STEPS] if closed else settings[S_OPEN_REST_STEPS]
-        return max(0, int(needed) - rest_count - 1)
+        return max(0, int(needed) - rest_count - last)
     if kind != STEP or abs(mean_acceleration(t, t + h, kind, params, times, values)
                            - ag) > 1e-12 * settings[S_GRAVITY]:  # the same, to round-off
         return 0
@@ -1965,7 +1967,7 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
         # -------- 10. at rest under a constant load: skip the steps that repeat it
         if not decided and max(kinetic_before, energies[0]) <= steady_energy:
             skip = min(steady_steps(step, h, ag, kind, params, times, values, settings,
-                                    rest_count, closed), stop_step - step)
+                                    rest_count, closed, last), stop_step - step)
             if recording:  # the skipped steps' records: the same state
                 for k in range(step, step + skip):
                     if k >= next_record:

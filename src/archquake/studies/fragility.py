@@ -87,6 +87,7 @@ import pandas as pd
 from .._equality import frozen_value
 from ..checks import check_integer, json_float
 from ..defaults import (
+    DEFAULT_COARSE_FACTOR,
     DEFAULT_EPSILON,
     DEFAULT_FRICTION,
     DEFAULT_RESTITUTION,
@@ -206,7 +207,7 @@ class FragilitySettings:
         a rigid-block study costs".
     coarse_factor : int
         Steps of ``time_step`` the rigid-block model takes as one while no contact starts or
-        stops carrying an impulse [-], >= 1 (default 1: every step at ``time_step``;
+        stops carrying an impulse [-], >= 1 (default 2; 1: every step at ``time_step``;
         :class:`archquake.rigid_blocks.BlockSettings`).
     friction : float
         Coulomb friction coefficient of the rigid-block model's joints [-] (ignored by the
@@ -234,7 +235,7 @@ class FragilitySettings:
     stride: int | None = None
     friction: float = DEFAULT_FRICTION
     time_step: float | None = None
-    coarse_factor: int = 1
+    coarse_factor: int = DEFAULT_COARSE_FACTOR
 
     def __post_init__(self) -> None:
         from ..fourlink.impact import check_restitution_model
@@ -375,7 +376,7 @@ class FragilitySettings:
                    stride=data.get("stride", DEFAULT_STRIDE),
                    friction=data.get("friction", DEFAULT_FRICTION),
                    time_step=data.get("time_step", DEFAULT_TIME_STEP),
-                   coarse_factor=data.get("coarse_factor", 1))
+                   coarse_factor=data.get("coarse_factor", 1))  # saved before coarse steps: 1
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, FragilitySettings):

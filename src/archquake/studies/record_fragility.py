@@ -123,6 +123,7 @@ import pandas as pd
 from .._equality import frozen_value
 from ..checks import check_integer
 from ..defaults import (
+    DEFAULT_COARSE_FACTOR,
     DEFAULT_EPSILON,
     DEFAULT_FRICTION,
     DEFAULT_IM,
@@ -233,7 +234,7 @@ class RecordFragilitySettings:
         structure; at most the records' sample spacing).
     coarse_factor : int
         Steps of ``time_step`` the rigid-block model takes as one while no contact starts or
-        stops carrying an impulse [-], >= 1 (default 1: every step at ``time_step``;
+        stops carrying an impulse [-], >= 1 (default 2; 1: every step at ``time_step``;
         :class:`archquake.rigid_blocks.BlockSettings`).
     friction : float
         Coulomb friction coefficient of the rigid-block model's joints [-].
@@ -259,7 +260,7 @@ class RecordFragilitySettings:
     stride: int | None = None
     friction: float = DEFAULT_FRICTION
     time_step: float | None = None
-    coarse_factor: int = 1
+    coarse_factor: int = DEFAULT_COARSE_FACTOR
 
     def __post_init__(self) -> None:
         from ..fourlink.impact import check_restitution_model
@@ -378,7 +379,7 @@ class RecordFragilitySettings:
                    stride=data.get("stride", DEFAULT_LEVEL_STRIDE),
                    friction=data.get("friction", DEFAULT_FRICTION),
                    time_step=data.get("time_step", DEFAULT_TIME_STEP),
-                   coarse_factor=data.get("coarse_factor", 1))
+                   coarse_factor=data.get("coarse_factor", 1))  # saved before coarse steps: 1
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, RecordFragilitySettings):
