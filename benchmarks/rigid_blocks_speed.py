@@ -47,6 +47,7 @@ from archquake import oppenheim  # noqa: E402
 from archquake.geometry import GRAVITY, CircularArch  # noqa: E402
 from archquake.ground_motion import oppenheim_pulse  # noqa: E402
 from archquake.rigid_blocks import (  # noqa: E402
+    BlockSettings,
     RigidBlockModel,  # noqa: E402
     block_outcome,
     simulate_blocks,
@@ -151,8 +152,13 @@ def per_analysis(arch, repeat: int, sweep: bool = True) -> None:
     pulse = oppenheim_pulse(-0.6 * GRAVITY, 0.4)
     one, outcome = _median_time(lambda: block_outcome(arch, pulse), repeat)
     print(f"  -0.6 g, t_p = 0.4 s, outcome only ({outcome.status}, certain at "
-          f"{outcome.decision_time:.3f} s, {outcome.steps} steps): {1e3 * one:7.2f} ms per "
-          f"analysis  ({1e6 * one / outcome.steps:.2f} us per step)")
+          f"{outcome.decision_time:.3f} s, {outcome.steps} steps of h): {1e3 * one:7.2f} ms per "
+          f"analysis  ({1e6 * one / outcome.steps:.2f} us per step of h)")
+    uniform = BlockSettings(coarse_factor=1)
+    every, same = _median_time(lambda: block_outcome(arch, pulse, uniform), repeat)
+    print(f"  same, every step at h (coarse_factor 1; {same.status}, certain at "
+          f"{same.decision_time:.3f} s): {1e3 * every:7.2f} ms per analysis; the default's "
+          f"coarse steps {every / one:.2f}x faster")
     if not sweep:
         return
     times, counts = [], {}

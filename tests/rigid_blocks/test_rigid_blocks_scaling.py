@@ -10,8 +10,13 @@ import pytest
 from archquake.cli import main
 from archquake.geometry import circular_arch
 from archquake.models import model_for
-from archquake.rigid_blocks import (MAX_BLOCKS, BlockSettings, RigidBlockModel, block_outcome,
-                                    from_arch)
+from archquake.rigid_blocks import (
+    MAX_BLOCKS,
+    BlockSettings,
+    RigidBlockModel,
+    block_outcome,
+    from_arch,
+)
 from archquake.rigid_blocks.dynamics import contact_arrays, simulate_blocks
 from archquake.rigid_blocks.solver import (
     ARCH_BANDWIDTH,

@@ -99,8 +99,13 @@ import numpy as np
 
 from .._equality import value_equality
 from ..checks import json_float
-from ..defaults import (DEFAULT_COARSE_FACTOR, DEFAULT_FRICTION, DEFAULT_TIME_STEP, MAX_BLOCK_STEPS,
-                        REFERENCE_THICKNESS)
+from ..defaults import (
+    DEFAULT_COARSE_FACTOR,
+    DEFAULT_FRICTION,
+    DEFAULT_TIME_STEP,
+    MAX_BLOCK_STEPS,
+    REFERENCE_THICKNESS,
+)
 from ..geometry import GRAVITY, BlockArch
 from ..ground_motion import LINEAR, STEP, GroundMotion
 from ..status import Status

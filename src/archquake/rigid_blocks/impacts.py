@@ -63,7 +63,7 @@ References
 from __future__ import annotations
 
 import math
-from dataclasses import replace, dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
