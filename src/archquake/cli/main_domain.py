@@ -105,7 +105,8 @@ def run(args: argparse.Namespace) -> int:
         what = f"restitution {c_lr:.4f} (l->r), {c_rl:.4f} (r->l)"
     else:
         what = (f"rigid-block model, friction {model.settings.friction:g}, time step "
-                f"{model.settings.time_step:g} s, search {domain.search}")
+                f"{model.settings.time_step:g} s (coarse factor {model.settings.coarse_factor}), "
+                f"search {domain.search}")
     print(f"Failure domain, first pulse {'-' if args.direction == 'l' else '+'}a g "
           f"(Mech-{args.direction}); k = {domain.limit_multiplier:.4f}; {what}; boundaries to "
           f"{args.resolution:g} g")

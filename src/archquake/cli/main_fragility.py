@@ -96,7 +96,7 @@ def run(args: argparse.Namespace) -> int:
     else:
         analysed = int(result.table["analysed"].sum())
         model = (f"rigid-block model (friction {settings.friction:g}, time step "
-                 f"{settings.time_step:g} s), search "
+                 f"{settings.time_step:g} s, coarse factor {settings.coarse_factor}), search "
                  f"{settings.search!r}: {analysed} analysed, the others inferred")
     print(f"Fragility study: h = {settings.sample_size} irregular arches (epsilon = "
           f"{settings.epsilon:g}, seed {settings.seed}), {len(settings.durations)} durations x "

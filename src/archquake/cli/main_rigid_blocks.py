@@ -90,7 +90,7 @@ def run(args: argparse.Namespace) -> int:
             "undecided": f"undecided: not decided by t = "
                          f"{outcome.steps * settings.time_step:.3f} s ({why})"}
     print(f"Rigid-block model, {motion.name}; friction {settings.friction:g}, time step "
-          f"{settings.time_step:g} s")
+          f"{settings.time_step:g} s (coarse factor {settings.coarse_factor})")
     print(text[outcome.status.label])
     print(f"largest rotation {outcome.max_rotation:.4f} rad, crown drop "
           f"{outcome.max_crown_drop:.4f} m, slip {outcome.max_slip:.2e} m, joint opening "
