@@ -125,7 +125,7 @@ class ReproductionSettings:
     record_levels_pga: tuple[float, ...] = RECORD_LEVELS["pga"]
     record_levels_pgv: tuple[float, ...] = RECORD_LEVELS["pgv"]
     record_bootstrap: int = 200
-    rigid_fragility_sample_size: int = 16
+    rigid_fragility_sample_size: int = 8
     quick: bool = False
 
     def __post_init__(self):
