@@ -16,8 +16,8 @@ RENAMED = {"tolerance": "epsilon"}
 ADDED = {"two_models", "fig16_failure_domain_both_models", "fig17_20_fragility_both_models",
          "rigid_fragility_sample_size", "coarse_factor"}
 """Keys added since the fixture was written (the paper's study with both models, the rigid blocks'
-coarse steps): a new key is
-allowed only if it is named here; every key of the fixture must still be there, unchanged."""
+coarse steps): a new key is allowed only if it is named here; every key of the fixture must still
+be there, unchanged."""
 
 
 def load_fixture(data_dir) -> dict:

@@ -198,7 +198,10 @@ class BlockSettings:
         Steps ``h`` taken as one while no contact starts or stops carrying an impulse [-],
         >= 1; a step in which one does is taken again at ``h`` (2, the default, halves the
         steps of a rocking arch and resolves every impact, lift-off and landing at ``h``:
-        :mod:`archquake.rigid_blocks.solver`, "Coarse steps"); 1 takes every step at ``h``.
+        :mod:`archquake.rigid_blocks.solver`, "Coarse steps"); 1 takes every step at ``h``. A
+        coarse step is never longer than the motion allows a step to be
+        (:func:`check_time_step`): under a shorter pulse or a finer record the analysis takes
+        fewer steps ``h`` as one, down to every step at ``h``.
 
     Raises
     ------
@@ -600,7 +603,7 @@ def resolved_settings(settings: BlockSettings | None, structure) -> BlockSetting
     return replace(settings, time_step=time_step_for(structure))
 
 
-def check_time_step(time_step: float, motion: GroundMotion, thickness: float) -> None:
+def check_time_step(time_step: float, motion: GroundMotion, thickness: float) -> float:
     r"""Refuse a time step that cannot resolve the motion.
 
     The step ``h`` must resolve the contact law and the ground motion:
@@ -631,6 +634,11 @@ def check_time_step(time_step: float, motion: GroundMotion, thickness: float) ->
     thickness : float
         Thickness (length scale) of the structure [m].
 
+    Returns
+    -------
+    float
+        The longest step allowed [s] (a coarse step is never longer).
+
     Raises
     ------
     ValueError
@@ -655,6 +663,7 @@ def check_time_step(time_step: float, motion: GroundMotion, thickness: float) ->
         name = motion.name or "the ground motion"
         raise ValueError(f"time_step must be at most {longest:.3g} s to resolve the motion "
                          f"({name}): {why}; got {time_step:g} s")
+    return longest
 
 
 def observation_windows(assembly: Assembly, settings: BlockSettings) -> tuple[float, float,
@@ -721,7 +730,9 @@ def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None,
     q0, v0 = _initial_state(assembly, initial)
     settings = resolved_settings(settings, assembly)
     h = float(settings.time_step)
-    check_time_step(h, motion, assembly.thickness)
+    longest = check_time_step(h, motion, assembly.thickness)
+    # a coarse step resolves the motion as a step must: never longer than the longest allowed
+    coarse = max(1, min(int(settings.coarse_factor), int(longest * (1.0 + 1e-9) / h)))
     excitation_end = motion.duration
     windows = observation_windows(assembly, settings)
     if t_end is not None and not (math.isfinite(t_end) and t_end > 0):
@@ -761,7 +772,7 @@ def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None,
         energy_margin=settings.energy_margin * total_mass * GRAVITY * thickness,
         record_stride=int(record_every), tail_steps=tail_steps,
         crown_block=crown_block, crown_x=crown_r[0], crown_y=crown_r[1],
-        coarse_factor=settings.coarse_factor)
+        coarse_factor=coarse)
     summary, records = solver.run(arrays["bodies"], arrays["contacts"], arrays["contact_bodies"],
                                   q0, v0, int(kind), params, times, values, packed)
     s = dict(zip(solver.SUMMARY_FIELDS, summary.tolist(), strict=True))

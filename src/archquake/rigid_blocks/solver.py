@@ -177,17 +177,18 @@ a pulse of 0.4 s).
 
 Coarse steps
 ------------
-With ``coarse_factor = k > 1`` (:class:`~archquake.rigid_blocks.dynamics.BlockSettings`; 1 by
-default) a step that starts on the grid of ``k h`` is first taken with the length ``k h``;
-where a contact starts or stops carrying an impulse in it (an impact, a lift-off, a landing: a
-contact enters or leaves the set of those that are active and stick or slide) or the
-active-set method does not converge, it is taken again from the same state at ``h``, and the
-steps at ``h`` go on to the next point of the coarse grid. Between the events of the contacts a
-rocking structure moves smoothly, and the second-order scheme keeps its accuracy at ``k h``;
-every event is resolved at ``h``. In this mode a contact that carried an impulse at the end of a
-step stays in the active set of the next while it is valid (the active-set method opens it if
-it separates): otherwise the lag of the Jacobian above ("Energy") lifts a persistent pivot off
-for one step at ``k h`` nearly every other step, and each lift-off would be an event. The
+With ``coarse_factor = k > 1`` (:class:`~archquake.rigid_blocks.dynamics.BlockSettings`; 2 by
+default, and never a step longer than the motion allows) a step that starts on the grid of
+``k h`` is first taken with the length ``k h``; where a contact starts or stops carrying an
+impulse in it (an impact, a lift-off, a landing: a contact enters or leaves the set of those
+that are active and stick or slide) or the active-set method does not converge, it is taken
+again from the same state at ``h``, and the steps at ``h`` go on to the next point of the
+coarse grid. Between the events of the contacts a rocking structure moves smoothly, and the
+second-order scheme keeps its accuracy at ``k h``; every event is resolved at ``h``. In this
+mode a contact that carried an impulse at the end of a step stays in the active set of the next
+while it is valid (the active-set method opens it if it separates): otherwise the lag of the
+Jacobian above ("Energy") lifts a persistent pivot off for one step at ``k h`` nearly every
+other step, and each lift-off would be an event. The
 energy balance of every step closes whatever its length. Measured
 (``benchmarks/rigid_block_time_step.py``, ``benchmarks/rigid_block_fragility.py``) at
 ``k = 2``, ``h = 1`` ms: the failure accelerations of Oppenheim's arch at t_p = 0.3-0.7 s lie
@@ -297,13 +298,13 @@ REST, RECOVERY, COLLAPSE = 0, 1, 2
 SUMMARY_FIELDS = (
     "status", "decided", "collapse_time", "decision_time", "max_rotation", "max_crown_drop",
     "max_slip", "max_opening", "max_drop", "steps", "iterations", "max_iterations_used",
-    "unconverged_steps", "final_time", "closed", "fallbacks", "steps_taken",
+    "unconverged_steps", "final_time", "closed", "fallbacks",
 )
 """Layout of the summary vector returned by :func:`run`: outcome code; 1 if decided; collapse and
 decision times [s] (nan if none); largest block rotation [rad], crown drop, slip, opening and
 drop [m]; steps, linear solves or sweeps in all, most in one step, unconverged steps [-]; final
-time of the run [s]; 1 if every joint was closed; steps left to Gauss-Seidel; steps taken (a
-coarse step counts once, ``steps`` counts it as the steps ``h`` it spans) [-]. Everything but
+time of the run [s]; 1 if every joint was closed; steps left to Gauss-Seidel [-] (a coarse step
+counts in ``steps`` as the steps ``h`` it spans). Everything but
 the final time is that of the decision (of the last step if undecided): a recording that goes on
 after the decision changes nothing of it."""
 
@@ -1885,7 +1886,7 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     closed = True
     iterations = max_used = unconverged = fallbacks = 0
     stop_step = n_steps
-    step = decision_step = taken = taken_at_decision = 0
+    step = decision_step = 0
     last = 1  # steps h of the last step taken
     hs = h  # its length [s]
     while step < stop_step:
@@ -1918,7 +1919,6 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
                 decided = True
                 decision_time = t
                 decision_step = step
-                taken_at_decision = taken
                 # -------- 5. stop?
                 if not recording:
                     break
@@ -1955,10 +1955,7 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
             if m == 1 or (direct and not _changed(active, state, carried)):
                 break
             # a contact starts or stops carrying an impulse: the step again, at h
-            for i in range(nb):
-                v[i, 0] = v_old[i, 0]
-                v[i, 1] = v_old[i, 1]
-                v[i, 2] = v_old[i, 2]
+            v[:] = v_old
             impulse[:] = impulse_k
             state[:] = state_k
             m = 1
@@ -1973,7 +1970,6 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
         work, energies[0] = _advance(q, v_old, v, bodies, hs, theta, ag)
         energies[3] += work
         step += m
-        taken += 1
         last = m
         # -------- 10. at rest under a constant load: skip the steps that repeat it
         if not decided and max(kinetic_before, energies[0]) <= steady_energy:
@@ -2001,7 +1997,6 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     summary[7] = max_opening
     summary[8] = max_drop
     summary[9] = decision_step if decided else step
-    summary[16] = taken_at_decision if decided else taken
     summary[10] = iterations
     summary[11] = max_used
     summary[12] = unconverged
