@@ -15,7 +15,7 @@ from archquake.cli.options import parse_values
 from archquake.defaults import DEFAULT_INTENSITY_MEASURES, REPORT_SEED
 from archquake.limit_analysis import both_directions
 from archquake.models import DEFAULT_MODEL
-from archquake.report.settings import ReproductionSettings
+from archquake.report.paper.settings import ReproductionSettings
 from archquake.rigid_blocks import BlockSettings
 from archquake.studies.comparison import compare_models
 from archquake.studies.failure_domain import domain_of, inclusive_range

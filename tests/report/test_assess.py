@@ -29,7 +29,7 @@ from archquake.limit_analysis import both_directions, shaped_min_thickness, stan
 from archquake.models import model_for
 from archquake.reference_arches import oppenheim
 from archquake.report.assess import assess, choose_suite
-from archquake.report.assess_settings import AssessmentSettings
+from archquake.report.assess.settings import AssessmentSettings
 from archquake.studies.failure_domain import domain_of
 from archquake.studies.record_fragility import STOCHASTIC_SUITE
 
@@ -194,7 +194,7 @@ def test_the_structure_alone_gets_the_nominal_part_of_the_record_study(quick):
     """A structure without irregular arches around it (a surveyed arch) gets the stripes, fit
     and bootstrap band the record-based study gives its nominal arch."""
     from archquake.ground_motion import RecordSuite
-    from archquake.report.assess_parts import structure_stripes
+    from archquake.report.assess.parts import structure_stripes
     from archquake.studies.record_fragility import load_record_fragility
 
     r = quick["results"]
@@ -361,7 +361,7 @@ def test_an_interrupted_assessment_continues_where_it_stopped(quick, tmp_path, m
     """Interrupted in its second record-based study, an assessment resumes: the finished study
     is loaded from its checkpoints, not run again, and the numbers are those of an assessment
     that was never interrupted."""
-    from archquake.report import assess_parts
+    from archquake.report.assess import parts as assess_parts
     from archquake.studies.record_fragility import load_record_fragility
 
     out = tmp_path / "report"

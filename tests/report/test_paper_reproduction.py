@@ -232,8 +232,8 @@ def test_both_models_section_comes_from_the_studies(report):
     """The section that runs Figs. 16-20 with both models: its numbers are those of the
     library's calls at the report's settings, and the text names the model that collapses."""
     from archquake import model_for, oppenheim
-    from archquake.report.parts import rigid_block_fragility
-    from archquake.report.settings import ReproductionSettings
+    from archquake.report.paper.parts import rigid_block_fragility
+    from archquake.report.paper.settings import ReproductionSettings
     from archquake.studies.failure_domain import domain_of, inclusive_range
 
     out, results = report

@@ -7,9 +7,9 @@ import pytest
 from report_regression import assert_same, load_fixture
 
 from archquake import oppenheim
-from archquake.report import parts
+from archquake.report.paper import parts
+from archquake.report.paper.settings import ARCH_NAMES, ReproductionSettings
 from archquake.report.render import jsonable
-from archquake.report.settings import ARCH_NAMES, ReproductionSettings
 
 QUICK = ReproductionSettings.quick_settings()
 

@@ -8,7 +8,8 @@ import re
 import numpy as np
 import pytest
 
-from archquake.report import text
+from archquake.report import formatting
+from archquake.report.paper import text
 from archquake.report.render import (
     Document,
     Figure,
@@ -81,13 +82,13 @@ def test_jsonable():
 
 
 def test_formatters():
-    assert text.number(math.pi) == "3.1416" and text.number(float("nan")) == "-"
-    assert text.number(None, 2) == "-" and text.number(2.0, 2) == "2.00"
-    assert text.signed(-0.00005, 4) == "-0.0001" and text.signed(None) == "-"
-    assert text.percent(0.0512) == "+5.1 %" and text.percent(None) == "-"
-    assert (text.agree(True), text.agree(False)) == ("agrees", "differs")
-    assert text.outcome_text("collapse", 2) == "collapse in half cycle 2"
-    assert text.outcome_text("recovery", 0) == "recovery"
+    assert formatting.number(math.pi) == "3.1416" and formatting.number(float("nan")) == "-"
+    assert formatting.number(None, 2) == "-" and formatting.number(2.0, 2) == "2.00"
+    assert formatting.signed(-0.00005, 4) == "-0.0001" and formatting.signed(None) == "-"
+    assert formatting.percent(0.0512) == "+5.1 %" and formatting.percent(None) == "-"
+    assert (formatting.agree(True), formatting.agree(False)) == ("agrees", "differs")
+    assert formatting.outcome_text("collapse", 2) == "collapse in half cycle 2"
+    assert formatting.outcome_text("recovery", 0) == "recovery"
     assert text.restitution_label("paper", (0.875, 0.875)) == "c_v = 0.875 (paper's)"
     assert text.restitution_label("computed", [0.6449, 0.6449]) == "c_v = 0.645 (computed)"
 
@@ -95,9 +96,9 @@ def test_formatters():
 def test_captions_state_the_verdict_they_are_given():
     for ok in (True, False):
         caption = text.free_vibration_caption("paper", (0.875, 0.875), ok)
-        assert caption.endswith(f"Ours: {text.agree(ok)} for all three arches.")
+        assert caption.endswith(f"Ours: {formatting.agree(ok)} for all three arches.")
         assert "Figs. 12-14" in caption and "c_v = 0.875 (paper's)" in caption
-        assert text.comparison_caption(ok).endswith(f" - {text.agree(ok)}.")
+        assert text.comparison_caption(ok).endswith(f" - {formatting.agree(ok)}.")
     assert "Figs. 9-11" in text.free_vibration_caption("elastic", (1.0, 1.0), True)
 
 

@@ -50,8 +50,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Assess the structure of the options into ``--out``."""
-    from ..report.assess import assess
-    from ..report.assess_settings import AssessmentSettings
+    from ..report.assess import AssessmentSettings, assess
 
     structure = options.nominal_arch_from_args(args)
     changes = {"epsilon": args.epsilon, "seed": args.seed, "restitution": args.restitution,

@@ -4,8 +4,9 @@ A report is a :class:`Document`: a title and :class:`Section` s of blocks -- a
 :class:`Paragraph`, a :class:`Bullets` list, a :class:`Table` (a header and rows of strings) or a
 :class:`Figure` (a PNG file beside the report, its label, caption and verdict).
 :func:`write_html` embeds every figure (base64), so the page opens offline;
-:func:`write_markdown` links them. :func:`jsonable` turns a report's numbers into plain JSON
-values and :func:`environment` records what ran them. Nothing here knows which report it writes.
+:func:`write_markdown` links them; :func:`save` writes a figure's PNG beside them.
+:func:`jsonable` turns a report's numbers into plain JSON values and :func:`environment` records
+what ran them. Nothing here knows which report it writes.
 
 >>> doc = Document("Example", "An example", (Section("Numbers", (
 ...     Paragraph("Two numbers."), Table(("a", "b"), (("1", "2"),)))),))
@@ -306,6 +307,33 @@ def write_markdown(path, document: Document) -> Path:
     return path
 
 
+# ------------------------------------------------------------------------------ figures
+DPI = 110
+"""Resolution of the report's PNG figures [dots per inch]."""
+
+
+def save(figure, directory, name: str) -> str:
+    """Write ``figure`` as PNG into ``directory`` and close it.
+
+    Parameters
+    ----------
+    figure : matplotlib.figure.Figure
+    directory : str or Path
+    name : str
+        File name.
+
+    Returns
+    -------
+    str
+        ``name``.
+    """
+    import matplotlib.pyplot as plt
+
+    figure.savefig(Path(directory) / name, dpi=DPI)
+    plt.close(figure)
+    return name
+
+
 # ------------------------------------------------------------------------------ JSON
 def jsonable(obj):
     """Plain JSON values: arrays to lists, NaN to None, tuple keys to strings.
@@ -357,6 +385,6 @@ def environment() -> dict:
             "processors": os.cpu_count()}
 
 
-__all__ = ["CSS", "Bullets", "Document", "Figure", "Paragraph", "Section", "Table", "environment",
-           "html_figure", "html_table", "jsonable", "markdown", "markdown_table", "write_html",
-           "write_markdown"]
+__all__ = ["CSS", "DPI", "Bullets", "Document", "Figure", "Paragraph", "Section", "Table",
+           "environment", "html_figure", "html_table", "jsonable", "markdown", "markdown_table",
+           "save", "write_html", "write_markdown"]

@@ -13,9 +13,9 @@ second process while the other parts run, so that its compilation and analyses c
 the report's time) and the record-based fragility of the arch and its irregular sample in PGA
 and PGV (:mod:`archquake.studies.record_fragility`, at a reduced size).
 
-This module only orchestrates: the parts compute (:mod:`archquake.report.parts`), the figures
-are drawn from their values (:mod:`archquake.report.figures`), the words written from them
-(:mod:`archquake.report.text`) and the files rendered (:mod:`archquake.report.render`). Every
+This module only orchestrates: the parts compute (:mod:`archquake.report.paper.parts`), the figures
+are drawn from their values (:mod:`archquake.report.paper.figures`), the words written from them
+(:mod:`archquake.report.paper.text`) and the files rendered (:mod:`archquake.report.render`). Every
 published number comes from ``archquake/data/paper_values.toml``
 (:func:`archquake.reference_arches.paper_values`); a statement of agreement in a caption is
 computed from the results, never written by hand.
@@ -27,10 +27,8 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..reference_arches import oppenheim, paper_values
-from . import figures as draw
-from . import parts, text
-from .render import (
+from ...reference_arches import oppenheim, paper_values
+from ..render import (
     Document,
     Figure,
     Paragraph,
@@ -38,10 +36,13 @@ from .render import (
     Table,
     environment,
     jsonable,
+    save,
     write_html,
     write_markdown,
 )
-from .running import Background, Steps
+from ..running import Background, Steps
+from . import figures as draw
+from . import parts, text
 from .settings import ReproductionSettings
 
 STEPS = ("limit analysis (Table 1)", "four-link mechanisms (Tables 2-3)",
@@ -79,7 +80,7 @@ class Reproduction:
 
 # ------------------------------------------------------------------------------ figures
 def _figure(directory: Path, name: str, figure, label: str, caption: str, agrees) -> Figure:
-    return Figure(draw.save(figure, directory, name), label, caption, agrees)
+    return Figure(save(figure, directory, name), label, caption, agrees)
 
 
 def paper_figures(directory, arches: parts.Arches, table1: dict, table3: dict,
@@ -93,7 +94,7 @@ def paper_figures(directory, arches: parts.Arches, table1: dict, table3: dict,
     directory : str or Path
         Where the PNG files go.
     arches, table1, table3, free, pulses, domain, fragility
-        The values of the parts (:mod:`archquake.report.parts`).
+        The values of the parts (:mod:`archquake.report.paper.parts`).
 
     Returns
     -------
@@ -351,9 +352,9 @@ def reproduce(out_dir, settings: ReproductionSettings | None = None, *,
     import matplotlib
 
     matplotlib.use("Agg")
-    from ..models import model_for
-    from ..results_io import write_json
-    from ..rigid_blocks.model import warm_up
+    from ...models import model_for
+    from ...results_io import write_json
+    from ...rigid_blocks.model import warm_up
 
     settings = ReproductionSettings() if settings is None else settings
     out = Path(out_dir)

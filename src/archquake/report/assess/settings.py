@@ -17,8 +17,8 @@ from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
-from ..checks import check_integer
-from ..defaults import (
+from ...checks import check_integer
+from ...defaults import (
     DEFAULT_EPSILON,
     DEFAULT_FRICTION,
     DEFAULT_RESTITUTION,
@@ -89,7 +89,7 @@ def time_scale(structure) -> float:
     .. [1] Housner, G. W. (1963). The behavior of inverted pendulum structures during
        earthquakes. Bulletin of the Seismological Society of America 53(2), 403-417.
     """
-    from ..reference_arches import oppenheim
+    from ...reference_arches import oppenheim
 
     return math.sqrt(arch_extent(structure) / arch_extent(oppenheim()))
 
@@ -121,7 +121,7 @@ class AssessmentSettings:
         Pulse durations of the failure domains when ``durations`` is None, >= 2.
     amplitude_points : int
         Points of the amplitude scan of the failure domains, from just below the activation to
-        the top (:func:`archquake.report.assess_parts.pulse_grid`), >= 10.
+        the top (:func:`archquake.report.assess.parts.pulse_grid`), >= 10.
     domain_resolution_g : float
         Bisection width of every boundary of both models' failure domains [g].
     fragility_sample_size : int
@@ -168,8 +168,8 @@ class AssessmentSettings:
     quick: bool = False
 
     def __post_init__(self):
-        from ..fourlink.impact import check_restitution_model
-        from ..rigid_blocks import BlockSettings
+        from ...fourlink.impact import check_restitution_model
+        from ...rigid_blocks import BlockSettings
 
         try:
             eps = float(self.epsilon)
@@ -233,7 +233,7 @@ class AssessmentSettings:
         period, ``sa(T)``."""
         out = ("pga", "pgv")
         if self.sa_period is not None:
-            from ..ground_motion.suites import stripe_measure
+            from ...ground_motion.suites import stripe_measure
 
             out += (stripe_measure(f"sa({self.sa_period:g})").name,)
         return out

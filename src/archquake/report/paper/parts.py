@@ -28,9 +28,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..constants import GRAVITY
-from ..reference_arches import oppenheim, paper_values
-from .running import TaskRun, run_here
+from ...constants import GRAVITY
+from ...reference_arches import oppenheim, paper_values
+from ..running import TaskRun, run_here
 from .settings import (
     AGREEMENT_BAND,
     ARCH_NAMES,
@@ -59,7 +59,7 @@ def paper_q() -> float:
 
 def q_agrees(q: float) -> bool:
     """Whether a failure acceleration at t_p = 0.40 s [g] agrees with the paper's point Q
-    (within :data:`~archquake.report.settings.Q_TOLERANCE_G`).
+    (within :data:`~archquake.report.paper.settings.Q_TOLERANCE_G`).
 
     Parameters
     ----------
@@ -81,8 +81,8 @@ class Arches:
     Attributes
     ----------
     models : mapping of str to FourLinkModel
-        By name (:data:`~archquake.report.settings.ARCH_NAMES`), with the paper's coefficient of
-        restitution (``settings.restitution``).
+        By name (:data:`~archquake.report.paper.settings.ARCH_NAMES`), with the paper's
+        coefficient of restitution (``settings.restitution``).
     """
 
     models: Mapping
@@ -125,8 +125,8 @@ def paper_arches(settings: ReproductionSettings, nominal=None) -> Arches:
     -------
     Arches
     """
-    from ..fourlink import FourLinkModel
-    from ..geometry import irregular_sample
+    from ...fourlink import FourLinkModel
+    from ...geometry import irregular_sample
 
     nominal = oppenheim() if nominal is None else nominal
     ra = irregular_sample(nominal, settings.epsilon, 2, settings.seed)
@@ -437,7 +437,7 @@ def pulse_responses(cases: dict, paper: dict) -> PulseResponses:
     -------
     PulseResponses
     """
-    from ..ground_motion import oppenheim_pulse
+    from ...ground_motion import oppenheim_pulse
 
     expected = {"NA": paper["dynamics"]["NA"]["pulse_cases"],
                 "RA-1": paper["dynamics"]["RA"]["ra1_pulse_cases"],
@@ -492,7 +492,7 @@ def domain_grid(settings: ReproductionSettings) -> np.ndarray:
     -------
     ndarray
     """
-    from ..studies.failure_domain import inclusive_range
+    from ...studies.failure_domain import inclusive_range
 
     return inclusive_range(0.30, settings.domain_amplitude_max_g, settings.domain_amplitude_step_g)
 
@@ -517,7 +517,7 @@ def failure_domain(settings: ReproductionSettings, arches: Arches,
     nominal = arches.nominal
     pair = cases["paper"].pair
     grid = domain_grid(settings)
-    from ..studies.failure_domain import domain_of
+    from ...studies.failure_domain import domain_of
 
     domain = domain_of(nominal.with_restitution(pair[0]), settings.domain_durations, grid,
                        resolution=settings.domain_resolution_g, extend_to_g=None)
@@ -591,9 +591,9 @@ def fragility(settings: ReproductionSettings, cases: dict, progress: bool = Fals
     -------
     FragilityPart
     """
-    from ..execution import default_backend
-    from ..studies.failure_domain import inclusive_range
-    from ..studies.fragility import FragilitySettings, run_fragility
+    from ...execution import default_backend
+    from ...studies.failure_domain import inclusive_range
+    from ...studies.fragility import FragilitySettings, run_fragility
 
     pair = cases["paper"].pair
     study = FragilitySettings(
@@ -646,7 +646,7 @@ def comparison_grid(settings: ReproductionSettings) -> np.ndarray:
     -------
     ndarray
     """
-    from ..studies.failure_domain import inclusive_range
+    from ...studies.failure_domain import inclusive_range
 
     return inclusive_range(0.30, settings.comparison_amplitude_max_g,
                            settings.comparison_amplitude_step_g)
@@ -668,7 +668,7 @@ def rigid_block_curve(blocks, settings: ReproductionSettings):
     FailureDomain
         The rigid-block model's failure domain over the comparison's scan (its default search).
     """
-    from ..studies.failure_domain import domain_of
+    from ...studies.failure_domain import domain_of
 
     return domain_of(blocks, settings.comparison_durations, comparison_grid(settings),
                      resolution=settings.comparison_resolution_g, extend_to_g=None)
@@ -695,8 +695,8 @@ def model_comparison(settings: ReproductionSettings, nominal, blocks,
     -------
     ComparisonPart
     """
-    from ..rigid_blocks.impacts import closing_impact
-    from ..studies.comparison import compare_models
+    from ...rigid_blocks.impacts import closing_impact
+    from ...studies.comparison import compare_models
 
     if curve is None:
         curve = run_here(rigid_block_curve, blocks, settings)
@@ -733,7 +733,7 @@ def model_comparison(settings: ReproductionSettings, nominal, blocks,
 def comparison_statistics(summary: dict) -> dict:
     """What the comparison says, computed from its rows: relative differences per model and
     duration (None: no failure in the scan), from which duration on each model stays within
-    :data:`~archquake.report.settings.AGREEMENT_BAND`, and the largest differences.
+    :data:`~archquake.report.paper.settings.AGREEMENT_BAND`, and the largest differences.
 
     Parameters
     ----------
@@ -832,7 +832,7 @@ def record_studies(settings: ReproductionSettings) -> dict:
     dict
         By intensity measure (``"pga"``, ``"pgv"``): the study's result.
     """
-    from ..studies.record_fragility import oppenheim_record_fragility
+    from ...studies.record_fragility import oppenheim_record_fragility
 
     return oppenheim_record_fragility(
         ("pga", "pgv"), records=settings.record_count, sample_size=settings.record_sample_size,
@@ -893,8 +893,8 @@ def rigid_block_fragility(settings: ReproductionSettings):
     -------
     FragilityResult
     """
-    from ..studies.failure_domain import inclusive_range
-    from ..studies.fragility import FragilitySettings, run_fragility
+    from ...studies.failure_domain import inclusive_range
+    from ...studies.fragility import FragilitySettings, run_fragility
 
     study = FragilitySettings(
         sample_size=settings.rigid_fragility_sample_size, epsilon=settings.epsilon,
@@ -981,8 +981,8 @@ def two_models(settings: ReproductionSettings, arches: Arches, cases: dict,
     -------
     TwoModelsPart
     """
-    from ..studies.comparison import domain_disagreement
-    from ..studies.failure_domain import domain_of
+    from ...studies.comparison import domain_disagreement
+    from ...studies.failure_domain import domain_of
 
     rigid_domain = comparison.comparison.rigid_block
     four_link = arches.nominal.with_restitution(cases["paper"].pair[0])

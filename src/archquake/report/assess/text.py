@@ -2,15 +2,15 @@
 written from the numbers of ``results.json`` (:func:`archquake.report.assess.assess`), never by
 hand.
 
-The formatters are those of every report (:mod:`archquake.report.text`); what is written here
+The formatters are those of every report (:mod:`archquake.report.paper.text`); what is written here
 is the assessment's own: the first screen (:func:`verdict_text`, :func:`summary_rows`,
 :func:`agreement_text`, :data:`ASSUMPTIONS`), then a paragraph, a table and a caption per part.
 """
 
 from __future__ import annotations
 
-from .assess_settings import AGREEMENT_BAND
-from .text import number, percent
+from ..formatting import number, percent
+from .settings import AGREEMENT_BAND
 
 ASSUMPTIONS = (
     "Rigid blocks: the masonry does not deform; all motion is rotation (and, in the rigid-block "

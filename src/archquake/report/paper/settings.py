@@ -11,8 +11,8 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass, field
 
-from ..defaults import COMPARE_DURATIONS, COMPARE_RESOLUTION_G, REPORT_SEED
-from ..fourlink.impact import PAPER_RESTITUTION
+from ...defaults import COMPARE_DURATIONS, COMPARE_RESOLUTION_G, REPORT_SEED
+from ...fourlink.impact import PAPER_RESTITUTION
 
 ARCH_NAMES = ("NA", "RA-1", "RA-2")
 """The paper's three arches: the nominal one and two irregular ones [paper, Sect. 3]."""

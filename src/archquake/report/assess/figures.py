@@ -1,8 +1,8 @@
 """The figures of an assessment, each drawn from the values of its parts
-(:mod:`archquake.report.assess_parts`).
+(:mod:`archquake.report.assess.parts`).
 
 Every function returns a :class:`matplotlib.figure.Figure`; its caption is written by
-:mod:`archquake.report.assess_text` and :func:`archquake.report.figures.save` writes it beside
+:mod:`archquake.report.assess.text` and :func:`archquake.report.paper.figures.save` writes it beside
 the report. The axes are drawn by :mod:`archquake.plotting`, so a figure of the report is the
 figure a user draws with the library. matplotlib is imported when a figure is drawn.
 """
@@ -42,7 +42,7 @@ def structure_figure(structure, analyses=None, *, title: str = ""):
     structure : BlockArch
         The structure.
     analyses : (LimitAnalysis, LimitAnalysis), optional
-        Mech-l and Mech-r (:attr:`archquake.report.assess_parts.LimitPart.analyses`); None
+        Mech-l and Mech-r (:attr:`archquake.report.assess.parts.LimitPart.analyses`); None
         draws the structure alone (one that cannot stand).
     title : str
         Title of a drawing of the structure alone.
@@ -53,7 +53,7 @@ def structure_figure(structure, analyses=None, *, title: str = ""):
     """
     import matplotlib.pyplot as plt
 
-    from ..plotting import plot_arch, plot_limit_analysis
+    from ...plotting import plot_arch, plot_limit_analysis
 
     if analyses is None:
         fig, ax = plt.subplots(figsize=(7.5, 5.0), constrained_layout=True)
@@ -87,7 +87,7 @@ def mechanisms_figure(model):
     """
     import matplotlib.pyplot as plt
 
-    from ..plotting import plot_potential_energy
+    from ...plotting import plot_potential_energy
 
     fig, ax = plt.subplots(figsize=(7.5, 4.4), constrained_layout=True)
     phi_max = 1.6 * max(m.phi_cr for m in model.mechanisms)
@@ -106,7 +106,7 @@ def domain_figure(pulses):
     Parameters
     ----------
     pulses : PulsePart
-        :func:`archquake.report.assess_parts.pulse_part`.
+        :func:`archquake.report.assess.parts.pulse_part`.
 
     Returns
     -------
@@ -114,7 +114,7 @@ def domain_figure(pulses):
     """
     import matplotlib.pyplot as plt
 
-    from ..plotting import plot_disagreement, plot_failure_domain
+    from ...plotting import plot_disagreement, plot_failure_domain
 
     fig, ax = plt.subplots(figsize=(9.0, 6.0), constrained_layout=True)
     governing = pulses.summary["direction"]
@@ -157,7 +157,7 @@ def irregularity_figure(irregularity, durations=None):
     Parameters
     ----------
     irregularity : IrregularityPart
-        :func:`archquake.report.assess_parts.irregularity_part`.
+        :func:`archquake.report.assess.parts.irregularity_part`.
     durations : sequence of float, optional
         The durations drawn (default: the study's first and last).
 
@@ -167,7 +167,7 @@ def irregularity_figure(irregularity, durations=None):
     """
     import matplotlib.pyplot as plt
 
-    from ..plotting import plot_fragility_curve
+    from ...plotting import plot_fragility_curve
 
     result = irregularity.result
     if durations is None:
@@ -188,7 +188,7 @@ def record_figure(results: dict):
     results : dict
         By intensity measure: a
         :class:`~archquake.studies.record_fragility.RecordFragilityResult` (or a
-        :class:`~archquake.report.assess_parts.StructureStripes`).
+        :class:`~archquake.report.assess.parts.StructureStripes`).
 
     Returns
     -------
@@ -196,9 +196,9 @@ def record_figure(results: dict):
     """
     import matplotlib.pyplot as plt
 
-    from ..plotting import plot_record_fragility
-    from .assess_parts import StructureStripes
-    from .assess_text import im_label
+    from ...plotting import plot_record_fragility
+    from .parts import StructureStripes
+    from .text import im_label
 
     n = len(results)
     fig, axes = plt.subplots(1, n, figsize=(5.6 * n, 5.0), constrained_layout=True,
@@ -221,7 +221,7 @@ def structure_stripes_axes(stripes, ax):
     Parameters
     ----------
     stripes : StructureStripes
-        :func:`archquake.report.assess_parts.structure_stripes`.
+        :func:`archquake.report.assess.parts.structure_stripes`.
     ax : matplotlib.axes.Axes
 
     Returns

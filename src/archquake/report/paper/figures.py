@@ -1,44 +1,18 @@
-"""The figures of a report, each drawn from values.
+"""The figures of the paper's report, each drawn from values.
 
-Every function takes what a part returned (:mod:`archquake.report.parts`) and returns a
-:class:`matplotlib.figure.Figure`; its caption is written by :mod:`archquake.report.text` and
-:func:`save` writes it beside the report. The axes are drawn by :mod:`archquake.plotting`, so
-a figure of the report is the figure a user draws with the library. matplotlib is imported when
-a figure is drawn.
+Every function takes what a part returned (:mod:`archquake.report.paper.parts`) and returns a
+:class:`matplotlib.figure.Figure`; its caption is written by
+:mod:`archquake.report.paper.text` and :func:`archquake.report.render.save` writes it beside the
+report. The axes are drawn by :mod:`archquake.plotting`, so a figure of the report is the figure
+a user draws with the library. matplotlib is imported when a figure is drawn.
 """
 
 from __future__ import annotations
 
-from pathlib import Path
-
-from ..constants import GRAVITY
+from ...constants import GRAVITY
+from ..formatting import outcome_text
 from .settings import ARCH_COLOURS, ARCH_NAMES, PULSE_RECORD_TIME
-from .text import outcome_text, restitution_label
-
-DPI = 110
-"""Resolution of the report's PNG figures [dots per inch]."""
-
-
-def save(figure, directory, name: str) -> str:
-    """Write ``figure`` as PNG into ``directory`` and close it.
-
-    Parameters
-    ----------
-    figure : matplotlib.figure.Figure
-    directory : str or Path
-    name : str
-        File name.
-
-    Returns
-    -------
-    str
-        ``name``.
-    """
-    import matplotlib.pyplot as plt
-
-    figure.savefig(Path(directory) / name, dpi=DPI)
-    plt.close(figure)
-    return name
+from .text import restitution_label
 
 
 def plot_history(history, ax, name: str, phi_limit: float):
@@ -49,7 +23,7 @@ def plot_history(history, ax, name: str, phi_limit: float):
     history : TimeHistory
     ax : matplotlib.axes.Axes
     name : str
-        The arch (:data:`~archquake.report.settings.ARCH_NAMES`).
+        The arch (:data:`~archquake.report.paper.settings.ARCH_NAMES`).
     phi_limit : float
         Limit of the rotation axis [rad].
 
@@ -57,7 +31,7 @@ def plot_history(history, ax, name: str, phi_limit: float):
     -------
     matplotlib.axes.Axes
     """
-    from ..plotting import plot_rotation_history
+    from ...plotting import plot_rotation_history
 
     out = history.outcome
     text = outcome_text(out.status.label, out.half_cycle)
@@ -77,7 +51,7 @@ def nominal_arch(arches, table1: dict):
     ----------
     arches : Arches
     table1 : dict
-        :func:`archquake.report.parts.limit_table`.
+        :func:`archquake.report.paper.parts.limit_table`.
 
     Returns
     -------
@@ -85,7 +59,7 @@ def nominal_arch(arches, table1: dict):
     """
     import matplotlib.pyplot as plt
 
-    from ..plotting import plot_limit_analysis
+    from ...plotting import plot_limit_analysis
 
     fig, ax = plt.subplots(figsize=(7.0, 4.6), constrained_layout=True)
     plot_limit_analysis(arches.nominal.limit[0], ax)
@@ -107,7 +81,7 @@ def irregular_arches(arches):
     """
     import matplotlib.pyplot as plt
 
-    from ..plotting import plot_limit_analysis
+    from ...plotting import plot_limit_analysis
 
     fig, axes = plt.subplots(2, 2, figsize=(12.0, 8.6), constrained_layout=True)
     nominal = arches.arch("NA")
@@ -133,7 +107,7 @@ def potential_energy(arches):
     """
     import matplotlib.pyplot as plt
 
-    from ..plotting import plot_potential_energy
+    from ...plotting import plot_potential_energy
 
     fig, axes = plt.subplots(1, 3, figsize=(14.0, 4.2), constrained_layout=True)
     for ax, name in zip(axes, ARCH_NAMES, strict=True):
@@ -190,8 +164,8 @@ def pulse_response(pulses, case: str):
     """
     import matplotlib.pyplot as plt
 
-    from ..ground_motion import oppenheim_pulse
-    from ..plotting import plot_ground_motion
+    from ...ground_motion import oppenheim_pulse
+    from ...plotting import plot_ground_motion
 
     entry = pulses.summary[case]
     rows = entry["cases"]
@@ -230,7 +204,7 @@ def failure_domain(domain, point=None):
     """
     import matplotlib.pyplot as plt
 
-    from ..plotting import plot_failure_domain
+    from ...plotting import plot_failure_domain
 
     fig, ax = plt.subplots(figsize=(8.0, 5.6), constrained_layout=True)
     plot_failure_domain(domain, ax)
@@ -257,7 +231,7 @@ def fragility_curve(result, duration: float):
     """
     import matplotlib.pyplot as plt
 
-    from ..plotting import plot_fragility_curve
+    from ...plotting import plot_fragility_curve
 
     fig, ax = plt.subplots(figsize=(7.5, 6.2), constrained_layout=True)
     plot_fragility_curve(result, duration, ax)
@@ -278,7 +252,7 @@ def fragility_surface(result):
     """
     import matplotlib.pyplot as plt
 
-    from ..plotting import plot_fragility_surface
+    from ...plotting import plot_fragility_surface
 
     fig = plt.figure(figsize=(8.5, 6.4), constrained_layout=True)
     ax = fig.add_subplot(projection="3d")
@@ -300,7 +274,7 @@ def model_comparison(comparison):
     """
     import matplotlib.pyplot as plt
 
-    from ..plotting import plot_model_comparison, plot_model_differences
+    from ...plotting import plot_model_comparison, plot_model_differences
 
     fig, (left, right) = plt.subplots(1, 2, figsize=(14.5, 5.6), constrained_layout=True,
                                       width_ratios=(1.2, 1.0))
@@ -316,7 +290,7 @@ def record_fragility(results: dict):
     ----------
     results : dict
         By intensity measure: the study's result
-        (:attr:`archquake.report.parts.RecordFragilityPart.results`).
+        (:attr:`archquake.report.paper.parts.RecordFragilityPart.results`).
 
     Returns
     -------
@@ -324,7 +298,7 @@ def record_fragility(results: dict):
     """
     import matplotlib.pyplot as plt
 
-    from ..plotting import plot_record_fragility
+    from ...plotting import plot_record_fragility
 
     fig, axes = plt.subplots(1, len(results), figsize=(13.0, 5.2), constrained_layout=True,
                              squeeze=False)
@@ -350,7 +324,7 @@ def two_model_domain(part):
     """
     import matplotlib.pyplot as plt
 
-    from ..plotting import plot_disagreement, plot_failure_domain
+    from ...plotting import plot_disagreement, plot_failure_domain
 
     fig, ax = plt.subplots(figsize=(8.0, 5.6), constrained_layout=True)
     plot_failure_domain(part.four_link_domain, ax)
@@ -404,7 +378,7 @@ def two_model_fragility(summary: dict):
     return fig
 
 
-__all__ = ["DPI", "failure_domain", "fragility_curve", "fragility_surface", "free_vibration",
+__all__ = ["failure_domain", "fragility_curve", "fragility_surface", "free_vibration",
            "irregular_arches", "model_comparison", "nominal_arch", "plot_history",
-           "potential_energy", "pulse_response", "record_fragility", "save", "two_model_domain",
+           "potential_energy", "pulse_response", "record_fragility", "two_model_domain",
            "two_model_fragility"]

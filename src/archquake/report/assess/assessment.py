@@ -25,9 +25,9 @@ in words and numbers, which model each comes from and how far the two agree, and
 assumptions. Each study runs in its own subdirectory of ``out_dir`` and finished parts are kept,
 so an interrupted assessment continues with ``resume=True``.
 
-This module only orchestrates: the parts compute (:mod:`archquake.report.assess_parts`), the
-figures are drawn from their values (:mod:`archquake.report.assess_figures`), the words written
-from the numbers (:mod:`archquake.report.assess_text`) and the files rendered
+This module only orchestrates: the parts compute (:mod:`archquake.report.assess.parts`), the
+figures are drawn from their values (:mod:`archquake.report.assess.figures`), the words written
+from the numbers (:mod:`archquake.report.assess.text`) and the files rendered
 (:mod:`archquake.report.render`).
 """
 
@@ -40,11 +40,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .._version import __version__
-from . import assess_parts as parts
-from . import assess_text as text
-from .assess_settings import DEFAULT_SUITE, FALLBACK_RECORDS, AssessmentSettings, time_scale
-from .render import (
+from ..._version import __version__
+from ..render import (
     Bullets,
     Document,
     Figure,
@@ -53,9 +50,12 @@ from .render import (
     Table,
     environment,
     jsonable,
+    save,
     write_html,
     write_markdown,
 )
+from . import parts, text
+from .settings import DEFAULT_SUITE, FALLBACK_RECORDS, AssessmentSettings, time_scale
 
 ASSESSMENT_JSON = "assessment.json"
 """What an assessment directory records of its assessment: the structure, the settings, the
@@ -141,9 +141,9 @@ def choose_suite(records=None, suite: str | None = None, settings: AssessmentSet
     ImportError
         For a built-in suite named explicitly without the ``records`` extra.
     """
-    from ..ground_motion.fema_p695 import INSTALL_HINT
-    from ..ground_motion.suites import RecordSuite
-    from ..studies.record_fragility import STOCHASTIC_SUITE
+    from ...ground_motion.fema_p695 import INSTALL_HINT
+    from ...ground_motion.suites import RecordSuite
+    from ...studies.record_fragility import STOCHASTIC_SUITE
 
     settings = AssessmentSettings() if settings is None else settings
     if records is not None and suite is not None:
@@ -197,7 +197,7 @@ def prepare_directory(out: Path, record: dict, resume: bool) -> None:
         For a directory that holds another assessment, or one without ``resume``, or files that
         are no assessment's.
     """
-    from ..results_io import read_json, write_json
+    from ...results_io import read_json, write_json
 
     if out.exists() and not out.is_dir():
         raise ValueError(f"out_dir {out} exists and is not a directory")
@@ -221,7 +221,7 @@ def prepare_directory(out: Path, record: dict, resume: bool) -> None:
 
 def _kept(out: Path, name: str, key: dict):
     """A finished part kept in :data:`PARTS_DIR`, if it was computed from ``key``."""
-    from ..results_io import read_json
+    from ...results_io import read_json
 
     path = out / PARTS_DIR / f"{name}.json"
     if not path.is_file():
@@ -231,7 +231,7 @@ def _kept(out: Path, name: str, key: dict):
 
 
 def _keep(out: Path, name: str, key: dict, value) -> None:
-    from ..results_io import write_json
+    from ...results_io import write_json
 
     (out / PARTS_DIR).mkdir(exist_ok=True)
     write_json(out / PARTS_DIR / f"{name}.json", {"key": jsonable(key),
@@ -345,9 +345,9 @@ def assess(structure=None, *, records=None, suite: str | None = None,
     >>> report.verdict[:16]  # doctest: +SKIP
     'VERDICT: STANDS.'
     """
-    from ..geometry import BlockArch
-    from ..reference_arches import oppenheim
-    from .running import Steps
+    from ...geometry import BlockArch
+    from ...reference_arches import oppenheim
+    from ..running import Steps
 
     t_start = time.perf_counter()
     structure = oppenheim() if structure is None else structure
@@ -406,7 +406,7 @@ def structure_name(structure) -> str:
     """
     import math
 
-    from ..geometry import CircularArch
+    from ...geometry import CircularArch
 
     arch = getattr(structure, "arch", structure)
     n = arch.n_voussoirs
@@ -428,7 +428,7 @@ def structure_name(structure) -> str:
 
 
 def _structure_entry(structure) -> dict:
-    from ..geometry.structure import describe_arch
+    from ...geometry.structure import describe_arch
 
     description = describe_arch(structure)
     if description.startswith("n ="):
@@ -452,7 +452,7 @@ class _Computed:
 def _compute(structure, settings: AssessmentSettings, suite, suite_note: str, out: Path,
              resume: bool, results: dict, steps) -> _Computed:
     """Run the parts in order, filling ``results``; the rigid blocks on a second process."""
-    from .running import Background
+    from ..running import Background
 
     computed = _Computed()
     with steps("limit analysis"):
@@ -614,7 +614,7 @@ def _sizes(settings: AssessmentSettings, results: dict, suite) -> dict:
     rec = results.get("records") or {}
     if "ims" in rec:
         first = next(iter(rec["ims"].values()))
-        from ..ground_motion.fema_p695 import BUILTIN_SUITES
+        from ...ground_motion.fema_p695 import BUILTIN_SUITES
 
         whole = (BUILTIN_SUITES[rec["suite"]["name"]].motions if rec["suite"]["kind"] ==
                  "builtin" else len(suite))
@@ -654,8 +654,6 @@ def _summary(results: dict) -> dict:
 
 # ------------------------------------------------------------------------------ figures
 def _figure(directory: Path, name: str, figure, label: str, caption: str) -> Figure:
-    from .figures import save
-
     return Figure(save(figure, directory, name), label, caption, None)
 
 
@@ -664,7 +662,7 @@ def _figures(out: Path, structure, results: dict, computed: _Computed) -> dict:
     import matplotlib
 
     matplotlib.use("Agg")
-    from . import assess_figures as draw
+    from . import figures as draw
 
     figures = {}
     limit = computed.limit
@@ -808,7 +806,7 @@ def write_report(directory, results: dict, figures: dict) -> tuple[str, ...]:
     tuple of str
         Every file of the report in ``directory``.
     """
-    from ..results_io import write_json
+    from ...results_io import write_json
 
     out = Path(directory)
     results["figures"] = {key: {"file": f.file, "label": f.label, "caption": f.caption}

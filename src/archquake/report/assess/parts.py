@@ -32,7 +32,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .assess_settings import AGREEMENT_BAND, AssessmentSettings
+from .settings import AGREEMENT_BAND, AssessmentSettings
 
 DIRECTIONS = ("l", "r")
 """The two directions of a mechanism: Mech-l (forces left to right) and Mech-r."""
@@ -141,8 +141,8 @@ def limit_part(structure) -> LimitPart:
         The verdict of :func:`archquake.limit_analysis.standing`; when it stands, the analyses
         of :func:`archquake.limit_analysis.both_directions` (static method).
     """
-    from ..errors import CannotStandError, NeverCollapsesError
-    from ..limit_analysis import both_directions, standing
+    from ...errors import CannotStandError, NeverCollapsesError
+    from ...limit_analysis import both_directions, standing
 
     verdict = standing(structure)
     summary = {"verdict": {"stands": verdict.stands, "part": verdict.part,
@@ -204,9 +204,9 @@ def safety_factor(structure) -> dict:
         none); an arch on piers also has ``thickness`` (the bare arch's factor, a dict of the
         same keys) when it is defined.
     """
-    from ..errors import CannotStandError
-    from ..geometry import CircularArch, ShapedArch, Structure, circular_arch, shaped_arch
-    from ..limit_analysis import min_pier_width, min_thickness, shaped_min_thickness
+    from ...errors import CannotStandError
+    from ...geometry import CircularArch, ShapedArch, Structure, circular_arch, shaped_arch
+    from ...limit_analysis import min_pier_width, min_thickness, shaped_min_thickness
 
     arch = structure.arch if isinstance(structure, Structure) else structure
     thickness = {"kind": None, "value": None, "minimum": None, "factor": None}
@@ -304,7 +304,7 @@ def four_link_part(structure, settings: AssessmentSettings) -> FourLinkPart:
     -------
     FourLinkPart
     """
-    from ..fourlink import FourLinkModel
+    from ...fourlink import FourLinkModel
 
     try:
         model = FourLinkModel.from_arch(structure, settings.restitution)
@@ -369,7 +369,7 @@ def four_link_domains(model, durations, amplitudes_g, resolution: float) -> dict
     dict of str to FailureDomain
         By direction, ``"l"`` and ``"r"``.
     """
-    from ..studies.failure_domain import domain_of
+    from ...studies.failure_domain import domain_of
 
     return {d: domain_of(model, durations, amplitudes_g, direction=d, resolution=resolution,
                          extend_to_g=None) for d in DIRECTIONS}
@@ -401,8 +401,8 @@ def rigid_block_domain(structure, durations, amplitudes_g, direction: str, resol
         :class:`~archquake.rigid_blocks.RigidBlockModel` (its default search: screened by the
         four-link model).
     """
-    from ..rigid_blocks import BlockSettings, RigidBlockModel
-    from ..studies.failure_domain import domain_of
+    from ...rigid_blocks import BlockSettings, RigidBlockModel
+    from ...studies.failure_domain import domain_of
 
     model = RigidBlockModel(structure, BlockSettings(friction=friction))
     return domain_of(model, durations, amplitudes_g, direction=direction,
@@ -443,7 +443,7 @@ def domain_from_dict(data: dict):
     -------
     FailureDomain
     """
-    from ..studies.failure_domain import DomainSlice, FailureDomain, Interval
+    from ...studies.failure_domain import DomainSlice, FailureDomain, Interval
 
     slices = tuple(DomainSlice(s["duration"], tuple(Interval(a, b, status, int(h))
                                                     for a, b, status, h in s["intervals"]),
@@ -497,7 +497,7 @@ def significant_disagreement(disagreement, width_g: float):
     -------
     Disagreement
     """
-    from ..studies.comparison import Disagreement
+    from ...studies.comparison import Disagreement
 
     return Disagreement(disagreement.durations,
                         tuple(tuple(iv for iv in piece if iv[1] - iv[0] > width_g)
@@ -517,7 +517,7 @@ def agreement(rows: list[dict]) -> dict:
     Returns
     -------
     dict
-        ``band`` (:data:`~archquake.report.assess_settings.AGREEMENT_BAND`), ``within``
+        ``band`` (:data:`~archquake.report.assess.settings.AGREEMENT_BAND`), ``within``
         (durations whose failure accelerations agree within it), ``compared`` (durations where
         both collapse in the scan), ``largest`` (``{"difference", "duration"}`` of the largest
         difference, or None), ``median_abs`` (median of the absolute differences), ``from``
@@ -565,7 +565,7 @@ def pulse_part(four_link: dict | None, rigid_blocks, governing: str,
     -------
     PulsePart
     """
-    from ..studies.comparison import domain_disagreement
+    from ...studies.comparison import domain_disagreement
 
     rows = []
     fl = None if four_link is None else four_link[governing]
@@ -689,7 +689,7 @@ def irregularity_part(structure, settings: AssessmentSettings, durations, amplit
     -------
     IrregularityPart
     """
-    from ..studies.fragility import FragilitySettings, run_fragility
+    from ...studies.fragility import FragilitySettings, run_fragility
 
     study = FragilitySettings(
         nominal=structure, sample_size=settings.fragility_sample_size,
@@ -731,7 +731,7 @@ def select_records(suite, count: int | None):
     -------
     RecordSuite
     """
-    from ..ground_motion.suites import RecordSuite
+    from ...ground_motion.suites import RecordSuite
 
     if count is None or count >= len(suite):
         return suite
@@ -770,7 +770,7 @@ def record_pilot(model, suite) -> dict:
         ``pga_levels`` [g] of the grid, ``pga`` of every record [g] and ``first_factor`` [-]
         of every record (None: no collapse on the grid).
     """
-    from ..studies.record_fragility import record_outcomes
+    from ...studies.record_fragility import record_outcomes
 
     k = min(model.load_multipliers)
     grid = k * np.geomspace(*PILOT_RANGE)
@@ -815,7 +815,7 @@ def stripe_levels(pilot: dict, suite, im: str, count: int, weaker: float = 1.0
     tuple of float
         Increasing levels [the IM's unit].
     """
-    from ..ground_motion.suites import stripe_measure
+    from ...ground_motion.suites import stripe_measure
 
     measure = stripe_measure(im)
     values = suite.intensities(measure.name)
@@ -861,7 +861,7 @@ def record_study(structure, suite, im: str, levels, settings: AssessmentSettings
     -------
     RecordFragilityResult
     """
-    from ..studies.record_fragility import RecordFragilitySettings, run_record_fragility
+    from ...studies.record_fragility import RecordFragilitySettings, run_record_fragility
 
     study = RecordFragilitySettings(
         suite=suite, levels=tuple(levels), im=im, nominal=structure,
@@ -922,8 +922,8 @@ def rigid_block_record_outcomes(structure, suite: dict, level_pga: float,
         Per record, the status code (:class:`archquake.status.Status`: 0 rest, 1 recovery,
         2 collapse) as recorded and reversed.
     """
-    from ..ground_motion.suites import RecordSuite
-    from ..rigid_blocks import BlockSettings, RigidBlockModel
+    from ...ground_motion.suites import RecordSuite
+    from ...rigid_blocks import BlockSettings, RigidBlockModel
 
     records = RecordSuite.from_dict(suite)
     model = RigidBlockModel(structure, BlockSettings(friction=friction))
@@ -958,7 +958,7 @@ def record_check(model, suite, level_pga: float, rigid_blocks: list) -> dict:
         pairs where the two agree) and ``by_record`` (``name``, the status codes of both
         models as recorded and reversed).
     """
-    from ..studies.record_fragility import record_outcomes
+    from ...studies.record_fragility import record_outcomes
 
     rows, counts = [], {"both": 0, "neither": 0, "four_link_only": 0, "rigid_blocks_only": 0}
     for motion, pga, rb, name in zip(suite.motions(cached=True), suite.intensities("pga"),
@@ -1095,9 +1095,9 @@ def structure_stripes(model, suite, im: str, levels, *, bootstrap: int, seed: in
     -------
     StructureStripes
     """
-    from ..ground_motion.suites import stripe_measure
-    from ..studies.fits import bootstrap_lognormal, lognormal_fit
-    from ..studies.record_fragility import BOOTSTRAP_KEY, DEFAULT_CONFIDENCE, record_outcomes
+    from ...ground_motion.suites import stripe_measure
+    from ...studies.fits import bootstrap_lognormal, lognormal_fit
+    from ...studies.record_fragility import BOOTSTRAP_KEY, DEFAULT_CONFIDENCE, record_outcomes
 
     measure = stripe_measure(im)
     x = np.asarray(levels, dtype=float)
@@ -1174,8 +1174,8 @@ def export_structure_nrml(stripes: StructureStripes, directory) -> tuple[str | N
     (str or None, str)
         The file's name, or None and why no file was written.
     """
-    from .._version import __version__
-    from ..results_io import write_fragility_nrml
+    from ..._version import __version__
+    from ...results_io import write_fragility_nrml
 
     if stripes.lognormal is None:
         return None, ("no fragility function to export: the stripes admit no lognormal fit (no "

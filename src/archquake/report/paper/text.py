@@ -1,102 +1,18 @@
-"""The words of a report: numbers formatted, captions, paragraphs and table rows, each written
-from values.
+"""The words of the paper's report: captions, paragraphs and table rows, each written from
+values.
 
 Every sentence that states a number or a verdict is written here from the values a part returned
-(:mod:`archquake.report.parts`) or their JSON form (``results.json``), never by hand. The
-formatters (:func:`number`, :func:`signed`, :func:`percent`, :func:`agree`,
-:func:`outcome_text`) and :func:`run_info` serve any report; the rest writes the paper's.
-
->>> number(0.123456), signed(0.0123, 3), percent(-0.05), number(None)
-('0.1235', '+0.012', '-5.0 %', '-')
+(:mod:`archquake.report.paper.parts`) or their JSON form (``results.json``), never by hand, with
+the formatters of every report (:mod:`archquake.report.formatting`); :func:`run_info` serves any
+report.
 """
 
 from __future__ import annotations
 
-import math
-
+from ..formatting import agree, number, outcome_text, percent, signed
+from ..render import Paragraph, Table
 from .parts import below_nominal, comparison_statistics, paper_q, q_agrees
-from .render import Paragraph, Table
 from .settings import AGREEMENT_BAND
-
-
-# ------------------------------------------------------------------------------ formatters
-def number(x, digits: int = 4) -> str:
-    """``x`` to ``digits`` decimals; ``"-"`` for None or nan.
-
-    Parameters
-    ----------
-    x : float or None
-    digits : int
-
-    Returns
-    -------
-    str
-    """
-    if x is None or (isinstance(x, float) and math.isnan(x)):
-        return "-"
-    return f"{x:.{digits}f}"
-
-
-def signed(x, digits: int = 4) -> str:
-    """``x`` with its sign to ``digits`` decimals; ``"-"`` for None.
-
-    Parameters
-    ----------
-    x : float or None
-    digits : int
-
-    Returns
-    -------
-    str
-    """
-    return "-" if x is None else f"{x:+.{digits}f}"
-
-
-def percent(x) -> str:
-    """A relative difference [-] in percent with its sign; ``"-"`` for None.
-
-    Parameters
-    ----------
-    x : float or None
-
-    Returns
-    -------
-    str
-    """
-    return "-" if x is None else f"{100 * x:+.1f} %"
-
-
-def agree(ok: bool) -> str:
-    """The verdict word: ``"agrees"`` or ``"differs"``.
-
-    Parameters
-    ----------
-    ok : bool
-
-    Returns
-    -------
-    str
-    """
-    return "agrees" if ok else "differs"
-
-
-def outcome_text(status: str, half_cycle: int) -> str:
-    """An outcome in words: ``"collapse in half cycle 2"``, ``"recovery"``, ``"rest"``.
-
-    Parameters
-    ----------
-    status : str
-        The outcome's label (:attr:`archquake.status.Status.label`).
-    half_cycle : int
-        The half cycle of a collapse.
-
-    Returns
-    -------
-    str
-    """
-    if status == "collapse":
-        return f"collapse in half cycle {half_cycle}"
-    return status
 
 
 def restitution_label(case: str, pair) -> str:
@@ -141,7 +57,7 @@ def nominal_arch_caption(table1: dict) -> str:
     Parameters
     ----------
     table1 : dict
-        :func:`archquake.report.parts.limit_table`.
+        :func:`archquake.report.paper.parts.limit_table`.
 
     Returns
     -------
@@ -170,7 +86,7 @@ def potential_energy_caption(table3: dict) -> str:
     Parameters
     ----------
     table3 : dict
-        Table 3 (:func:`archquake.report.parts.mechanism_tables`).
+        Table 3 (:func:`archquake.report.paper.parts.mechanism_tables`).
 
     Returns
     -------
@@ -212,7 +128,7 @@ def free_vibration_caption(case: str, pair, agrees: bool) -> str:
     pair : (float, float)
         Its ``(c_lr, c_rl)`` [-].
     agrees : bool
-        :meth:`archquake.report.parts.FreeVibrations.agrees`.
+        :meth:`archquake.report.paper.parts.FreeVibrations.agrees`.
 
     Returns
     -------
@@ -237,7 +153,7 @@ def pulse_response_caption(summary: dict, case: str) -> str:
     Parameters
     ----------
     summary : dict
-        :attr:`archquake.report.parts.PulseResponses.summary`.
+        :attr:`archquake.report.paper.parts.PulseResponses.summary`.
     case : str
 
     Returns
@@ -264,7 +180,7 @@ def failure_domain_caption(summary: dict) -> str:
     Parameters
     ----------
     summary : dict
-        :attr:`archquake.report.parts.FailureDomainPart.summary`.
+        :attr:`archquake.report.paper.parts.FailureDomainPart.summary`.
 
     Returns
     -------
@@ -290,7 +206,7 @@ def fragility_curve_caption(result, curve: dict) -> str:
     result : FragilityResult
         The study.
     curve : dict
-        Its entry for the duration (:attr:`archquake.report.parts.FragilityPart.curves`).
+        Its entry for the duration (:attr:`archquake.report.paper.parts.FragilityPart.curves`).
 
     Returns
     -------
@@ -320,7 +236,7 @@ def fragility_surface_caption(result, curves: list) -> str:
     result : FragilityResult
         The study.
     curves : list of dict
-        :attr:`archquake.report.parts.FragilityPart.curves`.
+        :attr:`archquake.report.paper.parts.FragilityPart.curves`.
 
     Returns
     -------
@@ -343,7 +259,7 @@ def comparison_caption(agrees: bool) -> str:
     Parameters
     ----------
     agrees : bool
-        :func:`archquake.report.parts.long_pulses_agree`.
+        :func:`archquake.report.paper.parts.long_pulses_agree`.
 
     Returns
     -------
@@ -362,7 +278,7 @@ def record_fragility_caption(summary: dict) -> str:
     Parameters
     ----------
     summary : dict
-        :attr:`archquake.report.parts.RecordFragilityPart.summary`.
+        :attr:`archquake.report.paper.parts.RecordFragilityPart.summary`.
 
     Returns
     -------
@@ -389,7 +305,7 @@ def table1_rows(table1: dict) -> list[list[str]]:
     Parameters
     ----------
     table1 : dict
-        ``results["table1"]`` (:func:`archquake.report.parts.limit_table`).
+        ``results["table1"]`` (:func:`archquake.report.paper.parts.limit_table`).
 
     Returns
     -------
@@ -432,7 +348,7 @@ def table2_rows(table2: dict) -> list[list[str]]:
     Parameters
     ----------
     table2 : dict
-        ``results["table2"]`` (:func:`archquake.report.parts.mechanism_tables`).
+        ``results["table2"]`` (:func:`archquake.report.paper.parts.mechanism_tables`).
 
     Returns
     -------
@@ -459,7 +375,7 @@ def table3_rows(table3: dict) -> list[list[str]]:
     Parameters
     ----------
     table3 : dict
-        ``results["table3"]`` (:func:`archquake.report.parts.mechanism_tables`).
+        ``results["table3"]`` (:func:`archquake.report.paper.parts.mechanism_tables`).
 
     Returns
     -------
