@@ -104,6 +104,7 @@ from .errors import CannotStandError, NeverCollapsesError
 from .geometry import (
     FACES,
     BlockArch,
+    CircularArch,
     Fill,
     Hinge,
     Pier,
@@ -1589,3 +1590,159 @@ def min_pier_width(arch: BlockArch, height: float, courses: int = 1, *,
             raise ValueError(f"no pier width up to {hi:.4g} m makes this arch stand on piers "
                              f"{height:g} m high")
     return float(brentq(margin, lo, hi, xtol=xtol))
+
+
+# ---------------------------------------------------------------------------------- safety
+@dataclass(frozen=True)
+class GeometricSafetyFactor:
+    """Heyman's geometric factor of safety of a structure, or why it has none.
+
+    Attributes
+    ----------
+    kind : {"thickness", "pier width"} or None
+        What is scaled: the arch's thickness or its piers' width; None when the factor is not
+        defined (``note`` says why).
+    value : float or None
+        The structure's thickness or pier width [m].
+    minimum : float or None
+        The least thickness or pier width on which it stands under its own weight [m].
+    factor : float or None
+        ``value / minimum`` [-].
+    note : str
+        What the factor is of, or why there is none.
+    thickness : GeometricSafetyFactor or None
+        For an arch on piers: the bare arch's factor in thickness (whether defined or not);
+        None otherwise.
+    """
+
+    kind: str | None
+    value: float | None
+    minimum: float | None
+    factor: float | None
+    note: str
+    thickness: GeometricSafetyFactor | None = None
+
+    def to_dict(self) -> dict:
+        """The factor as JSON-ready data.
+
+        Returns
+        -------
+        dict
+            ``kind``, ``value`` and ``minimum`` [m], ``factor`` [-] (None when not defined) and
+            ``note``; an arch on piers also has ``thickness``, the bare arch's factor as a dict
+            of the same keys.
+        """
+        out = {"kind": self.kind, "value": self.value, "minimum": self.minimum,
+               "factor": self.factor}
+        if self.thickness is not None:
+            out["thickness"] = self.thickness.to_dict()
+        out["note"] = self.note
+        return out
+
+
+def _same_geometry(arch: BlockArch, other: BlockArch) -> bool:
+    """Whether two arches have the same joints (to 1e-9 of their size) and kind."""
+    return (type(arch) is type(other) and arch.n_voussoirs == other.n_voussoirs
+            and bool(np.allclose(arch.joints, other.joints, rtol=0.0,
+                                 atol=1e-9 * arch.length_scale)))
+
+
+def _thickness_safety_factor(arch: BlockArch) -> GeometricSafetyFactor:
+    """The factor in thickness of an arch on fixed springings (its fill set aside)."""
+    try:
+        if isinstance(arch, CircularArch):
+            t, r, n = float(arch.thicknesses[0]), float(arch.radii[0]), arch.n_voussoirs
+            if _same_geometry(arch, circular_arch(r, arch.embrace, t, n, density=arch.density)):
+                t_min = min_thickness(r, arch.embrace, n)
+                return GeometricSafetyFactor(
+                    "thickness", t, t_min, t / t_min,
+                    f"thickness over the minimum thickness of a circular arch of the same "
+                    f"radius, embrace and {n} voussoirs")
+        elif isinstance(arch, ShapedArch):
+            line, t, n = arch.centreline, float(arch.thicknesses[0]), arch.n_voussoirs
+            nominal = shaped_arch(line.shape, thickness=t, voussoirs=n, span=line.span,
+                                  rise=line.rise, faces=arch.faces, density=arch.density)
+            if _same_geometry(arch, nominal):
+                t_min = shaped_min_thickness(line.shape, voussoirs=n, span=line.span,
+                                             rise=line.rise, faces=arch.faces)
+                return GeometricSafetyFactor(
+                    "thickness", t, t_min, t / t_min,
+                    f"thickness over the minimum thickness of a {line.shape} arch of the same "
+                    f"span, rise and {n} voussoirs")
+    except (ValueError, CannotStandError) as exc:
+        return GeometricSafetyFactor(None, None, None, None,
+                                     f"the minimum thickness could not be found: {exc}")
+    return GeometricSafetyFactor(None, None, None, None,
+                                 "not defined: the arch's voussoirs are not equal and of one "
+                                 "thickness (an irregular or surveyed arch), so there is no "
+                                 "thickness to scale")
+
+
+def geometric_safety_factor(structure: BlockArch) -> GeometricSafetyFactor:
+    r"""The geometric safety factor of a structure: how much thinner (or its piers narrower) it
+    could be and still stand under its own weight (Heyman's geometric factor of safety [1]_).
+
+    For an arch on two equal rectangular piers: the piers' width over the narrowest on which it
+    stands (:func:`min_pier_width`, fill included),
+
+    .. math::
+
+        \mathrm{SF} = \frac{b}{b_{\min}}.
+
+    Otherwise, for an arch of equal voussoirs and constant thickness (as
+    :func:`~archquake.geometry.circular_arch` or :func:`~archquake.geometry.shaped_arch` build
+    it): its thickness over the minimum thickness of the same centreline and voussoirs
+    (:func:`min_thickness`, :func:`shaped_min_thickness`), of the bare arch on fixed springings,
+    :math:`\mathrm{SF} = t / t_{\min}`. Irregular and surveyed arches have no thickness to
+    scale: the factor is not defined for them (a value that says so, not an error).
+
+    Parameters
+    ----------
+    structure : BlockArch
+        An arch (circular, shaped or surveyed) or a :class:`~archquake.geometry.Structure` on
+        piers or under fill.
+
+    Returns
+    -------
+    GeometricSafetyFactor
+        For an arch on piers, the factor in pier width, with the bare arch's factor in
+        thickness as its ``thickness``; otherwise the factor in thickness.
+
+    References
+    ----------
+    .. [1] Heyman, J. (1982). The Masonry Arch. Chichester: Ellis Horwood.
+
+    Examples
+    --------
+    >>> from archquake.geometry import circular_arch
+    >>> arch = circular_arch(1.0, math.pi, 0.15, 10)
+    >>> sf = geometric_safety_factor(arch)
+    >>> sf.kind, round(sf.factor, 3)
+    ('thickness', 1.396)
+    """
+    arch = structure.arch if isinstance(structure, Structure) else structure
+    thickness = _thickness_safety_factor(arch)
+    if isinstance(structure, Structure) and thickness.kind is not None and (
+            structure.fill is not None):
+        thickness = replace(thickness, note=thickness.note + " (the bare arch, without its fill)")
+    piers = isinstance(structure, Structure) and (structure.left is not None
+                                                  or structure.right is not None)
+    if not piers:
+        return thickness
+    left, right = structure.left, structure.right
+
+    def undefined(note: str) -> GeometricSafetyFactor:
+        return GeometricSafetyFactor(None, None, None, None, note, thickness)
+
+    if left is None or left != right or not left.is_rectangular:
+        return undefined("not defined for piers that are not two equal rectangular ones (the "
+                         "narrowest piers are found for two equal rectangular piers)")
+    try:
+        width = min_pier_width(structure, left.height, left.courses)
+    except (ValueError, CannotStandError) as exc:
+        return undefined(f"the narrowest piers could not be found: {exc}")
+    return GeometricSafetyFactor(
+        "pier width", left.width, width, left.width / width,
+        f"width of the piers over the narrowest equal rectangular piers {left.height:g} m high "
+        f"on which the arch" + (" with its fill" if structure.fill is not None else "")
+        + " stands", thickness)

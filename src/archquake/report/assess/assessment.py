@@ -452,6 +452,7 @@ class _Computed:
 def _compute(structure, settings: AssessmentSettings, suite, suite_note: str, out: Path,
              resume: bool, results: dict, steps) -> _Computed:
     """Run the parts in order, filling ``results``; the rigid blocks on a second process."""
+    from ...limit_analysis import geometric_safety_factor
     from ..running import Background
 
     computed = _Computed()
@@ -460,7 +461,7 @@ def _compute(structure, settings: AssessmentSettings, suite, suite_note: str, ou
         results["verdict"] = limit.summary["verdict"]
         results["limit"] = ({k: v for k, v in limit.summary.items() if k != "verdict"}
                             if limit.collapses else None)
-        results["safety"] = parts.safety_factor(structure)
+        results["safety"] = geometric_safety_factor(structure).to_dict()
     computed.limit = limit
     scale = time_scale(structure)
     results["sizes"] = {"time_scale": scale}

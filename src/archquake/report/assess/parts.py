@@ -10,8 +10,6 @@ by the library's own calls, so that a test can recompute any of them with the si
 :func:`archquake.studies.record_fragility.run_record_fragility`):
 
 - :func:`limit_part`: does the structure stand, its load multipliers and hinges both ways;
-- :func:`safety_factor`: the geometric safety factor (thickness or pier width over the least
-  that stands);
 - :func:`four_link_part`: the four-link model, its mechanisms and the restitution of every rule;
 - :func:`pulse_grid`, :func:`four_link_domains`, :func:`rigid_block_domain`,
   :func:`pulse_part`: the failure domains under pulses of both models, and where they disagree;
@@ -170,98 +168,6 @@ def limit_part(structure) -> LimitPart:
                        for a in analyses},
     })
     return LimitPart(tuple(analyses), summary)
-
-
-def _same_geometry(arch, other) -> bool:
-    """Whether two arches have the same joints (to 1e-9 of their size) and kind."""
-    return (type(arch) is type(other) and arch.n_voussoirs == other.n_voussoirs
-            and bool(np.allclose(arch.joints, other.joints, rtol=0.0,
-                                 atol=1e-9 * arch.length_scale)))
-
-
-def safety_factor(structure) -> dict:
-    """The geometric safety factor of a structure: how much thinner (or its piers narrower) it
-    could be and still stand under its own weight (Heyman's geometric factor of safety).
-
-    For an arch on two equal rectangular piers: the piers' width over the narrowest on which it
-    stands (:func:`archquake.limit_analysis.min_pier_width`, fill included). Otherwise for an arch
-    of equal voussoirs and constant thickness (as :func:`~archquake.geometry.circular_arch` or
-    :func:`~archquake.geometry.shaped_arch` build it): its thickness over the minimum thickness
-    of the same centreline and voussoirs (:func:`archquake.limit_analysis.min_thickness`,
-    :func:`~archquake.limit_analysis.shaped_min_thickness`), of the bare arch on fixed
-    springings. Irregular and surveyed arches have no thickness to scale: the factor is not
-    defined for them.
-
-    Parameters
-    ----------
-    structure : BlockArch
-
-    Returns
-    -------
-    dict
-        ``kind`` (``"pier width"``, ``"thickness"`` or None), ``value`` and ``minimum`` [m],
-        ``factor`` [-] (None when not defined) and ``note`` (what it is of, or why there is
-        none); an arch on piers also has ``thickness`` (the bare arch's factor, a dict of the
-        same keys) when it is defined.
-    """
-    from ...errors import CannotStandError
-    from ...geometry import CircularArch, ShapedArch, Structure, circular_arch, shaped_arch
-    from ...limit_analysis import min_pier_width, min_thickness, shaped_min_thickness
-
-    arch = structure.arch if isinstance(structure, Structure) else structure
-    thickness = {"kind": None, "value": None, "minimum": None, "factor": None}
-    try:
-        if isinstance(arch, CircularArch):
-            t, r = float(arch.thicknesses[0]), float(arch.radii[0])
-            n = arch.n_voussoirs
-            if _same_geometry(arch, circular_arch(r, arch.embrace, t, n, density=arch.density)):
-                t_min = min_thickness(r, arch.embrace, n)
-                thickness = {"kind": "thickness", "value": t, "minimum": t_min,
-                             "factor": t / t_min,
-                             "note": f"thickness over the minimum thickness of a circular arch "
-                                     f"of the same radius, embrace and {n} voussoirs"}
-        elif isinstance(arch, ShapedArch):
-            line, t, n = arch.centreline, float(arch.thicknesses[0]), arch.n_voussoirs
-            nominal = shaped_arch(line.shape, thickness=t, voussoirs=n, span=line.span,
-                                  rise=line.rise, faces=arch.faces, density=arch.density)
-            if _same_geometry(arch, nominal):
-                t_min = shaped_min_thickness(line.shape, voussoirs=n, span=line.span,
-                                             rise=line.rise, faces=arch.faces)
-                thickness = {"kind": "thickness", "value": t, "minimum": t_min,
-                             "factor": t / t_min,
-                             "note": f"thickness over the minimum thickness of a {line.shape} "
-                                     f"arch of the same span, rise and {n} voussoirs"}
-    except (ValueError, CannotStandError) as exc:
-        thickness["note"] = f"the minimum thickness could not be found: {exc}"
-    if thickness["kind"] is None and "note" not in thickness:
-        thickness["note"] = ("not defined: the arch's voussoirs are not equal and of one "
-                             "thickness (an irregular or surveyed arch), so there is no "
-                             "thickness to scale")
-    if isinstance(structure, Structure) and thickness["kind"] is not None and (
-            structure.fill is not None):
-        thickness["note"] += " (the bare arch, without its fill)"
-    piers = isinstance(structure, Structure) and (structure.left is not None
-                                                  or structure.right is not None)
-    if not piers:
-        return thickness
-    left, right = structure.left, structure.right
-    out = {"kind": None, "value": None, "minimum": None, "factor": None, "thickness": thickness}
-    if left is None or left != right or not left.is_rectangular:
-        out["note"] = ("not defined for piers that are not two equal rectangular ones (the "
-                       "narrowest piers are found for two equal rectangular piers)")
-        return out
-    try:
-        width = min_pier_width(structure, left.height, left.courses)
-    except (ValueError, CannotStandError) as exc:
-        out["note"] = f"the narrowest piers could not be found: {exc}"
-        return out
-    out.update({"kind": "pier width", "value": left.width, "minimum": width,
-                "factor": left.width / width,
-                "note": f"width of the piers over the narrowest equal rectangular piers "
-                        f"{left.height:g} m high on which the arch"
-                        + (" with its fill" if structure.fill is not None else "")
-                        + " stands"})
-    return out
 
 
 # ------------------------------------------------------------------------------ four links
@@ -1224,5 +1130,5 @@ __all__ = ["CHECK_RECORDS", "DIRECTIONS", "PILOT_RANGE", "RESTITUTION_RULES", "F
            "fragility_amplitudes", "has_centreline", "hinges_in_own_frame", "irregularity_part",
            "joint_name", "limit_part", "pulse_grid", "pulse_part", "record_check", "record_pilot",
            "record_study", "record_summary", "rigid_block_domain", "rigid_block_record_outcomes",
-           "safety_factor", "select_records", "significant_disagreement", "stripe_levels",
+           "select_records", "significant_disagreement", "stripe_levels",
            "structure_stripes", "structure_stripes_summary"]
