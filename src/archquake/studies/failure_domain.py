@@ -99,6 +99,22 @@ class Interval:
         return {"from": self.start, "to": self.end, "outcome": self.status,
                 "half_cycle": self.half_cycle}
 
+    @classmethod
+    def from_dict(cls, data: dict) -> Interval:
+        """Inverse of :meth:`to_dict`.
+
+        Parameters
+        ----------
+        data : dict
+            ``from``, ``to`` [g], ``outcome`` and ``half_cycle``.
+
+        Returns
+        -------
+        Interval
+        """
+        return cls(float(data["from"]), float(data["to"]), str(data["outcome"]),
+                   int(data["half_cycle"]))
+
 
 @dataclass(frozen=True)
 class DomainSlice:
@@ -382,6 +398,55 @@ class FailureDomain:
             :meth:`DomainSlice.to_dict` of every slice (durations in s, amplitudes in g).
         """
         return [s.to_dict() for s in self.slices]
+
+    def to_dict(self) -> dict:
+        """The whole domain as JSON-ready data, from which :meth:`from_dict` rebuilds it: the
+        slices of :meth:`to_list`, each with its ``resolution`` [g], and every attribute.
+
+        Returns
+        -------
+        dict
+            ``slices``, ``direction``, ``limit_multiplier``, ``load_multipliers`` [-],
+            ``restitution`` [-] (None for nan), ``motion``, ``extend_to_g`` [g], ``model``,
+            ``search`` and ``analyses``.
+
+        Examples
+        --------
+        >>> domain = FailureDomain((DomainSlice(0.5, (Interval(0.3, 0.5, "recovery", 0),
+        ...     Interval(0.5, 0.8, "collapse", 2)), 1e-3),), "l", 0.3, (0.3, 0.3),
+        ...     (math.nan, math.nan))
+        >>> FailureDomain.from_dict(domain.to_dict()).slices == domain.slices
+        True
+        """
+        return {
+            "slices": [{**s.to_dict(), "resolution": s.resolution} for s in self.slices],
+            "direction": self.direction, "limit_multiplier": self.limit_multiplier,
+            "load_multipliers": list(self.load_multipliers),
+            "restitution": [json_float(c) for c in self.restitution], "motion": self.motion,
+            "extend_to_g": self.extend_to_g, "model": self.model, "search": self.search,
+            "analyses": list(self.analyses)}
+
+    @classmethod
+    def from_dict(cls, data: dict) -> FailureDomain:
+        """Inverse of :meth:`to_dict`.
+
+        Parameters
+        ----------
+        data : dict
+            :meth:`to_dict`'s form (the derived numbers of a slice, such as its
+            ``failure_acceleration``, are read from its intervals, not from the dict).
+
+        Returns
+        -------
+        FailureDomain
+        """
+        slices = tuple(DomainSlice(s["duration"],
+                                   tuple(Interval.from_dict(iv) for iv in s["intervals"]),
+                                   s["resolution"]) for s in data["slices"])
+        restitution = tuple(math.nan if c is None else c for c in data["restitution"])
+        return cls(slices, data["direction"], data["limit_multiplier"],
+                   tuple(data["load_multipliers"]), restitution, data["motion"],
+                   data["extend_to_g"], data["model"], data["search"], tuple(data["analyses"]))
 
 
 def check_durations(durations) -> np.ndarray:

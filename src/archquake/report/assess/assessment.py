@@ -453,6 +453,7 @@ def _compute(structure, settings: AssessmentSettings, suite, suite_note: str, ou
              resume: bool, results: dict, steps) -> _Computed:
     """Run the parts in order, filling ``results``; the rigid blocks on a second process."""
     from ...limit_analysis import geometric_safety_factor
+    from ...studies.failure_domain import FailureDomain
     from ..running import Background
 
     computed = _Computed()
@@ -473,7 +474,8 @@ def _compute(structure, settings: AssessmentSettings, suite, suite_note: str, ou
     durations = settings.pulse_durations(structure)
     grid = parts.pulse_grid(k, settings)
     rb_key = {"durations": durations, "amplitudes_g": grid, "direction": governing,
-              "resolution": settings.domain_resolution_g, "friction": settings.friction}
+              "resolution": settings.domain_resolution_g, "friction": settings.friction,
+              "form": "FailureDomain.to_dict"}
     kept = _kept(out, "rigid_blocks_domain", rb_key) if resume else None
     with Background.start() as background:
         task = None
@@ -497,12 +499,12 @@ def _compute(structure, settings: AssessmentSettings, suite, suite_note: str, ou
         with steps("waiting for the rigid blocks (second process)"):
             background_runs = {}
             if task is None:
-                rigid = parts.domain_from_dict(kept)
+                rigid = FailureDomain.from_dict(kept)
                 background_runs["rigid-block failure domain"] = "kept from the run resumed"
             else:
                 run = task.result()
                 rigid = run.result
-                _keep(out, "rigid_blocks_domain", rb_key, parts.domain_to_dict(rigid))
+                _keep(out, "rigid_blocks_domain", rb_key, rigid.to_dict())
                 background_runs["rigid-block failure domain"] = run.describe()
             if check is not None:
                 key, level, pending, checked = check

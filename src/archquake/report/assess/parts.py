@@ -315,52 +315,6 @@ def rigid_block_domain(structure, durations, amplitudes_g, direction: str, resol
                      resolution=resolution, extend_to_g=None)
 
 
-def domain_to_dict(domain) -> dict:
-    """A failure domain as JSON-ready data, whole (:func:`domain_from_dict` rebuilds it): what
-    an assessment keeps of a finished part, to reuse it when resumed.
-
-    Parameters
-    ----------
-    domain : FailureDomain
-
-    Returns
-    -------
-    dict
-    """
-    return {
-        "slices": [{"duration": s.duration, "resolution": s.resolution,
-                    "intervals": [[iv.start, iv.end, iv.status, iv.half_cycle]
-                                  for iv in s.intervals]} for s in domain.slices],
-        "direction": domain.direction, "limit_multiplier": domain.limit_multiplier,
-        "load_multipliers": list(domain.load_multipliers),
-        "restitution": [_json_float(c) for c in domain.restitution], "motion": domain.motion,
-        "extend_to_g": domain.extend_to_g, "model": domain.model, "search": domain.search,
-        "analyses": list(domain.analyses)}
-
-
-def domain_from_dict(data: dict):
-    """Inverse of :func:`domain_to_dict`.
-
-    Parameters
-    ----------
-    data : dict
-
-    Returns
-    -------
-    FailureDomain
-    """
-    from ...studies.failure_domain import DomainSlice, FailureDomain, Interval
-
-    slices = tuple(DomainSlice(s["duration"], tuple(Interval(a, b, status, int(h))
-                                                    for a, b, status, h in s["intervals"]),
-                               s["resolution"]) for s in data["slices"])
-    restitution = tuple(math.nan if c is None else c for c in data["restitution"])
-    return FailureDomain(slices, data["direction"], data["limit_multiplier"],
-                         tuple(data["load_multipliers"]), restitution, data["motion"],
-                         data["extend_to_g"], data["model"], data["search"],
-                         tuple(data["analyses"]))
-
-
 @dataclass(frozen=True, eq=False)
 class PulsePart:
     """Both models' failure domains under Oppenheim's pulse, and where they disagree.
@@ -1125,7 +1079,7 @@ def export_nrml(result, directory, im: str) -> tuple[str | None, str]:
 
 __all__ = ["CHECK_RECORDS", "DIRECTIONS", "PILOT_RANGE", "RESTITUTION_RULES", "FourLinkPart",
            "IrregularityPart", "LimitPart", "PulsePart", "StructureStripes", "agreement",
-           "check_level", "domain_from_dict", "domain_to_dict", "export_nrml",
+           "check_level", "export_nrml",
            "export_structure_nrml", "file_stem", "four_link_domains", "four_link_part",
            "fragility_amplitudes", "has_centreline", "hinges_in_own_frame", "irregularity_part",
            "joint_name", "limit_part", "pulse_grid", "pulse_part", "record_check", "record_pilot",
