@@ -551,6 +551,8 @@ def _records(structure, settings, suite, note: str, model, out: Path, resume: bo
     """The record-based fragility in every intensity measure, or why it was not run; and the
     check of the two models under the records, given to the second process: ``(key, level,
     task or the kept statuses, the records checked)`` or None."""
+    from ...studies.stripes import median_collapse_pga, record_pilot, stripe_levels
+
     if model is None:
         with steps("records"):
             return {"skipped": "the four-link model, which the record-based study runs, does "
@@ -560,10 +562,10 @@ def _records(structure, settings, suite, note: str, model, out: Path, resume: bo
         key = {"suite": suite.to_dict(), "model": model.describe()}
         pilot = _kept(out, "record_pilot", key) if resume else None
         if pilot is None:
-            pilot = parts.record_pilot(model, suite)
+            pilot = record_pilot(model, suite)
             _keep(out, "record_pilot", key, pilot)
     check = None
-    level = parts.check_level(pilot)
+    level = median_collapse_pga(pilot)
     if level is not None:
         checked = parts.select_records(suite, parts.CHECK_RECORDS)
         check_key = {"suite": checked.to_dict(), "level_pga": level,
@@ -579,7 +581,7 @@ def _records(structure, settings, suite, note: str, model, out: Path, resume: bo
         weaker = float(np.clip(quantiles["0.05"] / results["limit"]["k"], 0.25, 1.0))
     for im in settings.intensity_measures():
         with steps(f"records: {text.im_label(im)}"):
-            levels = parts.stripe_levels(pilot, suite, im, settings.record_levels, weaker)
+            levels = stripe_levels(pilot, suite, im, settings.record_levels, weaker)
             if irregular:
                 directory = out / RECORDS_DIR.format(im=parts.file_stem(im))
                 result = parts.record_study(structure, suite, im, levels, settings, directory,

@@ -15,7 +15,7 @@ by the library's own calls, so that a test can recompute any of them with the si
   :func:`pulse_part`: the failure domains under pulses of both models, and where they disagree;
 - :func:`irregularity_part`: the k~ sample and the fragility under pulses of the irregular
   arches (:func:`fragility_amplitudes` chooses the amplitudes);
-- :func:`select_records`, :func:`record_pilot`, :func:`stripe_levels`, :func:`record_study`,
+- :func:`select_records`, :func:`record_study`,
   :func:`record_summary`, :func:`export_nrml`, :func:`record_check`: the record-based
   fragility (multiple-stripe analysis) in each intensity measure, with its OpenQuake NRML file,
   and the rigid blocks' check under the records (:func:`structure_stripes` for a structure
@@ -607,95 +607,6 @@ def select_records(suite, count: int | None):
     return RecordSuite.from_stochastic(count, spec["seed"], **spec["parameters"])
 
 
-PILOT_RANGE = (1.0, 30.0, 25)
-"""PGA levels of the pilot, in units of k g: ``geomspace(1, 30, 25)`` (from the activation to
-thirty times it)."""
-
-
-def record_pilot(model, suite) -> dict:
-    """The lowest scale factor of every record that collapses the structure (either polarity),
-    on a geometric grid of PGA from k to 30 k: where the stripes of the record-based fragility
-    belong (:func:`stripe_levels`).
-
-    Parameters
-    ----------
-    model : FourLinkModel
-        The structure's model.
-    suite : RecordSuite
-        The records.
-
-    Returns
-    -------
-    dict
-        ``pga_levels`` [g] of the grid, ``pga`` of every record [g] and ``first_factor`` [-]
-        of every record (None: no collapse on the grid).
-    """
-    from ...studies.record_fragility import record_outcomes
-
-    k = min(model.load_multipliers)
-    grid = k * np.geomspace(*PILOT_RANGE)
-    pga = suite.intensities("pga")
-    first = []
-    for motion, value in zip(suite.motions(cached=True), pga, strict=True):
-        factors = grid / value
-        out = record_outcomes(model, motion, np.concatenate([factors, -factors]))
-        collapsed = (out["status"].reshape(2, -1) == 2).any(axis=0)
-        first.append(float(factors[np.argmax(collapsed)]) if collapsed.any() else None)
-    return {"pga_levels": grid.tolist(), "pga": [float(v) for v in pga],
-            "first_factor": first}
-
-
-def _significant(x: float, digits: int = 4) -> float:
-    return float(f"{x:.{digits}g}")
-
-
-def stripe_levels(pilot: dict, suite, im: str, count: int, weaker: float = 1.0
-                  ) -> tuple[float, ...]:
-    """The stripes of a record-based fragility in ``im``: ``count`` levels, evenly spaced in
-    logarithm, from 0.8 times the smallest level at which a record collapses the structure
-    (:func:`record_pilot`), times ``weaker``, to 1.25 times the largest (up to the top of the
-    pilot where a record does not), to four significant digits.
-
-    Parameters
-    ----------
-    pilot : dict
-        :func:`record_pilot`.
-    suite : RecordSuite
-    im : str
-        The intensity measure (:func:`archquake.ground_motion.stripe_measure`).
-    count : int
-        Number of levels.
-    weaker : float
-        How much weaker than the structure the weakest irregular arches are [-], in (0, 1]
-        (e.g. the 5 % quantile of k~ over k): the lowest stripe is lowered by it, so that it
-        lies below their collapses too.
-
-    Returns
-    -------
-    tuple of float
-        Increasing levels [the IM's unit].
-    """
-    from ...ground_motion.suites import stripe_measure
-
-    measure = stripe_measure(im)
-    values = suite.intensities(measure.name)
-    top = max(pilot["pga_levels"]) / np.asarray(pilot["pga"])
-    first = np.array([math.nan if f is None else f for f in pilot["first_factor"]])
-    at_first = first ** measure.exponent * values
-    at_top = top ** measure.exponent * values
-    finite = at_first[np.isfinite(at_first)]
-    if finite.size:
-        lo, hi = 0.8 * weaker * float(finite.min()), 1.25 * float(finite.max())
-        if finite.size < first.size:
-            hi = max(hi, float(np.median(at_top)))
-    else:
-        lo, hi = float(np.median(values * (np.min(pilot["pga_levels"])
-                                           / np.asarray(pilot["pga"])) ** measure.exponent)), \
-            float(np.median(at_top))
-    levels = sorted({_significant(v) for v in np.geomspace(lo, hi, count)})
-    return tuple(levels)
-
-
 def record_study(structure, suite, im: str, levels, settings: AssessmentSettings,
                  directory=None, resume: bool = False):
     """One record-based fragility (multiple-stripe analysis) of the structure and its irregular
@@ -709,7 +620,7 @@ def record_study(structure, suite, im: str, levels, settings: AssessmentSettings
     im : str
         The intensity measure of the stripes.
     levels : sequence of float
-        The stripes [the IM's unit] (:func:`stripe_levels`).
+        The stripes [the IM's unit] (:func:`archquake.studies.stripes.stripe_levels`).
     settings : AssessmentSettings
         epsilon, seed, restitution, h, bootstrap.
     directory : str or Path, optional
@@ -736,29 +647,6 @@ CHECK_RECORDS = 14
 order of :func:`select_records` (of a FEMA P695 near-field set, its 14 fault-normal components,
 which carry the pulses). A rigid-block analysis of a record costs about a thousand four-link
 ones."""
-
-
-def check_level(pilot: dict) -> float | None:
-    """The PGA [g] of the records' check of the two models: the median over the records of the
-    lowest PGA that collapses the structure (:func:`record_pilot`; a record that does not
-    collapse it on the pilot's grid counts as above it), None if no record collapses it.
-
-    Parameters
-    ----------
-    pilot : dict
-        :func:`record_pilot`.
-
-    Returns
-    -------
-    float or None
-    """
-    first = np.array([math.inf if f is None else f * a
-                      for f, a in zip(pilot["first_factor"], pilot["pga"], strict=True)])
-    if not np.any(np.isfinite(first)):
-        return None
-    level = float(np.quantile(first, 0.5, method="lower"))
-    return _significant(level) if math.isfinite(level) else _significant(
-        float(np.max(first[np.isfinite(first)])))
 
 
 def rigid_block_record_outcomes(structure, suite: dict, level_pga: float,
@@ -806,7 +694,8 @@ def record_check(model, suite, level_pga: float, rigid_blocks: list) -> dict:
         The structure's four-link model.
     suite : RecordSuite
     level_pga : float
-        The PGA every record is scaled to [g] (:func:`check_level`).
+        The PGA every record is scaled to [g]
+        (:func:`archquake.studies.stripes.median_collapse_pga`).
     rigid_blocks : list of [int, int]
         :func:`rigid_block_record_outcomes` at the same level.
 
@@ -1077,12 +966,10 @@ def export_nrml(result, directory, im: str) -> tuple[str | None, str]:
     return name, ""
 
 
-__all__ = ["CHECK_RECORDS", "DIRECTIONS", "PILOT_RANGE", "RESTITUTION_RULES", "FourLinkPart",
-           "IrregularityPart", "LimitPart", "PulsePart", "StructureStripes", "agreement",
-           "check_level", "export_nrml",
+__all__ = ["CHECK_RECORDS", "DIRECTIONS", "RESTITUTION_RULES", "FourLinkPart", "IrregularityPart",
+           "LimitPart", "PulsePart", "StructureStripes", "agreement", "export_nrml",
            "export_structure_nrml", "file_stem", "four_link_domains", "four_link_part",
            "fragility_amplitudes", "has_centreline", "hinges_in_own_frame", "irregularity_part",
-           "joint_name", "limit_part", "pulse_grid", "pulse_part", "record_check", "record_pilot",
-           "record_study", "record_summary", "rigid_block_domain", "rigid_block_record_outcomes",
-           "select_records", "significant_disagreement", "stripe_levels",
-           "structure_stripes", "structure_stripes_summary"]
+           "joint_name", "limit_part", "pulse_grid", "pulse_part", "record_check", "record_study",
+           "record_summary", "rigid_block_domain", "rigid_block_record_outcomes", "select_records",
+           "significant_disagreement", "structure_stripes", "structure_stripes_summary"]
