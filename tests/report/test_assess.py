@@ -194,7 +194,7 @@ def test_the_structure_alone_gets_the_nominal_part_of_the_record_study(quick):
     """A structure without irregular arches around it (a surveyed arch) gets the stripes, fit
     and bootstrap band the record-based study gives its nominal arch."""
     from archquake.ground_motion import RecordSuite
-    from archquake.report.assess.parts import structure_stripes
+    from archquake.report.assess.records import structure_stripes
     from archquake.studies.record_fragility import load_record_fragility
 
     r = quick["results"]
@@ -361,23 +361,23 @@ def test_an_interrupted_assessment_continues_where_it_stopped(quick, tmp_path, m
     """Interrupted in its second record-based study, an assessment resumes: the finished study
     is loaded from its checkpoints, not run again, and the numbers are those of an assessment
     that was never interrupted."""
-    from archquake.report.assess import parts as assess_parts
+    from archquake.report.assess import records as record_parts
     from archquake.studies.record_fragility import load_record_fragility
 
     out = tmp_path / "report"
-    run_study = assess_parts.record_study
+    run_study = record_parts.record_study
 
     def interrupted(structure, suite, im, *args, **kwargs):
         if im == "pgv":
             raise KeyboardInterrupt
         return run_study(structure, suite, im, *args, **kwargs)
 
-    monkeypatch.setattr(assess_parts, "record_study", interrupted)
+    monkeypatch.setattr(record_parts, "record_study", interrupted)
     with pytest.raises(KeyboardInterrupt):
         assess(pointed_arch(), records=quick["records"], quick=True, out_dir=out,
                progress=False)
     assert not (out / "results.json").exists() and (out / "records_pga" / "study.json").is_file()
-    monkeypatch.setattr(assess_parts, "record_study", run_study)
+    monkeypatch.setattr(record_parts, "record_study", run_study)
     resumed = assess(pointed_arch(), records=quick["records"], quick=True, out_dir=out,
                      progress=False, resume=True).results
     study = load_record_fragility(out / "records_pga")

@@ -25,7 +25,8 @@ in words and numbers, which model each comes from and how far the two agree, and
 assumptions. Each study runs in its own subdirectory of ``out_dir`` and finished parts are kept,
 so an interrupted assessment continues with ``resume=True``.
 
-This module only orchestrates: the parts compute (:mod:`archquake.report.assess.parts`), the
+This module only orchestrates: the parts compute (:mod:`archquake.report.assess.parts`,
+:mod:`archquake.report.assess.records`), the
 figures are drawn from their values (:mod:`archquake.report.assess.figures`), the words written
 from the numbers (:mod:`archquake.report.assess.text`) and the files rendered
 (:mod:`archquake.report.render`).
@@ -55,6 +56,7 @@ from ..render import (
     write_markdown,
 )
 from . import parts, text
+from . import records as record_parts
 from .settings import DEFAULT_SUITE, FALLBACK_RECORDS, AssessmentSettings, time_scale
 
 ASSESSMENT_JSON = "assessment.json"
@@ -165,7 +167,7 @@ def choose_suite(records=None, suite: str | None = None, settings: AssessmentSet
             note = (f"These are synthetic ground motions, not real records: the built-in FEMA "
                     f"P695 records are not installed. Install them with {INSTALL_HINT} and "
                     f"run the assessment again to use the pulse-like near-field records.")
-    return parts.select_records(chosen, settings.record_count), note
+    return record_parts.select_records(chosen, settings.record_count), note
 
 
 # ------------------------------------------------------------------------------ directory
@@ -517,8 +519,8 @@ def _compute(structure, settings: AssessmentSettings, suite, suite_note: str, ou
                     statuses = run.result
                     _keep(out, "record_check", key, statuses)
                     background_runs["rigid-block check under the records"] = run.describe()
-                results["records"]["check"] = parts.record_check(model, checked, level,
-                                                                 statuses)
+                results["records"]["check"] = record_parts.record_check(model, checked, level,
+                                                                        statuses)
             results["background"] = background_runs
     pulses = parts.pulse_part(fl_domains, rigid, governing, grid)
     results["pulses"] = pulses.summary
@@ -567,12 +569,12 @@ def _records(structure, settings, suite, note: str, model, out: Path, resume: bo
     check = None
     level = median_collapse_pga(pilot)
     if level is not None:
-        checked = parts.select_records(suite, parts.CHECK_RECORDS)
+        checked = record_parts.select_records(suite, record_parts.CHECK_RECORDS)
         check_key = {"suite": checked.to_dict(), "level_pga": level,
                      "friction": settings.friction}
         kept = _kept(out, "record_check", check_key) if resume else None
         check = (check_key, level, kept if kept is not None else background.submit(
-            parts.rigid_block_record_outcomes, structure, checked.to_dict(), level,
+            record_parts.rigid_block_record_outcomes, structure, checked.to_dict(), level,
             settings.friction), checked)
     studies, entries = {}, {}
     quantiles = (results.get("irregularity") or {}).get("limit_sample", {}).get("quantiles")
@@ -583,16 +585,16 @@ def _records(structure, settings, suite, note: str, model, out: Path, resume: bo
         with steps(f"records: {text.im_label(im)}"):
             levels = stripe_levels(pilot, suite, im, settings.record_levels, weaker)
             if irregular:
-                directory = out / RECORDS_DIR.format(im=parts.file_stem(im))
-                result = parts.record_study(structure, suite, im, levels, settings, directory,
-                                            resume)
-                nrml, why = parts.export_nrml(result, out, im)
-                entries[im] = parts.record_summary(result, nrml, why)
+                directory = out / RECORDS_DIR.format(im=record_parts.file_stem(im))
+                result = record_parts.record_study(structure, suite, im, levels, settings,
+                                                   directory, resume)
+                nrml, why = record_parts.export_nrml(result, out, im)
+                entries[im] = record_parts.record_summary(result, nrml, why)
             else:  # no irregular arches around a surveyed arch: the structure alone
-                result = parts.structure_stripes(model, suite, im, levels,
-                                                 bootstrap=settings.bootstrap, seed=settings.seed)
-                nrml, why = parts.export_structure_nrml(result, out)
-                entries[im] = parts.structure_stripes_summary(result, nrml, why)
+                result = record_parts.structure_stripes(
+                    model, suite, im, levels, bootstrap=settings.bootstrap, seed=settings.seed)
+                nrml, why = record_parts.export_structure_nrml(result, out)
+                entries[im] = record_parts.structure_stripes_summary(result, nrml, why)
             studies[im] = result
     pga, pgv = suite.intensities("pga"), suite.intensities("pgv")
     listed = []

@@ -188,7 +188,7 @@ def record_figure(results: dict):
     results : dict
         By intensity measure: a
         :class:`~archquake.studies.record_fragility.RecordFragilityResult` (or a
-        :class:`~archquake.report.assess.parts.StructureStripes`).
+        :class:`~archquake.report.assess.records.StructureStripes`).
 
     Returns
     -------
@@ -197,7 +197,7 @@ def record_figure(results: dict):
     import matplotlib.pyplot as plt
 
     from ...plotting import plot_record_fragility
-    from .parts import StructureStripes
+    from .records import StructureStripes
     from .text import im_label
 
     n = len(results)
@@ -221,7 +221,7 @@ def structure_stripes_axes(stripes, ax):
     Parameters
     ----------
     stripes : StructureStripes
-        :func:`archquake.report.assess.parts.structure_stripes`.
+        :func:`archquake.report.assess.records.structure_stripes`.
     ax : matplotlib.axes.Axes
 
     Returns
