@@ -7,6 +7,8 @@
 - geometry and ground motions import neither model;
 - the leaves (command line, report, plotting, the interactive page) are imported by no other
   module, and no module imports the package root;
+- the two reports (the paper's and the assessment) import nothing of each other: what both use
+  lies beside them in ``archquake.report``;
 - no module imports a private name (``_name``) of another module.
 
 Each rule is a function of the import graph, so the test also shows that it flags a violation.
@@ -23,6 +25,7 @@ MODELS = ("archquake.fourlink", "archquake.rigid_blocks")
 LEAVES = ("archquake.cli", "archquake.report", "archquake.paper_reproduction",
           "archquake.plotting", "archquake.rigid_blocks.plotting", "archquake.app",
           "archquake.__main__")
+REPORTS = ("archquake.report.paper", "archquake.report.assess")
 BLOCKS_RESTITUTION = ("archquake.fourlink.impact", "archquake.rigid_blocks.impacts")
 """The declared exception: the edge from the four-link model to the rigid blocks."""
 
@@ -58,6 +61,10 @@ def contract_violations(graph: dict[str, set[str]]) -> list[str]:
             if _within(module, base):
                 out += [f"{module} reaches a model ({m})" for m in sorted(reached)
                         if any(_within(m, p) for p in MODELS)]
+        for own, other in (REPORTS, REPORTS[::-1]):
+            if _within(module, own):
+                out += [f"{module} imports the other report ({m})" for m in sorted(graph[module])
+                        if _within(m, other)]
         if module != "archquake" and "archquake" in graph[module]:
             out.append(f"{module} imports the package root")
         if not any(_within(module, leaf) for leaf in LEAVES):
@@ -78,6 +85,7 @@ def test_import_contract_holds():
     ("archquake.ground_motion.core", "archquake.fourlink.engine"),
     ("archquake.execution", "archquake"),
     ("archquake.studies.fragility", "archquake.plotting"),
+    ("archquake.report.assess.text", "archquake.report.paper.text"),
 ])
 def test_contract_flags_a_violation(importer, imported):
     graph = package_imports()
