@@ -70,7 +70,9 @@ arches under loads k of order 1 and more, and with them the two methods agree fo
 >= 0). When it does not, :class:`CannotStandError` says why (:func:`standing`): the arch (it does
 not stand even on fixed springings) or its piers (it does, but not on them); an asymmetric
 structure that stands only under a push one way is refused too. :func:`min_pier_width` finds the
-narrowest piers on which an arch stands.
+narrowest piers on which an arch stands, :func:`min_thickness` the thinnest arch, and
+:func:`geometric_safety_factor` divides the structure's own by them (Heyman's geometric factor of
+safety).
 
 Notes
 -----
