@@ -26,10 +26,9 @@ assumptions. Each study runs in its own subdirectory of ``out_dir`` and finished
 so an interrupted assessment continues with ``resume=True``.
 
 This module only orchestrates: the parts compute (:mod:`archquake.report.assess.parts`,
-:mod:`archquake.report.assess.records`), the
-figures are drawn from their values (:mod:`archquake.report.assess.figures`), the words written
-from the numbers (:mod:`archquake.report.assess.text`) and the files rendered
-(:mod:`archquake.report.render`).
+:mod:`archquake.report.assess.records`, with the library's own calls), the figures are drawn from
+their values (:mod:`archquake.report.assess.figures`), the words written from the numbers
+(:mod:`archquake.report.assess.text`) and the files rendered (:mod:`archquake.report.render`).
 """
 
 from __future__ import annotations

@@ -1,9 +1,9 @@
 """The figures of an assessment, each drawn from the values of its parts
-(:mod:`archquake.report.assess.parts`).
+(:mod:`archquake.report.assess.parts`, :mod:`archquake.report.assess.records`).
 
 Every function returns a :class:`matplotlib.figure.Figure`; its caption is written by
-:mod:`archquake.report.assess.text` and :func:`archquake.report.paper.figures.save` writes it beside
-the report. The axes are drawn by :mod:`archquake.plotting`, so a figure of the report is the
+:mod:`archquake.report.assess.text` and :func:`archquake.report.render.save` writes it beside the
+report. The axes are drawn by :mod:`archquake.plotting`, so a figure of the report is the
 figure a user draws with the library. matplotlib is imported when a figure is drawn.
 """
 

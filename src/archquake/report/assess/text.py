@@ -2,8 +2,8 @@
 written from the numbers of ``results.json`` (:func:`archquake.report.assess.assess`), never by
 hand.
 
-The formatters are those of every report (:mod:`archquake.report.paper.text`); what is written here
-is the assessment's own: the first screen (:func:`verdict_text`, :func:`summary_rows`,
+The formatters are those of every report (:mod:`archquake.report.formatting`); what is written
+here is the assessment's own: the first screen (:func:`verdict_text`, :func:`summary_rows`,
 :func:`agreement_text`, :data:`ASSUMPTIONS`), then a paragraph, a table and a caption per part.
 """
 
