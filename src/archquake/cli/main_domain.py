@@ -92,10 +92,11 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         rows = domain.to_list()
         if model.name != "four-link":  # the model is said where the four-link output is as before
-            for row, bands in zip(rows, (s.recovery_above_g for s in domain.slices),
-                                  strict=True):
+            for row, sl, undecided in zip(rows, domain.slices, domain.undecided, strict=True):
                 row["model"] = model.name
-                row["recovery_above"] = [list(b) for b in bands]
+                row["recovery_above"] = [list(b) for b in sl.recovery_above_g]
+                row["undecided"] = [list(b) for b in sl.undecided_bands_g]
+                row["undecided_analyses"] = undecided
                 del row["first_half_cycle_acceleration"]
         print_json(rows)
         return 0
@@ -104,6 +105,12 @@ def run(args: argparse.Namespace) -> int:
         c_lr, c_rl = domain.restitution
         what = f"restitution {c_lr:.4f} (l->r), {c_rl:.4f} (r->l)"
     else:
+        from ..studies.undecided import undecided_warning
+
+        warning = undecided_warning(domain.undecided_analyses, sum(domain.analyses),
+                                    "rigid-block analyses")
+        if warning:
+            print(warning)
         what = (f"rigid-block model, friction {model.settings.friction:g}, time step "
                 f"{model.settings.time_step:g} s (coarse factor {model.settings.coarse_factor}), "
                 f"search {domain.search}")
@@ -140,21 +147,54 @@ def run(args: argparse.Namespace) -> int:
 
 def _print_rigid_block_domain(domain, args: argparse.Namespace) -> int:
     """The text output of a rigid-block domain: no half cycles, the recovery bands above the
-    failure acceleration and the analyses each duration cost."""
+    failure acceleration, the analyses each duration cost and the undecided ones, and a failure
+    acceleration above an undecided band as the range it is known to (``a..b``)."""
+    from ..studies.undecided import bands_text
+
     print(f"{'t_p [s]':>8} {'failure [g]':>12} {'analyses':>9}  intervals [g]")
     for sl, count in zip(domain.slices, domain.analyses, strict=True):
         parts = [f"{iv.start:.3f}-{iv.end:.3f} {iv.status}" for iv in sl.intervals]
-        column = _acceleration(sl, sl.failure_acceleration_g, sl.failure_acceleration_bound, 12)
+        column = _acceleration(sl, sl.failure_acceleration_g, sl.failure_acceleration_bound, 12,
+                               sl.failure_undecided_from_g)
         print(f"{sl.duration:>8.3f} {column} {count:>9d}  " + "; ".join(parts))
     _say_upper_bounds(domain)
+    total = sum(domain.analyses)
+    print(f"undecided: {domain.undecided_analyses} of {total} analyses")
+    for sl, undecided in zip(domain.slices, domain.undecided, strict=True):
+        if sl.undecided_bands_g:
+            print(f"  t_p = {sl.duration:g} s: {undecided} undecided, bands "
+                  f"{bands_text(sl.undecided_bands_g)} g" + _between(sl))
+    if any(math.isfinite(sl.failure_undecided_from_g) for sl in domain.slices):
+        print("a..b: an undecided band starts at a below the lowest decided collapse b: the "
+              "failure acceleration lies between a and b (a..: at least a, none decided in "
+              "the scan)")
     if args.plot:
         print(f"figure written to {args.plot}")
     return 0
 
 
-def _acceleration(sl, value: float, bound: str | None, width: int) -> str:
+def _between(sl) -> str:
+    """What an undecided band below the failure acceleration leaves of it, in words."""
+    low = sl.failure_undecided_from_g
+    if not math.isfinite(low):
+        return ""
+    high = sl.failure_acceleration_g
+    if math.isnan(high):
+        return (f"; no decided collapse up to {sl.scanned_to_g:.3f} g: the failure "
+                f"acceleration is at least {low:.3f} g, undecided from there")
+    return (f"; the failure acceleration is between {low:.3f} g and {high:.4f} g, undecided "
+            f"from {low:.3f} g")
+
+
+def _acceleration(sl, value: float, bound: str | None, width: int,
+                  undecided_from: float = math.nan) -> str:
     """An acceleration of a slice as a column: the value, ``<= value`` when the lowest amplitude
-    scanned already collapses (an upper bound), ``> scanned_to`` when none does."""
+    scanned already collapses (an upper bound), ``> scanned_to`` when none does, ``a..value``
+    when an undecided band starting at ``undecided_from = a`` lies below it (``a..`` without a
+    collapse)."""
+    if math.isfinite(undecided_from):
+        text = f"{undecided_from:.3f}.." + ("" if math.isnan(value) else f"{value:.3f}")
+        return f"{text:>{width}}"
     if bound == "lower":
         return f"{'> ' + format(sl.scanned_to_g, '.3g'):>{width}}"
     if bound == "upper":

@@ -186,6 +186,27 @@ class DomainSlice:
         """Largest amplitude of the scan [g]: a boundary reported as nan lies beyond it."""
         return self.intervals[-1].end
 
+    @property
+    def undecided_bands_g(self) -> list[tuple[float, float]]:
+        """Intervals ``(from, to)`` [g] whose analyses the model left undecided (empty for a
+        model that decides every analysis, as the four-link model does)."""
+        return [(iv.start, iv.end) for iv in self.intervals if iv.status == "undecided"]
+
+    @property
+    def failure_undecided_from_g(self) -> float:
+        """Lowest amplitude [g] of an undecided band below :attr:`failure_acceleration_g`
+        (anywhere in the scan when nothing collapses), nan if none.
+
+        The failure acceleration is then not decided: the lowest collapse may lie in the band,
+        so the true value is only known to lie between this amplitude and
+        :attr:`failure_acceleration_g` (above :attr:`scanned_to_g` when that is nan), and a
+        result must say so (:mod:`archquake.studies.undecided`)."""
+        failure = self.failure_acceleration_g
+        for iv in self.intervals:
+            if iv.status == "undecided" and (math.isnan(failure) or iv.start < failure):
+                return iv.start
+        return math.nan
+
     def to_dict(self) -> dict:
         """The slice as JSON-ready data.
 
@@ -197,6 +218,10 @@ class DomainSlice:
             and the ``intervals`` (:meth:`Interval.to_dict`); and, only when the lowest
             amplitude scanned already collapses, ``failure_acceleration_bound: "upper"`` (the
             failure acceleration is at most the value given; :attr:`failure_acceleration_bound`).
+            Only when the model left some amplitudes undecided: ``undecided`` (the bands,
+            ``[[from, to], ...]`` [g]) and, if one lies below the failure acceleration,
+            ``failure_undecided_from`` [g] (:attr:`failure_undecided_from_g`: the failure
+            acceleration lies between it and ``failure_acceleration``).
         """
         out = {
             "duration": self.duration,
@@ -207,6 +232,11 @@ class DomainSlice:
         }
         if self.failure_acceleration_bound == "upper":
             out["failure_acceleration_bound"] = "upper"
+        bands = self.undecided_bands_g
+        if bands:
+            out["undecided"] = [list(b) for b in bands]
+            if not math.isnan(self.failure_undecided_from_g):
+                out["failure_undecided_from"] = self.failure_undecided_from_g
         return out
 
 
@@ -337,6 +367,9 @@ class FailureDomain:
         The search strategy of the grid (:data:`archquake.studies.strategies.SEARCHES`).
     analyses : tuple of int
         Number of analyses per duration (scan, extension and bisection) [-].
+    undecided : tuple of int
+        Of these, the analyses the model left undecided, per duration [-] (empty for a domain
+        made before they were counted; :mod:`archquake.studies.undecided`).
     """
 
     slices: tuple[DomainSlice, ...]
@@ -349,6 +382,12 @@ class FailureDomain:
     model: dict | None = None
     search: str = "exhaustive"
     analyses: tuple[int, ...] = ()
+    undecided: tuple[int, ...] = ()
+
+    @property
+    def undecided_analyses(self) -> int:
+        """Analyses the model left undecided, over every duration [-]."""
+        return int(sum(self.undecided))
 
     @property
     def durations(self) -> np.ndarray:
@@ -408,7 +447,7 @@ class FailureDomain:
         dict
             ``slices``, ``direction``, ``limit_multiplier``, ``load_multipliers`` [-],
             ``restitution`` [-] (None for nan), ``motion``, ``extend_to_g`` [g], ``model``,
-            ``search`` and ``analyses``.
+            ``search``, ``analyses`` and ``undecided``.
 
         Examples
         --------
@@ -424,7 +463,7 @@ class FailureDomain:
             "load_multipliers": list(self.load_multipliers),
             "restitution": [json_float(c) for c in self.restitution], "motion": self.motion,
             "extend_to_g": self.extend_to_g, "model": self.model, "search": self.search,
-            "analyses": list(self.analyses)}
+            "analyses": list(self.analyses), "undecided": list(self.undecided)}
 
     @classmethod
     def from_dict(cls, data: dict) -> FailureDomain:
@@ -434,7 +473,8 @@ class FailureDomain:
         ----------
         data : dict
             :meth:`to_dict`'s form (the derived numbers of a slice, such as its
-            ``failure_acceleration``, are read from its intervals, not from the dict).
+            ``failure_acceleration``, are read from its intervals, not from the dict; a domain
+            written before undecided analyses were counted has none recorded).
 
         Returns
         -------
@@ -446,7 +486,8 @@ class FailureDomain:
         restitution = tuple(math.nan if c is None else c for c in data["restitution"])
         return cls(slices, data["direction"], data["limit_multiplier"],
                    tuple(data["load_multipliers"]), restitution, data["motion"],
-                   data["extend_to_g"], data["model"], data["search"], tuple(data["analyses"]))
+                   data["extend_to_g"], data["model"], data["search"], tuple(data["analyses"]),
+                   tuple(data.get("undecided", ())))
 
 
 def check_durations(durations) -> np.ndarray:
@@ -672,9 +713,10 @@ def domain_of(model, durations=None, amplitudes_g=None, *, direction: str = "l",
         k = (math.nan, math.nan)
     limit_k = k[0] if direction == "l" else k[1]
     restitution = tuple(getattr(model, "restitution", (math.nan, math.nan)))
-    return FailureDomain(tuple(s for s, _ in slices), direction, limit_k, k, restitution,
+    return FailureDomain(tuple(s for s, _, _ in slices), direction, limit_k, k, restitution,
                          motion, None if extend_to_g is None else float(extend_to_g),
-                         model.describe(), search, tuple(n for _, n in slices))
+                         model.describe(), search, tuple(n for _, n, _ in slices),
+                         tuple(u for _, _, u in slices))
 
 
 def _check_stands(model) -> None:
@@ -750,19 +792,25 @@ class _SliceJob:
         return keys, smooth_outcomes(out, excitation_end(self.motion, duration))
 
 
-def _slice_task(args) -> tuple[DomainSlice, int]:
-    """One duration of a domain: ``(slice, number of analyses)`` (a worker's job)."""
+def _slice_task(args) -> tuple[DomainSlice, int, int]:
+    """One duration of a domain: ``(slice, number of analyses, of them undecided)`` (a
+    worker's job)."""
     job, index, duration = args
     return _domain_slice_of(job, index, duration)
 
 
-def _domain_slice_of(job: _SliceJob, index: int, tp: float) -> tuple[DomainSlice, int]:
+UNDECIDED_KEY = int(Status.UNDECIDED) * 1000
+"""The outcome key (:func:`_encode`) of an undecided analysis."""
+
+
+def _domain_slice_of(job: _SliceJob, index: int, tp: float) -> tuple[DomainSlice, int, int]:
     from .strategies import search_grid
 
-    count = 0
+    count = undecided = 0
     if job.scan is not None:  # the whole grid, analysed in one call
         keys = _encode(job.scan["status"][index], job.scan["half_cycle"][index])
         count += keys.size
+        undecided += int(np.count_nonzero(keys == UNDECIDED_KEY))
     else:
         screen = None
         if job.search == "screened" and job.screen is not None:
@@ -775,28 +823,32 @@ def _domain_slice_of(job: _SliceJob, index: int, tp: float) -> tuple[DomainSlice
         keys, analysed = search_grid(classify_indices, job.grid.size, search=job.search,
                                      stride=job.stride, screen=screen)
         count += int(analysed.sum())
+        undecided += int(np.count_nonzero(keys[analysed] == UNDECIDED_KEY))
     grid = job.grid
     if job.extend_to_g is not None:
         step = 1 if job.search == "exhaustive" else job.stride
+        size = grid.size
         grid, keys, extra = _extend(lambda amp: job.outcome_keys(tp, amp), grid, keys,
                                     job.extend_to_g, step, _target(job.model))
         count += extra
+        undecided += int(np.count_nonzero(keys[size:] == UNDECIDED_KEY))
     known = {float(x): int(key) for x, key in zip(grid, keys, strict=True)}
-    analyses = [0]
+    analyses = [0, 0]  # bisection steps, of them undecided
 
     def classify(amplitude, known=known):
         key = known.get(float(amplitude))
         if key is None:
             key = int(job.outcome_keys(tp, [float(amplitude)])[0])
             analyses[0] += 1
+            analyses[1] += key == UNDECIDED_KEY
         return _decode(key)
 
     piece = domain_slice(classify, grid, duration=float(tp), resolution=job.resolution)
-    return piece, count + analyses[0]
+    return piece, count + analyses[0], undecided + analyses[1]
 
 
 def _run_slices(job: _SliceJob, durations: np.ndarray, workers: int | None,
-                progress: bool) -> list[tuple[DomainSlice, int]]:
+                progress: bool) -> list[tuple[DomainSlice, int, int]]:
     """Every duration's slice, here or on local worker processes."""
     import sys
 
