@@ -122,3 +122,85 @@ def test_domain_command_warns_first_and_prints_the_bands(calls, capsys, k_l):
     (row,) = json.loads(capsys.readouterr().out)
     assert row["undecided_analyses"] == _forced_domain_counts(calls)[1]
     assert len(row["undecided"]) == 2 and abs(row["failure_undecided_from"] - low) <= 1e-3
+
+
+FRAGILITY_GRID = dict(durations=(0.4, 0.6), amplitudes_g=tuple(np.round(
+    np.arange(0.2, 1.2001, 0.05), 10)))
+
+
+def _fragility_settings(**more):
+    from archquake.studies.fragility import FragilitySettings
+
+    return FragilitySettings(model="rigid-blocks", sample_size=4, epsilon=0.05,
+                             limit_sample_size=4, search="exhaustive", **FRAGILITY_GRID,
+                             **more)
+
+
+def _expected_fragility(settings):
+    """P_F bounds and counts from the forced pattern and each arch's own load multipliers."""
+    failed, undecided, count = [], [], 0
+    for i in range(settings.sample_size):
+        member = settings.sample.member(i, model="rigid-blocks",
+                                        block_settings=settings.block_settings)
+        if member.model is None:
+            continue
+        k_l, k_r = member.model.load_multipliers
+        codes = np.array([[[forced.status_of(a / k, tp) for a in settings.amplitudes_g]
+                           for tp in settings.durations] for k in (k_l, k_r)])
+        collapse = (codes == Status.COLLAPSE).any(axis=0)
+        failed.append(collapse)
+        undecided.append((codes == Status.UNDECIDED).any(axis=0) & ~collapse)
+        count += int((codes == Status.UNDECIDED).sum())
+    failed, undecided = np.array(failed), np.array(undecided)
+    return failed.mean(axis=0), (failed | undecided).mean(axis=0), count, failed.shape[0]
+
+
+def test_fragility_bounds_p_f_by_the_undecided_arches(calls, tmp_path):
+    from archquake.studies.fragility import load_fragility, run_fragility
+
+    settings = _fragility_settings()
+    result = run_fragility(settings, tmp_path / "study", backend="serial", progress=False,
+                           nominal_resolution_g=1e-3)
+    lower, upper, count, h = _expected_fragility(settings)
+    assert result.analysed == h
+    np.testing.assert_array_equal(result.probability, lower)
+    np.testing.assert_array_equal(result.probability_upper, upper)
+    assert np.any(upper > lower)  # the forced pattern leaves some P_F undecided
+    assert result.undecided_analyses == count > 0
+    summary = result.summary()
+    assert summary["undecided"]["analyses"] == count
+    assert summary["undecided"]["of"] == 2 * h * lower.size
+    nominal = sum(1 for c in calls if c[2] is Status.UNDECIDED) - count
+    assert summary["undecided"]["nominal_analyses"] == nominal
+    for i, row in enumerate(summary["durations"]):
+        gap = upper[i] - lower[i]
+        assert row["undecided"] == round(gap.sum() * h)
+        assert ("probability_upper_largest_gap" in row) == bool(gap.any())
+    curves = result.curves()
+    np.testing.assert_array_equal(curves["probability_upper"], upper.ravel())
+    # the stored study keeps the count; the nominal failure of the short pulse is bounded
+    again = load_fragility(tmp_path / "study", nominal_resolution_g=1e-3)
+    assert again.undecided_analyses == count
+    k = min(RigidBlockModel(oppenheim()).load_multipliers)
+    short = summary["durations"][0]
+    assert abs(short["nominal_failure_undecided_from"] - k * forced.UNDECIDED_BAND[0]) <= 1e-3
+    assert "nominal_failure_undecided_from" not in summary["durations"][1]
+
+
+def test_fragility_command_warns_first_and_shows_the_bounds(calls, capsys, tmp_path):
+    from archquake.cli import main
+
+    settings = _fragility_settings()
+    _, _, count, h = _expected_fragility(settings)
+    calls.clear()
+    argv = ["fragility", "--model", "rigid-blocks", "--samples", "4", "--epsilon", "0.05",
+            "--limit-samples", "4", "--search", "exhaustive", "--durations", "0.4,0.6",
+            "--amplitudes", "0.2:1.2:0.05", "--out", str(tmp_path / "cli"), "--no-progress"]
+    assert main(argv) == 0
+    lines = capsys.readouterr().out.splitlines()
+    total = 2 * h * 2 * len(FRAGILITY_GRID["amplitudes_g"])
+    nominal = [c for c in calls[2 * h * 2 * len(FRAGILITY_GRID["amplitudes_g"]):]]
+    everything = sum(1 for c in calls if c[2] is Status.UNDECIDED)
+    assert lines[0] == undecided_warning(everything, total + len(nominal))
+    assert any(line.startswith(f"undecided: {count} of {total} analyses") for line in lines)
+    assert any("as a failure it is the upper bound" in line for line in lines)

@@ -98,6 +98,14 @@ def run(args: argparse.Namespace) -> int:
         model = (f"rigid-block model (friction {settings.friction:g}, time step "
                  f"{settings.time_step:g} s, coarse factor {settings.coarse_factor}), search "
                  f"{settings.search!r}: {analysed} analysed, the others inferred")
+    from ..studies.undecided import undecided_warning
+
+    undecided = summary["undecided"]
+    warning = undecided_warning(undecided["analyses"] + undecided["nominal_analyses"],
+                                undecided["of"] + sum(sum(d.analyses)
+                                                      for d in result.nominal_domains))
+    if warning:
+        print(warning)
     print(f"Fragility study: h = {settings.sample_size} irregular arches (epsilon = "
           f"{settings.epsilon:g}, seed {settings.seed}), {len(settings.durations)} durations x "
           f"{len(settings.amplitudes_g)} amplitudes x 2 directions = {n_analyses} analyses; "
@@ -118,13 +126,22 @@ def run(args: argparse.Namespace) -> int:
         return f"{'-':>{width}}" if x is None else f"{x:>{width}.{digits}f}"
 
     def nominal(row, width):
+        if "nominal_failure_undecided_from" in row:  # an undecided band below it
+            high = row["nominal_failure_acceleration"]
+            return (f"{row['nominal_failure_undecided_from']:.3f}.."
+                    + ("" if high is None else f"{high:.3f}")).rjust(width)
         if row.get("nominal_failure_acceleration_bound") == "upper":  # collapse from the start
             return f"<= {row['nominal_failure_acceleration']:.4f}".rjust(width)
         return fmt(row["nominal_failure_acceleration"], width)
 
+    def below(row, width):
+        if "probability_below_nominal_upper" in row:  # bounded by undecided arches
+            return (f"{row['probability_below_nominal']:.3f}-"
+                    f"{row['probability_below_nominal_upper']:.3f}").rjust(width)
+        return fmt(row["probability_below_nominal"], width, 3)
+
     for row in summary["durations"]:
-        print(f"{row['duration']:>8.3f} {nominal(row, 14)} "
-              f"{fmt(row['probability_below_nominal'], 12, 3)} "
+        print(f"{row['duration']:>8.3f} {nominal(row, 14)} {below(row, 12)} "
               f"{fmt(row['lowest_failure_acceleration'], 15, 2)} "
               f"{fmt(row['lognormal_median'], 21)} {fmt(row['lognormal_dispersion'], 6, 3)}")
     k = summary["limit_sample"]
@@ -142,11 +159,30 @@ def run(args: argparse.Namespace) -> int:
           f"{number(k['fraction_below_nominal'], 3)}")
     print("P_F below Q: fraction of irregular arches that fail at the largest amplitude of "
           "the grid below the nominal failure acceleration Q (where the nominal arch survives)")
+    _print_undecided(summary, undecided)
     print(f"written to {args.out}: results.parquet, results.csv, {CURVES_CSV}, summary.json, "
           f"{LIMIT_DIRECTORY}/")
     for path in written:
         print(f"figure written to {path}")
     return 0
+
+
+def _print_undecided(summary: dict, undecided: dict) -> None:
+    """The count of undecided analyses and, where there are any, the bounds of P_F they leave
+    (:mod:`archquake.studies.undecided`)."""
+    print(f"undecided: {undecided['analyses']} of {undecided['of']} analyses of the irregular "
+          f"arches, {undecided['nominal_analyses']} of the nominal arch's failure domains")
+    gaps = [(row["duration"], row["undecided"], row["probability_upper_largest_gap"])
+            for row in summary["durations"] if row["undecided"]]
+    if gaps:
+        print("P_F counts an arch whose failure is undecided as a survival (the lower bound; "
+              "the fits too); as a failure it is the upper bound (curves.csv: "
+              "probability_upper): " + "; ".join(
+                  f"t_p = {d:g} s: {n} arch-amplitude points undecided, bounds up to "
+                  f"{gap:.3f} apart" for d, n, gap in gaps))
+    if any("nominal_failure_undecided_from" in row for row in summary["durations"]):
+        print("a..b: the nominal arch is undecided from a below its lowest decided collapse b: "
+              "Q lies between a and b")
 
 
 def _run_records(args: argparse.Namespace) -> int:

@@ -134,6 +134,7 @@ from .fits import (
     rising_part,
 )
 from .strategies import DEFAULT_STRIDE
+from .undecided import undecided_count, undecided_summary
 
 # ---------------------------------------------------------------------------------------------
 # The study
@@ -653,6 +654,14 @@ class FragilityResult:
         The irregular arches of the dynamic study that were not analysed, by index, with the
         reason (a key of :data:`~archquake.studies.arch_sample.EXCLUSIONS`); they are left out
         of h, so ``failures`` and the probabilities count the :attr:`analysed` arches only.
+    undecided : ndarray of int, shape (d, a)
+        Number h_u of analysed arches whose failure the model left undecided: an analysis
+        undecided in a direction (:attr:`archquake.status.Status.UNDECIDED`, the rigid-block
+        model's) and a collapse in neither. :attr:`probability` counts them as survivals (the
+        lower bound of P_F), :attr:`probability_upper` as failures; the fits are made to
+        :attr:`probability` (:mod:`archquake.studies.undecided`). None: zero everywhere.
+    undecided_analyses : int
+        Analyses (rows of the table of the analysed arches) left undecided [-].
     """
 
     settings: FragilitySettings
@@ -674,11 +683,29 @@ class FragilityResult:
     nominal_domains: tuple[FailureDomain, FailureDomain] = field(repr=False)
     metadata: dict = field(repr=False, default_factory=dict)
     excluded: dict = field(default_factory=dict)
+    undecided: np.ndarray | None = field(repr=False, default=None)
+    undecided_analyses: int = 0
+
+    def __post_init__(self) -> None:
+        if self.undecided is None:
+            object.__setattr__(self, "undecided", np.zeros_like(self.failures))
 
     @property
     def analysed(self) -> int:
         """Number of irregular arches analysed, the h of P_F = h_f / h (drawn minus excluded)."""
         return self.settings.sample_size - len(self.excluded)
+
+    @property
+    def analyses(self) -> int:
+        """Analyses of the analysed arches (both directions, the whole grid) [-]."""
+        return 2 * self.analysed * self.failures.size
+
+    @property
+    def probability_upper(self) -> np.ndarray:
+        """Upper bound of P_F, shape (d, a) [-]: the arches whose failure is undecided
+        (:attr:`undecided`) counted as failed, ``(h_f + h_u) / h``; equal to
+        :attr:`probability` (the lower bound) where no analysis was left undecided."""
+        return (self.failures + self.undecided) / self.analysed
 
     @property
     def limit_load_multipliers(self) -> np.ndarray:
@@ -721,20 +748,47 @@ class FragilityResult:
                                and s.failure_acceleration_bound == "upper" for s in slices)
                 else None)
 
-    def probability_below_nominal(self) -> np.ndarray:
+    def nominal_failure_undecided_from(self, i: int) -> float:
+        """Lowest amplitude [g] of an undecided band of the nominal arch below its failure
+        acceleration of duration ``i`` (in either direction;
+        :attr:`archquake.studies.failure_domain.DomainSlice.failure_undecided_from_g`): the
+        nominal failure acceleration then lies between it and
+        :attr:`nominal_failure_acceleration_g`. nan when none (the value is decided)."""
+        q = float(self.nominal_failure_acceleration_g[i])
+        lows = []
+        for domain in self.nominal_domains:
+            s = domain.slices[i]
+            low = s.failure_undecided_from_g
+            lows.append(low if math.isfinite(low) else s.failure_acceleration_g)
+        lows = [x for x in lows if math.isfinite(x)]
+        low = min(lows) if lows else math.nan
+        return low if math.isfinite(low) and (math.isnan(q) or low < q) else math.nan
+
+    @property
+    def nominal_undecided_analyses(self) -> int:
+        """Analyses of the nominal arch's failure domains left undecided [-]."""
+        return sum(getattr(d, "undecided_analyses", 0) for d in self.nominal_domains)
+
+    def probability_below_nominal(self, upper: bool = False) -> np.ndarray:
         """P_F at the largest grid amplitude below the nominal failure acceleration, per
         duration: where the step of eq. (10) says P_F = 0.
+
+        Parameters
+        ----------
+        upper : bool
+            The upper bound of P_F (:attr:`probability_upper`) instead of P_F.
 
         Returns
         -------
         ndarray, shape (d,)
             P_F [-] (nan where there is no such amplitude).
         """
+        probability = self.probability_upper if upper else self.probability
         out = np.full(self.durations.size, np.nan)
         for i, q in enumerate(self.nominal_failure_acceleration_g):
             below = np.flatnonzero(self.amplitudes_g < q) if math.isfinite(q) else np.array([])
             if below.size:
-                out[i] = self.probability[i, below[-1]]
+                out[i] = probability[i, below[-1]]
         return out
 
     def lowest_failure_acceleration_g(self) -> np.ndarray:
@@ -761,8 +815,10 @@ class FragilityResult:
         pandas.DataFrame
             Columns ``duration`` [s], ``amplitude_g`` [g], ``failures``, ``failures_l``,
             ``failures_r``, ``probability``, ``probability_l``, ``probability_r``,
-            ``polynomial_fit``, ``lognormal_fit`` (nan without a fit) and ``nominal_step``
-            (1 at and above the nominal failure acceleration, else 0) [-].
+            ``polynomial_fit``, ``lognormal_fit`` (nan without a fit), ``nominal_step``
+            (1 at and above the nominal failure acceleration, else 0) [-], ``undecided``
+            (h_u, :attr:`undecided`) and ``probability_upper`` (:attr:`probability_upper`:
+            ``probability`` is its lower bound) [-].
         """
         d, a = np.meshgrid(self.durations, self.amplitudes_g, indexing="ij")
         poly = np.vstack([evaluate_polynomial_fit(p, self.amplitudes_g)
@@ -780,11 +836,20 @@ class FragilityResult:
             "probability_r": self.probability_r.ravel(),
             "polynomial_fit": poly.ravel(), "lognormal_fit": logn.ravel(),
             "nominal_step": step.ravel(),
+            "undecided": self.undecided.ravel(),
+            "probability_upper": self.probability_upper.ravel(),
         })
 
     def summary(self) -> dict:
         """JSON-ready summary: per duration the nominal failure acceleration, P_F below it,
-        the fits; ``arches``: how many were drawn and analysed, and the excluded ones by reason
+        the fits, and ``undecided`` (the arch-amplitude points whose failure is undecided, 0
+        when every analysis decided; only then, the upper bounds
+        ``probability_upper_largest_gap`` (the largest difference of the bounds of P_F over the
+        amplitudes), ``probability_below_nominal_upper`` and, for an undecided band of the
+        nominal arch below its failure acceleration, ``nominal_failure_undecided_from`` [g]);
+        ``undecided``: the count of undecided analyses of the irregular arches and of the
+        nominal arch (:func:`archquake.studies.undecided.undecided_summary`, ``nominal_analyses``);
+        ``arches``: how many were drawn and analysed, and the excluded ones by reason
         (:data:`~archquake.studies.arch_sample.EXCLUSIONS`); the k~ statistics of the limit
         sample over its arches that are not excluded (``count``; ``excluded``;
         ``never_collapse``: k~ = inf, left out of the mean, std, min and max;
@@ -799,6 +864,7 @@ class FragilityResult:
         counted = k[~np.isnan(k)]  # excluded arches have k~ = nan; inf: never collapses
         finite = counted[np.isfinite(counted)]
         below = self.probability_below_nominal()
+        below_upper = self.probability_below_nominal(upper=True)
         lowest = self.lowest_failure_acceleration_g()
         per_duration = []
         for i, tp in enumerate(self.durations):
@@ -817,6 +883,8 @@ class FragilityResult:
                                          else float(lognormal(q))),
                 **({"nominal_failure_acceleration_bound": "upper"}
                    if self.nominal_failure_bound(i) == "upper" else {}),
+                "undecided": int(self.undecided[i].sum()),
+                **self._undecided_bounds(i, below[i], below_upper[i]),
             })
         def stat(function, values):
             return json_float(float(function(values))) if values.size else None
@@ -827,6 +895,8 @@ class FragilityResult:
             "nominal_load_multiplier": self.nominal_load_multiplier,
             "nominal_restitution": [json_float(c) for c in self.nominal_domains[0].restitution],
             "arches": exclusion_summary(self.settings.sample_size, self.excluded),
+            "undecided": {**undecided_summary(self.undecided_analyses, self.analyses),
+                          "nominal_analyses": self.nominal_undecided_analyses},
             "limit_sample": {
                 "count": int(counted.size), "excluded": int(k.size - counted.size),
                 "never_collapse": int(counted.size - finite.size),
@@ -840,6 +910,20 @@ class FragilityResult:
             },
             "durations": per_duration,
         }
+
+
+    def _undecided_bounds(self, i: int, below: float, below_upper: float) -> dict:
+        """The keys of duration ``i`` of :meth:`summary` that only undecided analyses add."""
+        out = {}
+        if self.undecided[i].any():
+            out["probability_upper_largest_gap"] = float(
+                np.max(self.probability_upper[i] - self.probability[i]))
+        if below_upper != below and math.isfinite(below_upper):
+            out["probability_below_nominal_upper"] = float(below_upper)
+        low = self.nominal_failure_undecided_from(i)
+        if math.isfinite(low):
+            out["nominal_failure_undecided_from"] = low
+        return out
 
 
 def _study_arrays(table: pd.DataFrame, settings: FragilitySettings):
@@ -868,9 +952,11 @@ def fragility_curves(settings: FragilitySettings, table: pd.DataFrame, limit_sam
     nominal arch's failure domains (both directions).
 
     P_F of eq. (9) of the paper counts an arch as failed where it collapses in either direction,
-    over the arches that are not excluded; the fits are
-    :func:`~archquake.studies.fits.fit_polynomial` (whole grid) and
-    :func:`~archquake.studies.fits.fit_lognormal` (rising part).
+    over the arches that are not excluded; an arch whose analyses are undecided in a direction
+    and collapse in neither counts as a survival in P_F (the lower bound) and as a failure in
+    :attr:`FragilityResult.probability_upper` (:mod:`archquake.studies.undecided`). The fits
+    are :func:`~archquake.studies.fits.fit_polynomial` (whole grid) and
+    :func:`~archquake.studies.fits.fit_lognormal` (rising part), both of P_F, the lower bound.
 
     Parameters
     ----------
@@ -899,9 +985,11 @@ def fragility_curves(settings: FragilitySettings, table: pd.DataFrame, limit_sam
     excluded = excluded_arches(table)
     check_analysed(settings.sample_size, excluded, settings.epsilon)
     keep = np.array([i not in excluded for i in range(settings.sample_size)])
-    collapsed = _study_arrays(table, settings)[keep] == Status.COLLAPSE
+    status = _study_arrays(table, settings)[keep]
+    collapsed = status == Status.COLLAPSE
     failed_l, failed_r = collapsed[:, 0], collapsed[:, 1]
     failed = failed_l | failed_r
+    undecided = (status == Status.UNDECIDED).any(axis=1) & ~failed  # failure not decided
     a = np.asarray(settings.amplitudes_g)
     h = int(keep.sum())
     polynomial_fits, lognormal_fits, lognormal_upper = [], [], []
@@ -927,7 +1015,8 @@ def fragility_curves(settings: FragilitySettings, table: pd.DataFrame, limit_sam
         lognormal_upper=np.asarray(lognormal_upper),
         limit_sample=limit_sample, nominal_failure_acceleration_g=q,
         nominal_load_multiplier=float(k_nominal), nominal_domains=tuple(nominal_domains),
-        metadata=dict(metadata or {}), excluded=excluded)
+        metadata=dict(metadata or {}), excluded=excluded, undecided=undecided.sum(axis=0),
+        undecided_analyses=undecided_count(status))
 
 
 def warm_up() -> None:
