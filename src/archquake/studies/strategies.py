@@ -295,7 +295,7 @@ def smooth_outcomes(out: dict, excitation_end: float | None) -> np.ndarray:
     rest, or a collapse decided by ``excitation_end`` [s] under a pulse. Under a record
     (``excitation_end=None``) only rest: a record lasts tens of seconds, and a later excursion
     topples a structure at one level and not at the next, so a collapse during it is not
-    smooth in the level (:func:`archquake.studies.record_fragility.searched_record_outcomes`);
+    smooth in the level (:func:`archquake.studies.record_outcomes.searched_record_outcomes`);
     a rest is (every instant's acceleration scales down with the level, and those a structure
     carries at rest form an interval about 0)."""
     status = np.atleast_1d(np.asarray(out["status"], dtype=np.int64))
