@@ -204,3 +204,40 @@ def test_fragility_command_warns_first_and_shows_the_bounds(calls, capsys, tmp_p
     assert lines[0] == undecided_warning(everything, total + len(nominal))
     assert any(line.startswith(f"undecided: {count} of {total} analyses") for line in lines)
     assert any("as a failure it is the upper bound" in line for line in lines)
+
+
+def test_record_fragility_bounds_the_stripes_by_the_undecided_pairs(calls, capsys):
+    from archquake.cli.main_record_fragility import _print
+    from archquake.ground_motion import RecordSuite
+    from archquake.studies.record_fragility import RecordFragilitySettings, run_record_fragility
+
+    suite = RecordSuite.from_stochastic(2, seed=4, significant_duration=2.0, duration=4.0)
+    levels = tuple(np.round(np.arange(0.2, 1.2001, 0.05), 10))
+    settings = RecordFragilitySettings(suite=suite, levels=levels, sample_size=3, seed=2,
+                                       epsilon=0.05, model="rigid-blocks", search="exhaustive",
+                                       bootstrap=10)
+    result = run_record_fragility(settings, backend="serial", progress=False)
+    codes = []
+    for i in result.arches:  # each analysed arch's pattern, the same for every record
+        member = settings.sample.member(int(i), model="rigid-blocks",
+                                        block_settings=settings.block_settings)
+        k = min(member.model.load_multipliers)
+        codes.append([forced.status_of(x / k) for x in levels])
+    codes = np.array(codes)
+    lower = (codes == Status.COLLAPSE).mean(axis=0)
+    upper = ((codes == Status.COLLAPSE) | (codes == Status.UNDECIDED)).mean(axis=0)
+    np.testing.assert_allclose(result.probability, lower, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(result.probability_upper, upper, rtol=0, atol=1e-12)
+    assert np.any(upper > lower)
+    pairs = 2 * len(suite.names)  # records x polarities per arch and level
+    summary = result.summary()
+    assert summary["undecided"]["analyses"] == int((codes == Status.UNDECIDED).sum()) * pairs
+    made = sum(1 for c in calls if c[2] is Status.UNDECIDED)
+    assert summary["undecided"]["analyses"] + summary["undecided"]["nominal_analyses"] == made
+    assert summary["probability_upper"] == result.probability_upper.tolist()
+    _print(result, summary)
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0] == undecided_warning(made, len(calls))
+    j = int(np.flatnonzero(upper > lower)[0])
+    row = next(line for line in lines if line.split()[:1] == [f"{levels[j]:.4g}"])
+    assert row.split()[1] == f"{lower[j]:.3f}-{upper[j]:.3f}"

@@ -113,9 +113,16 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _print(result, summary: dict) -> None:
+    from ..studies.undecided import undecided_warning
+
     s = result.settings
     unit = s.unit
     analyses = summary["analyses"]
+    undecided = summary["undecided"]
+    warning = undecided_warning(undecided["analyses"] + undecided["nominal_analyses"],
+                                undecided["of"] + undecided["nominal_of"])
+    if warning:
+        print(warning)
     print(f"Record-based fragility: h = {s.sample_size} irregular arches (epsilon = "
           f"{s.epsilon:g}, seed {s.seed}) and the nominal arch, {len(result.records)} records "
           f"x {result.levels.size} levels of {s.im} [{unit}] x 2 polarities = "
@@ -124,12 +131,24 @@ def _print(result, summary: dict) -> None:
     curves = result.curves()
     print(f"{'level [' + unit + ']':>12} {'P irregular':>12} {'P nominal':>10} "
           f"{'lognormal':>10} {'band':>15}")
+
+    def bounded(lower, upper, width):  # a probability, or its bounds with undecided analyses
+        text = f"{lower:.3f}" if upper == lower else f"{lower:.3f}-{upper:.3f}"
+        return f"{text:>{width}}"
+
     for row in curves.itertuples():
         band = ("-" if not math.isfinite(row.band_lower)
                 else f"{row.band_lower:.3f}-{row.band_upper:.3f}")
         fit = "-" if not math.isfinite(row.lognormal_fit) else f"{row.lognormal_fit:.3f}"
-        print(f"{row.level:>12.4g} {row.probability:>12.3f} {row.nominal_probability:>10.3f} "
+        print(f"{row.level:>12.4g} {bounded(row.probability, row.probability_upper, 12)} "
+              f"{bounded(row.nominal_probability, row.nominal_probability_upper, 10)} "
               f"{fit:>10} {band:>15}")
+    print(f"undecided: {undecided['analyses']} of {undecided['of']} analyses of the irregular "
+          f"arches, {undecided['nominal_analyses']} of {undecided['nominal_of']} of the "
+          f"nominal arch")
+    if undecided["analyses"] or undecided["nominal_analyses"]:
+        print("a-b: P with the pairs whose failure is undecided counted as survivals (a, the "
+              "lower bound; the fits and bands too) and as collapses (b, the upper bound)")
 
     def describe(fit, band):
         if fit["median"] is None:

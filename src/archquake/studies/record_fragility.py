@@ -139,6 +139,7 @@ from ..geometry import BlockArch, arch_from_dict
 from ..ground_motion.suites import RecordSuite, stripe_measure
 from ..models import DEFAULT_MODEL
 from ..reference_arches import oppenheim
+from ..status import Status
 from .arch_sample import (
     STATUS_EXCLUDED,
     ArchSample,
@@ -160,6 +161,7 @@ from .fits import (
     lognormal_fit,
 )
 from .record_outcomes import POLARITIES, REST_MARGIN, record_outcomes, searched_record_outcomes
+from .undecided import undecided_summary
 
 NOMINAL_ARCH = -1
 """Value of the ``arch`` column for the nominal arch (the irregular arches are 0 .. h-1)."""
@@ -545,6 +547,14 @@ class RecordFragilityResult:
         The irregular arches that were not analysed, by index, with the reason (a key of
         :data:`~archquake.studies.arch_sample.EXCLUSIONS`); they are left out of h, so the
         stripes count the :attr:`analysed` arches only.
+    undecided : bool ndarray, shape (h, R, L, 2)
+        Analyses the model left undecided (:attr:`archquake.status.Status.UNDECIDED`, the
+        rigid-block model's), as :attr:`collapsed`. A pair undecided in a polarity and collapsing
+        in neither is a survival in :attr:`probability`, the fits and the bands (the lower
+        bound of P_F) and a failure in :attr:`probability_upper`
+        (:mod:`archquake.studies.undecided`). None: none undecided.
+    nominal_undecided : bool ndarray, shape (R, L, 2)
+        The same for the nominal arch.
     """
 
     settings: RecordFragilitySettings
@@ -560,6 +570,42 @@ class RecordFragilityResult:
     nominal_band: BootstrapBand | None = field(repr=False)
     metadata: dict = field(repr=False, default_factory=dict)
     excluded: dict = field(default_factory=dict)
+    undecided: np.ndarray | None = field(repr=False, default=None)
+    nominal_undecided: np.ndarray | None = field(repr=False, default=None)
+
+    def __post_init__(self) -> None:
+        if self.undecided is None:
+            object.__setattr__(self, "undecided", np.zeros_like(self.collapsed))
+        if self.nominal_undecided is None:
+            object.__setattr__(self, "nominal_undecided", np.zeros_like(self.nominal_collapsed))
+
+    # ------------------------------------------------------------------ undecided
+    @property
+    def undecided_pairs(self) -> np.ndarray:
+        """Analysed irregular arch-record pairs per stripe whose failure is undecided
+        (undecided in a polarity, collapsing in neither), shape (L,)."""
+        return (self.undecided.any(axis=-1) & ~self.failed).sum(axis=(0, 1))
+
+    @property
+    def probability_upper(self) -> np.ndarray:
+        """Upper bound of P(collapse | IM = x_j) of the irregular arches, shape (L,) [-]: the
+        pairs whose failure is undecided counted as failures; :attr:`probability` is the lower
+        bound (:mod:`archquake.studies.undecided`)."""
+        return (self.failures + self.undecided_pairs) / self.trials
+
+    @property
+    def nominal_probability_upper(self) -> np.ndarray:
+        """Upper bound of :attr:`nominal_probability` [-], as :attr:`probability_upper`."""
+        undecided = self.nominal_undecided.any(axis=-1) & ~self.nominal_failed
+        return (self.nominal_failed | undecided).mean(axis=0)
+
+    def undecided_summary(self) -> dict:
+        """The count of undecided analyses, JSON-ready
+        (:func:`archquake.studies.undecided.undecided_summary` of the irregular arches, and
+        ``nominal_analyses``: of the nominal arch, out of ``nominal_of``)."""
+        return {**undecided_summary(int(self.undecided.sum()), int(self.collapsed.size)),
+                "nominal_analyses": int(self.nominal_undecided.sum()),
+                "nominal_of": int(self.nominal_collapsed.size)}
 
     # ------------------------------------------------------------------ arches
     @property
@@ -720,8 +766,11 @@ class RecordFragilityResult:
             ``level`` [the IM's unit], ``trials``, ``failures``, ``probability``,
             ``probability_as_recorded``, ``probability_reversed``, ``lognormal_fit``,
             ``band_lower``, ``band_upper`` (the bootstrap band, interpolated in ``ln x``),
-            ``nominal_records``, ``nominal_failures``, ``nominal_probability`` and
-            ``nominal_lognormal_fit`` [-]; nan where a fit or band does not exist.
+            ``nominal_records``, ``nominal_failures``, ``nominal_probability``,
+            ``nominal_lognormal_fit``, ``undecided`` (:attr:`undecided_pairs`),
+            ``probability_upper`` and ``nominal_probability_upper`` (the upper bounds of P_F
+            with undecided analyses; the probabilities are the lower bounds) [-]; nan where a
+            fit or band does not exist.
         """
         x = self.levels
 
@@ -744,6 +793,9 @@ class RecordFragilityResult:
             "nominal_failures": self.nominal_failed.sum(axis=0),
             "nominal_probability": self.nominal_probability,
             "nominal_lognormal_fit": fitted(self.nominal_lognormal),
+            "undecided": self.undecided_pairs,
+            "probability_upper": self.probability_upper,
+            "nominal_probability_upper": self.nominal_probability_upper,
         })
 
     def export_nrml(self, path: str | os.PathLike, *, taxonomy: str = "masonry-arch") -> Path:
@@ -795,8 +847,11 @@ class RecordFragilityResult:
 
     def summary(self) -> dict:
         """JSON-ready summary: IM, levels, stripes, fits, bands, variability, incremental view,
-        and the arches drawn, analysed and excluded (``arches``, by reason:
-        :data:`~archquake.studies.arch_sample.EXCLUSIONS`).
+        the arches drawn, analysed and excluded (``arches``, by reason:
+        :data:`~archquake.studies.arch_sample.EXCLUSIONS`), and the undecided analyses
+        (``undecided``: :meth:`undecided_summary`; ``probability_upper``, of the irregular and
+        of the nominal arch: the upper bounds of the probabilities, equal to them when none is
+        undecided).
 
         Returns
         -------
@@ -825,8 +880,12 @@ class RecordFragilityResult:
             "probability": self.probability.tolist(),
             "probability_as_recorded": self.probability_of_polarity(1).tolist(),
             "probability_reversed": self.probability_of_polarity(-1).tolist(),
+            "probability_upper": self.probability_upper.tolist(),
+            "undecided": self.undecided_summary(),
             "lognormal": total,
-            "nominal": {"probability": self.nominal_probability.tolist(), "lognormal": nominal},
+            "nominal": {"probability": self.nominal_probability.tolist(),
+                        "probability_upper": self.nominal_probability_upper.tolist(),
+                        "lognormal": nominal},
             "variability": self.variability(),
             "incremental": {
                 "pairs": int(len(sample)),
@@ -842,9 +901,7 @@ class RecordFragilityResult:
 
 
 def _study_arrays(table: pd.DataFrame, settings: RecordFragilitySettings):
-    """``collapsed[arch, record, level, polarity]`` (irregular arches, then the nominal one)."""
-    from ..fourlink.engine import STATUS_COLLAPSE
-
+    """``status[arch, record, level, polarity]`` (irregular arches, then the nominal one)."""
     h, r, n_levels = settings.sample_size, len(settings.suite), len(settings.levels)
     shape = (h + 1, r, n_levels, len(POLARITIES))
     expected = math.prod(shape)
@@ -861,7 +918,7 @@ def _study_arrays(table: pd.DataFrame, settings: RecordFragilitySettings):
             or np.any(polarity != np.array(POLARITIES)[None, None, None, :])):
         raise ValueError("the study table is not ordered by arch, record, level, polarity as the "
                          "record fragility task writes it")
-    return table["status"].to_numpy().reshape(shape) == STATUS_COLLAPSE
+    return table["status"].to_numpy().reshape(shape)
 
 
 def record_fragility_result(settings: RecordFragilitySettings, table: pd.DataFrame,
@@ -871,6 +928,9 @@ def record_fragility_result(settings: RecordFragilitySettings, table: pd.DataFra
     The bootstrap draws from ``SeedSequence(settings.seed, spawn_key=(BOOTSTRAP_KEY,))`` (one
     child stream for the total band, one for the nominal band), so the same table gives the
     same bands. The excluded irregular arches (column ``excluded``) are left out of the stripes.
+    A pair whose analyses are undecided (and collapse in neither polarity) counts as a survival
+    in the stripes and the fits (the lower bound of P_F) and as a failure in
+    :attr:`RecordFragilityResult.probability_upper` (:mod:`archquake.studies.undecided`).
 
     Parameters
     ----------
@@ -891,10 +951,11 @@ def record_fragility_result(settings: RecordFragilitySettings, table: pd.DataFra
     ValueError
         If the table does not match the settings, or every irregular arch was excluded.
     """
-    collapsed = _study_arrays(table, settings)
+    status = _study_arrays(table, settings)
     excluded = excluded_arches(table)
     check_analysed(settings.sample_size, excluded, settings.epsilon)
     keep = np.array([i not in excluded for i in range(settings.sample_size)], dtype=bool)
+    collapsed, undecided = status == Status.COLLAPSE, status == Status.UNDECIDED
     sample, nominal = collapsed[:-1][keep], collapsed[-1]
     levels = np.asarray(settings.levels)
     failed = sample.any(axis=-1)
@@ -916,7 +977,8 @@ def record_fragility_result(settings: RecordFragilitySettings, table: pd.DataFra
         settings=settings, table=table, records=settings.suite.names, levels=levels,
         collapsed=sample, nominal_collapsed=nominal, lognormal=total,
         nominal_lognormal=nominal_fit, geometric=geometric, band=band, nominal_band=nominal_band,
-        metadata=dict(metadata or {}), excluded=excluded)
+        metadata=dict(metadata or {}), excluded=excluded, undecided=undecided[:-1][keep],
+        nominal_undecided=undecided[-1])
 
 
 
