@@ -241,3 +241,33 @@ def test_record_fragility_bounds_the_stripes_by_the_undecided_pairs(calls, capsy
     j = int(np.flatnonzero(upper > lower)[0])
     row = next(line for line in lines if line.split()[:1] == [f"{levels[j]:.4g}"])
     assert row.split()[1] == f"{lower[j]:.3f}-{upper[j]:.3f}"
+
+
+def test_compare_never_compares_a_failure_acceleration_above_an_undecided_band(calls, capsys,
+                                                                                k_l):
+    from archquake.cli import main
+    from archquake.studies.comparison import compare_models
+
+    grid = np.round(np.arange(0.2, 1.2001, 0.05), 10)
+    comparison = compare_models(oppenheim(), (0.4, 0.6), amplitudes_g=grid, resolution=1e-3,
+                                restitutions=("computed",), search="exhaustive")
+    made = sum(1 for c in calls if c[2] is Status.UNDECIDED)
+    assert comparison.undecided_analyses == made > 0
+    short, long = comparison.to_list()
+    low = k_l * forced.UNDECIDED_BAND[0]
+    assert abs(short["failure_undecided_from"]["rigid_block"] - low) <= 1e-3
+    assert len(short["undecided"]["rigid_block"]) == 2
+    assert "failure_undecided_from" not in long and len(long["undecided"]["rigid_block"]) == 1
+    assert sum(row["undecided_analyses"]["rigid_block"] for row in (short, long)) == made
+    difference = comparison.relative_differences()["computed"]
+    assert math.isnan(difference[0]) and math.isfinite(difference[1])
+    calls.clear()
+    assert main(["compare", "--durations", "0.4,0.6", "--amplitudes", "0.2:1.2:0.05",
+                 "--resolution", "0.001", "--search", "exhaustive", "--no-progress"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    made = sum(1 for c in calls if c[2] is Status.UNDECIDED)
+    assert lines[0] == undecided_warning(made, len(calls), "rigid-block analyses")
+    (row,) = [line for line in lines if line.startswith("   0.400")]
+    cells = row.split()
+    assert cells[1].startswith(f"{low:.3f}..") and "%" not in row
+    assert f"rigid blocks undecided: {made} of {len(calls)} analyses" in lines

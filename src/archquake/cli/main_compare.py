@@ -53,7 +53,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     options.add_progress_option(parser, "no progress bar")
     options.add_json_option(parser, "machine-readable output: [{duration, rigid_block, "
                                     "four_link: {computed, link, paper, blocks}, "
-                                    "recovery_above, scanned_to}]")
+                                    "recovery_above, scanned_to, undecided, "
+                                    "undecided_analyses}]")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -93,6 +94,12 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print_json(rows)
         return 0
+    from ..studies.undecided import bands_text, undecided_warning
+
+    warning = undecided_warning(comparison.undecided_analyses,
+                                sum(comparison.rigid_block.analyses), "rigid-block analyses")
+    if warning:
+        print(warning)
     coefficients = ", ".join(f"{name} {pair[0]:.3f}" for name, pair in
                              comparison.restitution.items())
     print(f"Failure acceleration [g] under Oppenheim's pulse, first pulse "
@@ -109,9 +116,13 @@ def run(args: argparse.Namespace) -> int:
         top = f"> {row['scanned_to']:.3g}"
         bounds = row.get("failure_acceleration_bound", {})
         rigid = row["rigid_block"]
+        low = row.get("failure_undecided_from", {}).get("rigid_block")
         if bounds:
             upper.append(row["duration"])
-        if rigid is None:
+        if low is not None:  # undecided below the lowest decided collapse: a range
+            cells = [(f"{low:.3f}.." + ("" if rigid is None else f"{rigid:.3f}")).rjust(13)]
+            rigid = None  # no difference to a failure acceleration that is not decided
+        elif rigid is None:
             cells = [f"{top:>13}"]
         else:
             cells = [(f"<= {rigid:.3f}" if "rigid_block" in bounds else f"{rigid:.3f}")
@@ -141,6 +152,16 @@ def run(args: argparse.Namespace) -> int:
     if bands:
         print("recovery above the failure acceleration [g]:")
         print("\n".join(bands))
+    print(f"rigid blocks undecided: {comparison.undecided_analyses} of "
+          f"{sum(comparison.rigid_block.analyses)} analyses")
+    for row in rows:
+        if row["undecided"]["rigid_block"]:
+            print(f"  t_p = {row['duration']:g} s: {row['undecided_analyses']['rigid_block']} "
+                  f"undecided, bands {bands_text(row['undecided']['rigid_block'])} g")
+    if any("failure_undecided_from" in row for row in rows):
+        print("a..b: the rigid blocks are undecided from a below their lowest decided collapse "
+              "b: the failure acceleration lies between a and b (a..: at least a), and is not "
+              "compared")
     for name, why in comparison.skipped.items():
         print(f"restitution {name!r} left out: {why}")
     if args.plot:

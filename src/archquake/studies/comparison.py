@@ -91,16 +91,32 @@ class ModelComparison:
 
     def failure_accelerations_g(self) -> dict[str, np.ndarray]:
         """``{"rigid_block": ..., <restitution model>: ...}``: the lowest collapsing amplitude
-        per duration [g] (nan: none in the scan)."""
+        per duration [g] (nan: none in the scan); for the rigid blocks the lowest decided one,
+        which is only an upper bound where an undecided band lies below it
+        (:meth:`rigid_block_undecided_from_g`)."""
         out = {"rigid_block": self.rigid_block.failure_accelerations_g}
         for name, domain in self.four_link.items():
             out[name] = domain.failure_accelerations_g
         return out
 
+    def rigid_block_undecided_from_g(self) -> np.ndarray:
+        """Per duration, the lowest amplitude [g] of an undecided band of the rigid-block model
+        below its lowest decided collapse (anywhere in the scan without one): its failure
+        acceleration lies between this and :meth:`failure_accelerations_g` (nan: decided;
+        :attr:`archquake.studies.failure_domain.DomainSlice.failure_undecided_from_g`)."""
+        return np.array([s.failure_undecided_from_g for s in self.rigid_block.slices])
+
+    @property
+    def undecided_analyses(self) -> int:
+        """Rigid-block analyses left undecided [-] (the four-link model decides every one)."""
+        return self.rigid_block.undecided_analyses
+
     def relative_differences(self) -> dict[str, np.ndarray]:
         """``{restitution model: (a_four_link - a_rigid_block) / a_rigid_block}`` per duration
-        [-] (nan where either has no failure in the scan)."""
-        rigid = self.rigid_block.failure_accelerations_g
+        [-] (nan where either has no failure in the scan, or the rigid-block failure
+        acceleration is not decided: an undecided band lies below it)."""
+        rigid = np.where(np.isnan(self.rigid_block_undecided_from_g()),
+                         self.rigid_block.failure_accelerations_g, np.nan)
         return {name: domain.failure_accelerations_g / rigid - 1.0
                 for name, domain in self.four_link.items()}
 
@@ -111,8 +127,13 @@ class ModelComparison:
         [[from, to], ...], "four_link": {model: [...]}}`` [g]) and ``scanned_to`` [g]; and only
         where a model collapses at the lowest amplitude scanned, ``failure_acceleration_bound``
         (``{"rigid_block": "upper", <model>: "upper"}`` for those models: the failure
-        acceleration is at most the value given)."""
+        acceleration is at most the value given). The rigid-block model's undecided analyses:
+        ``undecided`` (``{"rigid_block": [[from, to], ...]}``, its undecided bands [g]),
+        ``undecided_analyses`` (``{"rigid_block": count}``) and, only where a band lies below
+        its lowest decided collapse, ``failure_undecided_from`` (``{"rigid_block": a}``: its
+        failure acceleration lies between ``a`` and ``rigid_block``)."""
         out = []
+        counts = self.rigid_block.undecided or (0,) * len(self.rigid_block.slices)
         for i, rb in enumerate(self.rigid_block.slices):
             fl = {name: domain.slices[i] for name, domain in self.four_link.items()}
             upper = {name: "upper" for name, s in (("rigid_block", rb), *fl.items())
@@ -127,6 +148,10 @@ class ModelComparison:
                                   for name, s in fl.items()}},
                 "scanned_to": rb.scanned_to_g,
                 **({"failure_acceleration_bound": upper} if upper else {}),
+                "undecided": {"rigid_block": [list(b) for b in rb.undecided_bands_g]},
+                "undecided_analyses": {"rigid_block": int(counts[i])},
+                **({"failure_undecided_from": {"rigid_block": rb.failure_undecided_from_g}}
+                   if math.isfinite(rb.failure_undecided_from_g) else {}),
             })
         return out
 
