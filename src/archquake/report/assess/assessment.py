@@ -111,8 +111,12 @@ class Assessment:
 
     @property
     def verdict(self) -> str:
-        """The verdict in words (the report's first paragraph)."""
-        return text.verdict_text(self.results)
+        """The verdict in words (the report's first paragraph), after the warning on the
+        undecided rigid-block analyses when there are too many
+        (:func:`~archquake.report.assess.text.undecided_warning_text`)."""
+        warning = text.undecided_warning_text(self.results)
+        return text.verdict_text(self.results) if warning is None else (
+            f"{warning}\n{text.verdict_text(self.results)}")
 
 
 # ------------------------------------------------------------------------------ records
@@ -719,6 +723,9 @@ def sections(results: dict, figures: dict) -> list[Section]:
     verdict = results["verdict"]
     kind = "verdict" if verdict["stands"] else "verdict cannot"
     summary = [Paragraph(text.verdict_text(results), kind)]
+    warning = text.undecided_warning_text(results)
+    if warning:  # said first: the rigid blocks' answers are bounded, not decided
+        summary.insert(0, Paragraph(warning, "note"))
     rows = text.summary_rows(results)
     if rows:
         summary.append(Table(["capacity", "value", "from", "how far the two models agree"],

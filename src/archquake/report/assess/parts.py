@@ -403,6 +403,12 @@ def pulse_part(four_link: dict | None, rigid_blocks, governing: str,
                amplitudes_g) -> PulsePart:
     """Both models' failure domains side by side, per duration, with their disagreement.
 
+    A row keeps the rigid-block model's undecided analyses (``rigid_blocks_undecided``), bands
+    (``rigid_blocks_undecided_bands`` [g]) and, where a band lies below its lowest decided
+    collapse, ``rigid_blocks_undecided_from`` [g]: its failure acceleration then lies between
+    that and ``rigid_blocks``, and no ``difference`` is given
+    (:mod:`archquake.studies.undecided`).
+
     Parameters
     ----------
     four_link : dict of str to FailureDomain or None
@@ -424,16 +430,22 @@ def pulse_part(four_link: dict | None, rigid_blocks, governing: str,
     fl = None if four_link is None else four_link[governing]
     for i, s in enumerate(rigid_blocks.slices):
         rb = json_float(s.failure_acceleration_g)
+        low = json_float(s.failure_undecided_from_g)  # not None: rb is not decided
         row = {"duration": s.duration, "rigid_blocks": rb, "four_link": None,
                "four_link_first_half_cycle": None, "difference": None,
                "rigid_blocks_analyses": (int(rigid_blocks.analyses[i])
-                                         if rigid_blocks.analyses else None)}
+                                         if rigid_blocks.analyses else None),
+               "rigid_blocks_undecided": (int(rigid_blocks.undecided[i])
+                                          if rigid_blocks.undecided else 0),
+               "rigid_blocks_undecided_bands": [list(b) for b in s.undecided_bands_g],
+               "rigid_blocks_undecided_from": low}
         if fl is not None:
             other = fl.slices[i]
             a = json_float(other.failure_acceleration_g)
             row.update(four_link=a, four_link_first_half_cycle=json_float(
                 other.first_half_cycle_acceleration_g),
-                difference=None if a is None or rb is None else a / rb - 1.0)
+                difference=(None if a is None or rb is None or low is not None
+                            else a / rb - 1.0))
             row["four_link_other_direction"] = json_float(
                 four_link["r" if governing == "l" else "l"].slices[i].failure_acceleration_g)
         rows.append(row)
@@ -448,7 +460,8 @@ def pulse_part(four_link: dict | None, rigid_blocks, governing: str,
         "durations": [s.duration for s in rigid_blocks.slices],
         "rigid_blocks": {"domain": rigid_blocks.to_list(), "model": rigid_blocks.model,
                          "search": rigid_blocks.search,
-                         "analyses": int(sum(rigid_blocks.analyses))},
+                         "analyses": int(sum(rigid_blocks.analyses)),
+                         "undecided": rigid_blocks.undecided_analyses},
         "rows": rows,
     }
     if fl is not None:

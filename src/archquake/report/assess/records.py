@@ -118,7 +118,7 @@ def rigid_block_record_outcomes(structure, suite: dict, level_pga: float,
     -------
     list of [int, int]
         Per record, the status code (:class:`archquake.status.Status`: 0 rest, 1 recovery,
-        2 collapse) as recorded and reversed.
+        2 collapse, -1 undecided) as recorded and reversed.
     """
     from ...ground_motion.suites import RecordSuite
     from ...rigid_blocks import BlockSettings, RigidBlockModel
@@ -153,18 +153,24 @@ def record_check(model, suite, level_pga: float, rigid_blocks: list) -> dict:
     -------
     dict
         ``level_pga`` [g], ``pairs`` (records x 2), the counts ``both``, ``neither``,
-        ``four_link_only`` and ``rigid_blocks_only`` (collapse), ``agree`` (the fraction of
-        pairs where the two agree) and ``by_record`` (``name``, the status codes of both
-        models as recorded and reversed).
+        ``four_link_only`` and ``rigid_blocks_only`` (collapse), ``rigid_blocks_undecided``
+        (pairs the rigid blocks left undecided, in none of the four), ``agree`` (the fraction
+        of pairs where the two agree; an undecided pair is not known to agree) and
+        ``by_record`` (``name``, the status codes of both models as recorded and reversed).
     """
+    from ...status import Status
     from ...studies.record_fragility import record_outcomes
 
-    rows, counts = [], {"both": 0, "neither": 0, "four_link_only": 0, "rigid_blocks_only": 0}
+    rows, counts = [], {"both": 0, "neither": 0, "four_link_only": 0, "rigid_blocks_only": 0,
+                        "rigid_blocks_undecided": 0}
     for motion, pga, rb, name in zip(suite.motions(cached=True), suite.intensities("pga"),
                                      rigid_blocks, suite.names, strict=True):
         factor = level_pga / float(pga)
         fl = [int(v) for v in record_outcomes(model, motion, [factor, -factor])["status"]]
         for a, b in zip(fl, rb, strict=True):
+            if b == Status.UNDECIDED:
+                counts["rigid_blocks_undecided"] += 1
+                continue
             key = {(True, True): "both", (False, False): "neither",
                    (True, False): "four_link_only", (False, True): "rigid_blocks_only"}[
                 (a == 2, b == 2)]

@@ -192,7 +192,26 @@ def check_words(check: dict) -> str:
         text += f"; they collapse in {check['rigid_blocks_only']} where the four-link does not"
     if check["four_link_only"]:
         text += f"; survive {check['four_link_only']} where it collapses"
+    if check.get("rigid_blocks_undecided"):
+        text += f"; undecided in {check['rigid_blocks_undecided']}"
     return text
+
+
+def undecided_warning_text(results: dict) -> str | None:
+    """The warning the report opens with when the rigid blocks left more than
+    :data:`archquake.studies.undecided.UNDECIDED_WARNING_FRACTION` of their analyses
+    undecided (the failure domain and the check under the records), else None."""
+    from ...studies.undecided import undecided_warning
+
+    count = total = 0
+    rb = (results.get("pulses") or {}).get("rigid_blocks") or {}
+    if rb.get("undecided") is not None:
+        count, total = rb["undecided"], rb["analyses"]
+    check = (results.get("records") or {}).get("check") or {}
+    if check.get("rigid_blocks_undecided") is not None:
+        count += check["rigid_blocks_undecided"]
+        total += check["pairs"]
+    return undecided_warning(count, total, "rigid-block analyses")
 
 
 def agreement_text(results: dict) -> str:
@@ -372,6 +391,7 @@ def domain_text(results: dict) -> str:
             f"The rigid-block model: every block rigid, Coulomb friction "
             f"{rb['model'].get('friction', '-')} at the joints; {rb['analyses']} analyses, "
             f"its scan screened by the four-link model ({rb['search']}).")
+    text += _undecided_text(p)
     if "four_link" in p:
         c = p["four_link"][p["direction"]]["restitution"]
         text += (f" The four-link model: restitution '{results['four_link']['used']['rule']}', "
@@ -379,8 +399,28 @@ def domain_text(results: dict) -> str:
     return text
 
 
+def _undecided_text(p: dict) -> str:
+    """What the rigid blocks left undecided in the failure domain, in words (a result kept
+    before they were counted says nothing)."""
+    count = p["rigid_blocks"].get("undecided")
+    if count is None:
+        return ""
+    text = f" Of its analyses {count} were left undecided"
+    bands = [(r["duration"], r["rigid_blocks_undecided_bands"]) for r in p["rows"]
+             if r.get("rigid_blocks_undecided_bands")]
+    if not bands:
+        return text + "."
+    text += (": undecided amplitudes at " + "; ".join(
+        f"t_p = {d:.2f} s, " + ", ".join(f"{a:.3f}-{b:.3f} g" for a, b in bs)
+        for d, bs in bands) + ". A failure acceleration above an undecided band is not "
+        "decided: the table gives the range it lies in (a-b), and no difference.")
+    return text
+
+
 def domain_rows(results: dict) -> list[list[str]]:
-    """Rows of the failure accelerations' table, per duration."""
+    """Rows of the failure accelerations' table, per duration (the rigid blocks' failure
+    acceleration as the range ``a-b`` it lies in where an undecided band starts at ``a`` below
+    it)."""
     p = results["pulses"]
     top = p["amplitudes_g"][-1]
     rows = []
@@ -388,7 +428,11 @@ def domain_rows(results: dict) -> list[list[str]]:
         def cell(v):
             return f"> {top:g}" if v is None else f"{v:.3f}"
 
-        row = [f"{r['duration']:.2f}", cell(r["four_link"]), cell(r["rigid_blocks"]),
+        rigid = cell(r["rigid_blocks"])
+        low = r.get("rigid_blocks_undecided_from")
+        if low is not None:
+            rigid = f"{low:.3f}-" + ("" if r["rigid_blocks"] is None else rigid)
+        row = [f"{r['duration']:.2f}", cell(r["four_link"]), rigid,
                percent(r["difference"])]
         if "four_link" in p:
             row.append(cell(r.get("four_link_first_half_cycle")))
@@ -512,7 +556,9 @@ def record_text(results: dict) -> str:
                  f"two models agree on {check['both'] + check['neither']} of {check['pairs']} "
                  f"(both collapse in {check['both']}, neither in {check['neither']}; only the "
                  f"rigid blocks in {check['rigid_blocks_only']}, only the four-link model in "
-                 f"{check['four_link_only']}).")
+                 f"{check['four_link_only']}"
+                 + (f"; the rigid blocks undecided in {check['rigid_blocks_undecided']}"
+                    if check.get("rigid_blocks_undecided") is not None else "") + ").")
     files = [e["nrml"] for e in rec["ims"].values() if e["nrml"]]
     if files:
         text += (" The fits are written as OpenQuake NRML fragility models (continuous logncdf, "

@@ -732,7 +732,8 @@ def model_comparison(settings: ReproductionSettings, nominal, blocks,
 
 def comparison_statistics(summary: dict) -> dict:
     """What the comparison says, computed from its rows: relative differences per model and
-    duration (None: no failure in the scan), from which duration on each model stays within
+    duration (None: no failure in the scan, or the rigid blocks' is not decided: an undecided
+    band below it), from which duration on each model stays within
     :data:`~archquake.report.paper.settings.AGREEMENT_BAND`, and the largest differences.
 
     Parameters
@@ -755,6 +756,8 @@ def comparison_statistics(summary: dict) -> dict:
     for r in rows:
         for name in names:
             a, b = r["four_link"][name], r["rigid_block"]
+            if "failure_undecided_from" in r:  # the rigid blocks' failure is not decided
+                b = None
             diff[name][r["duration"]] = None if a is None or b is None else a / b - 1.0
     within = {name: {d: v is not None and abs(v) <= AGREEMENT_BAND for d, v in diff[name].items()}
               for name in names}
@@ -905,15 +908,17 @@ def rigid_block_fragility(settings: ReproductionSettings):
     return run_fragility(study, backend="serial", progress=False)
 
 
-def _failed_arches(result) -> tuple[np.ndarray, np.ndarray]:
+def _failed_arches(result, undecided: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """``(failed[arch, duration, amplitude], analysed[arch])`` of a fragility study: an arch
-    fails where it collapses in either direction."""
+    fails where it collapses in either direction (with ``undecided``, also where an analysis
+    is undecided: the upper bound of P_F)."""
     table = result.table
     h = result.settings.sample_size
     nd, na = len(result.settings.durations), len(result.settings.amplitudes_g)
     status = table["status"].to_numpy().reshape(h, 2, nd, na)
     analysed = (table["excluded"].to_numpy().reshape(h, -1) == "").all(axis=1)
-    return np.any(status == 2, axis=1), analysed
+    failing = (status == 2) | (status == -1) if undecided else status == 2
+    return np.any(failing, axis=1), analysed
 
 
 @dataclass(frozen=True, eq=False)
@@ -998,6 +1003,7 @@ def two_models(settings: ReproductionSettings, arches: Arches, cases: dict,
     p_fl_all = fl_failed[fl_analysed].mean(axis=0)
     p_fl_same = fl_failed[:m][both].mean(axis=0)
     p_rb_same = rb_failed[both].mean(axis=0)
+    p_rb_upper = _failed_arches(result, undecided=True)[0][both].mean(axis=0)
     estimate = np.clip(p_fl_all + (p_rb_same - p_fl_same), 0.0, 1.0)
     difference = p_rb_same - p_fl_same
     worst = np.unravel_index(int(np.argmax(np.abs(difference))), difference.shape)
@@ -1015,7 +1021,9 @@ def two_models(settings: ReproductionSettings, arches: Arches, cases: dict,
             "analysed": int(table["analysed"].sum()), "grid_points": len(table),
             "durations": list(result.settings.durations),
             "amplitudes_g": list(result.settings.amplitudes_g),
-            "rigid_blocks": p_rb_same, "four_link_same_arches": p_fl_same,
+            "rigid_blocks": p_rb_same, "rigid_blocks_upper": p_rb_upper,
+            "undecided": result.summary()["undecided"],
+            "four_link_same_arches": p_fl_same,
             "four_link_all": p_fl_all, "multifidelity": estimate,
             "largest_difference": float(difference[worst]),
             "largest_difference_at": {"duration": result.settings.durations[worst[0]],

@@ -628,6 +628,15 @@ def comparison_text(summary: dict) -> list[str]:
                                    "this process" else "")
         + f" ({summary['rigid_block_seconds']:.1f} s of analyses, after the compilation of "
           f"its solver); the four-link curves take well under a second.")
+    counts = [r["undecided_analyses"]["rigid_block"] for r in rows
+              if "undecided_analyses" in r]
+    if counts:  # a result kept before undecided analyses were counted says nothing
+        bounded = [r["duration"] for r in rows if "failure_undecided_from" in r]
+        text.append(f"The rigid-block model left {sum(counts)} of its analyses undecided"
+                    + (f"; at t_p = {', '.join(f'{d:g}' for d in bounded)} s an undecided "
+                       f"band lies below its lowest decided collapse, so its failure "
+                       f"acceleration there is the range given (a-b) and is not compared"
+                       if bounded else "") + ".")
     return text
 
 
@@ -650,6 +659,10 @@ def comparison_rows(summary: dict) -> list[list[str]]:
     for r in st["rows"]:
         rb = r["rigid_block"]
         cells = [f"{r['duration']:.2f}", number(rb, 3) if rb is not None else f"> {top:g}"]
+        low = r.get("failure_undecided_from", {}).get("rigid_block")
+        if low is not None:  # undecided below the lowest decided collapse: a range
+            cells[1] = f"{low:.3f}-" + ("" if rb is None else f"{rb:.3f}")
+            rb = None
         for n in st["names"]:
             v = r["four_link"][n]
             cells.append(f"> {top:g}" if v is None else
@@ -895,7 +908,8 @@ def two_models_text(summary: dict, resolution_g: float) -> list[str]:
         f"{frag['largest_difference']:+.2f} at t_p = {where['duration']:g} s, a = "
         f"{where['amplitude_g']:.2f} g. The dashed red line is the multi-fidelity estimate of "
         f"the rigid blocks' P_F over all {frag['arches_four_link']} arches: the four-link P_F of "
-        f"all of them corrected by the two models' mean difference on the arches both analysed.")
+        f"all of them corrected by the two models' mean difference on the arches both analysed."
+        + _undecided_sentence(frag))
     if apart and close:
         text.append(
             f"Which answer to trust: for the pulses where the models agree (t_p = "
@@ -905,6 +919,24 @@ def two_models_text(summary: dict, resolution_g: float) -> list[str]:
             f"four-link answer depends on a coefficient of restitution that no rule gets right "
             f"at every duration.")
     return text
+
+
+def _undecided_sentence(frag: dict) -> str:
+    """The rigid-block fragility's undecided analyses and the bounds of its P_F, in words (a
+    result kept before they were counted says nothing)."""
+    undecided = frag.get("undecided")
+    if undecided is None:
+        return ""
+    text = (f" Of the rigid-block analyses {undecided['analyses']} of {undecided['of']} were "
+            f"left undecided")
+    if not undecided["analyses"]:
+        return text + "."
+    import numpy as np
+
+    gap = float(np.max(np.asarray(frag["rigid_blocks_upper"])
+                       - np.asarray(frag["rigid_blocks"])))
+    return (text + f": its P_F counts them as survivals (a lower bound); as collapses P_F "
+                   f"would be up to {gap:.2f} higher.")
 
 
 def two_models_domain_caption(summary: dict) -> str:
