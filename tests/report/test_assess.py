@@ -271,7 +271,9 @@ def test_the_rigid_blocks_check_under_the_records(quick):
     check = r["records"]["check"]
     assert check["pairs"] == 2 * len(check["by_record"])
     assert check["both"] + check["neither"] + check["four_link_only"] + \
-        check["rigid_blocks_only"] == check["pairs"]
+        check["rigid_blocks_only"] + check["rigid_blocks_undecided"] == check["pairs"]
+    assert check["rigid_blocks_undecided"] == sum(
+        status == -1 for row in check["by_record"] for status in row["rigid_blocks"])
     suite = RecordSuite.from_paths(quick["records"])
     motion = suite.motions()[0]
     factor = check["level_pga"] / intensity_measure("pga")(motion)
