@@ -182,12 +182,14 @@ DOMAIN_COLOURS = {
     "recovery": "#d5ecd4",
     "collapse_impacts": "#fbd9a6",
     "collapse_first": "#f3a6a6",
+    "undecided": "#c8b4e0",
 }
 DOMAIN_LABELS = {
     "rest": "no motion (a < k)",
     "recovery": "(1) recovery",
     "collapse_impacts": "(2) collapse after impacts",
     "collapse_first": "(3) collapse in the first half cycle",
+    "undecided": "undecided (the model gave no outcome)",
 }
 
 
@@ -210,7 +212,7 @@ def plot_failure_domain(domain, ax=None):
     """Failure domain over (pulse duration, amplitude) [paper, Fig. 16].
 
     The regions are shaded (no motion, recovery, collapse after impacts, collapse in the first
-    half cycle); the boundary of collapse in the first half cycle (Oppenheim's curve) is drawn
+    half cycle, and the amplitudes a model left undecided); the boundary of collapse in the first half cycle (Oppenheim's curve) is drawn
     with asterisks, the failure curve (lowest collapsing amplitude) with dots (an open triangle
     pointing down where the lowest amplitude scanned already collapses: an upper bound), and the
     limit-analysis multiplier k as a horizontal dashed line.

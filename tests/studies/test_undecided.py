@@ -271,3 +271,20 @@ def test_compare_never_compares_a_failure_acceleration_above_an_undecided_band(c
     cells = row.split()
     assert cells[1].startswith(f"{low:.3f}..") and "%" not in row
     assert f"rigid blocks undecided: {made} of {len(calls)} analyses" in lines
+
+
+def test_failure_domain_figure_shades_the_undecided_bands(calls):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from archquake.plotting import DOMAIN_LABELS, plot_failure_domain
+
+    grid = np.round(np.arange(0.2, 1.2001, 0.05), 10)
+    domain = domain_of(RigidBlockModel(oppenheim()), (0.4, 0.6), grid, resolution=1e-3,
+                       extend_to_g=None, search="exhaustive")
+    ax = plot_failure_domain(domain)
+    labels = [text.get_text() for text in ax.get_legend().get_texts()]
+    assert DOMAIN_LABELS["undecided"] in labels
+    plt.close(ax.figure)
