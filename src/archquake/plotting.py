@@ -212,9 +212,10 @@ def plot_failure_domain(domain, ax=None):
     """Failure domain over (pulse duration, amplitude) [paper, Fig. 16].
 
     The regions are shaded (no motion, recovery, collapse after impacts, collapse in the first
-    half cycle, and the amplitudes a model left undecided); the boundary of collapse in the first half cycle (Oppenheim's curve) is drawn
-    with asterisks, the failure curve (lowest collapsing amplitude) with dots (an open triangle
-    pointing down where the lowest amplitude scanned already collapses: an upper bound), and the
+    half cycle, and the amplitudes a model left undecided); the boundary of collapse in the
+    first half cycle (Oppenheim's curve) is drawn with asterisks, the failure curve (lowest
+    collapsing amplitude) with dots (an open triangle pointing down where the lowest amplitude
+    scanned already collapses: an upper bound), and the
     limit-analysis multiplier k as a horizontal dashed line.
 
     Parameters
@@ -283,7 +284,9 @@ def plot_failure_domain(domain, ax=None):
 def plot_fragility_curve(result, duration: float, ax=None):
     """Fragility curve at one pulse duration [paper, Figs. 17-20].
 
-    Black dots: P_F = h_f/h of the irregular arches [eq. (9)]; black dashed: the quintic fit;
+    Black dots: P_F = h_f/h of the irregular arches [eq. (9)] (open purple triangles: its upper
+    bound, where arches are undecided, :mod:`archquake.studies.undecided`); black dashed: the
+    quintic fit;
     grey: the lognormal (maximum-likelihood) fit; blue: the empirical CDF of the limit-analysis
     multiplier k~ = min(k~_l, k~_r) of s arches; vertical lines: the nominal arch's failure
     acceleration (black dash-dot, the step of eq. (10)) and its k (blue).
@@ -330,6 +333,10 @@ def plot_fragility_curve(result, duration: float, ax=None):
     ax.plot(a, result.probability[i], "o", color="black", markersize=3.5,
             label=f"P$_F$ = h$_f$/h, h = {result.analysed}"
                   + (f" ({len(result.excluded)} excluded)" if result.excluded else ""))
+    upper = getattr(result, "probability_upper", result.probability)[i]
+    if np.any(upper != result.probability[i]):  # undecided arches: P_F lies between the two
+        ax.plot(a, upper, "^", color="tab:purple", markerfacecolor="none", markersize=4.5,
+                label="upper bound of P$_F$: undecided arches as failed")
     q = float(result.nominal_failure_acceleration_g[i])
     if np.isfinite(q):
         ax.axvline(q, color="black", linestyle="-.", linewidth=1.2,

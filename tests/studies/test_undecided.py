@@ -288,3 +288,24 @@ def test_failure_domain_figure_shades_the_undecided_bands(calls):
     labels = [text.get_text() for text in ax.get_legend().get_texts()]
     assert DOMAIN_LABELS["undecided"] in labels
     plt.close(ax.figure)
+
+
+def test_fragility_figure_marks_the_upper_bound_only_where_it_differs(calls):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from archquake.plotting import plot_fragility_curve
+    from archquake.studies.fragility import run_fragility
+
+    settings = _fragility_settings()
+    result = run_fragility(settings, backend="serial", progress=False,
+                           nominal_resolution_g=1e-3)
+    lower, upper, _, _ = _expected_fragility(settings)
+    for i, tp in enumerate(settings.durations):
+        ax = plot_fragility_curve(result, tp)
+        labels = [t.get_text() for t in ax.get_legend().get_texts()]
+        differs = bool(np.any(upper[i] > lower[i]))
+        assert any("upper bound" in label for label in labels) == differs
+        plt.close(ax.figure)
