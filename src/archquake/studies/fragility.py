@@ -661,7 +661,9 @@ class FragilityResult:
         lower bound of P_F), :attr:`probability_upper` as failures; the fits are made to
         :attr:`probability` (:mod:`archquake.studies.undecided`). None: zero everywhere.
     undecided_analyses : int
-        Analyses (rows of the table of the analysed arches) left undecided [-].
+        Rows of the table of the analysed arches whose status is undecided [-] (analysed, or
+        inferred between two undecided analyses by the ``bisection`` search,
+        :mod:`archquake.studies.strategies`).
     """
 
     settings: FragilitySettings

@@ -42,6 +42,12 @@ inferred.
 
 The outcome of a point is an integer key (for the failure domain: the status and the half cycle
 of a collapse; for fragility: the status), compared for equality only.
+
+An analysis the model left undecided (:attr:`archquake.status.Status.UNDECIDED`) is a key of its
+own, never one of its neighbours': a change to or from it is bisected like any other, and it is
+not smooth, so ``screened`` analyses every point between it and the analysed points beside it.
+Only ``bisection`` infers it, between two analysed points both undecided; a study counts the
+points of its table that are undecided, analysed or inferred (:mod:`archquake.studies.undecided`).
 """
 
 from __future__ import annotations
