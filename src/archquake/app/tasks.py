@@ -218,7 +218,7 @@ def failure_domain(spec: dict, report) -> dict:
             out[name] = {"error": model}
             done += len(durations)
             continue
-        slices, analyses, first = [], [], None
+        slices, analyses, undecided, first = [], [], [], None
         for duration in durations:
             report(done, total, f"{name} model: t_p = {duration:g} s")
             piece = domain_of(model, [duration], settings["amplitudes"],
@@ -228,15 +228,20 @@ def failure_domain(spec: dict, report) -> dict:
             first = first or piece
             slices += piece.slices
             analyses += piece.analyses
+            undecided += piece.undecided
             done += 1
-        domain = replace(first, slices=tuple(slices), analyses=tuple(analyses))
+        domain = replace(first, slices=tuple(slices), analyses=tuple(analyses),
+                         undecided=tuple(undecided))
         domains[name] = domain
         out[name] = {"failure": {
             "durations": [float(d) for d in domain.durations],
             "failure_g": [views.finite(x) for x in domain.failure_accelerations_g],
             "first_half_cycle_g": [views.finite(x)
-                                   for x in domain.first_half_cycle_accelerations_g]},
-            "analyses": int(sum(analyses))}
+                                   for x in domain.first_half_cycle_accelerations_g],
+            # the failure lies between this and failure_g where a band is undecided below it
+            "undecided_from_g": [views.finite(s.failure_undecided_from_g)
+                                 for s in domain.slices]},
+            "analyses": int(sum(analyses)), "undecided": int(sum(undecided))}
     report(total, total, "figure")
     disagreement = None
     if len(domains) == 2:

@@ -534,7 +534,8 @@ async function startDomain() {
       img.src = result.figure;
       img.hidden = false;
       const n = (result["four-link"].analyses || 0) + (result["rigid-blocks"].analyses || 0);
-      finish(`done: ${n} analyses` +
+      const u = (result["four-link"].undecided || 0) + (result["rigid-blocks"].undecided || 0);
+      finish(`done: ${n} analyses, ${u} undecided` +
              (result["four-link"].error ? `; four-link model: ${result["four-link"].error}` : "") +
              (result["rigid-blocks"].error ? `; rigid blocks: ${result["rigid-blocks"].error}` : ""));
     },
