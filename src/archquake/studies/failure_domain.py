@@ -61,6 +61,7 @@ from ..defaults import (
     MAX_GRID_POINTS,
     MAX_PULSE_DURATION,
 )
+from ..ranges import inclusive_range
 from ..status import Status
 from .strategies import DEFAULT_STRIDE
 
@@ -538,63 +539,6 @@ def check_direction(direction: str) -> str:
         raise ValueError(f"direction must be 'l' (first pulse -a g) or 'r' (+a g), got "
                          f"{direction!r}")
     return direction
-
-
-def inclusive_range(start: float, stop: float, step: float) -> np.ndarray:
-    """``start, start + step, ...`` up to ``stop``, never beyond it; ``stop`` included when a
-    step lands on it within :data:`RANGE_TOLERANCE` of the step.
-
-    The values are rounded to 12 decimals so that e.g. ``inclusive_range(0.2, 1.0, 0.01)`` gives
-    exactly the decimal grid 0.20, 0.21, ..., 1.00 (as floats); ``inclusive_range(0.2, 1.0,
-    0.3)`` is 0.2, 0.5, 0.8 (the next step, 1.1, would pass the stop).
-
-    Parameters
-    ----------
-    start, stop : float
-        First value and the value not to pass (the last one if ``start + k step`` lands on it).
-    step : float
-        Spacing, > 0.
-
-    Returns
-    -------
-    ndarray
-        The values.
-
-    Raises
-    ------
-    ValueError
-        For a non-finite value, a step <= 0, ``stop < start`` or more than
-        :data:`archquake.defaults.MAX_GRID_POINTS` values.
-
-    Examples
-    --------
-    >>> inclusive_range(0.2, 1.0, 0.3).tolist()
-    [0.2, 0.5, 0.8]
-    >>> inclusive_range(0.3, 0.5, 0.1).tolist()
-    [0.3, 0.4, 0.5]
-    """
-    for name, value in (("start", start), ("stop", stop), ("step", step)):
-        if not math.isfinite(value):
-            raise ValueError(f"range {name} must be a finite number, got {value!r}")
-    if not step > 0:
-        raise ValueError(f"range step must be > 0, got {step!r}")
-    if stop < start:
-        raise ValueError(f"range stop must be >= start, got {start!r}:{stop!r}")
-    steps = (stop - start) / step
-    if steps + 1 > MAX_GRID_POINTS:
-        raise ValueError(f"the range {start:g}:{stop:g}:{step:g} has {math.floor(steps) + 1} "
-                         f"values, more than the {MAX_GRID_POINTS} of the largest grid "
-                         f"(MAX_GRID_POINTS)")
-    count = math.floor(steps + RANGE_TOLERANCE) + 1
-    values = np.round(start + step * np.arange(count), 12)
-    if abs(values[-1] - stop) <= RANGE_TOLERANCE * step:
-        values[-1] = stop  # the stop itself, not a neighbour of it in the last bits
-    return np.minimum(values, stop)
-
-
-RANGE_TOLERANCE = 1e-9
-"""How close [fraction of the step] the last step of :func:`inclusive_range` must land on the
-stop to be the stop."""
 
 
 def domain_of(model, durations=None, amplitudes_g=None, *, direction: str = "l",
