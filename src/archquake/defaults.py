@@ -51,6 +51,21 @@ def oppenheim_dimensions() -> dict:
     return dict(_oppenheim())
 
 
+def circular_defaults() -> dict:
+    """Oppenheim's arch as a structure's description gives a circular arch by default
+    (:class:`archquake.geometry.StructureSpec`): ``radius`` [m], ``embrace`` [deg],
+    ``thickness`` [m] and ``voussoirs``; a new dict on every call.
+
+    Examples
+    --------
+    >>> circular_defaults()
+    {'radius': 10.0, 'embrace': 157.5, 'thickness': 1.5, 'voussoirs': 7}
+    """
+    arch = oppenheim_dimensions()
+    return {"radius": arch["radius"], "embrace": math.degrees(arch["embrace"]),
+            "thickness": arch["thickness"], "voussoirs": arch["voussoirs"]}
+
+
 @functools.cache
 def _oppenheim() -> tuple:
     text = resources.files("archquake").joinpath("data", "paper_values.toml").read_text("utf-8")

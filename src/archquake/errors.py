@@ -26,3 +26,62 @@ class NeverCollapsesError(ValueError):
 
 class StudyWarning(UserWarning):
     """Something in a study directory was repaired, e.g. a damaged checkpoint recomputed."""
+
+
+class _Field:
+    """A field of a :class:`DescriptionError`'s message, as one naming says it: ``{name}`` is
+    its name, ``{name:METAVAR}`` its name followed by what its value looks like when the naming
+    asks for it (the command line's ``--fill-cover M``)."""
+
+    def __init__(self, name: str, metavar: bool):
+        self.name, self.metavar = name, metavar
+
+    def __format__(self, spec: str) -> str:
+        return f"{self.name} {spec}" if spec and self.metavar else self.name
+
+
+class _Naming(dict):
+    """The fields of a template, each named by ``names`` (its own name where ``names`` has
+    none, then without its metavar)."""
+
+    def __init__(self, names):
+        super().__init__()
+        self.names = names
+
+    def __missing__(self, field: str) -> _Field:
+        return _Field(self.names.get(field, field), field in self.names)
+
+
+class DescriptionError(ValueError):
+    """A description of a structure or a ground motion refused (bad input): the message names
+    the description's fields, and :meth:`naming` says the same with other names for them (the
+    command line names its options, ``--piers`` for ``piers``).
+
+    Parameters
+    ----------
+    template : str
+        The message, each field written ``{field}``, or ``{field:METAVAR}`` where a naming
+        that renames the field shows what its value looks like; other braces doubled.
+
+    Examples
+    --------
+    >>> error = DescriptionError("the fill needs {fill_cover:M} (its depth above the crown [m])")
+    >>> str(error)
+    'the fill needs fill_cover (its depth above the crown [m])'
+    >>> error.naming({"fill_cover": "--fill-cover"})
+    'the fill needs --fill-cover M (its depth above the crown [m])'
+    """
+
+    def __init__(self, template: str):
+        self.template = template
+        super().__init__(self.naming({}))
+
+    def naming(self, names) -> str:
+        """The message with each field named ``names[field]`` (the field's own name where
+        ``names`` has none)."""
+        return self.template.format_map(_Naming(names))
+
+    @staticmethod
+    def literal(value) -> str:
+        """``str(value)`` for a template: its braces doubled."""
+        return str(value).replace("{", "{{").replace("}", "}}")

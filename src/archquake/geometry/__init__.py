@@ -45,7 +45,9 @@ analysis are a :class:`BlockLoads` (:mod:`.loads`).
 Irregular arches (:func:`irregular_arch`, :func:`irregular_sample`, :mod:`.irregular`) follow the
 paper's eq. (1) on a circular :class:`CircularArch` and its generalisation on any
 :class:`ShapedArch`. :func:`load_arch` reads a JSON file of any of the three kinds, and
-:func:`arch_from_dict` the same description as a dict.
+:func:`arch_from_dict` the same description as a dict. A structure described by named values
+(a shape, piers, a fill, an irregular draw), as the command line and the page describe one, is a
+:class:`StructureSpec` (:mod:`.spec`).
 
 References
 ----------
@@ -86,6 +88,7 @@ from .irregular import irregular_arch, irregular_sample
 from .loads import BlockLoads
 from .piers import Pier
 from .shaped import VOUSSOIR_FACES, ShapedArch, shaped_arch
+from .spec import StructureSpec
 from .structure import Structure, arch_on_piers
 from .survey import SurveyedArch, surveyed_arch
 
@@ -94,7 +97,7 @@ __all__ = [
     "FACES", "FILL_INERTIA_MODELS", "GRAVITY", "LENGTH_RANGE",
     "MAX_GEOMETRY_FILE_BYTES", "MAX_VOUSSOIRS", "MIN_VOUSSOIRS", "RADIUS_RANGE", "SHAPES",
     "VOUSSOIR_FACES", "BlockArch", "BlockLoads", "Centreline", "CircularArch", "Fill", "Hinge",
-    "Pier", "ShapedArch", "Structure", "SurveyedArch",
+    "Pier", "ShapedArch", "Structure", "StructureSpec", "SurveyedArch",
     "arch_from_dict", "arch_on_piers", "centreline", "circular_arch", "irregular_arch",
     "irregular_sample", "load_arch", "shaped_arch", "surveyed_arch",
 ]

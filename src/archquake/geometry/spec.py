@@ -1,0 +1,533 @@
+r"""A structure described by named values: :class:`StructureSpec`.
+
+The command line and the interactive page describe a structure the same way, by the values a
+user gives (a shape with its span and rise, or a radius and an angle of embrace in degrees; a
+thickness; piers; a fill; an irregularity :math:`\epsilon` and its seed; or a geometry file),
+and both build it here: the command line maps its options onto these names (``--pier-left``
+is ``pier_left``), the page sends them as JSON. A value left out (``None``) takes its default:
+Oppenheim's arch, fixed springings, no fill, no irregular draw.
+
+A refused description is a :class:`~archquake.errors.DescriptionError` whose message names its
+fields (``"piers: left pier: pier width must be at least ..."``); the command line says the same
+naming its options (``--piers: ...``). A value that a builder of :mod:`archquake.geometry`
+refuses is refused by it, with its own message, which names the same parameter
+(``"thickness must be ..."``).
+
+Examples
+--------
+>>> from archquake.geometry.spec import StructureSpec
+>>> spec = StructureSpec.from_dict({"shape": "pointed", "span": 10, "rise": 7,
+...                                 "thickness": 0.6, "piers": "2,4,2"})
+>>> spec.piers
+(2.0, 4.0, 2)
+>>> structure = spec.build()
+>>> structure.n_voussoirs  # 8 voussoirs (even, for a pointed arch) and two courses per pier
+12
+>>> StructureSpec.from_dict(spec.to_dict()) == spec
+True
+>>> StructureSpec(span=10).build()
+Traceback (most recent call last):
+...
+archquake.errors.DescriptionError: a circular arch needs span and rise [m]
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields
+
+from ..constants import DEFAULT_DENSITY, DEFAULT_FILL_DENSITY
+from ..defaults import (
+    DEFAULT_FILL_INERTIA,
+    DEFAULT_SEED,
+    FILL_INERTIA_MODELS,
+    SHAPES,
+    VOUSSOIR_FACES,
+    circular_defaults,
+)
+from ..errors import DescriptionError
+
+SHAPE_FIELDS = ("shape", "span", "rise", "radius", "embrace", "thickness", "voussoirs", "faces")
+"""The fields that describe an arch by its shape."""
+
+STRUCTURE_FIELDS = ("piers", "pier_left", "pier_right", "fill_cover", "fill_density",
+                    "fill_inertia", "fill_passive")
+"""The fields that put the arch on piers or under fill."""
+
+_NUMBERS = ("span", "rise", "radius", "embrace", "thickness", "fill_cover", "fill_density",
+            "density", "epsilon")
+_INTEGERS = ("voussoirs", "seed")
+_CHOICES = {"shape": SHAPES, "faces": VOUSSOIR_FACES, "fill_inertia": FILL_INERTIA_MODELS}
+
+
+def _literal(value) -> str:
+    return DescriptionError.literal(value)
+
+
+def number_field(name: str, value) -> float:
+    """``value`` of the field ``name`` as a float: a number or the text of one (its range is
+    checked where it is used); a :class:`~archquake.errors.DescriptionError` naming the field
+    otherwise."""
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        return float(value)
+    if isinstance(value, str):
+        try:
+            return float(value)
+        except ValueError:
+            pass
+    raise DescriptionError(f"{{{name}}} must be a number, got {_literal(repr(value))}")
+
+
+def integer_field(name: str, value) -> int:
+    """``value`` of the field ``name`` as an int: an integer, a float with an integer value or
+    the text of an integer; a :class:`~archquake.errors.DescriptionError` naming the field
+    otherwise."""
+    if isinstance(value, int) and not isinstance(value, bool):
+        return value
+    if isinstance(value, float) and value.is_integer():
+        return int(value)
+    if isinstance(value, str):
+        try:
+            return int(value)
+        except ValueError:
+            pass
+    raise DescriptionError(f"{{{name}}} must be an integer, got {_literal(repr(value))}")
+
+
+def _numbers(name: str, value, low: int, high: int, *, blank_first: bool = False) -> list:
+    """The numbers of the field ``name``: the text ``"a,b[,c]"`` or a sequence; ``low`` to
+    ``high`` of them; the first may be blank (None) when ``blank_first``."""
+    if isinstance(value, str):
+        parts = value.split(",")
+    elif isinstance(value, list | tuple):
+        parts = list(value)
+    else:
+        raise DescriptionError(f"{{{name}}} takes {low} to {high} numbers, got "
+                               f"{_literal(repr(value))}")
+    if not low <= len(parts) <= high:
+        raise DescriptionError(f"{{{name}}} takes {low} to {high} numbers separated by commas, "
+                               f"got {_literal(repr(value))}")
+    out = []
+    for k, part in enumerate(parts):
+        blank = part is None or (isinstance(part, str) and not part.strip())
+        if k == 0 and blank_first and blank:
+            out.append(None)
+            continue
+        try:
+            if isinstance(part, bool) or part is None:
+                raise ValueError
+            out.append(float(part))
+        except (TypeError, ValueError):
+            hint = (" (a blank WIDTH only with limit --min-pier-width)" if k == 0 and blank
+                    else "")
+            raise DescriptionError(f"{{{name}}} takes numbers separated by commas, got "
+                                   f"{_literal(repr(value))}{hint}") from None
+    return out
+
+
+def pier_field(name: str, value, *, blank_width: bool = False):
+    """The pier ``(width [m], height [m], courses)`` of the field ``name``, given as the text
+    ``"WIDTH,HEIGHT[,COURSES]"`` or a sequence of those numbers (one course by default).
+
+    Parameters
+    ----------
+    name : str
+        The field (``piers``, ``pier_left``, ``pier_right``), for the messages.
+    value : str or sequence
+        The pier.
+    blank_width : bool
+        Accept a blank width (``",HEIGHT[,COURSES]"``: the narrowest piers are to be found):
+        ``(None, height, courses)``.
+
+    Returns
+    -------
+    tuple
+        ``(width, height, courses)``, checked as :class:`~archquake.geometry.Pier` checks them.
+
+    Raises
+    ------
+    DescriptionError
+        Naming the field: not two or three numbers, a number of courses that is not an
+        integer >= 1, or a width or height out of range.
+    """
+    from .piers import Pier
+
+    width, height, *courses = _numbers(name, value, 2, 3, blank_first=blank_width)
+    courses = courses[0] if courses else 1
+    if not float(courses).is_integer() or courses < 1:
+        raise DescriptionError(f"{{{name}}}: COURSES must be an integer >= 1, got {courses:g}")
+    try:
+        Pier(1.0 if width is None else width, height, int(courses))
+    except ValueError as exc:
+        raise DescriptionError(f"{{{name}}}: {_literal(exc)}") from None
+    return width, height, int(courses)
+
+
+def _circular_default(name: str):
+    return circular_defaults()[name]
+
+
+@dataclass(frozen=True)
+class StructureSpec:
+    r"""A structure by named values: an arch of a shape or of a file, on piers, under fill,
+    optionally drawn irregular [paper, eq. (1)].
+
+    Every field is optional (``None``: not given, its default applies).
+
+    Parameters
+    ----------
+    shape : str, optional
+        Shape of the centreline, one of :data:`~archquake.defaults.SHAPES` (default
+        ``"circular"``); every shape but the circle is given by ``span`` and ``rise``.
+    span, rise : float, optional
+        Span and rise of the centreline [m], with the springings on y = 0.
+    radius : float, optional
+        Mean radius :math:`R` of a circular arch [m] (default Oppenheim's, 10 m, unless
+        ``span`` and ``rise`` are given).
+    embrace : float, optional
+        Angle of embrace :math:`\alpha` of a circular arch [deg], in (0, 360) (default 157.5).
+    thickness : float, optional
+        Thickness :math:`t` normal to the centreline [m] (default 1.5).
+    voussoirs : int, optional
+        Number of voussoirs :math:`n` of equal centreline length (default 7, 8 for a pointed
+        arch, which needs an even number).
+    faces : {"curved", "flat"}, optional
+        Voussoir faces (default ``"curved"``).
+    geometry : str, optional
+        Path of a geometry file (:func:`~archquake.geometry.load_arch`): the whole arch,
+        instead of the shape fields.
+    piers : tuple or str, optional
+        Two equal rectangular piers ``(width [m], height [m], courses)``, or the text
+        ``"WIDTH,HEIGHT[,COURSES]"``: width from the intrados springing point outward, height
+        from the ground up to it, courses of equal height (default 1).
+    pier_left, pier_right : tuple or str, optional
+        The pier under one springing only, as ``piers`` (unequal piers; not with ``piers``).
+    fill_cover : float, optional
+        A level fill over the arch, this deep above the crown [m].
+    fill_density : float, optional
+        Density of the fill [kg/m^3] (default
+        :data:`~archquake.constants.DEFAULT_FILL_DENSITY`).
+    fill_inertia : str, optional
+        Where the fill's horizontal inertia force acts, one of
+        :data:`~archquake.defaults.FILL_INERTIA_MODELS` (default
+        :data:`~archquake.defaults.DEFAULT_FILL_INERTIA`).
+    fill_passive : tuple or str, optional
+        A passive reaction of the fill, ``(phi [deg], mobilisation [-])`` or the text
+        ``"PHI,MOBILISATION"``: angle of friction in (0, 90) and mobilised fraction of
+        Rankine's passive pressure in [0, 1].
+    density : float, optional
+        Density of the masonry, arch and piers [kg/m^3] (default
+        :data:`~archquake.constants.DEFAULT_DENSITY`).
+    epsilon : float, optional
+        Draw one irregular arch around the arch with the irregularity :math:`\epsilon` in
+        [0, 1) of eq. (1) (:func:`~archquake.geometry.irregular_arch`).
+    seed : int, optional
+        Seed of the irregular draw, >= 0 (default :data:`~archquake.defaults.DEFAULT_SEED`);
+        only with ``epsilon``.
+
+    Raises
+    ------
+    DescriptionError
+        Naming the field: a value of the wrong type or not among its choices, piers or a
+        passive reaction that cannot be read or are out of range, or fields that do not go
+        together (a shape and a geometry file, ``span`` with ``radius``, a fill without
+        ``fill_cover``, a seed without ``epsilon`` ...).
+    """
+
+    shape: str | None = None
+    span: float | None = None
+    rise: float | None = None
+    radius: float | None = None
+    embrace: float | None = None
+    thickness: float | None = None
+    voussoirs: int | None = None
+    faces: str | None = None
+    geometry: str | None = None
+    piers: tuple | None = None
+    pier_left: tuple | None = None
+    pier_right: tuple | None = None
+    fill_cover: float | None = None
+    fill_density: float | None = None
+    fill_inertia: str | None = None
+    fill_passive: tuple | None = None
+    density: float | None = None
+    epsilon: float | None = None
+    seed: int | None = None
+
+    def __post_init__(self):
+        set_ = object.__setattr__
+        for name in _NUMBERS:
+            if getattr(self, name) is not None:
+                set_(self, name, number_field(name, getattr(self, name)))
+        for name in _INTEGERS:
+            if getattr(self, name) is not None:
+                set_(self, name, integer_field(name, getattr(self, name)))
+        for name, choices in _CHOICES.items():
+            value = getattr(self, name)
+            if value is not None and value not in choices:
+                raise DescriptionError(f"{{{name}}} must be one of {_literal(list(choices))}, "
+                                       f"got {_literal(repr(value))}")
+        if self.geometry is not None and not isinstance(self.geometry, str):
+            raise DescriptionError(f"{{geometry}} must be the path of a geometry file, got "
+                                   f"{_literal(repr(self.geometry))}")
+        if self.density is not None:
+            from .blocks import check_density
+
+            try:
+                check_density(self.density, "{density}")
+            except ValueError as exc:  # the value is a float: no braces but the field's
+                raise DescriptionError(str(exc)) from None
+        if self.geometry is not None:
+            given = self._given(*SHAPE_FIELDS)
+            if given:
+                raise DescriptionError(f"{{geometry}} gives the whole arch; it cannot be "
+                                       f"combined with {', '.join(given)}")
+        else:
+            self._check_shape()
+        self._check_structure()
+        if self.epsilon is None and self.seed is not None:
+            raise DescriptionError("{seed} needs {epsilon} (the seed of an irregular arch)")
+        if self.epsilon is not None and self.seed is not None and self.seed < 0:
+            raise DescriptionError(f"{{seed}} must be an integer >= 0, got {self.seed}")
+
+    def _given(self, *names: str) -> list[str]:
+        """The fields among ``names`` that are given, each as a template's field."""
+        return [f"{{{name}}}" for name in names if getattr(self, name) is not None]
+
+    # ------------------------------------------------------------------ the arch
+    def _check_shape(self) -> None:
+        shape = self.shape or SHAPES[0]
+        by_size, by_angle = self._given("span", "rise"), self._given("radius", "embrace")
+        article = "an" if shape[0] in "aeiou" else "a"
+        if shape != "circular" and by_angle:
+            raise DescriptionError(f"{' and '.join(by_angle)} apply to circular arches only; "
+                                   f"{article} {shape} arch is given by {{span}} and {{rise}}")
+        if by_size and by_angle:
+            raise DescriptionError(f"{', '.join(by_size + by_angle)}: a circular arch is given "
+                                   "by {span} and {rise} or by {radius} and {embrace}, not both")
+        if (shape != "circular" or by_size) and len(by_size) < 2:
+            raise DescriptionError(f"{article} {shape} arch needs {{span}} and {{rise}} [m]")
+        if shape == "circular" and not by_size:
+            embrace = self._value("embrace")
+            if not 0 < embrace < 360:  # in degrees: the builders see radians
+                raise DescriptionError(f"{{embrace}} must be in (0, 360) degrees, got "
+                                       f"{embrace:g}")
+
+    def _value(self, name: str):
+        value = getattr(self, name)
+        return _circular_default(name) if value is None else value
+
+    def shape_arguments(self) -> tuple[str | None, dict]:
+        """``(shape, keyword arguments of shaped_arch without thickness and density)`` of the
+        shape fields; ``shape`` is None for the paper's circular arch by radius and embrace
+        with curved faces (:func:`~archquake.geometry.circular_arch`, centre at the origin;
+        ``embrace`` then in radians).
+
+        Raises
+        ------
+        DescriptionError
+            For a description by a geometry file, which has no shape.
+        """
+        if self.geometry is not None:
+            raise DescriptionError("{geometry} gives the whole arch; it has no shape fields")
+        shape = self.shape or SHAPES[0]
+        voussoirs = self._value("voussoirs")
+        if self.voussoirs is None and shape == "pointed" and voussoirs % 2:
+            voussoirs += 1  # a joint at the crown: half the voussoirs on each side
+        faces = self.faces or VOUSSOIR_FACES[0]
+        if shape != "circular" or self.span is not None or self.rise is not None:
+            return shape, {"span": self.span, "rise": self.rise, "voussoirs": voussoirs,
+                           "faces": faces}
+        kwargs = {"radius": self._value("radius"),
+                  "embrace": math.radians(self._value("embrace")), "voussoirs": voussoirs,
+                  "faces": faces}
+        return (None if faces == "curved" else "circular"), kwargs
+
+    def _arch(self):
+        """The arch of the shape fields or of the geometry file."""
+        from .arch import circular_arch
+        from .files import load_arch
+        from .shaped import shaped_arch
+
+        density = DEFAULT_DENSITY if self.density is None else self.density
+        if self.geometry is not None:
+            return load_arch(self.geometry, density=density)
+        shape, kwargs = self.shape_arguments()
+        thickness = self._value("thickness")
+        if shape is None:
+            return circular_arch(kwargs["radius"], kwargs["embrace"], thickness,
+                                 kwargs["voussoirs"], density=density)
+        return shaped_arch(shape, thickness=thickness, density=density, **kwargs)
+
+    # ------------------------------------------------------------------ piers and fill
+    def _check_structure(self) -> None:
+        set_ = object.__setattr__
+        if self.piers is not None and (self.pier_left is not None
+                                       or self.pier_right is not None):
+            raise DescriptionError("{piers} gives both piers; use {pier_left} and {pier_right} "
+                                   "for unequal ones, not both")
+        for name in ("piers", "pier_left", "pier_right"):
+            if getattr(self, name) is not None:
+                set_(self, name, pier_field(name, getattr(self, name)))
+        fill = self._given("fill_density", "fill_inertia", "fill_passive")
+        if self.fill_cover is None and fill:
+            raise DescriptionError(f"{', '.join(fill)}: the fill needs {{fill_cover:M}} (its "
+                                   "depth above the crown [m])")
+        if self.fill_passive is not None:
+            phi, mobilisation = _numbers("fill_passive", self.fill_passive, 2, 2)
+            if not 0 < phi < 90:
+                raise DescriptionError(f"{{fill_passive}}: PHI must be in (0, 90) degrees, got "
+                                       f"{phi:g}")
+            set_(self, "fill_passive", (phi, mobilisation))
+        if self.fill_cover is not None:
+            self.fill()
+
+    def pier(self, side: str):
+        """The :class:`~archquake.geometry.Pier` under the ``"left"`` or ``"right"`` springing
+        (None for a fixed springing)."""
+        from .piers import Pier
+
+        given = self.piers if self.piers is not None else getattr(self, f"pier_{side}")
+        return None if given is None else Pier(*given)
+
+    def fill(self):
+        """The :class:`~archquake.geometry.Fill` of the fill fields (None without
+        ``fill_cover``)."""
+        from .fill import Fill
+
+        if self.fill_cover is None:
+            return None
+        passive = (None, None)
+        if self.fill_passive is not None:
+            phi, mobilisation = self.fill_passive
+            passive = (math.radians(phi), mobilisation)
+        try:
+            return Fill(self.fill_cover,
+                        DEFAULT_FILL_DENSITY if self.fill_density is None else self.fill_density,
+                        self.fill_inertia or DEFAULT_FILL_INERTIA, *passive)
+        except ValueError as exc:
+            text = str(exc)
+            name = "fill_density" if text.startswith("fill density") else (
+                "fill_passive" if text.startswith("mobilisation") else "fill_cover")
+            raise DescriptionError(f"{{{name}}}: {_literal(text)}") from None
+
+    def _on_piers(self, arch):
+        """``arch`` on the piers and under the fill of the description (``arch`` itself without
+        them)."""
+        from .structure import Structure
+
+        present = self._given(*STRUCTURE_FIELDS)
+        if not present:
+            return arch
+        if isinstance(arch, Structure):
+            raise DescriptionError(f"the geometry file describes a structure already; it cannot "
+                                   f"be combined with {', '.join(present)}")
+        left, right, fill = self.pier("left"), self.pier("right"), self.fill()
+        if left is None and right is None and fill is None:
+            return arch
+        try:
+            return Structure(arch, left, right, fill)
+        except ValueError as exc:
+            text = str(exc)
+            name = "fill_cover"
+            for side in ("left", "right"):
+                if text.startswith(f"{side} pier"):
+                    name = f"pier_{side}" if getattr(self, f"pier_{side}") else "piers"
+            raise DescriptionError(f"{{{name}}}: {_literal(text)}") from None
+
+    # ------------------------------------------------------------------ the structure
+    def nominal(self):
+        """The structure before the irregular draw: the arch of the shape fields (or of the
+        geometry file) on its piers and under its fill.
+
+        Returns
+        -------
+        BlockArch
+            A :class:`~archquake.geometry.CircularArch`, :class:`~archquake.geometry.ShapedArch`
+            or :class:`~archquake.geometry.SurveyedArch`, or a
+            :class:`~archquake.geometry.Structure` on piers or under fill.
+
+        Raises
+        ------
+        ValueError
+            A :class:`~archquake.errors.DescriptionError` naming the field for piers or a fill
+            the arch cannot carry; the builder's own error (naming the same parameter) for a
+            value it refuses, or the geometry file's.
+        """
+        return self._on_piers(self._arch())
+
+    def arches(self):
+        """``(nominal, structure)``: the structure before and after the irregular draw (the same
+        object without ``epsilon``).
+
+        Raises
+        ------
+        ValueError
+            As :meth:`nominal`; for an epsilon out of [0, 1), an arch without a centreline to
+            draw around, or a draw that is not a valid arch (naming epsilon and the seed).
+        """
+        from .irregular import irregular_arch
+
+        nominal = self.nominal()
+        if self.epsilon is None:
+            return nominal, nominal
+        seed = DEFAULT_SEED if self.seed is None else self.seed
+        if not hasattr(nominal, "perturbed"):
+            raise DescriptionError("{epsilon} draws an irregular arch around an arch with a "
+                                   "centreline; a surveyed arch ({geometry} with 'blocks') has "
+                                   "none")
+        try:
+            return nominal, irregular_arch(nominal, self.epsilon, rng=seed)
+        except ValueError as exc:
+            if exc.__cause__ is None:  # epsilon itself is out of its range
+                raise
+            raise DescriptionError(f"{self.drawn()} is not a valid arch: "
+                                   f"{_literal(exc.__cause__)}; epsilon is too large for this "
+                                   f"arch") from exc
+
+    def build(self):
+        """The structure described (after the irregular draw, if any): :meth:`arches`\\ ``[1]``.
+
+        Returns
+        -------
+        BlockArch
+        """
+        return self.arches()[1]
+
+    def drawn(self) -> str:
+        """How a message names the irregular arch of ``epsilon`` and ``seed`` (a template of
+        :class:`~archquake.errors.DescriptionError`)."""
+        return (f"the irregular arch drawn with {{epsilon}} {self.epsilon:g} (seed "
+                f"{DEFAULT_SEED if self.seed is None else self.seed})")
+
+    # ------------------------------------------------------------------ JSON
+    def to_dict(self) -> dict:
+        """The fields given, as JSON values (piers and the passive reaction as lists):
+        :meth:`from_dict` reads it back to an equal description."""
+        return {f.name: (list(v) if isinstance(v, tuple) else v) for f in fields(self)
+                if (v := getattr(self, f.name)) is not None}
+
+    @classmethod
+    def from_dict(cls, data) -> StructureSpec:
+        """The description of a dict of fields (the page's JSON, or :meth:`to_dict`); a value
+        None or ``""`` is not given.
+
+        Raises
+        ------
+        DescriptionError
+            For something else than a dict, an unknown field, or a value the description
+            refuses.
+        """
+        if not isinstance(data, dict):
+            raise DescriptionError(f"the structure must be described by a JSON object, got "
+                                   f"{type(data).__name__}")
+        known = [f.name for f in fields(cls)]
+        unknown = sorted(set(data) - set(known))
+        if unknown:
+            raise DescriptionError(f"unknown structure field(s) {_literal(unknown)}; known: "
+                                   f"{_literal(known)}")
+        return cls(**{k: v for k, v in data.items() if v is not None and v != ""})
+
+
+__all__ = ["SHAPE_FIELDS", "STRUCTURE_FIELDS", "StructureSpec", "integer_field", "number_field",
+           "pier_field"]
