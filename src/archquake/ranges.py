@@ -4,16 +4,19 @@ The command line's list options (``--amplitudes 0.2:0.8:0.01``, ``--durations 0.
 ``--levels``) and the page's fields of the same names are read here, so both take the same text
 and refuse it with the same message, which names what was read (the option, or the field).
 :func:`inclusive_range` is the grid of one range, also the default grids of the studies
-(:mod:`archquake.defaults`).
+(:mod:`archquake.defaults`). The module imports numpy only to make a grid, so that the command
+line shows its defaults (:func:`range_text`) without it.
 """
 
 from __future__ import annotations
 
 import math
-
-import numpy as np
+from typing import TYPE_CHECKING
 
 from .defaults import MAX_GRID_POINTS
+
+if TYPE_CHECKING:
+    import numpy as np
 
 RANGE_TOLERANCE = 1e-9
 """How close [fraction of the step] the last step of :func:`inclusive_range` must land on the
@@ -65,6 +68,8 @@ def inclusive_range(start: float, stop: float, step: float) -> np.ndarray:
         raise ValueError(f"the range {start:g}:{stop:g}:{step:g} has {math.floor(steps) + 1} "
                          f"values, more than the {MAX_GRID_POINTS} of the largest grid "
                          f"(MAX_GRID_POINTS)")
+    import numpy as np
+
     count = math.floor(steps + RANGE_TOLERANCE) + 1
     values = np.round(start + step * np.arange(count), 12)
     if abs(values[-1] - stop) <= RANGE_TOLERANCE * step:

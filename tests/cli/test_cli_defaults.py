@@ -11,10 +11,10 @@ import pytest
 
 from archquake import ArchDynamics, defaults
 from archquake.cli import COMMANDS, build_parser
-from archquake.cli.options import parse_values
 from archquake.defaults import DEFAULT_INTENSITY_MEASURES, REPORT_SEED
 from archquake.limit_analysis import both_directions
 from archquake.models import DEFAULT_MODEL
+from archquake.ranges import parse_values
 from archquake.report.paper.settings import ReproductionSettings
 from archquake.rigid_blocks import BlockSettings
 from archquake.studies.comparison import compare_models

@@ -12,6 +12,7 @@ from ..defaults import (
     COMPARE_RESOLUTION_G,
     MIN_COMPARE_RESOLUTION_G,
 )
+from ..ranges import parse_values, range_text
 from . import options
 from .output import print_json
 
@@ -34,7 +35,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         metavar="LIST",
                         help="pulse durations t_p [s]: comma list and/or ranges start:stop:step "
                              "(default: %(default)s)")
-    parser.add_argument("--amplitudes", default=options.range_text(COMPARE_AMPLITUDES_G),
+    parser.add_argument("--amplitudes", default=range_text(COMPARE_AMPLITUDES_G),
                         metavar="LIST",
                         help="scan grid of amplitudes a [g] of both models, increasing "
                              "(default: %(default)s)")
@@ -61,8 +62,8 @@ def run(args: argparse.Namespace) -> int:
     """The comparison of the two models of the arch of the options."""
     from ..studies.comparison import compare_models
 
-    durations = options.parse_values(args.durations, "--durations")
-    amplitudes = options.parse_values(args.amplitudes, "--amplitudes")
+    durations = parse_values(args.durations, "--durations")
+    amplitudes = parse_values(args.amplitudes, "--amplitudes")
     if not (math.isfinite(args.resolution) and args.resolution >= MIN_COMPARE_RESOLUTION_G):
         # the library takes any width > 0; finer than this only costs rigid-block analyses
         raise ValueError(f"--resolution must be >= {MIN_COMPARE_RESOLUTION_G:g} g, got "

@@ -15,6 +15,7 @@ from ..defaults import (
     MAX_GRID_POINTS,
     MIN_RESOLUTION_G,
 )
+from ..ranges import parse_values, range_text
 from . import options
 from .output import print_json
 
@@ -37,11 +38,11 @@ def configure(parser: argparse.ArgumentParser) -> None:
     options.add_rigid_block_options(parser)
     options.add_workers_option(parser, help="local worker processes of the rigid-block model, "
                                             "one duration at a time (default: this process)")
-    parser.add_argument("--durations", default=options.range_text(DOMAIN_DURATIONS),
+    parser.add_argument("--durations", default=range_text(DOMAIN_DURATIONS),
                         metavar="LIST",
                         help="pulse durations t_p [s]: comma list and/or ranges start:stop:step "
                              "(stop included) (default: %(default)s)")
-    parser.add_argument("--amplitudes", default=options.range_text(DOMAIN_AMPLITUDES_G),
+    parser.add_argument("--amplitudes", default=range_text(DOMAIN_AMPLITUDES_G),
                         metavar="LIST",
                         help=f"scan grid of amplitudes a [g], increasing; durations x "
                              f"amplitudes (with the extension) at most {MAX_GRID_POINTS} "
@@ -64,8 +65,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """The failure domain of the arch of the options."""
-    durations = options.parse_values(args.durations, "--durations")
-    amplitudes = options.parse_values(args.amplitudes, "--amplitudes")
+    durations = parse_values(args.durations, "--durations")
+    amplitudes = parse_values(args.amplitudes, "--amplitudes")
     if not (math.isfinite(args.resolution) and args.resolution >= MIN_RESOLUTION_G):
         # the library takes any width > 0; the command line refuses what means nothing
         raise ValueError(f"--resolution must be >= {MIN_RESOLUTION_G:g} g (the analyses are "

@@ -19,6 +19,7 @@ from ..defaults import (
     STUDY_AMPLITUDES_G,
     STUDY_DURATIONS,
 )
+from ..ranges import parse_values, range_text
 from . import main_record_fragility, options
 from .output import print_json
 
@@ -45,7 +46,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--durations", default=",".join(f"{d:g}" for d in STUDY_DURATIONS),
                         metavar="LIST",
                         help="pulse durations t_p [s] (default: %(default)s)")
-    parser.add_argument("--amplitudes", default=options.range_text(STUDY_AMPLITUDES_G),
+    parser.add_argument("--amplitudes", default=range_text(STUDY_AMPLITUDES_G),
                         metavar="LIST",
                         help=f"amplitudes a [g], increasing; durations x amplitudes at most "
                              f"{MAX_GRID_POINTS}, and 2 x samples x durations x amplitudes at "
@@ -74,8 +75,8 @@ def run(args: argparse.Namespace) -> int:
     settings = FragilitySettings(
         nominal=options.nominal_arch_from_args(args), sample_size=args.samples,
         epsilon=args.epsilon,
-        durations=tuple(options.parse_values(args.durations, "--durations")),
-        amplitudes_g=tuple(options.parse_values(args.amplitudes, "--amplitudes")),
+        durations=tuple(parse_values(args.durations, "--durations")),
+        amplitudes_g=tuple(parse_values(args.amplitudes, "--amplitudes")),
         seed=args.seed, restitution=args.restitution, limit_sample_size=args.limit_samples,
         limit_method=args.limit_method, model=args.model, search=args.search,
         stride=args.stride, friction=args.friction, time_step=args.time_step,

@@ -115,13 +115,12 @@ def _min_pier_width(args: argparse.Namespace) -> int:
         raise ValueError("--min-pier-width finds the width of two equal piers: give their "
                          "height as --piers ,HEIGHT[,COURSES] (the width left blank), without "
                          "--pier-left or --pier-right")
-    given = options.pier_from_option("--piers", args.piers, blank_width=True)
-    if not isinstance(given, tuple):
+    width, height, courses = options.pier_from_option("--piers", args.piers, blank_width=True)
+    if width is not None:
         raise ValueError(f"--min-pier-width finds the width: leave it blank in --piers "
                          f",HEIGHT[,COURSES], got {args.piers!r}")
     if args.plot or args.min_thickness:
         raise ValueError("--min-pier-width cannot be combined with --plot or --min-thickness")
-    _, height, courses = given
     arch = options.arch_from_args(args)
     with options.analysing(args):
         width = min_pier_width(arch, height, courses)

@@ -30,7 +30,8 @@ def run(args: argparse.Namespace) -> int:
     from ..geometry import shaped_arch
     from ..limit_analysis import min_thickness, shaped_min_thickness
 
-    shape, kwargs = options.shape_from_args(args)
+    with options.naming_options():
+        shape, kwargs = options.shape_spec(args).shape_arguments()
     if shape is None:
         thickness = min_thickness(kwargs["radius"], kwargs["embrace"], kwargs["voussoirs"])
         scale, of = kwargs["radius"], "radius"

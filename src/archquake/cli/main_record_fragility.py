@@ -8,6 +8,7 @@ import argparse
 import math
 
 from ..defaults import DEFAULT_IM
+from ..ranges import parse_values
 from . import options
 from .output import print_json
 
@@ -83,7 +84,7 @@ def run(args: argparse.Namespace) -> int:
     suite = options.suite_from_args(args)
     settings = RecordFragilitySettings(
         suite=suite,
-        levels=tuple(options.parse_values(args.levels, "--levels")), im=im.name,
+        levels=tuple(parse_values(args.levels, "--levels")), im=im.name,
         nominal=options.nominal_arch_from_args(args), sample_size=args.samples,
         epsilon=args.epsilon, seed=args.seed,
         restitution=check_restitution_model(args.restitution), model=args.model,

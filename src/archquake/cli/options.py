@@ -6,18 +6,22 @@ of its ``configure``; the values are read by the function beside it (``arch_from
 ``motion_from_args``, ...). Building the options imports nothing heavy: the choices and the
 defaults they show come from :mod:`archquake.defaults`, the same values the run uses.
 
+A structure and a ground motion are described in the library, by named values
+(:class:`archquake.geometry.StructureSpec`, :class:`archquake.ground_motion.MotionSpec`): here
+their options are mapped onto those names (``--pier-left`` is ``pier_left``, ``--param
+NAME=VALUE`` is ``params``), and a description refused names its fields, which
+:data:`FIELD_OPTIONS` names as options (``--piers: ...``).
+
 The options do not check what the library checks: the library raises a :class:`ValueError`
 that names its parameter (``sample_size must be ...``) and :func:`option_message` names the
 option instead (``--samples must be ...``), through one table, :data:`OPTION_NAMES`. What is left
-here is what the library cannot check: combinations of options, and values in a unit the library
-does not see (the angle of embrace in degrees, the amplitude of a pulse in g).
+here is what the library cannot check: combinations of options that are not a description's.
 """
 
 from __future__ import annotations
 
 import argparse
 import contextlib
-import math
 import os
 import re
 import sys
@@ -44,8 +48,9 @@ from ..defaults import (
     SHAPES,
     STUDY_SAMPLE_SIZE,
     VOUSSOIR_FACES,
-    oppenheim_dimensions,
+    circular_defaults,
 )
+from ..errors import DescriptionError
 
 # ---------------------------------------------------------------------------------------------
 # library parameters -> options
@@ -131,21 +136,34 @@ def given(args: argparse.Namespace, *names: str) -> list[str]:
             and value != []]
 
 
+FIELD_OPTIONS = {
+    **{name: f"--{name.replace('_', '-')}" for name in (
+        "shape", "span", "rise", "radius", "embrace", "thickness", "voussoirs", "faces",
+        "geometry", "piers", "pier_left", "pier_right", "fill_cover", "fill_density",
+        "fill_inertia", "fill_passive", "density", "epsilon", "seed", "motion", "amplitude",
+        "duration", "cycles", "record", "suite", "scale_to", "reverse")},
+    "params": "--param",
+    "suite_record": "--record",
+}
+"""The option of each field of a structure's or a ground motion's description, for the
+messages of :func:`naming_options` (``suite_record``, the record of a built-in suite, is given by
+``--record`` with ``--suite``)."""
+
+
+@contextlib.contextmanager
+def naming_options():
+    """A refused description (:class:`~archquake.errors.DescriptionError`) as a
+    :class:`ValueError` whose message names the options (:data:`FIELD_OPTIONS`) instead of the
+    fields."""
+    try:
+        yield
+    except DescriptionError as exc:
+        raise ValueError(exc.naming(FIELD_OPTIONS)) from None
+
+
 # ---------------------------------------------------------------------------------------------
 # the arch
 # ---------------------------------------------------------------------------------------------
-
-
-def circular_defaults() -> dict:
-    """The options of a circular arch and their defaults: Oppenheim's arch, embrace in degrees
-    (:func:`archquake.defaults.oppenheim_dimensions`)."""
-    arch = oppenheim_dimensions()
-    return {"radius": arch["radius"], "embrace": math.degrees(arch["embrace"]),
-            "thickness": arch["thickness"], "voussoirs": arch["voussoirs"]}
-
-
-SHAPE_OPTIONS = ("shape", "span", "rise", "radius", "embrace", "thickness", "voussoirs", "faces")
-"""The options that describe an arch by its shape (``None`` when not given)."""
 
 
 def add_shape_options(group, *, thickness: bool = True) -> None:
@@ -241,75 +259,9 @@ def add_nominal_arch_options(parser: argparse.ArgumentParser) -> None:
                             "SeedSequence(seed, spawn_key=(i,)) (default: %(default)s)")
 
 
-def option_value(args: argparse.Namespace, name: str):
-    """The value of a shape option, or its default (Oppenheim's arch)."""
-    value = getattr(args, name, None)
-    return circular_defaults()[name] if value is None else value
-
-
-def shape_from_args(args: argparse.Namespace) -> tuple[str | None, dict]:
-    """``(shape, keyword arguments of shaped_arch without thickness)`` of the shape options,
-    refusing conflicting ones; ``shape`` is None for the paper's circular arch by radius and
-    embrace with curved faces (:func:`~archquake.geometry.circular_arch`, centre at the origin).
-
-    The values themselves are checked by the library (its messages name the options through
-    :func:`option_message`), except the angle of embrace, which the library sees in radians.
-    """
-    shape = args.shape or SHAPES[0]
-    by_size, by_angle = given(args, "span", "rise"), given(args, "radius", "embrace")
-    article = "an" if shape[0] in "aeiou" else "a"
-    if shape != "circular" and by_angle:
-        raise ValueError(f"{' and '.join(by_angle)} apply to circular arches only; {article} "
-                         f"{shape} arch is given by --span and --rise")
-    if by_size and by_angle:
-        raise ValueError(f"{', '.join(by_size + by_angle)}: a circular arch is given by --span "
-                         "and --rise or by --radius and --embrace, not both")
-    voussoirs = option_value(args, "voussoirs")
-    if args.voussoirs is None and shape == "pointed" and voussoirs % 2:
-        voussoirs += 1  # a joint at the crown: half the voussoirs on each side
-    if shape != "circular" or by_size:
-        if len(by_size) < 2:
-            raise ValueError(f"{article} {shape} arch needs --span and --rise [m]")
-        return shape, {"span": args.span, "rise": args.rise, "voussoirs": voussoirs,
-                       "faces": args.faces or VOUSSOIR_FACES[0]}
-    embrace = option_value(args, "embrace")
-    if not 0 < embrace < 360:  # in the option's unit: the library sees radians
-        raise ValueError(f"--embrace must be in (0, 360) degrees, got {embrace:g}")
-    kwargs = {"radius": option_value(args, "radius"), "embrace": math.radians(embrace),
-              "voussoirs": voussoirs, "faces": args.faces or VOUSSOIR_FACES[0]}
-    return (None if kwargs["faces"] == "curved" else "circular"), kwargs
-
-
-def nominal_arch_from_args(args: argparse.Namespace):
-    """The arch of the geometry options, before any irregular draw (on piers and under fill if
-    the structure options say so: :func:`structure_from_args`)."""
-    from ..geometry import circular_arch, load_arch, shaped_arch
-
-    density = _masonry_density(args)
-    if args.geometry:
-        shape_options = given(args, *SHAPE_OPTIONS)
-        if shape_options:
-            raise ValueError(f"--geometry gives the whole arch; it cannot be combined with "
-                             f"{', '.join(shape_options)}")
-        return structure_from_args(args, load_arch(args.geometry, density=density))
-    shape, kwargs = shape_from_args(args)
-    thickness = option_value(args, "thickness")
-    if shape is None:
-        arch = circular_arch(kwargs["radius"], kwargs["embrace"], thickness,
-                             kwargs["voussoirs"], density=density)
-    else:
-        arch = shaped_arch(shape, thickness=thickness, density=density, **kwargs)
-    return structure_from_args(args, arch)
-
-
 # ---------------------------------------------------------------------------------------------
 # piers, buttresses and fill
 # ---------------------------------------------------------------------------------------------
-
-STRUCTURE_OPTIONS = ("piers", "pier_left", "pier_right", "fill_cover", "fill_density",
-                     "fill_inertia", "fill_passive")
-"""The options that put the arch on piers or under fill (``None`` when not given)."""
-
 
 def add_structure_options(parser: argparse.ArgumentParser) -> None:
     """``--piers``, ``--pier-left``, ``--pier-right``, ``--fill-*`` and ``--density``: the arch
@@ -343,137 +295,62 @@ def add_structure_options(parser: argparse.ArgumentParser) -> None:
                             f"{DEFAULT_DENSITY:g})")
 
 
-def _numbers(option: str, text: str, low: int, high: int, *, blank_first: bool = False):
-    """The comma-separated numbers of ``option`` (``low`` to ``high`` of them); the first may
-    be blank (None) when ``blank_first``."""
-    parts = text.split(",")
-    if not low <= len(parts) <= high:
-        raise ValueError(f"{option} takes {low} to {high} numbers separated by commas, got "
-                         f"{text!r}")
-    values = []
-    for k, part in enumerate(parts):
-        if k == 0 and blank_first and not part.strip():
-            values.append(None)
-            continue
-        try:
-            values.append(float(part))
-        except ValueError:
-            hint = (" (a blank WIDTH only with limit --min-pier-width)" if k == 0
-                    and not part.strip() else "")
-            raise ValueError(f"{option} takes numbers separated by commas, got "
-                             f"{text!r}{hint}") from None
-    return values
+def shape_spec(args: argparse.Namespace):
+    """The :class:`~archquake.geometry.StructureSpec` of the shape options alone (an arch of a
+    shape, whatever else the command takes); a refused description names the options."""
+    from ..geometry.spec import SHAPE_FIELDS, StructureSpec
+
+    values = {name: getattr(args, name, None) for name in SHAPE_FIELDS}
+    with naming_options():
+        return StructureSpec(**{k: v for k, v in values.items() if v is not None})
+
+
+def structure_spec(args: argparse.Namespace, *, draw: bool = True):
+    """The :class:`~archquake.geometry.StructureSpec` of the geometry, structure and (with
+    ``draw``) irregularity options: each option given is the field of its name (``--pier-left``
+    is ``pier_left``); a refused description names the options.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+    draw : bool
+        Whether ``--epsilon`` and ``--seed`` draw one irregular arch (``False`` where they are
+        the settings of a sample, or not options at all).
+    """
+    from ..geometry.spec import SHAPE_FIELDS, STRUCTURE_FIELDS, StructureSpec
+
+    names = SHAPE_FIELDS + ("geometry",) + STRUCTURE_FIELDS + ("density",)
+    if draw:
+        names += ("epsilon", "seed")
+    values = {name: getattr(args, name, None) for name in names}
+    if getattr(args, "min_pier_width", False):
+        values["piers"] = None  # the piers are what --min-pier-width finds
+    with naming_options():
+        return StructureSpec(**{k: v for k, v in values.items() if v is not None and v != ""})
+
+
+def nominal_arch_from_args(args: argparse.Namespace):
+    """The arch of the geometry options, before any irregular draw (on piers and under fill if
+    the structure options say so)."""
+    with naming_options():
+        return structure_spec(args, draw=False).nominal()
 
 
 def pier_from_option(option: str, text: str, *, blank_width: bool = False):
-    """The :class:`~archquake.geometry.Pier` of ``--piers WIDTH,HEIGHT[,COURSES]`` (or, with
-    ``blank_width`` and no width, ``(None, height, courses)``), errors naming the option."""
-    from ..geometry import Pier
+    """``(width, height, courses)`` of ``--piers WIDTH,HEIGHT[,COURSES]``, the width None when
+    ``blank_width`` and left blank (:func:`archquake.geometry.spec.pier_field`); errors name
+    the option."""
+    from ..geometry.spec import pier_field
 
-    width, height, *courses = _numbers(option, text, 2, 3, blank_first=blank_width)
-    courses = courses[0] if courses else 1
-    if not float(courses).is_integer() or courses < 1:
-        raise ValueError(f"{option}: COURSES must be an integer >= 1, got {courses:g}")
-    try:
-        if width is None:
-            Pier(1.0, height, int(courses))  # checks height and courses
-            return None, height, int(courses)
-        return Pier(width, height, int(courses))
-    except ValueError as exc:
-        raise ValueError(f"{option}: {exc}") from None
-
-
-def _masonry_density(args: argparse.Namespace) -> float:
-    density = getattr(args, "density", None)
-    if density is None:
-        return DEFAULT_DENSITY
-    from ..geometry.blocks import check_density
-
-    return check_density(density, "--density")
-
-
-def structure_from_args(args: argparse.Namespace, arch):
-    """``arch`` on the piers and under the fill of the structure options (``arch`` itself
-    without them); every error names its option."""
-    from ..geometry import Fill, Structure
-
-    if not hasattr(args, "piers"):
-        return arch
-    present = given(args, *STRUCTURE_OPTIONS)
-    if not present:
-        return arch
-    if isinstance(arch, Structure):
-        raise ValueError(f"the geometry file describes a structure already; it cannot be "
-                         f"combined with {', '.join(present)}")
-    if args.piers and (args.pier_left or args.pier_right):
-        raise ValueError("--piers gives both piers; use --pier-left and --pier-right for "
-                         "unequal ones, not both")
-    if getattr(args, "min_pier_width", False):
-        left = right = None  # the piers are what --min-pier-width finds
-    elif args.piers:
-        left = right = pier_from_option("--piers", args.piers)
-    else:
-        left = pier_from_option("--pier-left", args.pier_left) if args.pier_left else None
-        right = pier_from_option("--pier-right", args.pier_right) if args.pier_right else None
-    fill = None
-    fill_options = given(args, "fill_density", "fill_inertia", "fill_passive")
-    if args.fill_cover is None and fill_options:
-        raise ValueError(f"{', '.join(fill_options)}: the fill needs --fill-cover M (its depth "
-                         "above the crown [m])")
-    if args.fill_cover is not None:
-        option = "--fill-cover"
-        try:
-            passive = (None, None)
-            if args.fill_passive:
-                option = "--fill-passive"
-                phi, mobilisation = _numbers(option, args.fill_passive, 2, 2)
-                if not 0 < phi < 90:
-                    raise ValueError(f"PHI must be in (0, 90) degrees, got {phi:g}")
-                passive = (math.radians(phi), mobilisation)
-            option = "--fill-cover"
-            fill = Fill(args.fill_cover,
-                        DEFAULT_FILL_DENSITY if args.fill_density is None else args.fill_density,
-                        args.fill_inertia or DEFAULT_FILL_INERTIA, *passive)
-        except ValueError as exc:
-            text = str(exc)
-            if text.startswith("fill density"):
-                option = "--fill-density"
-            raise ValueError(f"{option}: {text}") from None
-    if left is None and right is None and fill is None:
-        return arch
-    try:
-        return Structure(arch, left, right, fill)
-    except ValueError as exc:
-        text = str(exc)
-        option = "--fill-cover"
-        for side in ("left", "right"):
-            if text.startswith(f"{side} pier"):
-                option = f"--pier-{side}" if getattr(args, f"pier_{side}") else "--piers"
-        raise ValueError(f"{option}: {text}") from None
+    field = option.removeprefix("--").replace("-", "_")
+    with naming_options():
+        return pier_field(field, text, blank_width=blank_width)
 
 
 def arches_from_args(args: argparse.Namespace):
     """``(nominal, arch)``: the arch before and after the optional irregular draw."""
-    from ..geometry import irregular_arch
-
-    nominal = arch = nominal_arch_from_args(args)
-    if args.epsilon is not None:
-        seed = DEFAULT_SEED if args.seed is None else args.seed
-        if seed < 0:  # numpy's own message would not name the option
-            raise ValueError(f"--seed must be an integer >= 0, got {seed}")
-        if not hasattr(arch, "perturbed"):
-            raise ValueError("--epsilon draws an irregular arch around an arch with a "
-                             "centreline; a surveyed arch (--geometry with 'blocks') has none")
-        try:
-            arch = irregular_arch(arch, args.epsilon, rng=seed)
-        except ValueError as exc:
-            if exc.__cause__ is None:  # epsilon itself is out of its range
-                raise
-            raise ValueError(f"{drawn(args)} is not a valid arch: {exc.__cause__}; epsilon is "
-                             f"too large for this arch") from exc
-    elif args.seed is not None:
-        raise ValueError("--seed needs --epsilon (the seed of an irregular arch)")
-    return nominal, arch
+    with naming_options():
+        return structure_spec(args).arches()
 
 
 def arch_from_args(args: argparse.Namespace):
@@ -625,51 +502,6 @@ def model_from_args(args: argparse.Namespace):
 
 
 # ---------------------------------------------------------------------------------------------
-# lists of values
-# ---------------------------------------------------------------------------------------------
-
-
-def range_text(values: tuple[float, float, float]) -> str:
-    """``start:stop:step`` of a range of :mod:`archquake.defaults`, as an option's default."""
-    return ":".join(f"{v:g}" for v in values)
-
-
-def parse_values(text: str, name: str) -> list[float]:
-    """Values of a list option: comma-separated numbers and ranges ``start:stop:step``.
-
-    A range never passes ``stop`` and includes it when a step lands on it
-    (:func:`archquake.studies.failure_domain.inclusive_range`); ``"0.4,0.5"`` and
-    ``"0.2:1.0:0.01"`` and ``"0.1:0.3:0.1,0.5"`` are valid.
-    """
-    from ..studies.failure_domain import inclusive_range
-
-    values: list[float] = []
-    for part in (p.strip() for p in str(text).split(",")):
-        if not part:
-            continue
-        pieces = part.split(":")
-        try:
-            numbers = [float(x) for x in pieces]
-        except ValueError:
-            raise ValueError(f"{name}: cannot read {part!r}; give numbers separated by commas "
-                             "or a range start:stop:step") from None
-        if len(numbers) == 1:
-            values.append(numbers[0])
-        elif len(numbers) == 3:
-            try:
-                values.extend(inclusive_range(*numbers).tolist())
-            except ValueError as exc:
-                raise ValueError(f"{name}: {exc}") from None
-        else:
-            raise ValueError(f"{name}: a range is start:stop:step, got {part!r}")
-    if not values:
-        raise ValueError(f"{name} must not be empty")
-    if not all(math.isfinite(v) for v in values):
-        raise ValueError(f"{name} must be finite numbers, got {values}")
-    return values
-
-
-# ---------------------------------------------------------------------------------------------
 # execution and output
 # ---------------------------------------------------------------------------------------------
 
@@ -813,33 +645,9 @@ def suite_from_args(args: argparse.Namespace, paths: str = "records"):
     return None
 
 
-def suite_record(name: str, record: str):
-    """The ground motion named ``record`` of the built-in suite ``name`` (``--suite NAME
-    --record RECORD``)."""
-    from ..ground_motion import builtin_suite
-
-    try:
-        records = builtin_suite(name)
-    except ImportError as exc:
-        raise ValueError(f"--suite {name}: {exc}") from None
-    except ValueError as exc:
-        raise ValueError(f"--suite: {exc}") from None
-    for r in records:
-        if r.name == record:
-            return r.motion
-    raise ValueError(f"--record {record!r} is not a ground motion of --suite {name}; its "
-                     f"ground motions: {', '.join(r.name for r in records)}")
-
-
 # ---------------------------------------------------------------------------------------------
 # one ground motion
 # ---------------------------------------------------------------------------------------------
-
-STOCHASTIC_PARAMETERS = ("seed", "arias_intensity", "significant_duration", "midpoint_time",
-                         "filter_frequency", "filter_frequency_rate", "filter_damping",
-                         "high_pass_frequency", "dt", "duration")
-"""Parameters of ``--motion stochastic`` (see :func:`archquake.ground_motion.stochastic`)."""
-
 
 def add_motion_options(parser: argparse.ArgumentParser) -> None:
     """Options that define one ground motion (read by :func:`motion_from_args`)."""
@@ -881,85 +689,40 @@ def add_motion_options(parser: argparse.ArgumentParser) -> None:
                    help="apply the motion with its sign flipped (the other polarity, -xg''(t))")
 
 
-def motion_parameters(args: argparse.Namespace, allowed) -> dict[str, float]:
-    """``--param NAME=VALUE`` (and ``--cycles``) as ``{name: value}``, checked against
-    ``allowed``."""
-    params: dict[str, float] = {}
-    if args.cycles is not None:
-        if "cycles" not in allowed:
-            raise ValueError(f"--cycles applies to --motion harmonic, not {args.motion}")
-        params["cycles"] = args.cycles
+def motion_parameters(args: argparse.Namespace) -> dict[str, str] | None:
+    """``--param NAME=VALUE`` as ``{name: value text}`` (None when not given): the values and
+    which motion takes them are checked by the motion's description."""
+    if not args.param:
+        return None
+    params: dict[str, str] = {}
     for item in args.param:
         name, sep, text = item.partition("=")
         name = name.strip()
         if not sep or not name:
             raise ValueError(f"--param must be NAME=VALUE, got {item!r}")
-        if name not in allowed:
-            options = ", ".join(allowed) if allowed else "none"
-            raise ValueError(f"--param {name} does not apply to --motion {args.motion}; its "
-                             f"parameters: {options}")
-        try:
-            value = float(text)
-        except ValueError:
-            raise ValueError(f"--param {name}: {text!r} is not a number") from None
         if name in params:
             raise ValueError(f"--param {name} is given twice")
-        params[name] = value
+        params[name] = text
     return params
+
+
+def motion_spec(args: argparse.Namespace):
+    """The :class:`~archquake.ground_motion.MotionSpec` of the motion options: each option
+    given is the field of its name, ``--param`` is ``params`` and ``--record`` with ``--suite``
+    is ``suite_record``; a refused description names the options."""
+    from ..ground_motion.spec import MotionSpec
+
+    suite = getattr(args, "suite", None)
+    values = {"motion": args.motion, "amplitude": args.amplitude, "duration": args.duration,
+              "cycles": args.cycles, "params": motion_parameters(args), "suite": suite,
+              "suite_record" if suite else "record": args.record, "scale_to": args.scale_to,
+              "reverse": args.reverse or None}
+    with naming_options():
+        return MotionSpec(**{k: v for k, v in values.items() if v is not None})
 
 
 def motion_from_args(args: argparse.Namespace):
     """The ground motion of the motion options (reversed with ``--reverse``)."""
-    from ..geometry import GRAVITY
-    from ..ground_motion import ground_motion, read_record, scale_to_im, shape_parameters
-
-    def refuse(option, value, what):
-        if value is not None:
-            raise ValueError(f"{option} applies to an analytic pulse, not to {what}")
-
-    if getattr(args, "suite", None) and not args.record:
-        raise ValueError(f"--suite {args.suite} needs --record NAME: the ground motion of the "
-                         f"suite to apply")
-    if args.motion is None and not args.record:
-        args.motion = DEFAULT_MOTION
-    if args.record or args.motion == "record":
-        if not args.record:
-            raise ValueError("--motion record needs --record FILE")
-        if args.motion not in (None, "record"):
-            raise ValueError(f"--record FILE is a recorded motion; it cannot be combined with "
-                             f"--motion {args.motion}")
-        args.motion = "record"
-        refuse("--amplitude", args.amplitude, "a record (use --scale-to PGA)")
-        refuse("--duration", args.duration, "a record")
-        motion_parameters(args, ())
-        if getattr(args, "suite", None):
-            motion = suite_record(args.suite, args.record)
-            if args.scale_to is not None:
-                try:
-                    motion = scale_to_im(motion, "pga", args.scale_to)
-                except ValueError as exc:
-                    raise ValueError(f"--scale-to: {exc}") from None
-        else:
-            motion = read_record(args.record, scale_to=args.scale_to)
-    elif args.motion == "stochastic":
-        refuse("--amplitude", args.amplitude, "a stochastic motion (use --scale-to PGA)")
-        refuse("--duration", args.duration, "a stochastic motion (use --param duration=...)")
-        motion = ground_motion("stochastic", **motion_parameters(args, STOCHASTIC_PARAMETERS))
-        if args.scale_to is not None:
-            try:
-                motion = scale_to_im(motion, "pga", args.scale_to)
-            except ValueError as exc:
-                raise ValueError(f"--scale-to: {exc}") from None
-    else:
-        if args.scale_to is not None:
-            raise ValueError("--scale-to applies to a recorded accelerogram (--record FILE) or "
-                             "a stochastic motion; a pulse takes --amplitude")
-        amplitude = DEFAULT_PULSE[0] if args.amplitude is None else args.amplitude
-        duration = DEFAULT_PULSE[1] if args.duration is None else args.duration
-        if not (math.isfinite(amplitude) and abs(amplitude) <= MAX_ACCELERATION_G):
-            # in the option's unit: the library sees m/s^2
-            raise ValueError(f"--amplitude must be a finite acceleration within "
-                             f"+-{MAX_ACCELERATION_G:g} g, got {amplitude:g}")
-        params = motion_parameters(args, tuple(shape_parameters(args.motion)))
-        motion = ground_motion(args.motion, amplitude * GRAVITY, duration, **params)
-    return motion.reversed() if args.reverse else motion
+    spec = motion_spec(args)
+    with naming_options():
+        return spec.build()
