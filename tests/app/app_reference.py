@@ -3,6 +3,7 @@ interpreter, as a user runs it."""
 
 import json
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -31,6 +32,14 @@ def cli_error(*argv: str, cwd=None) -> str:
     line = done.stderr.strip().splitlines()[-1]
     assert line.startswith("archquake: error: ")
     return line.removeprefix("archquake: error: ")
+
+
+def fields_named(message: str) -> str:
+    """The command line's ``message`` as the page says it: each option named by its field
+    (``--fill-cover`` is ``fill_cover``, ``--param`` is ``params``), without what its value
+    looks like (``--fill-cover M`` is ``fill_cover``)."""
+    return re.sub(r"--([a-z][a-z-]*)(?: [A-Z]+\b)?",
+                  lambda m: "params" if m[1] == "param" else m[1].replace("-", "_"), message)
 
 
 BAD_GEOMETRY = '{"blocks": [[[0, 0], [1, 0], [1, 1]]]}'

@@ -5,7 +5,7 @@ import time
 
 import numpy as np
 import pytest
-from app_reference import BAD_GEOMETRY, cli_error, cli_json
+from app_reference import BAD_GEOMETRY, cli_error, cli_json, fields_named
 
 from archquake.geometry import GRAVITY
 from archquake.ground_motion import oppenheim_pulse
@@ -54,7 +54,7 @@ def test_cannot_stand_is_an_answer_naming_the_part(client):
 def test_bad_input_is_refused_with_the_command_lines_message(client):
     bad = client.post("/api/structure", json={"structure": {"embrace": 400}})
     assert bad.status_code == 400
-    assert bad.json()["error"] == cli_error("limit", "--embrace", "400")
+    assert bad.json()["error"] == fields_named(cli_error("limit", "--embrace", "400"))
     assert client.post("/api/structure", content=b"{not json").status_code == 400
 
 
@@ -164,12 +164,12 @@ def test_bad_job_input_is_refused_before_a_worker_starts(client):
     refused = client.post("/api/jobs/domain", json={"structure": {},
                                                     "domain": {"durations": "0:30:0.1"}})
     assert refused.status_code == 400
-    assert "--durations has 301 values; this page takes at most 25" in refused.json()["error"]
+    assert "durations has 301 values; this page takes at most 25" in refused.json()["error"]
     refused = client.post("/api/jobs/simulate", json={"structure": {}, "motion": {
         "motion": "ricker", "amplitude": -0.5, "duration": -1}})
     assert refused.status_code == 400
-    assert refused.json()["error"] == cli_error("simulate", "--motion", "ricker",
-                                                "--amplitude=-0.5", "--duration=-1")
+    assert refused.json()["error"] == fields_named(cli_error("simulate", "--motion", "ricker",
+                                                             "--amplitude=-0.5", "--duration=-1"))
     assert client.post("/api/jobs/pickle", json={}).status_code == 404
     assert client.get("/api/jobs/0123456789abcdef").status_code == 404
     assert client.get("/api/download/..%2F..%2Fetc%2Fpasswd").status_code == 404
@@ -278,4 +278,5 @@ def test_a_built_in_record_shakes_the_structure(client):
     motion = record.motion.scaled(0.5 * GRAVITY / abs(record.motion.values).max())
     outcome = model_for(oppenheim(), "four-link").outcome(motion)
     assert result["four-link"]["outcome"]["status"] == outcome.status.label
-    assert result["motion"]["name"] == record.name
+    factor = 0.5 * GRAVITY / abs(record.motion.values).max()
+    assert result["motion"]["name"] == f"{record.name} x {factor:.4g}"  # as simulate names it

@@ -1,15 +1,17 @@
 """The interactive page: shape a structure, see its thrust line and collapse load at once, shake
 it with both models and find its failure domain, in the browser (``archquake app``).
 
-A leaf over the library (nothing in archquake imports it). The page is plain HTML, CSS and a
+A leaf over the library (nothing in archquake imports it), beside the command line, of which it
+imports nothing. The page is plain HTML, CSS and a
 little JavaScript (:file:`static/`) that draws what a small JSON API returns; the API is a
 Starlette application served by uvicorn on loopback (:mod:`.server`). Its modules:
 
-- :mod:`.inputs`: what the page sends turned into the library's values -- the structure through
-  the command line's own option groups (:mod:`archquake.cli.options`, so that the page and
-  ``archquake limit`` build the same structure and say the same things about bad input), the
-  ground motion likewise, uploaded files kept in the server's temporary folder, and the page's
-  limits on sizes;
+- :mod:`.inputs`: what the page sends turned into the library's values -- the structure by the
+  library's description of one (:class:`archquake.geometry.StructureSpec`, which the command
+  line's options map onto too, so that the page and ``archquake limit`` build the same structure
+  and say the same things about bad input), the ground motion likewise
+  (:class:`archquake.ground_motion.MotionSpec`), uploaded files kept in the server's temporary
+  folder, and the page's limits on sizes;
 - :mod:`.views`: the library's results as the data the page draws (blocks, thrust lines,
   hinges, the motion of every block over time for both models);
 - :mod:`.tasks`: the long computations (time histories of both models, failure domains, the

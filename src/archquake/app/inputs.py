@@ -1,13 +1,13 @@
 """What the page sends, turned into the library's values: the structure, the ground motion, the
 uploaded files, and the page's limits on their sizes.
 
-The page describes a structure by the options of the command line (``{"thickness": 1.2,
-"voussoirs": 9, "piers": "1.5,4,3", ...}``: each key an option of ``archquake limit`` without
-its dashes, ``_`` for ``-``) and a ground motion by those of ``archquake simulate``. They are
-parsed by the command line's own option groups and read by its own functions
-(:func:`archquake.cli.options.arches_from_args`, :func:`archquake.cli.options.motion_from_args`),
-so the page builds the structure ``archquake limit`` builds from the same values and refuses
-bad input with the same message, which names the option (``--thickness must be ...``).
+The page describes a structure and a ground motion by named values (``{"thickness": 1.2,
+"voussoirs": 9, "piers": "1.5,4,3", ...}``), the fields of the library's descriptions
+(:class:`archquake.geometry.StructureSpec`, :class:`archquake.ground_motion.MotionSpec`), which
+the command line's options map onto too: its JSON goes straight to them, so the page builds the
+structure ``archquake limit`` builds from the same values, and refuses bad input with the same
+message, which names the field where the command line names the option (``thickness must be
+...`` for ``--thickness must be ...``).
 
 Uploaded files are kept in the server's temporary folder under a random token
 (:class:`Uploads`); a description names a file by its token, and :meth:`Uploads.resolve` puts the
@@ -20,7 +20,6 @@ top of the library's own (which are meant for batch studies).
 
 from __future__ import annotations
 
-import argparse
 import math
 import re
 import secrets
@@ -42,64 +41,21 @@ LIMITS = {
 }
 """The page's limits: blocks of a structure (voussoirs and pier courses) [-], size of a geometry
 file and of a record file [bytes], samples of a record [-], duration of any ground motion [s],
-amplitude of a pulse [g], size of a request's JSON body [bytes], uploaded files kept [-], and
-pulse durations and amplitudes of a failure domain [-]."""
-
-STRUCTURE_KEYS = ("shape", "span", "rise", "radius", "embrace", "thickness", "voussoirs",
-                  "faces", "piers", "pier_left", "pier_right", "fill_cover", "fill_density",
-                  "fill_inertia", "fill_passive", "density", "epsilon", "seed", "geometry")
-"""Keys of a structure's description: the options of ``archquake limit`` that describe it
-(``geometry`` an uploaded file's token, resolved to its path by :meth:`Uploads.resolve`)."""
-
-MOTION_KEYS = ("motion", "amplitude", "duration", "cycles", "params", "record", "scale_to",
-               "reverse", "suite", "suite_record")
-"""Keys of a ground motion's description: the options of ``archquake simulate`` (``params``
-``{name: value}`` for its repeated ``--param``, ``record`` an uploaded file's token), or
-``suite`` and ``suite_record``: a record of a built-in suite by name and index."""
+amplitude of a pulse and peak of a scaled record [g], size of a request's JSON body [bytes],
+uploaded files kept [-], and pulse durations and amplitudes of a failure domain [-]."""
 
 TOKEN = re.compile(r"^[0-9a-f]{16}$")
 
 
-class _Parser(argparse.ArgumentParser):
-    """An option parser whose errors are :class:`ValueError` (the server answers them)."""
-
-    def error(self, message):
-        raise ValueError(message)
-
-
-def _parser(group: str) -> _Parser:
-    from ..cli import options
-
-    parser = _Parser(prog="archquake", add_help=False)
-    if group == "structure":
-        options.add_arch_options(parser)
-    else:
-        options.add_motion_options(parser)
-    return parser
-
-
-def _argv(spec: dict, keys, group: str) -> list[str]:
-    """The command line of a description: ``--key value`` for every key given."""
-    if not isinstance(spec, dict):
-        raise ValueError(f"the {group} must be described by a JSON object, got "
-                         f"{type(spec).__name__}")
-    unknown = sorted(set(spec) - set(keys))
-    if unknown:
-        raise ValueError(f"unknown {group} field(s) {unknown}; known: {list(keys)}")
-    argv = []
-    for key in keys:
-        value = spec.get(key)
-        if value is None or value == "" or value is False or key in ("params", "geometry",
-                                                                     "record"):
-            continue
-        option = "--" + key.replace("_", "-")
-        if value is True:
-            argv.append(option)
-        elif isinstance(value, int | float | str) and not isinstance(value, bool):
-            argv.append(f"{option}={value}")
-        else:
-            raise ValueError(f"{option} must be a number or a word, got {value!r}")
-    return argv
+def _with_path(spec, key: str) -> tuple[dict, dict | None]:
+    """``(spec with the file under key as its path, the file)``: a resolved upload is
+    ``{"path", "name"}`` (:meth:`Uploads.resolve`)."""
+    file = spec.get(key) if isinstance(spec, dict) else None
+    if not file:
+        return spec, None
+    if not isinstance(file, dict):
+        raise ValueError(f"{key}: not the token of an uploaded file: {file!r}")
+    return {**spec, key: file["path"]}, file
 
 
 def _file_message(message: str, file: dict | None) -> str:
@@ -116,35 +72,31 @@ def structure_from_spec(spec: dict):
     Parameters
     ----------
     spec : dict
-        Options of ``archquake limit`` by name (:data:`STRUCTURE_KEYS`); ``geometry``, when
-        given, is ``{"path": ..., "name": ...}`` (:meth:`Uploads.resolve`).
+        The fields of a :class:`~archquake.geometry.StructureSpec`; ``geometry``, when given,
+        is ``{"path": ..., "name": ...}`` (:meth:`Uploads.resolve`).
 
     Returns
     -------
     (BlockArch, BlockArch)
-        ``(nominal, structure)``, as :func:`archquake.cli.options.arches_from_args`.
+        ``(nominal, structure)`` (:meth:`~archquake.geometry.StructureSpec.arches`).
 
     Raises
     ------
     ValueError
-        With the command line's message for the same options, or when the structure has more
-        blocks than ``LIMITS["blocks"]``.
+        The library's message for the same values, naming the field; or when the structure
+        has more blocks than ``LIMITS["blocks"]``.
     """
-    from ..cli import options
+    from ..geometry import StructureSpec
 
-    argv = _argv(spec, STRUCTURE_KEYS, "structure")
-    file = spec.get("geometry")
-    if file:
-        argv.append(f"--geometry={file['path']}")
-    voussoirs = spec.get("voussoirs")
+    data, file = _with_path(spec, "geometry")
+    voussoirs = spec.get("voussoirs") if isinstance(spec, dict) else None
     if voussoirs not in (None, "") and _number(voussoirs) > LIMITS["blocks"]:
-        raise ValueError(f"--voussoirs must be at most {LIMITS['blocks']} on this page (the "
+        raise ValueError(f"voussoirs must be at most {LIMITS['blocks']} on this page (the "
                          f"command line takes more), got {voussoirs}")
-    args = _parser("structure").parse_args(argv)
     try:
-        nominal, structure = options.arches_from_args(args)
+        nominal, structure = StructureSpec.from_dict(data).arches()
     except ValueError as exc:
-        raise ValueError(_file_message(options.option_message(str(exc)), file)) from None
+        raise ValueError(_file_message(str(exc), file)) from None
     if structure.n_voussoirs > LIMITS["blocks"]:
         raise ValueError(f"the structure has {structure.n_voussoirs} blocks (voussoirs and pier "
                          f"courses); this page takes at most {LIMITS['blocks']}")
@@ -164,10 +116,10 @@ def motion_from_spec(spec: dict):
     Parameters
     ----------
     spec : dict
-        Options of ``archquake simulate`` by name (:data:`MOTION_KEYS`): ``motion``,
+        The fields of a :class:`~archquake.ground_motion.MotionSpec`: ``motion``,
         ``amplitude`` [g], ``duration`` [s], ``cycles``, ``params`` ``{name: value}``,
-        ``record`` (``{"path", "name"}``, :meth:`Uploads.resolve`), ``scale_to`` [g],
-        ``reverse``; or ``suite`` and ``suite_record`` (with ``scale_to`` and ``reverse``).
+        ``record`` (``{"path", "name"}``, :meth:`Uploads.resolve`), or ``suite`` and
+        ``suite_record`` (its index), ``scale_to`` [g], ``reverse``.
 
     Returns
     -------
@@ -176,31 +128,22 @@ def motion_from_spec(spec: dict):
     Raises
     ------
     ValueError
-        With the command line's message for the same options; for a motion longer than
-        ``LIMITS["motion_duration"]`` or a pulse stronger than ``LIMITS["amplitude_g"]``.
+        The library's message for the same values, naming the field; for a motion longer than
+        ``LIMITS["motion_duration"]``, or a pulse or a scaled record stronger than
+        ``LIMITS["amplitude_g"]``.
     """
-    from ..cli import options
+    from ..ground_motion import MotionSpec
 
-    if isinstance(spec, dict) and spec.get("suite"):
-        motion = _suite_motion(spec)
-    else:
-        argv = _argv(spec, MOTION_KEYS, "ground motion")
-        params = spec.get("params") or {}
-        if not isinstance(params, dict):
-            raise ValueError("params must be a JSON object {name: value}")
-        argv += [f"--param={name}={value}" for name, value in params.items()]
-        file = spec.get("record")
-        if file:
-            argv.append(f"--record={file['path']}")
-        amplitude = _number(spec.get("amplitude"))
-        if abs(amplitude) > LIMITS["amplitude_g"]:
-            raise ValueError(f"--amplitude must be within +-{LIMITS['amplitude_g']:g} g on this "
-                             f"page, got {spec.get('amplitude')}")
-        args = _parser("motion").parse_args(argv)
-        try:
-            motion = options.motion_from_args(args)
-        except ValueError as exc:
-            raise ValueError(_file_message(options.option_message(str(exc)), file)) from None
+    data, file = _with_path(spec, "record")
+    if isinstance(spec, dict):
+        for name in ("amplitude", "scale_to"):
+            if abs(_number(spec.get(name))) > LIMITS["amplitude_g"]:
+                raise ValueError(f"{name} must be within +-{LIMITS['amplitude_g']:g} g on this "
+                                 f"page, got {spec.get(name)}")
+    try:
+        motion = MotionSpec.from_dict(data).build()
+    except ValueError as exc:
+        raise ValueError(_file_message(str(exc), file)) from None
     if not motion.duration <= LIMITS["motion_duration"]:
         raise ValueError(f"the ground motion lasts {motion.duration:.4g} s; this page takes at "
                          f"most {LIMITS['motion_duration']:g} s")
@@ -208,34 +151,6 @@ def motion_from_spec(spec: dict):
         raise ValueError(f"the record has {motion.times.size} samples; this page takes at most "
                          f"{LIMITS['record_samples']}")
     return motion
-
-
-def _suite_motion(spec: dict):
-    """A record of a built-in suite (the ``records`` extra), scaled and reversed as asked."""
-    from ..geometry import GRAVITY
-    from ..ground_motion import BUILTIN_SUITES, builtin_suite
-
-    unknown = sorted(set(spec) - {"suite", "suite_record", "scale_to", "reverse", "motion"})
-    if unknown:
-        raise ValueError(f"a record of a built-in suite takes suite, suite_record, scale_to and "
-                         f"reverse, not {unknown}")
-    name = spec["suite"]
-    if name not in BUILTIN_SUITES:
-        raise ValueError(f"suite must be one of {list(BUILTIN_SUITES)}, got {name!r}")
-    records = builtin_suite(name)
-    index = spec.get("suite_record", 0)
-    if isinstance(index, bool) or not isinstance(index, int) or not 0 <= index < len(records):
-        raise ValueError(f"suite_record must be an integer in [0, {len(records) - 1}], got "
-                         f"{index!r}")
-    motion = records[index].motion
-    scale_to = spec.get("scale_to")
-    if scale_to not in (None, ""):
-        scale_to = _number(scale_to)
-        if not (math.isfinite(scale_to) and 0 < scale_to <= LIMITS["amplitude_g"]):
-            raise ValueError(f"--scale-to must be a peak ground acceleration in (0, "
-                             f"{LIMITS['amplitude_g']:g}] g, got {spec['scale_to']}")
-        motion = motion.scaled(scale_to * GRAVITY / float(abs(motion.values).max()))
-    return motion.reversed() if spec.get("reverse") else motion
 
 
 def suites() -> list[dict]:
@@ -395,5 +310,5 @@ def check_record_file(entry: dict) -> dict:
             "pga_g": float(abs(motion.values).max() / GRAVITY)}
 
 
-__all__ = ["LIMITS", "MOTION_KEYS", "STRUCTURE_KEYS", "Uploads", "check_geometry_file",
+__all__ = ["LIMITS", "Uploads", "check_geometry_file",
            "check_record_file", "motion_from_spec", "structure_from_spec", "suites"]

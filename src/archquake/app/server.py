@@ -2,7 +2,8 @@
 (:func:`serve`).
 
 Routes (JSON in and out unless said otherwise; a refused input is answered with status 400 and
-``{"error": message}``, the command line's message for the same input):
+``{"error": message}``, the library's message for the same input, which names the field where
+the command line names the option):
 
 - ``GET /``: the page; ``GET /static/...``: its script and style sheet;
 - ``GET /api/options``: the choices the page offers (shapes, faces, motions and their
@@ -103,8 +104,7 @@ async def _json(request: Request) -> dict:
 
 def _handler(function):
     """An endpoint whose refusals are answers: a :class:`ValueError` is status 400 with the
-    command line's wording (the option named), a :class:`RequestError` its own status."""
-    from ..cli.options import option_message
+    library's message (the field named), a :class:`RequestError` its own status."""
 
     async def endpoint(request: Request):
         try:
@@ -112,7 +112,7 @@ def _handler(function):
         except RequestError as exc:
             return _error(exc.status, str(exc))
         except ValueError as exc:
-            return _error(400, option_message(str(exc)))
+            return _error(400, str(exc))
 
     endpoint.__name__ = function.__name__
     endpoint.__doc__ = function.__doc__
@@ -156,9 +156,9 @@ def structure_answer(spec: dict) -> dict:
 def limit_figure(spec: dict) -> bytes:
     """PNG of both mechanisms of the structure (:func:`archquake.plotting.plot_limit_analysis`,
     as ``archquake limit --plot`` draws them)."""
-    from ..cli.output import pyplot
     from ..limit_analysis import both_directions
     from .inputs import structure_from_spec
+    from .views import pyplot
 
     plt = pyplot()
     from ..plotting import plot_limit_analysis
@@ -176,7 +176,6 @@ def limit_figure(spec: dict) -> bytes:
 
 def options_answer() -> dict:
     """The choices the page offers, its defaults and limits."""
-    from ..cli.options import circular_defaults
     from ..defaults import (
         ANALYTIC_GROUND_MOTIONS,
         DEFAULT_FILL_INERTIA,
@@ -186,6 +185,7 @@ def options_answer() -> dict:
         FILL_INERTIA_MODELS,
         SHAPES,
         VOUSSOIR_FACES,
+        circular_defaults,
     )
     from ..ground_motion import shape_parameters
     from .tasks import DOMAIN_DEFAULTS

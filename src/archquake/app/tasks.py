@@ -40,7 +40,7 @@ def model_settings(spec: dict):
     Raises
     ------
     ValueError
-        Naming ``--restitution`` or ``--friction``, as the command line does.
+        Naming ``restitution`` or ``friction``.
     """
     from ..defaults import DEFAULT_FRICTION, DEFAULT_RESTITUTION
     from ..fourlink.impact import check_restitution_model
@@ -59,7 +59,7 @@ def model_settings(spec: dict):
     try:
         friction = DEFAULT_FRICTION if friction in (None, "") else float(friction)
     except (TypeError, ValueError):
-        raise ValueError(f"--friction must be a number >= 0, got {friction!r}") from None
+        raise ValueError(f"friction must be a number >= 0, got {friction!r}") from None
     return restitution, BlockSettings(friction=friction)
 
 
@@ -130,8 +130,8 @@ def simulate(spec: dict, report) -> dict:
 
 
 def _domain_settings(spec: dict) -> dict:
-    from ..cli.options import parse_values
     from ..ground_motion import ANALYTIC_GROUND_MOTIONS
+    from ..ranges import parse_values
 
     given = {**DOMAIN_DEFAULTS, **{k: v for k, v in (spec.get("domain") or {}).items()
                                    if v not in (None, "")}}
@@ -139,23 +139,23 @@ def _domain_settings(spec: dict) -> dict:
     if unknown:
         raise ValueError(f"unknown failure-domain field(s) {unknown}; known: "
                          f"{list(DOMAIN_DEFAULTS)}")
-    durations = parse_values(given["durations"], "--durations")
-    amplitudes = parse_values(given["amplitudes"], "--amplitudes")
+    durations = parse_values(given["durations"], "durations")
+    amplitudes = parse_values(given["amplitudes"], "amplitudes")
     for name, values in (("durations", durations), ("amplitudes", amplitudes)):
         most = LIMITS[f"domain_{name}"]
         if len(values) > most:
-            raise ValueError(f"--{name} has {len(values)} values; this page takes at most "
+            raise ValueError(f"{name} has {len(values)} values; this page takes at most "
                              f"{most}")
     if given["direction"] not in ("l", "r"):
-        raise ValueError(f"--direction must be l or r, got {given['direction']!r}")
+        raise ValueError(f"direction must be l or r, got {given['direction']!r}")
     if given["motion"] not in ANALYTIC_GROUND_MOTIONS:
-        raise ValueError(f"--motion must be one of {', '.join(ANALYTIC_GROUND_MOTIONS)}, got "
+        raise ValueError(f"motion must be one of {', '.join(ANALYTIC_GROUND_MOTIONS)}, got "
                          f"{given['motion']!r}")
     resolution, extend = float(given["resolution"]), float(given["extend_to"])
     if not (math.isfinite(resolution) and 1e-4 <= resolution <= 0.5):
-        raise ValueError(f"--resolution must be in [0.0001, 0.5] g, got {given['resolution']}")
+        raise ValueError(f"resolution must be in [0.0001, 0.5] g, got {given['resolution']}")
     if not (math.isfinite(extend) and 0 <= extend <= LIMITS["amplitude_g"]):
-        raise ValueError(f"--extend-to must be in [0, {LIMITS['amplitude_g']:g}] g, got "
+        raise ValueError(f"extend_to must be in [0, {LIMITS['amplitude_g']:g}] g, got "
                          f"{given['extend_to']}")
     return {"durations": durations, "amplitudes": amplitudes, "direction": given["direction"],
             "motion": given["motion"], "resolution": resolution,
@@ -253,7 +253,7 @@ def failure_domain(spec: dict, report) -> dict:
 
 def _domain_figure(domains: dict, disagreement, models: dict) -> str:
     """The domains as one PNG figure, a data URL."""
-    from ..cli.output import pyplot
+    from .views import pyplot
 
     plt = pyplot()
     from ..plotting import plot_disagreement, plot_failure_domain

@@ -65,6 +65,17 @@ def json_ready(value):
 
 
 # ------------------------------------------------------------------------------ the structure
+def pyplot():
+    """``matplotlib.pyplot`` on the file-only Agg backend: the page's figures are PNG images,
+    and the server opens no window."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
 def structure_view(structure) -> dict:
     """The blocks of a structure as the page draws them.
 

@@ -60,12 +60,10 @@ def main(connection, kind: str, text: str) -> None:
     ``{"progress": [done, total, text]}`` as it goes and then ``{"result": ...}`` or
     ``{"error": message}``.
 
-    A :class:`ValueError` is bad input: its message is the answer (named by option, as on the
-    command line). Anything else is a failure of the program: its message is the answer and its
+    A :class:`ValueError` is bad input: its message is the answer (naming the field, as the
+    library does). Anything else is a failure of the program: its message is the answer and its
     traceback goes to the server's standard error.
     """
-    from ..cli.options import option_message
-
     os.setsid()  # a process group of its own: cancelling the job ends it with its children
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C stops the server, which ends us
 
@@ -78,7 +76,7 @@ def main(connection, kind: str, text: str) -> None:
     try:
         send({"result": TASKS[kind](json.loads(text), report)})
     except ValueError as exc:
-        send({"error": option_message(str(exc))})
+        send({"error": str(exc)})
     except Exception as exc:  # a failure of the program, not of the input
         traceback.print_exc(file=sys.stderr)
         send({"error": f"{type(exc).__name__}: {exc}"})

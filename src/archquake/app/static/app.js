@@ -40,9 +40,10 @@ function showMessage(text) {
   if (!text) { box.hidden = true; box.textContent = ""; return; }
   box.hidden = false;
   box.textContent = text;
-  const named = /--([a-z][a-z0-9-]*)/.exec(text);
-  if (named) {
-    const key = named[1].replace(/-/g, "_");
+  // the first word of the message that is a field of the form (messages name their fields)
+  const fields = new Set([...document.querySelectorAll("[data-option]")].map((el) => el.dataset.option));
+  const key = (text.match(/[a-z][a-z0-9_]*/g) || []).find((word) => fields.has(word));
+  if (key) {
     document.querySelectorAll(`[data-option="${key}"]`).forEach((el) => el.classList.add("invalid"));
   }
 }
