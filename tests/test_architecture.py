@@ -9,6 +9,8 @@
   module, and no module imports the package root;
 - the two reports (the paper's and the assessment) import nothing of each other: what both use
   lies beside them in ``archquake.report``;
+- the interactive page reaches nothing of the command line: both describe structures and ground
+  motions through the library (``archquake.geometry.spec``, ``archquake.ground_motion.spec``);
 - no module imports a private name (``_name``) of another module.
 
 Each rule is a function of the import graph, so the test also shows that it flags a violation.
@@ -65,6 +67,9 @@ def contract_violations(graph: dict[str, set[str]]) -> list[str]:
             if _within(module, own):
                 out += [f"{module} imports the other report ({m})" for m in sorted(graph[module])
                         if _within(m, other)]
+        if _within(module, "archquake.app"):
+            out += [f"{module} reaches the command line ({m})" for m in sorted(reached)
+                    if _within(m, "archquake.cli")]
         if module != "archquake" and "archquake" in graph[module]:
             out.append(f"{module} imports the package root")
         if not any(_within(module, leaf) for leaf in LEAVES):
@@ -86,6 +91,8 @@ def test_import_contract_holds():
     ("archquake.execution", "archquake"),
     ("archquake.studies.fragility", "archquake.plotting"),
     ("archquake.report.assess.text", "archquake.report.paper.text"),
+    ("archquake.app.inputs", "archquake.cli.options"),
+    ("archquake.app.tasks", "archquake.cli.output"),
 ])
 def test_contract_flags_a_violation(importer, imported):
     graph = package_imports()
