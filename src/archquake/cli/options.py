@@ -652,7 +652,7 @@ def suite_from_args(args: argparse.Namespace, paths: str = "records"):
 def add_motion_options(parser: argparse.ArgumentParser) -> None:
     """Options that define one ground motion (read by :func:`motion_from_args`)."""
     m = parser.add_argument_group("ground motion")
-    # no argparse defaults (motion_from_args applies them), so that an option given where it
+    # no argparse defaults (the description applies them), so that an option given where it
     # does not apply (with --record, with --phi0) can be refused instead of ignored
     m.add_argument("--motion", choices=ANALYTIC_GROUND_MOTIONS + ("record", "stochastic"),
                    default=None, metavar="NAME",
