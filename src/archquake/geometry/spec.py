@@ -163,10 +163,6 @@ def pier_field(name: str, value, *, blank_width: bool = False):
     return width, height, int(courses)
 
 
-def _circular_default(name: str):
-    return circular_defaults()[name]
-
-
 @dataclass(frozen=True)
 class StructureSpec:
     r"""A structure by named values: an arch of a shape or of a file, on piers, under fill,
@@ -243,13 +239,13 @@ class StructureSpec:
     voussoirs: int | None = None
     faces: str | None = None
     geometry: str | None = None
-    piers: tuple | None = None
-    pier_left: tuple | None = None
-    pier_right: tuple | None = None
+    piers: tuple | str | None = None
+    pier_left: tuple | str | None = None
+    pier_right: tuple | str | None = None
     fill_cover: float | None = None
     fill_density: float | None = None
     fill_inertia: str | None = None
-    fill_passive: tuple | None = None
+    fill_passive: tuple | str | None = None
     density: float | None = None
     epsilon: float | None = None
     seed: int | None = None
@@ -315,7 +311,7 @@ class StructureSpec:
 
     def _value(self, name: str):
         value = getattr(self, name)
-        return _circular_default(name) if value is None else value
+        return circular_defaults()[name] if value is None else value
 
     def shape_arguments(self) -> tuple[str | None, dict]:
         """``(shape, keyword arguments of shaped_arch without thickness and density)`` of the
