@@ -1,4 +1,6 @@
-"""Exceptions of archquake other than bad input (which is a :class:`ValueError`).
+"""Exceptions of archquake beyond the plain :class:`ValueError` of bad input: a study that cannot
+go on, the verdicts a caller tells apart from bad input (cannot stand, never collapses), and a
+refused description whose message can name its fields otherwise (:class:`DescriptionError`).
 
 This module imports nothing, so the command line can catch these errors without loading the
 modules that raise them.
