@@ -68,9 +68,10 @@ With ``t`` the thickness of the structure (:attr:`Assembly.thickness`) [m], ``M`
     None of these within ``settle_time`` seconds after the excitation (at least 20 periods
     :math:`T_s`: a tall structure rocks longer before it comes to rest; or by ``t_end``, for a
     time history cut short), or a step whose contact problem was not solved before the
-    decision (the active-set method cycled and Gauss-Seidel did not converge: the motion after
-    it cannot be trusted): :attr:`Status.UNDECIDED <archquake.status.Status>`, ``decided =
-    False``, never a collapse nor a recovery by default.
+    decision (neither the active-set method, Lemke's algorithm nor Gauss-Seidel solved it: the
+    motion after it cannot be trusted; not observed):
+    :attr:`Status.UNDECIDED <archquake.status.Status>`, ``decided = False``, never a collapse
+    nor a recovery by default.
 
 The outcome, its times and its maxima are those of the decision: a time history recorded on
 after it (:func:`simulate_blocks`) reports the same outcome as :func:`block_outcome`.
@@ -120,10 +121,11 @@ matrix: about 0.65 us per block and linear solve, ``benchmarks/rigid_blocks_scal
 does the memory (kilobytes per block), but the number of linear solves per step grows too: the
 active-set method needs more of them when many joints open or slide at once (about 1.2 per step
 for Oppenheim's 7 voussoirs, 20 for 50, 75 for 100 under a 1 g pulse), and an analysis of
-100 blocks takes seconds to tens of seconds. A larger structure is refused before anything is
-built. Above about ten blocks the active-set method may also cycle at the onset of motion; the
-step is then left to Gauss-Seidel, which may not converge: such an outcome is reported
-undecided (:class:`BlockOutcome`)."""
+100 blocks takes seconds to minutes. A larger structure is refused before anything is
+built. Above about ten blocks the active-set method may also cycle at the onset of motion or at
+an impact; the step is then solved by Lemke's algorithm, which cannot cycle and costs a dense
+tableau (:mod:`archquake.rigid_blocks.solver`, "Contact problem"): most of the time of an
+analysis of 100 blocks."""
 
 CONTACT_STEP_FRACTION = 0.02
 r"""Longest time step, as a fraction of :math:`\sqrt{t / g}` (``t`` the thickness of the
@@ -165,11 +167,12 @@ class BlockSettings:
         Parameter of the theta-method, in [0.5, 1] [-]; 0.5 (the default) is the trapezoidal
         rule, whose energy bookkeeping is exact.
     tolerance : float
-        Gauss-Seidel tolerance: largest change of an impulse in the last sweep, as a fraction of
+        Gauss-Seidel tolerance (its last resort, as ``max_iterations``): largest change of an impulse in the last sweep, as a fraction of
         the impulse ``m_mean g h`` of a mean block's weight over a step [-], > 0.
     max_iterations : int
-        Largest number of Gauss-Seidel sweeps per step [-], >= 1 (the active-set method has
-        its own limit, :data:`archquake.rigid_blocks.solver.ACTIVE_SET_SOLVES`).
+        Largest number of Gauss-Seidel sweeps per step [-], >= 1: the last resort of the contact
+        problem, after the active-set method and Lemke's algorithm
+        (:mod:`archquake.rigid_blocks.solver`, "Contact problem"; not reached in any test).
     collapse_drop : float
         Drop of a block centroid or of the crown that defines a collapse, as a fraction of the
         thickness [-], > 0.
@@ -202,6 +205,12 @@ class BlockSettings:
         coarse step is never longer than the motion allows a step to be
         (:func:`check_time_step`): under a shorter pulse or a finer record the analysis takes
         fewer steps ``h`` as one, down to every step at ``h``.
+    active_set_solves : int
+        Largest number of linear solves of the active-set method in a step before Lemke's
+        algorithm solves the step's contact problem [-], >= 0
+        (:mod:`archquake.rigid_blocks.solver`, "Contact problem"): the active-set method is fast
+        but may cycle, Lemke's algorithm cannot. 0 solves every step by Lemke's algorithm (a
+        check of the active-set method: the same motion to round-off, many times slower).
 
     Raises
     ------
@@ -249,6 +258,7 @@ class BlockSettings:
     open_rest_window: float = 1.0
     settle_time: float = 20.0
     coarse_factor: int = DEFAULT_COARSE_FACTOR
+    active_set_solves: int = solver.ACTIVE_SET_SOLVES
 
     def __post_init__(self):
         for f in fields(self):
@@ -267,6 +277,9 @@ class BlockSettings:
             value = getattr(self, name)
             if int(value) != value or value < 1:
                 raise ValueError(f"{name} must be an integer >= 1, got {value!r}")
+        value = self.active_set_solves
+        if int(value) != value or value < 0:
+            raise ValueError(f"active_set_solves must be an integer >= 0, got {value!r}")
         for name in ("time_step", "tolerance", "collapse_drop", "energy_margin", "rest_speed",
                      "closed_gap", "moved_opening", "rest_window", "open_rest_window",
                      "settle_time"):
@@ -311,12 +324,13 @@ class BlockOutcome:
         Time steps taken to the decision (to the end if undecided) [-].
     mean_iterations : float
         Mean number of linear solves of the active-set method per step [-]; a step left to
-        Gauss-Seidel counts its sweeps instead.
+        Lemke's algorithm counts its pivots too (and Gauss-Seidel's sweeps, should it be
+        reached).
     fallback_steps : int
-        Steps whose contact problem the active-set method left to Gauss-Seidel [-].
+        Steps whose contact problem the active-set method left to Lemke's algorithm [-].
     unconverged_steps : int
-        Of these, steps that did not meet the tolerance in ``max_iterations`` sweeps [-]; any
-        makes the outcome undecided.
+        Of these, steps that neither Lemke's algorithm nor Gauss-Seidel solved [-] (none in any
+        test); any makes the outcome undecided.
     """
 
     status: Status
@@ -772,7 +786,7 @@ def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None,
         energy_margin=settings.energy_margin * total_mass * GRAVITY * thickness,
         record_stride=int(record_every), tail_steps=tail_steps,
         crown_block=crown_block, crown_x=crown_r[0], crown_y=crown_r[1],
-        coarse_factor=coarse)
+        coarse_factor=coarse, active_set_solves=settings.active_set_solves)
     summary, records = solver.run(arrays["bodies"], arrays["contacts"], arrays["contact_bodies"],
                                   q0, v0, int(kind), params, times, values, packed)
     s = dict(zip(solver.SUMMARY_FIELDS, summary.tolist(), strict=True))

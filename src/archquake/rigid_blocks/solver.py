@@ -127,9 +127,26 @@ two neighbours: half-bandwidth 7 in the impulses, whatever the number of blocks)
 assembled block by block and solved in band storage, by Cholesky's factorisation when no
 contact slides (the system is then symmetric positive definite), else by Gaussian elimination
 (:func:`band_cholesky_solve`, :func:`band_lu_solve`, :func:`band_solve`): a step costs time and
-memory linear in the number of blocks. Should the states cycle
-(a few steps of a collapse at large amplitude, where contacts slide and separate together;
-counted in the outcome), projected Gauss-Seidel takes over [2]_ (Ch. 13),
+memory linear in the number of blocks.
+
+The active-set method has no guarantee of convergence: its states can cycle (measured on
+Oppenheim's arch cut into 50 voussoirs under its pulse: at 79 of 4,000 steps, at the onset of
+the motion and at impacts, where tens of contacts change state at once; with one switch per
+solve, in the manner of Murty's least-index rule, most of these still cycle after 2,000
+solves). Where it gives up after :data:`ACTIVE_SET_SOLVES` solves, the step's problem is
+solved by **Lemke's algorithm** (:func:`solve_lemke`, :mod:`archquake.rigid_blocks.lemke`),
+which cannot cycle: in two dimensions Coulomb's law is exactly a linear complementarity problem
+(Stewart and Trinkle's formulation, with the slip rate as an unknown), whose matrix, with the
+compliance above and the same on the slip rate, is copositive-plus, and whose problem is
+feasible; Lemke's algorithm with the lexicographic ratio test then ends on a solution after
+finitely many pivots (Cottle, Pang and Stone, Thm. 4.4.13; the module's docstring). Its
+solution's states are handed back to the active-set method, which solves the same states to
+round-off (so that both methods give the same impulses where both converge); where it would
+switch them, Lemke's impulses are kept. The fallback costs a dense tableau: 4 unknowns per
+active contact and about 1.5 pivots per unknown, 0.2 s for the 93 active contacts of the
+50-voussoir arch (``benchmarks/rigid_block_contact_solver.py``), paid only at the steps where
+the active-set method gave up. Should Lemke's algorithm end without a solution (never observed:
+a guard against round-off), projected Gauss-Seidel takes over [2]_ (Ch. 13),
 :func:`solve_contacts`: sweeps forward and backward in turn, each contact's problem solved
 exactly by :func:`local_coulomb` with the others' impulses fixed,
 
@@ -140,9 +157,10 @@ exactly by :func:`local_coulomb` with the others' impulses fixed,
 
 stopping when :math:`\max_c (|\Delta P_{n,c}| + |\Delta P_{t,c}|) \le \mathrm{tol}\;\bar m g h`
 (the impulse of a mean block's weight over a step, scaled) or after ``max_iterations`` sweeps
-(counted as unconverged). Gauss-Seidel alone converges slowly on an arch (the thrust runs
-through a chain of blocks and the friction split between the two ends of a joint is
-indeterminate), and its residual velocities make a still arch creep; hence the direct method.
+(counted as unconverged: the outcome is then undecided). Gauss-Seidel alone converges slowly on
+an arch (the thrust runs through a chain of blocks and the friction split between the two ends
+of a joint is indeterminate), and its residual velocities make a still arch creep; hence the
+direct methods.
 
 Energy
 ------
@@ -215,7 +233,8 @@ The driver
     5. stop?        decided (and the record's tail done), or the last step
     6. free         the impulse of the weight and of the ground over the step: v^f
     7. active set   the valid contacts whose predicted gap closes
-    8. contacts     the contact problem: active-set method, else Gauss-Seidel; a coarse step
+    8. contacts     the contact problem: active-set method, else Lemke's algorithm (else
+                    Gauss-Seidel, not observed); a coarse step
                     in which a contact starts or stops carrying an impulse (or the active-set
                     method fails) is taken again at h from 6 ("Coarse steps")
     9. advance      energy bookkeeping and the positions q_{k+1}
@@ -255,6 +274,7 @@ import numba
 import numpy as np
 
 from ..ground_motion import HARMONIC, STEP, analytic_duration, evaluate
+from .lemke import LEMKE_SOLVED, solve_contact_lcp
 
 REGULARISATION = 1e-9
 """Compliance of the rows of the contact problem that hold a velocity to zero (the normal row of a
@@ -262,8 +282,12 @@ contact that sticks or slides, the tangential row of one that sticks), relative 
 diagonal [-]."""
 
 ACTIVE_SET_SOLVES = 60
-"""Largest number of linear solves of the active-set method in a step before Gauss-Seidel
-takes over [-]."""
+"""Default largest number of linear solves of the active-set method in a step before Lemke's
+algorithm takes over [-] (the setting ``active_set_solves``)."""
+
+POLISH_SOLVES = 4
+"""Largest number of linear solves of the active-set method from the states of Lemke's
+solution [-] (:func:`solve_lemke`): one where they hold to its tolerances."""
 
 SINGLE_SWITCH_AFTER = 10
 """After this many solves [-] the active-set method switches one contradicted state per solve (the
@@ -476,7 +500,7 @@ SETTINGS_FIELDS = (
     "time_step", "theta", "friction", "tolerance", "max_iterations", "gravity",
     "excitation_end", "n_steps", "drop_limit", "rest_energy", "closed_gap", "rest_steps",
     "open_rest_steps", "moved_threshold", "energy_margin", "record_stride", "tail_steps",
-    "crown_block", "crown_x", "crown_y", "coarse_factor",
+    "crown_block", "crown_x", "crown_y", "coarse_factor", "active_set_solves",
 )
 """Entries of the settings vector of :func:`run` (:func:`pack_settings`; counts and indices stored
 as floats): time step h [s]; theta [-]; friction coefficient mu [-]; Gauss-Seidel tolerance as a
@@ -488,12 +512,14 @@ and slip at or below which the structure never moved [m]; :math:`E_{margin}` of 
 of collapse [J/m]; ``record_stride`` (every ``record_stride``-th state recorded, 0: no record)
 and ``tail_steps`` (steps recorded after the decision, -1: to ``n_steps``) [-]; the block that
 carries the crown point and that point relative to its centroid [m]; the steps of ``h`` taken as
-one while no contact starts or stops carrying an impulse (:func:`run`) [-]."""
+one while no contact starts or stops carrying an impulse (:func:`run`) [-]; the largest number of
+linear solves of the active-set method in a step before Lemke's algorithm takes over (0: Lemke's
+algorithm at every step) [-]."""
 
 (S_TIME_STEP, S_THETA, S_FRICTION, S_TOLERANCE, S_MAX_ITERATIONS, S_GRAVITY, S_EXCITATION_END,
  S_N_STEPS, S_DROP_LIMIT, S_REST_ENERGY, S_CLOSED_GAP, S_REST_STEPS, S_OPEN_REST_STEPS,
  S_MOVED_THRESHOLD, S_ENERGY_MARGIN, S_RECORD_STRIDE, S_TAIL_STEPS, S_CROWN_BLOCK, S_CROWN_X,
- S_CROWN_Y, S_COARSE_FACTOR) = range(21)
+ S_CROWN_Y, S_COARSE_FACTOR, S_ACTIVE_SET_SOLVES) = range(22)
 
 RECORD_ENERGY_FIELDS = ("t", "kinetic", "potential", "dissipated", "input")
 """Columns of the record of times and energies: t [s], T, V, D, W [J/m]."""
@@ -1395,7 +1421,7 @@ def _switch_states(m, idx, state, mu, p_tol, u_tol, kl, wband, uf, impulses, sol
 
 @numba.njit(cache=True, _nrt=False)
 def solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse, state, mu, p_tol, u_tol,
-                     work):
+                     work, max_solves):
     r"""Contact problem of a step by a primal-dual active-set method; ``v`` enters free.
 
     Every active contact has a state (-1 for an inactive one): 0 open (``P = 0``), 1 stick
@@ -1501,7 +1527,7 @@ def solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse, state, m
                        wband, uf, scaled)
     solves = 0
     converged = False
-    while solves < ACTIVE_SET_SOLVES:
+    while solves < max_solves:
         sliding = _state_system(m, idx, state, mu, kl, wband, uf, aband, rhs, scale, False)
         if sliding and kl == ARCH_BANDWIDTH:
             solved = arch_lu_solve(aband, rhs, 2 * m, scale)
@@ -1526,6 +1552,69 @@ def solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse, state, m
             _apply_impulse(v, inv_mass, contact_bodies[c, 0], contact_bodies[c, 1], jac, c,
                            impulse[c, 0], impulse[c, 1])
     return solves, converged
+
+
+@numba.njit(cache=True)
+def solve_lemke(v, inv_mass, contact_bodies, jac, active, impulse, state, mu, p_tol, u_tol,
+                work):
+    r"""Contact problem of a step by Lemke's algorithm, where the active-set method gave up;
+    ``v`` enters free.
+
+    The Delassus matrix and free velocities of the active contacts, as
+    :func:`solve_active_set` left them in ``work``, are written out dense and the problem solved
+    as a linear complementarity problem (:mod:`archquake.rigid_blocks.lemke`: a method that
+    cannot cycle, and a problem that always has a solution). Its states are handed back to the
+    active-set method, which then solves them to round-off (usually in one linear solve, the
+    impulses then those it would have found had it converged); should it switch them and fail
+    again, Lemke's impulses are applied as they are.
+
+    Parameters
+    ----------
+    v, inv_mass, contact_bodies, jac, active, impulse, state, mu, p_tol, u_tol, work
+        As for :func:`solve_active_set`, called just before with the same arguments (``v``
+        unchanged since).
+
+    Returns
+    -------
+    pivots : int
+        Pivots of Lemke's algorithm and linear solves of the active-set method after it.
+    converged : bool
+        Whether the problem was solved (False only if Lemke's algorithm failed, not observed).
+    """
+    idx, pos, pointer, incident, kl, wband, aband, rhs, uf, scale, scaled = work
+    nc = contact_bodies.shape[0]
+    m = 0
+    for c in range(nc):
+        if active[c]:
+            m += 1
+    size = 2 * m
+    dense = np.zeros((size, size))
+    for r in range(size):
+        for s in range(min(kl, size - 1 - r) + 1):
+            dense[r, r + s] = wband[r, s]
+            dense[r + s, r] = wband[r, s]
+    free = uf[:size].copy()
+    impulses = np.zeros(size)
+    states = np.zeros(m, dtype=np.int64)
+    code, pivots = solve_contact_lcp(dense, free, mu, REGULARISATION, impulses, states)
+    if code != LEMKE_SOLVED:
+        return pivots, False
+    for i in range(m):
+        state[idx[i]] = states[i]
+    v_free = v.copy()
+    solves, converged = solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse,
+                                         state, mu, p_tol, u_tol, work, POLISH_SOLVES)
+    if converged:
+        return pivots + solves, True
+    v[:] = v_free  # the active-set method switched Lemke's states and failed: Lemke's impulses
+    for i in range(m):
+        c = idx[i]
+        state[c] = states[i]
+        impulse[c, 0] = impulses[2 * i]
+        impulse[c, 1] = impulses[2 * i + 1]
+        _apply_impulse(v, inv_mass, contact_bodies[c, 0], contact_bodies[c, 1], jac, c,
+                       impulse[c, 0], impulse[c, 1])
+    return pivots + solves, True
 
 
 # ---------------------------------------------------------------------------------------------
@@ -1838,6 +1927,7 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     crown_block = int(settings[S_CROWN_BLOCK])
     crown_x, crown_y = settings[S_CROWN_X], settings[S_CROWN_Y]
     coarse = max(1, int(settings[S_COARSE_FACTOR]))
+    active_set_solves = int(settings[S_ACTIVE_SET_SOLVES])
     mean_mass = bodies[:, BODY_MASS].mean()
     inv_mass = np.empty((nb, 4))  # 1/m, 1/I, their square roots
     for i in range(nb):
@@ -1943,12 +2033,18 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
                         active)
             # -------- 8. the contact problem
             sweeps, converged = solve_active_set(v, inv_mass, contact_bodies, jac, active,
-                                                 impulse, state, mu, p_tol, u_tol, problem)
+                                                 impulse, state, mu, p_tol, u_tol, problem,
+                                                 active_set_solves)
             direct = converged
-            if not converged and m == 1:  # fall back to Gauss-Seidel from the last impulses
+            if not converged and m == 1:  # fall back to Lemke's algorithm
                 fallbacks += 0 if decided else 1
-                sweeps, converged = solve_contacts(v, inv_mass, contact_bodies, jac, w, active,
-                                                   impulse, mu, tol_impulse, max_iterations)
+                pivots, converged = solve_lemke(v, inv_mass, contact_bodies, jac, active,
+                                                impulse, state, mu, p_tol, u_tol, problem)
+                sweeps += pivots
+                if not converged:  # not observed: Gauss-Seidel from the last impulses
+                    sweeps, converged = solve_contacts(v, inv_mass, contact_bodies, jac, w,
+                                                       active, impulse, mu, tol_impulse,
+                                                       max_iterations)
             if not decided:  # the outcome's counts stop at the decision too
                 iterations += sweeps
                 max_used = max(max_used, sweeps)
