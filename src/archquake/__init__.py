@@ -21,8 +21,8 @@ from .constants import GRAVITY
 
 # name -> module that defines it (imported on first use)
 _LAZY = {
-    "ArchDynamics": "fourlink.dynamics",
-    "FourLinkModel": "fourlink.dynamics",
+    "ArchDynamics": "fourlink.model",
+    "FourLinkModel": "fourlink.model",
     "RigidBlockModel": "rigid_blocks.model",
     "StructuralModel": "models",
     "MODELS": "models",

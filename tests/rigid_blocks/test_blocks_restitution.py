@@ -130,7 +130,7 @@ def test_irregular_arch_blocks_restitution_mirrors():
 
 
 def test_impact_module_loads_the_rigid_blocks_only_on_demand():
-    code = ("import sys; import archquake.fourlink.impact, archquake.fourlink.dynamics; "
+    code = ("import sys; import archquake.fourlink.impact, archquake.fourlink.model; "
             "print([m for m in sys.modules if m.startswith('archquake.rigid_blocks')])")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True)

@@ -51,7 +51,7 @@ def run(args: argparse.Namespace) -> int:
 
         model = check_restitution_model(args.restitution)
         if isinstance(model, str):  # a model: its value for the nominal arch
-            from ..fourlink.dynamics import ArchDynamics
+            from ..fourlink.model import ArchDynamics
             from ..reference_arches import oppenheim
 
             model = ArchDynamics.from_arch(oppenheim(), model).restitution[0]

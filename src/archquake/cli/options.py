@@ -402,8 +402,8 @@ def add_restitution_option(parser: argparse.ArgumentParser) -> None:
 
 def dynamics_from_args(args: argparse.Namespace):
     """The :class:`~archquake.fourlink.FourLinkModel` of the arch of the geometry options."""
-    from ..fourlink.dynamics import ArchDynamics
     from ..fourlink.impact import check_restitution_model
+    from ..fourlink.model import ArchDynamics
 
     nominal, arch = arches_from_args(args)
     model = check_restitution_model(args.restitution)  # its error names --restitution alone

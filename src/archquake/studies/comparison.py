@@ -252,8 +252,8 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
     -------
     ModelComparison
     """
-    from ..fourlink.dynamics import ArchDynamics
     from ..fourlink.impact import check_restitution_model
+    from ..fourlink.model import ArchDynamics
     from ..rigid_blocks import RigidBlockModel
     from ..rigid_blocks.dynamics import resolved_settings
     from .failure_domain import check_direction, check_durations, domain_of

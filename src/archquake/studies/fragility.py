@@ -419,7 +419,7 @@ def arch_outcomes(arch: BlockArch, durations, amplitudes_g, *, restitution=DEFAU
     ValueError
         If the arch cannot be analysed (:meth:`archquake.fourlink.FourLinkModel.from_arch`).
     """
-    from ..fourlink.dynamics import ArchDynamics
+    from ..fourlink.model import ArchDynamics
 
     return model_outcomes(ArchDynamics.from_arch(arch, restitution, nominal), durations,
                           amplitudes_g, motion=motion)
