@@ -3,11 +3,6 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from archquake import irregular_arch
-from archquake.fourlink.equations_of_motion import (
-    angular_acceleration,
-    coefficients,
-    kinetic_energy,
-)
 from archquake.fourlink.mechanism import mechanism_from_hinges
 from archquake.geometry import GRAVITY, Hinge
 from kinematics_reference import Configurations, nominal_hinges, virtual_work_multiplier
@@ -71,8 +66,8 @@ def test_coefficients_match_finite_differences_of_voussoir_positions(nominal, pa
 def test_coefficients_are_vectorised(nominal, paper):
     mech = mechanism_from_hinges(nominal, nominal_hinges(paper))
     theta = np.linspace(mech.theta_limit + 0.01, mech.theta_u, 7)
-    together = np.array(coefficients(mech, theta))
-    one_by_one = np.array([coefficients(mech, t) for t in theta]).T
+    together = np.array(mech.coefficients(theta))
+    one_by_one = np.array([mech.coefficients(t) for t in theta]).T
     assert together == pytest.approx(one_by_one, rel=1e-14)
 
 
@@ -106,12 +101,12 @@ def test_free_rocking_conserves_energy(nominal, paper):
         theta0 = mech.theta_u - 0.5 * mech.phi_cr
 
         def rhs(t, y, mech=mech):
-            return [y[1], angular_acceleration(mech, y[0], y[1], 0.0)]
+            return [y[1], mech.angular_acceleration(y[0], y[1], 0.0)]
 
         sol = solve_ivp(rhs, (0.0, 1.0), [theta0, 0.0], rtol=1e-11, atol=1e-13,
                         dense_output=True)
         theta, rate = sol.y
-        energy = kinetic_energy(mech, theta, rate) + mech.potential_energy(theta)
+        energy = mech.kinetic_energy(theta, rate) + mech.potential_energy(theta)
         assert np.ptp(energy) < 1e-8 * abs(mech.potential_energy(theta0))
         # released between theta_cr and theta_u, the arch swings back to theta_u
         assert theta.max() > mech.theta_u
@@ -122,10 +117,10 @@ def test_ground_acceleration_sign_of_each_mechanism(nominal, paper):
     mech_l, mech_r = _pair(arch, nominal_hinges(paper))
     g = GRAVITY
     # Mech-l moves (theta decreases) when the ground accelerates toward -x beyond k_l g
-    assert angular_acceleration(mech_l, mech_l.theta_u, 0.0, -(mech_l.activation_g + 0.01) * g) < 0
-    assert angular_acceleration(mech_l, mech_l.theta_u, 0.0, -(mech_l.activation_g - 0.01) * g) > 0
-    assert angular_acceleration(mech_l, mech_l.theta_u, 0.0, 0.0) > 0
+    assert mech_l.angular_acceleration(mech_l.theta_u, 0.0, -(mech_l.activation_g + 0.01) * g) < 0
+    assert mech_l.angular_acceleration(mech_l.theta_u, 0.0, -(mech_l.activation_g - 0.01) * g) > 0
+    assert mech_l.angular_acceleration(mech_l.theta_u, 0.0, 0.0) > 0
     # Mech-r (mirrored frame, eq. (7)) moves when the ground accelerates toward +x beyond k_r g
-    assert angular_acceleration(mech_r, mech_r.theta_u, 0.0, (mech_r.activation_g + 0.01) * g) < 0
-    assert angular_acceleration(mech_r, mech_r.theta_u, 0.0, (mech_r.activation_g - 0.01) * g) > 0
-    assert angular_acceleration(mech_r, mech_r.theta_u, 0.0, -2.0 * g) > 0
+    assert mech_r.angular_acceleration(mech_r.theta_u, 0.0, (mech_r.activation_g + 0.01) * g) < 0
+    assert mech_r.angular_acceleration(mech_r.theta_u, 0.0, (mech_r.activation_g - 0.01) * g) > 0
+    assert mech_r.angular_acceleration(mech_r.theta_u, 0.0, -2.0 * g) > 0

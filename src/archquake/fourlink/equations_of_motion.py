@@ -60,8 +60,11 @@ the opposite sign (Eq. (7) in [1]_):
     M(\theta')\,\ddot\theta' + L(\theta')\,\dot\theta'^2 + F(\theta')\,g
     = -P(\theta')\,\ddot x_g.
 
-This is the one definition of M, L, F, P: the compiled engine (:mod:`archquake.fourlink.engine`)
-does not re-derive them, it tabulates these very functions
+This is the one definition of M, L, F, P (:func:`coefficients_from_parameters`, a function of a
+mechanism's flat parameter vector): a mechanism evaluates it
+(:meth:`~archquake.fourlink.mechanism.FourLinkMechanism.coefficients`, with the angular
+acceleration and the kinetic energy beside it), the compiled engine
+(:mod:`archquake.fourlink.engine`) does not re-derive it, it tabulates this very function
 (:func:`archquake.fourlink.engine.tabulate`), and the slope of the potential energy is
 :math:`dV/d\theta = g F`
 (:meth:`~archquake.fourlink.mechanism.FourLinkMechanism.potential_energy_derivative`). Masses are
@@ -79,15 +82,9 @@ References
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 
-from ..geometry import GRAVITY
 from .linkage import four_bar_closure, four_bar_rates
-
-if TYPE_CHECKING:  # the mechanism builds on this module, not the other way round
-    from .mechanism import FourLinkMechanism
 
 
 def coefficients_from_parameters(theta, parameters):
@@ -166,146 +163,3 @@ def coefficients_from_parameters(theta, parameters):
     ground = m1 * r1 * np.sin(theta + psi1) + m2 * ab * np.sin(theta) \
         + m2 * r2 * w_bc * np.sin(theta_bc + psi2) + m3 * r3 * w_cd * np.sin(theta_cd + psi3)
     return mass, centrifugal, gravity, ground
-
-
-def coefficients(mechanism: FourLinkMechanism, theta):
-    r"""M, L, F, P of ``mechanism`` at ``theta`` (Eq. (6) in [1]_; vectorised).
-
-    :func:`coefficients_from_parameters` on ``mechanism.parameters``.
-
-    Parameters
-    ----------
-    mechanism : FourLinkMechanism
-        Mech-l or Mech-r (the coefficients are those of its own frame).
-
-    theta : float or array
-        Lagrangian coordinate [rad].
-
-    Returns
-    -------
-    M, L, F, P : float or array
-        [kg m^2/m], [kg m^2/m], [kg m/m], [kg m/m]; see :func:`coefficients_from_parameters`.
-
-    References
-    ----------
-    .. [1] The paper, Sect. 4.3, Eqs. (6)-(7).
-
-    Examples
-    --------
-    At the undisplaced configuration, :math:`-F/P` is the load multiplier of the same hinges
-    by virtual work: 0.37 for Oppenheim's arch (Table 1 of the paper).
-
-    >>> from archquake import oppenheim
-    >>> from archquake.fourlink.mechanism import mechanisms
-    >>> mech_l, _ = mechanisms(oppenheim())
-    >>> m, l, f, p = coefficients(mech_l, mech_l.theta_u)
-    >>> round(float(-f / p), 3)
-    0.37
-    """
-    return coefficients_from_parameters(np.asarray(theta, dtype=float), mechanism.parameters)
-
-
-def ground_sign(mechanism: FourLinkMechanism) -> float:
-    """The sign with which the ground acceleration of the original frame enters the equation.
-
-    Parameters
-    ----------
-    mechanism : FourLinkMechanism
-        Mech-l or Mech-r.
-
-    Returns
-    -------
-    float
-        +1.0 for Mech-l (Eq. (6) in [1]_), -1.0 for Mech-r (Eq. (7) in [1]_, mirrored frame).
-
-    References
-    ----------
-    .. [1] The paper, Sect. 4.3, Eqs. (6)-(7).
-    """
-    return 1.0 if mechanism.direction == "l" else -1.0
-
-
-def angular_acceleration(mechanism: FourLinkMechanism, theta, theta_dot, ground_acceleration):
-    r"""Angular acceleration from the equation of motion (Eqs. (6)-(7) in [1]_).
-
-    .. math::
-
-        \ddot\theta = \frac{s\,P(\theta)\,\ddot x_g - L(\theta)\,\dot\theta^2 - F(\theta)\,g}
-                           {M(\theta)},
-
-    with :math:`s` = +1 for Mech-l and -1 for Mech-r (:func:`ground_sign`) and :math:`g` =
-    :data:`~archquake.geometry.GRAVITY`.
-
-    Parameters
-    ----------
-    mechanism : FourLinkMechanism
-        Mech-l or Mech-r.
-    theta : float or array
-        Lagrangian coordinate [rad].
-
-    theta_dot : float or array
-        Its rate [rad/s].
-
-    ground_acceleration : float or array
-        Ground acceleration xg'' toward +x of the original (unmirrored) frame [m/s^2].
-
-    Returns
-    -------
-    float or array
-        ``theta''`` [rad/s^2] (broadcast over the three arguments).
-
-    References
-    ----------
-    .. [1] The paper, Sect. 4.3, Eqs. (6)-(7).
-
-    Examples
-    --------
-    Mech-l of Oppenheim's arch at rest in its undisplaced configuration: gravity alone closes it
-    (:math:`\ddot\theta > 0`); a ground acceleration of -0.5 g, beyond the activation
-    multiplier 0.37, opens it (:math:`\ddot\theta < 0`).
-
-    >>> from archquake import oppenheim
-    >>> from archquake.geometry import GRAVITY
-    >>> from archquake.fourlink.mechanism import mechanisms
-    >>> mech_l, _ = mechanisms(oppenheim())
-    >>> bool(angular_acceleration(mech_l, mech_l.theta_u, 0.0, 0.0) > 0.0)
-    True
-    >>> bool(angular_acceleration(mech_l, mech_l.theta_u, 0.0, -0.5 * GRAVITY) < 0.0)
-    True
-    """
-    m, l, f, p = coefficients(mechanism, theta)
-    return (ground_sign(mechanism) * p * np.asarray(ground_acceleration, dtype=float)
-            - l * np.asarray(theta_dot, dtype=float) ** 2 - f * GRAVITY) / m
-
-
-def kinetic_energy(mechanism: FourLinkMechanism, theta, theta_dot):
-    r"""Kinetic energy of the mechanism relative to the ground.
-
-    .. math::
-
-        T = \tfrac12\,M(\theta)\,\dot\theta^2
-
-    (the :math:`T` of Lagrange's equation, Eq. (5) in [1]_).
-
-    Parameters
-    ----------
-    mechanism : FourLinkMechanism
-        Mech-l or Mech-r.
-
-    theta : float or array
-        Lagrangian coordinate [rad].
-
-    theta_dot : float or array
-        Its rate [rad/s].
-
-    Returns
-    -------
-    float or array
-        T [J/m].
-
-    References
-    ----------
-    .. [1] The paper, Sect. 4.3, Eq. (5).
-    """
-    m, _, _, _ = coefficients(mechanism, theta)
-    return 0.5 * m * np.asarray(theta_dot, dtype=float) ** 2

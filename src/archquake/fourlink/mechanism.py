@@ -108,7 +108,7 @@ from scipy.optimize import brentq
 
 from ..geometry import GRAVITY, BlockArch, Hinge
 from ..geometry.fill import check_dynamic_fill
-from .equations_of_motion import coefficients as _coefficients
+from .equations_of_motion import coefficients_from_parameters
 from .linkage import four_bar_closure, four_bar_rates, wrap_angle
 
 DIRECTIONS = ("l", "r")
@@ -608,15 +608,17 @@ class FourLinkMechanism:
 
     # ------------------------------------------------------------------ dynamics
     def coefficients(self, theta):
-        r"""Coefficients M, L, F, P of the equation of motion at ``theta`` (Eq. (6) in [1]_).
+        r"""Coefficients M, L, F, P of the equation of motion at ``theta`` (Eq. (6) in [1]_;
+        vectorised).
 
         .. math::
 
             M(\theta)\,\ddot\theta + L(\theta)\,\dot\theta^2 + F(\theta)\,g
             = \pm P(\theta)\,\ddot x_g
 
-        (``+`` for Mech-l, Eq. (6); ``-`` for Mech-r, Eq. (7) in [1]_); see
-        :func:`archquake.fourlink.equations_of_motion.coefficients`, which this calls.
+        (``+`` for Mech-l, Eq. (6); ``-`` for Mech-r, Eq. (7) in [1]_), in this mechanism's own
+        frame: :func:`~archquake.fourlink.equations_of_motion.coefficients_from_parameters` on
+        :attr:`parameters`.
 
         Parameters
         ----------
@@ -632,8 +634,111 @@ class FourLinkMechanism:
         References
         ----------
         .. [1] The paper, Sect. 4.3, Eqs. (6)-(7).
+
+        Examples
+        --------
+        At the undisplaced configuration, :math:`-F/P` is the load multiplier of the same hinges
+        by virtual work: 0.37 for Oppenheim's arch (Table 1 of the paper).
+
+        >>> from archquake import oppenheim
+        >>> from archquake.fourlink.mechanism import mechanisms
+        >>> mech_l, _ = mechanisms(oppenheim())
+        >>> m, l, f, p = mech_l.coefficients(mech_l.theta_u)
+        >>> round(float(-f / p), 3)
+        0.37
         """
-        return _coefficients(self, theta)
+        return coefficients_from_parameters(np.asarray(theta, dtype=float), self.parameters)
+
+    @property
+    def ground_sign(self) -> float:
+        """The sign with which the ground acceleration of the original frame enters the
+        equation of motion: +1.0 for Mech-l (Eq. (6) in [1]_), -1.0 for Mech-r (Eq. (7) in [1]_,
+        mirrored frame).
+
+        References
+        ----------
+        .. [1] The paper, Sect. 4.3, Eqs. (6)-(7).
+        """
+        return 1.0 if self.direction == "l" else -1.0
+
+    def angular_acceleration(self, theta, theta_dot, ground_acceleration):
+        r"""Angular acceleration from the equation of motion (Eqs. (6)-(7) in [1]_).
+
+        .. math::
+
+            \ddot\theta = \frac{s\,P(\theta)\,\ddot x_g - L(\theta)\,\dot\theta^2
+                               - F(\theta)\,g}{M(\theta)},
+
+        with :math:`s` = +1 for Mech-l and -1 for Mech-r (:attr:`ground_sign`) and :math:`g` =
+        :data:`~archquake.geometry.GRAVITY`.
+
+        Parameters
+        ----------
+        theta : float or array
+            Lagrangian coordinate [rad].
+
+        theta_dot : float or array
+            Its rate [rad/s].
+
+        ground_acceleration : float or array
+            Ground acceleration xg'' toward +x of the original (unmirrored) frame [m/s^2].
+
+        Returns
+        -------
+        float or array
+            ``theta''`` [rad/s^2] (broadcast over the three arguments).
+
+        References
+        ----------
+        .. [1] The paper, Sect. 4.3, Eqs. (6)-(7).
+
+        Examples
+        --------
+        Mech-l of Oppenheim's arch at rest in its undisplaced configuration: gravity alone
+        closes it (:math:`\ddot\theta > 0`); a ground acceleration of -0.5 g, beyond the
+        activation multiplier 0.37, opens it (:math:`\ddot\theta < 0`).
+
+        >>> from archquake import oppenheim
+        >>> from archquake.geometry import GRAVITY
+        >>> from archquake.fourlink.mechanism import mechanisms
+        >>> mech_l, _ = mechanisms(oppenheim())
+        >>> bool(mech_l.angular_acceleration(mech_l.theta_u, 0.0, 0.0) > 0.0)
+        True
+        >>> bool(mech_l.angular_acceleration(mech_l.theta_u, 0.0, -0.5 * GRAVITY) < 0.0)
+        True
+        """
+        m, l, f, p = self.coefficients(theta)
+        return (self.ground_sign * p * np.asarray(ground_acceleration, dtype=float)
+                - l * np.asarray(theta_dot, dtype=float) ** 2 - f * GRAVITY) / m
+
+    def kinetic_energy(self, theta, theta_dot):
+        r"""Kinetic energy of the mechanism relative to the ground.
+
+        .. math::
+
+            T = \tfrac12\,M(\theta)\,\dot\theta^2
+
+        (the :math:`T` of Lagrange's equation, Eq. (5) in [1]_).
+
+        Parameters
+        ----------
+        theta : float or array
+            Lagrangian coordinate [rad].
+
+        theta_dot : float or array
+            Its rate [rad/s].
+
+        Returns
+        -------
+        float or array
+            T [J/m].
+
+        References
+        ----------
+        .. [1] The paper, Sect. 4.3, Eq. (5).
+        """
+        m, _, _, _ = self.coefficients(theta)
+        return 0.5 * m * np.asarray(theta_dot, dtype=float) ** 2
 
     def mode_shape(self):
         r"""Velocity field of the voussoirs at ``theta_u`` per unit rate ``theta'``.

@@ -157,7 +157,7 @@ class MechanismTable:
 
     def coefficients_at(self, theta):
         """Interpolated coefficients of the equation of motion at ``theta``, as
-        :func:`archquake.fourlink.equations_of_motion.coefficients` gives them exactly.
+        :meth:`archquake.fourlink.mechanism.FourLinkMechanism.coefficients` gives them exactly.
 
         Parameters
         ----------
