@@ -31,6 +31,22 @@ def test_the_step_scales_with_the_square_root_of_the_thickness():
     assert history.settings.time_step == pytest.approx(5e-4)  # the history states the step
 
 
+def test_the_model_holds_its_blocks_and_checks_a_motion_on_them():
+    """The model builds the assembly of its arch once (shared with another model of the same
+    arch), runs on it, and refuses a step its blocks cannot follow: the contact law's
+    0.02 sqrt(t/g) with t = 0.375 m (3.91 ms) for the small arch, twice that for the large."""
+    from archquake.rigid_blocks import from_arch
+
+    model = RigidBlockModel(SMALL, BlockSettings(time_step=0.005))
+    assert model.assembly is RigidBlockModel(SMALL).assembly
+    assert model.assembly.thickness == pytest.approx(from_arch(SMALL).thickness, rel=1e-15)
+    assert RigidBlockModel(model.assembly).settings.time_step == pytest.approx(5e-4)
+    with pytest.raises(ValueError, match=r"time_step must be at most 0.00391 s .* 0.375 m thick"):
+        model.check_motion(oppenheim_pulse(-GRAVITY, 1.0))
+    longest = RigidBlockModel(oppenheim()).check_motion(oppenheim_pulse(-GRAVITY, 1.0))
+    assert longest == pytest.approx(0.02 * math.sqrt(1.5 / GRAVITY), rel=1e-12)
+
+
 @pytest.mark.parametrize("duration, amplitude", [(0.4, 0.6), (0.5, 0.45), (0.3, 0.9),
                                                  (0.4, 0.5), (0.5, 0.3)])
 def test_a_smaller_arch_at_its_own_step_moves_as_the_large_one(duration, amplitude):

@@ -29,6 +29,7 @@ from .dynamics import (
     BlockOutcome,
     BlockSettings,
     block_outcome,
+    check_time_step,
     resolved_settings,
     simulate_blocks,
     structure_assembly,
@@ -43,19 +44,30 @@ class RigidBlockModel:
     Parameters
     ----------
     structure : BlockArch or Assembly
-        The structure; an arch is converted to its :class:`Assembly` once (cached on the arch).
+        The structure; an arch is converted to its :class:`Assembly` once, here (and cached on
+        the arch, so that another model of the same arch shares it).
     settings : BlockSettings
-        Settings of every analysis (friction, time step, outcome criteria).
+        Settings of every analysis (friction, time step, outcome criteria); without a time
+        step, the model takes that of the structure
+        (:func:`~archquake.rigid_blocks.dynamics.structure_time_step`) and states it here.
+
+    Attributes
+    ----------
+    assembly : Assembly
+        The blocks and joints of the structure, built once: every analysis of the model runs on
+        it, and a caller that needs the blocks asks the model for them.
 
     Raises
     ------
     ValueError
-        If ``structure`` is neither an arch nor an Assembly, or ``settings`` is not a
+        If ``structure`` is neither an arch nor an Assembly, has more blocks than
+        :data:`~archquake.rigid_blocks.dynamics.MAX_BLOCKS`, or ``settings`` is not a
         :class:`BlockSettings`.
     """
 
     structure: object
     settings: BlockSettings = field(default_factory=BlockSettings)
+    assembly: Assembly = field(init=False, repr=False, compare=False)
     _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     name: ClassVar[str] = "rigid-blocks"
@@ -65,14 +77,10 @@ class RigidBlockModel:
         if not isinstance(self.settings, BlockSettings):
             raise ValueError(f"settings must be a BlockSettings, got "
                              f"{type(self.settings).__name__}")
-        structure_assembly(self.structure)  # checks the type, converts once
+        assembly = structure_assembly(self.structure)  # checks the type, converts once
+        object.__setattr__(self, "assembly", assembly)
         # the step chosen from the structure unless given: the model states the one it uses
-        object.__setattr__(self, "settings", resolved_settings(self.settings, self.structure))
-
-    @property
-    def assembly(self) -> Assembly:
-        """The blocks and joints of the structure."""
-        return structure_assembly(self.structure)
+        object.__setattr__(self, "settings", resolved_settings(self.settings, assembly))
 
     @property
     def load_multipliers(self) -> tuple[float, float]:
@@ -88,6 +96,28 @@ class RigidBlockModel:
                                  "Assembly")
             cache["load_multipliers"] = tuple(float(k) for k in load_multipliers(self.structure))
         return cache["load_multipliers"]
+
+    def check_motion(self, motion) -> float:
+        """Refuse a ground motion that the model's time step cannot resolve on its blocks
+        (:func:`~archquake.rigid_blocks.dynamics.check_time_step` with the thickness of
+        :attr:`assembly`), before any analysis.
+
+        Parameters
+        ----------
+        motion : GroundMotion
+            Horizontal ground acceleration [m/s^2].
+
+        Returns
+        -------
+        float
+            The longest step allowed [s].
+
+        Raises
+        ------
+        ValueError
+            Naming ``time_step``, the longest step allowed and why.
+        """
+        return check_time_step(self.settings.time_step, motion, self.assembly.thickness)
 
     def describe(self) -> dict:
         """JSON-ready name and settings of the model (what results record of it).

@@ -303,14 +303,14 @@ class FragilitySettings:
 
     def _check_time_step(self, shortest: float) -> None:
         """Refuse, before any analysis, a time step that cannot resolve the shortest pulse on
-        the nominal arch (:func:`archquake.rigid_blocks.dynamics.check_time_step`; an irregular
-        arch thinner than the nominal one by epsilon may still refuse a step at the limit when
-        it is analysed)."""
+        the nominal arch (:meth:`archquake.rigid_blocks.RigidBlockModel.check_motion`; an
+        irregular arch thinner than the nominal one by epsilon may still refuse a step at the
+        limit when it is analysed)."""
         from ..ground_motion import ground_motion
-        from ..rigid_blocks.dynamics import check_time_step, structure_assembly
+        from ..rigid_blocks import RigidBlockModel
 
-        check_time_step(self.time_step, ground_motion(self.motion, GRAVITY, shortest),
-                        structure_assembly(self.nominal).thickness)
+        RigidBlockModel(self.nominal, self.block_settings).check_motion(
+            ground_motion(self.motion, GRAVITY, shortest))
 
     @property
     def block_settings(self):

@@ -1111,11 +1111,11 @@ def run_record_fragility(
     settings.suite.scale_factors(settings.im, settings.levels)
     check_nominal(settings.nominal, settings.restitution, model=settings.model)
     if settings.model == "rigid-blocks":  # a step that cannot follow a record: before any analysis
-        from ..rigid_blocks.dynamics import check_time_step, structure_assembly
+        from ..rigid_blocks import RigidBlockModel
 
-        thickness = structure_assembly(settings.nominal).thickness
+        nominal = RigidBlockModel(settings.nominal, settings.block_settings)
         for motion in settings.suite.motions(cached=True):
-            check_time_step(settings.time_step, motion, thickness)
+            nominal.check_motion(motion)
     out = None if out_dir is None else Path(out_dir)
     if resume and out is not None:
         _check_resume(out, settings)

@@ -709,7 +709,7 @@ def model_comparison(settings: ReproductionSettings, nominal, blocks,
     # "blocks")
     mech_l, mech_r = nominal.mechanisms
     u_l, u_r = (np.column_stack(m.mode_shape()) for m in (mech_l, mech_r))
-    impact = closing_impact(blocks.structure, u_l, blocks.settings)
+    impact = closing_impact(blocks.assembly, u_l, blocks.settings)
     rotation = np.concatenate(([0.0], impact.velocities_after[:, 2], [0.0]))
     hinges = np.flatnonzero(np.abs(np.diff(rotation)) > 1e-3 * np.abs(rotation).max())
     half_cycles = {}
