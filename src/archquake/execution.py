@@ -32,7 +32,9 @@ the same directory renamed over the target, see :func:`archquake.results_io.atom
 chunk files are written by the calling process, so Dask workers need no shared file system. At
 the end, the tidy table and the JSON summary are saved with
 :func:`archquake.results_io.save_study`. ``resume=True`` reloads the finished chunks of an
-interrupted study and computes only the missing ones.
+interrupted study and computes only the missing ones; :func:`resumable_study` says which study a
+directory holds for a resume (the one reading of a study directory that :func:`run_study` and
+the studies and reports that call it share).
 
 Threads
 -------
@@ -813,6 +815,99 @@ def _difference(stored: Mapping, expected: Mapping) -> str | None:
     return None
 
 
+@dataclass(frozen=True)
+class SavedStudy:
+    """A study started in a directory, as a run with ``resume=True`` finds it
+    (:func:`resumable_study`).
+
+    Attributes
+    ----------
+    directory : Path
+        The study directory.
+    record : dict
+        What its ``study.json`` records (the plan's :meth:`StudyPlan.describe`, the task's name
+        and the version of archquake): a run continues the study only if it records the same.
+    """
+
+    directory: Path
+    record: dict
+
+    def chunk_columns(self) -> frozenset[str] | None:
+        """Names of the columns of the saved chunks (those of the first one, in index order).
+
+        Returns
+        -------
+        frozenset of str or None
+            None where no chunk is saved yet, or the first one cannot be read (a run computes a
+            damaged chunk again, with a warning).
+        """
+        saved = sorted((self.directory / CHUNK_DIR).glob("chunk-*.npz"))
+        if not saved:
+            return None
+        try:
+            with np.load(saved[0], allow_pickle=False) as data:
+                return frozenset(k for k in data.files if not k.startswith(_RESERVED_PREFIX))
+        except Exception:  # BadZipFile, EOFError, ...: recomputed by the run
+            return None
+
+
+def resumable_study(out_dir: str | os.PathLike | None) -> SavedStudy | None:
+    """The study that :func:`run_study` continues in ``out_dir`` with ``resume=True``.
+
+    The one reading of a study directory for a resume: :func:`run_study` checks with it that
+    the directory holds the same study before it reuses a chunk, and a caller that must know
+    more before it starts asks it too (a record-based study compares its record files with
+    the stored ones; a report resumes a study only where one was started).
+
+    Parameters
+    ----------
+    out_dir : str, os.PathLike or None
+        The study directory (None: no directory, so nothing to resume).
+
+    Returns
+    -------
+    SavedStudy or None
+        The study started there, or None where none was (no ``study.json``: no directory, an
+        empty one, or one that holds something else).
+
+    Raises
+    ------
+    ValueError
+        If ``study.json`` cannot be read or holds no study's record, naming the file and the
+        way out.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from archquake.execution import StudyPlan, resumable_study, run_study
+    >>> def one_task(chunk):
+    ...     return {"item": chunk.items}
+    >>> with tempfile.TemporaryDirectory() as out:
+    ...     before = resumable_study(out)
+    ...     plan = StudyPlan({"n": 1}, seed=1, n_items=2, chunk_size=1)
+    ...     _ = run_study(one_task, plan, out, backend="serial", progress=False)
+    ...     saved = resumable_study(out)
+    ...     before, saved.record["settings"], sorted(saved.chunk_columns())
+    (None, {'n': 1}, ['item'])
+    """
+    if out_dir is None:
+        return None
+    out_dir = Path(out_dir)
+    study_json = out_dir / STUDY_JSON
+    if not study_json.is_file():
+        return None
+    try:
+        stored = read_json(study_json)
+        if not isinstance(stored, dict):
+            raise ValueError(f"{study_json} holds a JSON {type(stored).__name__}, not the "
+                             "record of a study")
+    except ValueError as exc:
+        raise ValueError(f"cannot resume: {exc}; it records what the study computes, so the "
+                         f"saved chunks cannot be checked without it: restore it, or delete "
+                         f"{out_dir} to start again") from exc
+    return SavedStudy(out_dir, stored)
+
+
 def _prepare_directory(out_dir: Path, record: dict, resume: bool) -> None:
     """Create the study directory or check that it continues the same study."""
     study_json = out_dir / STUDY_JSON
@@ -824,19 +919,11 @@ def _prepare_directory(out_dir: Path, record: dict, resume: bool) -> None:
                          "(--resume) to continue the study saved there, or choose another "
                          "directory")
     if non_empty:
-        if not study_json.is_file():
+        saved = resumable_study(out_dir)
+        if saved is None:
             raise ValueError(f"cannot resume: {out_dir} is not empty but holds no {STUDY_JSON}; "
                              "choose another directory")
-        try:
-            stored = read_json(study_json)
-            if not isinstance(stored, dict):
-                raise ValueError(f"{study_json} holds a JSON {type(stored).__name__}, not the "
-                                 "record of a study")
-        except ValueError as exc:
-            raise ValueError(f"cannot resume: {exc}; it records what the study computes, so the "
-                             f"saved chunks cannot be checked without it: restore it, or delete "
-                             f"{out_dir} to start again") from exc
-        difference = _difference(stored, record)
+        difference = _difference(saved.record, record)
         if difference is not None:
             raise ValueError(f"cannot resume the study in {out_dir}: {difference}; use the same "
                              "settings or another directory")

@@ -1000,25 +1000,18 @@ def _check_resume(out: Path, settings: RecordFragilitySettings) -> None:
     """Refuse to resume a study whose record files differ from the stored ones, naming them,
     or whose saved chunks have no column ``excluded`` (written before arches could be
     excluded: they cannot be joined with new chunks)."""
-    from ..execution import CHUNK_DIR, STUDY_JSON
-    from ..results_io import read_json
+    from ..execution import CHUNK_DIR, resumable_study
 
-    study = out / STUDY_JSON
-    if not study.is_file():
+    saved = resumable_study(out)
+    if saved is None:  # no study started there: nothing to compare
         return
-    saved = sorted((out / CHUNK_DIR).glob("chunk-*.npz"))
-    if saved:
-        try:
-            with np.load(saved[0], allow_pickle=False) as chunk:
-                columns = set(chunk.files)
-        except Exception:  # a damaged chunk: run_study recomputes it, with a warning
-            columns = {"excluded"}
-        if "excluded" not in columns:
-            raise ValueError(f"cannot resume the study in {out}: its saved chunks were written "
-                             f"by an earlier version of archquake, whose table has no column "
-                             f"'excluded'; start the study again in another directory (or "
-                             f"delete {out / CHUNK_DIR})")
-    stored = read_json(study).get("settings", {}).get("suite")
+    columns = saved.chunk_columns()  # None: no chunk yet, or a damaged one run_study recomputes
+    if columns is not None and "excluded" not in columns:
+        raise ValueError(f"cannot resume the study in {out}: its saved chunks were written "
+                         f"by an earlier version of archquake, whose table has no column "
+                         f"'excluded'; start the study again in another directory (or "
+                         f"delete {out / CHUNK_DIR})")
+    stored = saved.record.get("settings", {}).get("suite")
     if not isinstance(stored, dict):
         return
     new = settings.suite.to_dict()

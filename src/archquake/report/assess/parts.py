@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
@@ -549,12 +548,14 @@ def irregularity_part(structure, settings: AssessmentSettings, durations, amplit
     directory : str or Path, optional
         The study's directory (resumable).
     resume : bool
-        Continue the study saved in ``directory``.
+        Continue the study saved in ``directory``, if one was started there
+        (:func:`archquake.execution.resumable_study`).
 
     Returns
     -------
     IrregularityPart
     """
+    from ...execution import resumable_study
     from ...studies.fragility import FragilitySettings, run_fragility
 
     study = FragilitySettings(
@@ -562,8 +563,8 @@ def irregularity_part(structure, settings: AssessmentSettings, durations, amplit
         epsilon=settings.epsilon, durations=tuple(durations), amplitudes_g=tuple(amplitudes_g),
         seed=settings.seed, restitution=settings.restitution,
         limit_sample_size=settings.limit_sample_size)
-    result = run_fragility(study, directory, resume=resumable(directory, resume),
-                           progress=False, backend="serial")
+    resume = resume and resumable_study(directory) is not None  # only where it was started
+    result = run_fragility(study, directory, resume=resume, progress=False, backend="serial")
     summary = result.summary()
     k = result.limit_load_multipliers
     finite = k[np.isfinite(k)]
@@ -574,15 +575,8 @@ def irregularity_part(structure, settings: AssessmentSettings, durations, amplit
     return IrregularityPart(result, summary)
 
 
-def resumable(directory, resume: bool) -> bool:
-    """Whether to resume the study in ``directory``: only where one was started (its
-    ``study.json`` is there)."""
-    return bool(resume and directory is not None
-                and (Path(directory) / "study.json").is_file())
-
-
 __all__ = ["DIRECTIONS", "RESTITUTION_RULES", "FourLinkPart", "IrregularityPart", "LimitPart",
            "PulsePart", "agreement", "four_link_domains", "four_link_part", "fragility_amplitudes",
            "has_centreline", "hinges_in_own_frame", "irregularity_part", "joint_name",
-           "limit_part", "pulse_grid", "pulse_part", "resumable", "rigid_block_domain",
+           "limit_part", "pulse_grid", "pulse_part", "rigid_block_domain",
            "significant_disagreement"]

@@ -21,7 +21,6 @@ from pathlib import Path
 import numpy as np
 
 from ...checks import json_float
-from .parts import resumable
 from .settings import AssessmentSettings
 
 
@@ -76,20 +75,23 @@ def record_study(structure, suite, im: str, levels, settings: AssessmentSettings
     directory : str or Path, optional
         The study's directory (resumable).
     resume : bool
-        Continue the study saved in ``directory``.
+        Continue the study saved in ``directory``, if one was started there
+        (:func:`archquake.execution.resumable_study`).
 
     Returns
     -------
     RecordFragilityResult
     """
+    from ...execution import resumable_study
     from ...studies.record_fragility import RecordFragilitySettings, run_record_fragility
 
     study = RecordFragilitySettings(
         suite=suite, levels=tuple(levels), im=im, nominal=structure,
         sample_size=settings.record_sample_size, epsilon=settings.epsilon, seed=settings.seed,
         restitution=settings.restitution, bootstrap=settings.bootstrap)
-    return run_record_fragility(study, directory, resume=resumable(directory, resume),
-                                progress=False, backend="serial")
+    resume = resume and resumable_study(directory) is not None  # only where it was started
+    return run_record_fragility(study, directory, resume=resume, progress=False,
+                                backend="serial")
 
 
 CHECK_RECORDS = 14
