@@ -254,8 +254,7 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
     """
     from ..fourlink.impact import check_restitution_model
     from ..fourlink.model import ArchDynamics
-    from ..rigid_blocks import RigidBlockModel
-    from ..rigid_blocks.dynamics import resolved_settings
+    from ..rigid_blocks import BlockSettings, RigidBlockModel
     from .failure_domain import check_direction, check_durations, domain_of
 
     if not isinstance(arch, BlockArch):
@@ -277,9 +276,9 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
         dynamics = ArchDynamics.from_arch(arch)
     elif not isinstance(dynamics, ArchDynamics) or dynamics.arch is not arch:
         raise ValueError("dynamics must be the ArchDynamics of arch")
-    settings = resolved_settings(settings, arch)  # the time step used
+    blocks = RigidBlockModel(arch, BlockSettings() if settings is None else settings)
+    settings = blocks.settings  # with the time step used
     if rigid_block is None:
-        blocks = RigidBlockModel(arch, settings)
         rigid_block = domain_of(blocks, d, grid, direction=direction, motion=motion,
                                 resolution=float(resolution), extend_to_g=None, search=search,
                                 stride=DEFAULT_STRIDE if stride is None else stride,
