@@ -41,13 +41,12 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """The rigid-block analysis of the arch of the options under the motion of the options."""
-    from ..rigid_blocks import block_outcome, simulate_blocks
-    from ..rigid_blocks.dynamics import resolved_settings
+    from ..rigid_blocks import RigidBlockModel
 
     arch = options.arch_from_args(args)
     motion = options.motion_from_args(args)
-    settings = options.block_settings_from_args(args)
-    settings = resolved_settings(settings, arch)  # the time step used
+    model = RigidBlockModel(arch, options.block_settings_from_args(args))
+    settings = model.settings  # with the time step used
     if args.animate:  # checked before the analysis, which may take a while
         from pathlib import Path
 
@@ -57,7 +56,7 @@ def run(args: argparse.Namespace) -> int:
             raise ValueError(f"cannot write the animation {args.animate!r}: give a file name "
                              f"ending in .gif")
     if args.output or args.plot or args.animate or args.t_end is not None:
-        history = simulate_blocks(arch, motion, settings, t_end=args.t_end)
+        history = model.simulate(motion, t_end=args.t_end)
         outcome = history.outcome
         if args.output:
             from ..results_io import write_block_history_csv
@@ -75,7 +74,7 @@ def run(args: argparse.Namespace) -> int:
 
             animate_blocks(history, args.animate)
     else:
-        outcome = block_outcome(arch, motion, settings)
+        outcome = model.outcome(motion)
     if args.json:
         out = outcome.to_dict()
         out = {"outcome": out.pop("status"), **out, "friction": settings.friction,
