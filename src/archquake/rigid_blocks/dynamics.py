@@ -167,8 +167,9 @@ class BlockSettings:
         Parameter of the theta-method, in [0.5, 1] [-]; 0.5 (the default) is the trapezoidal
         rule, whose energy bookkeeping is exact.
     tolerance : float
-        Gauss-Seidel tolerance (its last resort, as ``max_iterations``): largest change of an impulse in the last sweep, as a fraction of
-        the impulse ``m_mean g h`` of a mean block's weight over a step [-], > 0.
+        Gauss-Seidel tolerance (the last resort, as ``max_iterations``): largest change of an
+        impulse in the last sweep, as a fraction of the impulse ``m_mean g h`` of a mean block's
+        weight over a step [-], > 0.
     max_iterations : int
         Largest number of Gauss-Seidel sweeps per step [-], >= 1: the last resort of the contact
         problem, after the active-set method and Lemke's algorithm

@@ -127,12 +127,52 @@ def _pivot(tab, r, e):
 @numba.njit(cache=True)
 def _refactor(tab, original, basis):
     """The tableau computed afresh from the original one and the basis: ``B^-1 A`` with ``B``
-    the basic columns of ``A`` (the round-off of the pivots so far is dropped)."""
+    the basic columns of ``A`` (the round-off of the pivots so far is dropped), by Gaussian
+    elimination with partial pivoting. Returns False, leaving ``tab`` spoilt, if ``B`` is
+    singular to working precision (a pivot below ``1e-14`` of the largest entry of ``B``)."""
     n = basis.size
+    nc = original.shape[1]
     b = np.empty((n, n))
     for k in range(n):
         b[:, k] = original[:, basis[k]]
-    tab[:, :] = np.linalg.solve(b, original)
+    tab[:, :] = original
+    big = 0.0
+    for i in range(n):
+        for j in range(n):
+            big = max(big, abs(b[i, j]))
+    for k in range(n):
+        p = k
+        for i in range(k + 1, n):
+            if abs(b[i, k]) > abs(b[p, k]):
+                p = i
+        if not abs(b[p, k]) > 1e-14 * big:
+            return False
+        if p != k:
+            for j in range(n):
+                b[k, j], b[p, j] = b[p, j], b[k, j]
+            for j in range(nc):
+                tab[k, j], tab[p, j] = tab[p, j], tab[k, j]
+        inv = 1.0 / b[k, k]
+        for i in range(k + 1, n):
+            f = b[i, k] * inv
+            if f != 0.0:
+                for j in range(k, n):
+                    b[i, j] -= f * b[k, j]
+                for j in range(nc):
+                    tab[i, j] -= f * tab[k, j]
+    for k in range(n - 1, -1, -1):
+        inv = 1.0 / b[k, k]
+        for j in range(nc):
+            tab[k, j] *= inv
+        for i in range(k):
+            f = b[i, k]
+            if f != 0.0:
+                for j in range(nc):
+                    tab[i, j] -= f * tab[k, j]
+                b[i, k] = 0.0
+        for j in range(k + 1, n):  # row k of b is now e_k scaled: only the diagonal mattered
+            b[k, j] = 0.0
+    return True
 
 
 @numba.njit(cache=True)
@@ -222,9 +262,8 @@ def lemke(mat, q, cover):
             if tab[i, entering] > threshold:
                 best = min(best, max(tab[i, nc - 1], 0.0) / tab[i, entering])
         if best == np.inf:
-            if refreshed:
+            if refreshed or not _refactor(tab, original, basis):  # a ray, or round-off?
                 return z, LEMKE_RAY, pivots
-            _refactor(tab, original, basis)  # is it a ray, or round-off?
             refreshed = True
             continue
         refreshed = False
@@ -262,7 +301,8 @@ def lemke(mat, q, cover):
         leaving = basis[r]
         basis[r] = entering
         if leaving == z0:
-            _refactor(tab, original, basis)
+            if not _refactor(tab, original, basis):
+                return z, LEMKE_INACCURATE, pivots
             for i in range(n):
                 b = basis[i]
                 if n <= b < 2 * n:
