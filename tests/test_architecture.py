@@ -24,9 +24,8 @@ import pytest
 from import_graph import ROOT, package_imports
 
 MODELS = ("archquake.fourlink", "archquake.rigid_blocks")
-LEAVES = ("archquake.cli", "archquake.report", "archquake.paper_reproduction",
-          "archquake.plotting", "archquake.rigid_blocks.plotting", "archquake.app",
-          "archquake.__main__")
+LEAVES = ("archquake.cli", "archquake.report", "archquake.plotting",
+          "archquake.rigid_blocks.plotting", "archquake.app", "archquake.__main__")
 REPORTS = ("archquake.report.paper", "archquake.report.assess")
 BLOCKS_RESTITUTION = ("archquake.fourlink.impact", "archquake.rigid_blocks.impacts")
 """The declared exception: the edge from the four-link model to the rigid blocks."""

@@ -41,7 +41,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Reproduce the paper into ``--out``."""
-    from ..paper_reproduction import ReproductionSettings, reproduce
+    from ..report import ReproductionSettings, reproduce
 
     changes = {}
     if args.seed is not None:
