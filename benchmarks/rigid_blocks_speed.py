@@ -248,11 +248,11 @@ def main(argv=None) -> int:
     print(f"  {elapsed:.1f} s wall (target <= 120 s), including starting the workers")
     four_link = {}
     if not args.no_four_link:
-        from archquake import ArchDynamics
+        from archquake import FourLinkModel
         from archquake.studies.failure_domain import inclusive_range
 
         for restitution in ("computed", "paper"):
-            domain = domain_of(ArchDynamics.from_arch(arch, restitution),
+            domain = domain_of(FourLinkModel.from_arch(arch, restitution),
                 DURATIONS, inclusive_range(0.3, 3.0, 0.01), resolution=1e-3, extend_to_g=None)
             four_link[restitution] = domain.failure_accelerations_g
     print(f"  {'t_p [s]':>8} {'rigid blocks [g]':>17} {'recovery above':>16}"

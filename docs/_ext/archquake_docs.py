@@ -58,9 +58,9 @@ def example_argv(gallery_conf, script_vars) -> list[str]:
 
 
 def _is_alias(name: str, obj) -> bool:
-    """Whether ``obj`` is a class or function reached under a second name (a former name kept
-    for compatibility, ``ArchDynamics = FourLinkModel``): documented as a constant of its
-    module, whose docstring refers to the one documented object."""
+    """Whether ``obj`` is a class or function reached under a second name (``second =
+    first``): documented as a constant of its module, whose docstring refers to the one
+    documented object."""
     own = getattr(getattr(obj, "py_func", obj), "__name__", name)
     return (inspect.isclass(obj) or callable(obj)) and own != name
 

@@ -9,7 +9,7 @@ import re
 
 import pytest
 
-from archquake import ArchDynamics, defaults
+from archquake import FourLinkModel, defaults
 from archquake.cli import COMMANDS, build_parser
 from archquake.defaults import DEFAULT_INTENSITY_MEASURES, REPORT_SEED
 from archquake.limit_analysis import both_directions
@@ -40,7 +40,7 @@ def _domain_default(name):
 
 BLOCKS = {"friction": _field_default(BlockSettings, "friction"),
           "time_step": _field_default(BlockSettings, "time_step")}
-RESTITUTION = _signature_default(ArchDynamics.from_arch, "restitution")
+RESTITUTION = _signature_default(FourLinkModel.from_arch, "restitution")
 
 LIBRARY = {
     "limit": {"method": _signature_default(both_directions, "method")},

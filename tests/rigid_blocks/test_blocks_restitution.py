@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from scipy.optimize import nnls
 
-from archquake import ArchDynamics, irregular_arch, oppenheim
+from archquake import FourLinkModel, irregular_arch, oppenheim
 from archquake.cli import main
 from archquake.fourlink.impact import RESTITUTION_MODELS, restitution
 from archquake.rigid_blocks import GROUND, BlockSettings, from_arch, rectangular_block
@@ -66,7 +66,7 @@ def test_frictionless_arch_impact_is_moreaus_projection(nominal):
     the velocity before on the cone {J v >= 0} in the metric of M (Moreau 1988); here by
     non-negative least squares on the contact impulses, v = v0 + M^-1 J^T lambda."""
     asm = from_arch(nominal)
-    mech_l, _ = ArchDynamics.from_arch(nominal).mechanisms
+    mech_l, _ = FourLinkModel.from_arch(nominal).mechanisms
     v0 = np.column_stack(mech_l.mode_shape())
     jac = contact_jacobian(asm)
     m = np.column_stack((asm.masses, asm.masses, asm.inertias)).ravel()
@@ -84,7 +84,7 @@ def test_measurement_does_not_depend_on_time_step_or_friction_above_sticking(nom
     """Documented invariances: the impact law is homogeneous in the velocities (the weight's
     impulse is 1e-4 of them), so the time step does not matter; from mu = 0.5 up the joints
     stick at the impact and the friction coefficient does not matter; below it they slide."""
-    mech_l, mech_r = ArchDynamics.from_arch(nominal).mechanisms
+    mech_l, mech_r = FourLinkModel.from_arch(nominal).mechanisms
     modes = [np.column_stack(m.mode_shape()) for m in (mech_l, mech_r)]
     reference = equivalent_restitution(nominal, *modes)
     for settings in (BlockSettings(time_step=1e-4), BlockSettings(friction=0.5),
@@ -98,10 +98,10 @@ def test_regression_blocks_restitution_of_oppenheims_arch(nominal):
     """The value the documentation quotes (0.7478), between the computed value (a motion
     forced into Mech-r) and the frictionless projection of the test above (the joints free to
     slide keep more energy); the same both ways on the symmetric arch."""
-    c_lr, c_rl = ArchDynamics.from_arch(nominal, "blocks").restitution
+    c_lr, c_rl = FourLinkModel.from_arch(nominal, "blocks").restitution
     assert c_lr == pytest.approx(0.7478, abs=1e-4)
     assert c_rl == pytest.approx(c_lr, rel=1e-9)
-    mech_l, mech_r = ArchDynamics.from_arch(nominal).mechanisms
+    mech_l, mech_r = FourLinkModel.from_arch(nominal).mechanisms
     frictionless = equivalent_restitution(
         nominal, *[np.column_stack(m.mode_shape()) for m in (mech_l, mech_r)],
         BlockSettings(friction=0.0))
@@ -122,8 +122,8 @@ def test_irregular_arch_blocks_restitution_mirrors():
     """The impact Mech-l -> Mech-r of an arch is the impact Mech-r -> Mech-l of its mirror
     image: the two coefficients swap."""
     arch = irregular_arch(oppenheim(), 0.10, rng=1)
-    c_lr, c_rl = ArchDynamics.from_arch(arch, "blocks").restitution
-    m_lr, m_rl = ArchDynamics.from_arch(arch.mirrored(), "blocks").restitution
+    c_lr, c_rl = FourLinkModel.from_arch(arch, "blocks").restitution
+    m_lr, m_rl = FourLinkModel.from_arch(arch.mirrored(), "blocks").restitution
     assert abs(c_lr - c_rl) > 0.01  # an irregular arch: they differ
     assert m_lr == pytest.approx(c_rl, rel=1e-3)
     assert m_rl == pytest.approx(c_lr, rel=1e-3)
@@ -142,7 +142,7 @@ def test_impact_module_loads_the_rigid_blocks_only_on_demand():
 def test_cli_mechanism_prints_blocks_restitution(capsys, nominal, name):
     assert main(["mechanism", "--restitution", name, "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
-    expected = ArchDynamics.from_arch(nominal, "rigid-blocks").restitution
+    expected = FourLinkModel.from_arch(nominal, "rigid-blocks").restitution
     assert out["restitution"]["l_to_r"] == pytest.approx(expected[0], rel=1e-12)
     assert out["restitution"]["r_to_l"] == pytest.approx(expected[1], rel=1e-12)
 

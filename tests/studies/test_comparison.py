@@ -12,7 +12,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
-from archquake import ArchDynamics  # noqa: E402
+from archquake import FourLinkModel  # noqa: E402
 from archquake.cli import main  # noqa: E402
 from archquake.plotting import plot_model_comparison, plot_model_differences  # noqa: E402
 from archquake.rigid_blocks import (
@@ -33,13 +33,13 @@ def comparison(nominal):
 
 
 def test_values_are_each_models_own_failure_curve(nominal, comparison):
-    """The four-link columns are ArchDynamics.failure_domain with each restitution model, the
+    """The four-link columns are FourLinkModel.failure_domain with each restitution model, the
     rigid-block column is the rigid-block model's failure domain: the same search, the same scan
     and resolution (its default strategy and the exhaustive grid give the same slices here)."""
     rigid = domain_of(RigidBlockModel(nominal), DURATIONS, GRID, resolution=RESOLUTION,
                       extend_to_g=None, search="exhaustive")
     assert comparison.rigid_block.slices == rigid.slices
-    dynamics = ArchDynamics.from_arch(nominal)
+    dynamics = FourLinkModel.from_arch(nominal)
     assert list(comparison.four_link) == ["computed", "link", "paper", "blocks"]
     for model, domain in comparison.four_link.items():
         direct = domain_of(dynamics.with_restitution(model),
@@ -112,7 +112,7 @@ def test_blocks_restitution_follows_the_friction_of_the_comparison(nominal):
                        restitutions=("blocks",), settings=settings)
     from archquake.fourlink.impact import blocks_restitution
 
-    mech_l, mech_r = ArchDynamics.from_arch(nominal).mechanisms
+    mech_l, mech_r = FourLinkModel.from_arch(nominal).mechanisms
     assert c.restitution["blocks"][0] == pytest.approx(
         blocks_restitution(mech_l, mech_r, settings), rel=1e-12)
     assert c.restitution["blocks"][0] > 0.755  # 0.759, vs 0.748 at mu = 0.8

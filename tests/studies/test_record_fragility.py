@@ -99,10 +99,10 @@ def test_stripes_of_arias_intensity_scale_records_as_scale_to_im(nominal_pair):
 def test_analyses_below_activation_are_exact_rests():
     """Skipped analyses (no sample reaches the activation acceleration) are what the engine
     decides when it integrates them, including factors a hair either side of the threshold."""
-    from archquake import ArchDynamics, oppenheim
+    from archquake import FourLinkModel, oppenheim
     from archquake.fourlink.engine import outcomes_grid
 
-    dynamics = ArchDynamics.from_arch(oppenheim(), "computed")
+    dynamics = FourLinkModel.from_arch(oppenheim(), "computed")
     tables, c = dynamics.tables, dynamics.restitution
     motion = stochastic_suite(1, seed=2, **SUITE)[0]
     k = tables[1].activation_g * 9.81  # Mech-r opens when xg'' > k_r g

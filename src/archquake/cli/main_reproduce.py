@@ -51,10 +51,10 @@ def run(args: argparse.Namespace) -> int:
 
         model = check_restitution_model(args.restitution)
         if isinstance(model, str):  # a model: its value for the nominal arch
-            from ..fourlink.dynamics import ArchDynamics
+            from ..fourlink.dynamics import FourLinkModel
             from ..reference_arches import oppenheim
 
-            model = ArchDynamics.from_arch(oppenheim(), model).restitution[0]
+            model = FourLinkModel.from_arch(oppenheim(), model).restitution[0]
         changes["restitution"] = model
     settings = (ReproductionSettings.quick_settings(**changes) if args.quick
                 else ReproductionSettings(**changes))

@@ -402,13 +402,13 @@ def add_restitution_option(parser: argparse.ArgumentParser) -> None:
 
 def dynamics_from_args(args: argparse.Namespace):
     """The :class:`~archquake.fourlink.FourLinkModel` of the arch of the geometry options."""
-    from ..fourlink.dynamics import ArchDynamics
+    from ..fourlink.dynamics import FourLinkModel
     from ..fourlink.impact import check_restitution_model
 
     nominal, arch = arches_from_args(args)
     model = check_restitution_model(args.restitution)  # its error names --restitution alone
     with analysing(args):
-        return ArchDynamics.from_arch(arch, model, nominal)
+        return FourLinkModel.from_arch(arch, model, nominal)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -252,7 +252,7 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
     -------
     ModelComparison
     """
-    from ..fourlink.dynamics import ArchDynamics
+    from ..fourlink.dynamics import FourLinkModel
     from ..fourlink.impact import check_restitution_model
     from ..rigid_blocks import RigidBlockModel
     from ..rigid_blocks.dynamics import resolved_settings
@@ -274,9 +274,9 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
             raise ValueError(f"restitutions must be names of restitution models, got {name!r}")
         check_restitution_model(name)
     if dynamics is None:
-        dynamics = ArchDynamics.from_arch(arch)
-    elif not isinstance(dynamics, ArchDynamics) or dynamics.arch is not arch:
-        raise ValueError("dynamics must be the ArchDynamics of arch")
+        dynamics = FourLinkModel.from_arch(arch)
+    elif not isinstance(dynamics, FourLinkModel) or dynamics.arch is not arch:
+        raise ValueError("dynamics must be the FourLinkModel of arch")
     settings = resolved_settings(settings, arch)  # the time step used
     if rigid_block is None:
         blocks = RigidBlockModel(arch, settings)

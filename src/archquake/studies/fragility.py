@@ -419,9 +419,9 @@ def arch_outcomes(arch: BlockArch, durations, amplitudes_g, *, restitution=DEFAU
     ValueError
         If the arch cannot be analysed (:meth:`archquake.fourlink.FourLinkModel.from_arch`).
     """
-    from ..fourlink.dynamics import ArchDynamics
+    from ..fourlink.dynamics import FourLinkModel
 
-    return model_outcomes(ArchDynamics.from_arch(arch, restitution, nominal), durations,
+    return model_outcomes(FourLinkModel.from_arch(arch, restitution, nominal), durations,
                           amplitudes_g, motion=motion)
 
 
