@@ -164,12 +164,8 @@ class CommandLineHelp(SphinxDirective):
         sections = [("archquake", parser)]
         for action in parser._actions:  # argparse keeps its subparsers here
             choices = getattr(action, "choices", None)
-            if isinstance(choices, dict):  # a former name shares its command's parser: once
-                seen = set()
-                for name, sub in choices.items():
-                    if id(sub) not in seen:
-                        seen.add(id(sub))
-                        sections.append((f"archquake {name}", sub))
+            if isinstance(choices, dict):
+                sections += [(f"archquake {name}", sub) for name, sub in choices.items()]
         out = []
         for title, sub in sections:
             section = nodes.section(ids=[nodes.make_id(f"command {title}")])

@@ -59,7 +59,7 @@ def test_nominal_arch_fraction_equals_records_collapsing_in_simulate(suite_dir, 
                                                                      tmp_path, capsys):
     """``--epsilon 0 --samples 1`` is the nominal arch alone: at every stripe, P is the
     fraction of records that collapse it (either polarity) in simulate()."""
-    argv = ["fragility", "--records", str(suite_dir), "--im", "pga", "--levels", LEVELS,
+    argv = ["record-fragility", "--records", str(suite_dir), "--im", "pga", "--levels", LEVELS,
             "--epsilon", "0", "--samples", "1", "--out", str(tmp_path / "out"), "--json",
             "--no-progress"]
     assert main(argv) == 0
@@ -251,11 +251,10 @@ def test_plots_of_a_record_study(small_study):
     (["--levels", "0,0.5,1"], "--levels must be pga values > 0 [g]"),
     (["--levels", "1,0.5"], "--levels must increase"),
     ([], "--levels is required with --records"),
-    (["--levels", "0.5,1", "--durations", "0.4"], "--durations: options of the pulse study"),
     (["--levels", "0.5,1", "--samples", "0"], "--samples must be an integer in [1, 100000]"),
 ])
 def test_cli_bad_record_inputs_are_clear_errors(extra, message, suite_dir, tmp_path, capsys):
-    argv = ["fragility", "--records", str(suite_dir), "--out", str(tmp_path / "o"),
+    argv = ["record-fragility", "--records", str(suite_dir), "--out", str(tmp_path / "o"),
             "--no-progress", *extra]
     assert main(argv) == 2
     err = capsys.readouterr().err
@@ -266,13 +265,11 @@ def test_cli_bad_record_paths_are_clear_errors(tmp_path, capsys):
     empty = tmp_path / "empty"
     empty.mkdir()
     (empty / "notes.txt").write_text("no records here\n")
-    base = ["fragility", "--levels", "0.5,1", "--out", str(tmp_path / "o"), "--no-progress"]
+    base = ["record-fragility", "--levels", "0.5,1", "--out", str(tmp_path / "o"), "--no-progress"]
     assert main([*base, "--records", str(empty)]) == 2
     assert f"record folder '{empty}': no record files" in capsys.readouterr().err
     assert main([*base, "--records", str(tmp_path / "missing.csv")]) == 2
     assert "missing.csv': no such file" in capsys.readouterr().err
-    assert main(["fragility", "--im", "pgv", "--out", str(tmp_path / "o")]) == 2
-    assert "--im: only for a record-based study" in capsys.readouterr().err
 
 
 def test_settings_refuse_bad_values():
@@ -313,9 +310,9 @@ def test_cli_record_study_writes_tables_figures_and_nrml(suite_dir, tmp_path, ca
     import xml.etree.ElementTree as ET
 
     out, plots, nrml = tmp_path / "out", tmp_path / "figs", tmp_path / "arch.xml"
-    argv = ["fragility", "--records", str(suite_dir), "--im", "pgv", "--levels", "0.4:2.4:0.25",
-            "--samples", "2", "--out", str(out), "--plot-dir", str(plots), "--export-nrml",
-            str(nrml), "--no-progress"]
+    argv = ["record-fragility", "--records", str(suite_dir), "--im", "pgv", "--levels",
+            "0.4:2.4:0.25", "--samples", "2", "--out", str(out), "--plot-dir", str(plots),
+            "--export-nrml", str(nrml), "--no-progress"]
     assert main(argv) == 0
     text = capsys.readouterr().out
     assert "Record-based fragility: h = 2 irregular arches" in text and "pgv [m/s]" in text

@@ -24,7 +24,6 @@ import argparse
 import contextlib
 import os
 import re
-import sys
 
 from ..constants import DEFAULT_DENSITY, DEFAULT_FILL_DENSITY
 from ..defaults import (
@@ -205,29 +204,6 @@ def _add_geometry_file_option(group) -> None:
                             "to right, optionally 'springings')")
 
 
-class DeprecatedName(argparse.Action):
-    """An option's former name: stores the value like the option and says once on stderr that
-    the name is deprecated (``archquake: --tolerance is deprecated, use --epsilon``)."""
-
-    def __init__(self, option_strings, dest, *, use: str, **kwargs):
-        super().__init__(option_strings, dest, **kwargs)
-        self.use = use
-        self.said = False
-
-    def __call__(self, parser, namespace, values, option_string=None):
-        if not self.said:
-            print(f"archquake: {option_string} is deprecated, use {self.use}", file=sys.stderr)
-            self.said = True
-        setattr(namespace, self.dest, values)
-
-
-def _add_epsilon_option(group, *, default, help: str) -> None:
-    group.add_argument("--epsilon", type=float, default=default, metavar="EPS", help=help)
-    group.add_argument("--tolerance", type=float, dest="epsilon", default=argparse.SUPPRESS,
-                       metavar="EPS", action=DeprecatedName, use="--epsilon",
-                       help=argparse.SUPPRESS)
-
-
 def add_arch_options(parser: argparse.ArgumentParser) -> None:
     """The arch of a command that analyses one: its shape (default Oppenheim's arch) or a file,
     and optionally one irregular arch drawn around it (``--epsilon``, ``--seed``)."""
@@ -235,10 +211,9 @@ def add_arch_options(parser: argparse.ArgumentParser) -> None:
     add_shape_options(group)
     _add_geometry_file_option(group)
     add_structure_options(parser)
-    _add_epsilon_option(group, default=None,
-                        help="draw one irregular arch around the arch above with the "
-                             "irregularity epsilon in [0, 1) of the paper's eq. (1) (formerly "
-                             "--tolerance, still accepted)")
+    group.add_argument("--epsilon", type=float, default=None, metavar="EPS",
+                       help="draw one irregular arch around the arch above with the "
+                            "irregularity epsilon in [0, 1) of the paper's eq. (1)")
     group.add_argument("--seed", type=int, default=None,
                        help=f"seed of the irregular draw (default: {DEFAULT_SEED})")
 
@@ -250,10 +225,9 @@ def add_nominal_arch_options(parser: argparse.ArgumentParser) -> None:
     add_shape_options(group)
     _add_geometry_file_option(group)
     add_structure_options(parser)
-    _add_epsilon_option(group, default=DEFAULT_EPSILON,
-                        help="irregularity epsilon in [0, 1) of the irregular arches drawn "
-                             "around the nominal arch (paper eq. 1; formerly --tolerance, still "
-                             "accepted; default: %(default)s)")
+    group.add_argument("--epsilon", type=float, default=DEFAULT_EPSILON, metavar="EPS",
+                       help="irregularity epsilon in [0, 1) of the irregular arches drawn "
+                            "around the nominal arch (paper eq. 1; default: %(default)s)")
     group.add_argument("--seed", type=int, default=DEFAULT_SEED,
                        help="root seed of the sample: arch i is drawn from "
                             "SeedSequence(seed, spawn_key=(i,)) (default: %(default)s)")

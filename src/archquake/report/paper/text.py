@@ -733,7 +733,7 @@ def record_text(record: dict, settings: dict) -> str:
         f"sqrt(rtr^2 + geo^2) beside the total for comparison; bands: "
         f"{settings['record_bootstrap']} bootstrap resamples. The sizes are reduced to fit the "
         f"report's time budget (the full study is 40 arches x 20 records x 20 levels: "
-        f"`archquake fragility --records ...` or examples/record_fragility.py --full). "
+        f"`archquake record-fragility ...` or examples/record_fragility.py --full). "
         + " ".join(weaker(im, e) for im, e in record.items()))
 
 
