@@ -425,7 +425,7 @@ def block_settings_from_args(args: argparse.Namespace):
 
 
 def model_name(text: str) -> str:
-    """The canonical name of ``--model`` (:func:`archquake.models.check_model`)."""
+    """The name of ``--model``, checked (:func:`archquake.models.check_model`)."""
     from ..models import check_model
 
     try:
@@ -442,8 +442,7 @@ def add_model_options(parser: argparse.ArgumentParser, *, search: bool = True) -
                        metavar="four-link|rigid-blocks",
                        help="the dynamic model: the paper's four-link mechanism, or every "
                             "voussoir a rigid block with Coulomb friction (the trusted one for "
-                            "short pulses; 'dem' and 'blocks' are accepted) (default: "
-                            "%(default)s)")
+                            "short pulses) (default: %(default)s)")
     if search:
         add_search_options(group)
 
