@@ -2,7 +2,7 @@
 
 - the rigid-block model imports nothing of the four-link model, directly or through another
   module, so that it can check it; the one declared exception runs the other way: the four-link
-  model's ``"blocks"`` restitution (``archquake.fourlink.impact``) measures c_v on the rigid
+  model's ``"measured"`` restitution (``archquake.fourlink.impact``) measures c_v on the rigid
   blocks (``archquake.rigid_blocks.impacts``), and no other four-link module imports the blocks;
 - geometry and ground motions import neither model;
 - the leaves (command line, report, plotting, the interactive page) are imported by no other

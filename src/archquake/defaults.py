@@ -235,7 +235,7 @@ MIN_COMPARE_RESOLUTION_G = 1e-6
 """Finest bisection width of a comparison on the command line [g]: a rigid-block boundary is
 decided by time steps of 1 ms, finer widths only cost analyses."""
 
-COMPARE_RESTITUTIONS = ("computed", "link", "paper", "blocks")
+COMPARE_RESTITUTIONS = ("computed", "link", "paper", "measured")
 """Restitution models of the four-link model in a comparison (names of
 :data:`archquake.fourlink.impact.RESTITUTION_MODELS`)."""
 

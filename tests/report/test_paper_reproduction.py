@@ -161,7 +161,7 @@ def test_comparison_section_comes_from_compare_models(report, nominal):
                                 resolution=settings.comparison_resolution_g)
     section = results["comparison"]
     assert section["rows"] == json.loads(json.dumps(comparison.to_list()))
-    assert section["restitution"]["blocks"][0] == pytest.approx(0.7478, abs=1e-4)
+    assert section["restitution"]["measured"][0] == pytest.approx(0.7478, abs=1e-4)
     text = (out / "report.md").read_text()
     part = text[text.index("## How far to trust the four-link model"):]
     part = part[:part.index("\n## ", 5)]

@@ -163,7 +163,7 @@ def test_long_pulse_failure_agrees_with_four_link_model(nominal):
 
     comparison = compare_models(nominal, [0.7, 1.0], amplitudes_g=np.arange(0.30, 0.61, 0.05),
                                 resolution=2e-3)
-    assert set(comparison.four_link) == {"computed", "link", "paper", "blocks"}
+    assert set(comparison.four_link) == {"computed", "link", "paper", "measured"}
     for restitution, difference in comparison.relative_differences().items():
         assert np.all(np.abs(difference) < 0.05), (restitution, difference)
 

@@ -40,7 +40,7 @@ def test_values_are_each_models_own_failure_curve(nominal, comparison):
                       extend_to_g=None, search="exhaustive")
     assert comparison.rigid_block.slices == rigid.slices
     dynamics = FourLinkModel.from_arch(nominal)
-    assert list(comparison.four_link) == ["computed", "link", "paper", "blocks"]
+    assert list(comparison.four_link) == ["computed", "link", "paper", "measured"]
     for model, domain in comparison.four_link.items():
         direct = domain_of(dynamics.with_restitution(model),
             DURATIONS, GRID, resolution=RESOLUTION, extend_to_g=None)
@@ -78,7 +78,7 @@ def test_cli_text_names_both_models(capsys):
     assert main(["compare", "--durations", "0.7", "--amplitudes", "0.3:0.6:0.1",
                  "--resolution", "0.02", "--no-progress"]) == 0
     out = capsys.readouterr().out
-    assert "rigid blocks" in out and "paper 0.875" in out and "blocks 0.748" in out
+    assert "rigid blocks" in out and "paper 0.875" in out and "measured 0.748" in out
 
 
 def test_cli_plot(tmp_path, capsys):
@@ -104,18 +104,18 @@ def test_plots_draw_every_model(comparison):
     plt.close(ax.figure)
 
 
-def test_blocks_restitution_follows_the_friction_of_the_comparison(nominal):
-    """With a friction low enough for the joints to slide at the impact, the 'blocks' c_v is
+def test_measured_restitution_follows_the_friction_of_the_comparison(nominal):
+    """With a friction low enough for the joints to slide at the impact, the 'measured' c_v is
     measured with that friction."""
     settings = BlockSettings(friction=0.3)  # the lowest friction it stands with is 0.206
     c = compare_models(nominal, (0.7,), amplitudes_g=(0.3, 0.5), resolution=0.05,
-                       restitutions=("blocks",), settings=settings)
-    from archquake.fourlink.impact import blocks_restitution
+                       restitutions=("measured",), settings=settings)
+    from archquake.fourlink.impact import measured_restitution
 
     mech_l, mech_r = FourLinkModel.from_arch(nominal).mechanisms
-    assert c.restitution["blocks"][0] == pytest.approx(
-        blocks_restitution(mech_l, mech_r, settings), rel=1e-12)
-    assert c.restitution["blocks"][0] > 0.755  # 0.759, vs 0.748 at mu = 0.8
+    assert c.restitution["measured"][0] == pytest.approx(
+        measured_restitution(mech_l, mech_r, settings), rel=1e-12)
+    assert c.restitution["measured"][0] > 0.755  # 0.759, vs 0.748 at mu = 0.8
 
 
 def test_precomputed_rigid_block_curve_is_checked(nominal, comparison):

@@ -174,6 +174,18 @@ def test_saved_study_reloads_as_the_same_result(small_study):
     assert curves["probability"].to_numpy() == pytest.approx(result.probability)
 
 
+def test_settings_stored_under_former_names_load():
+    """``tolerance`` is read as ``epsilon``, the restitution ``"blocks"`` or ``"rigid-blocks"``
+    of an earlier version as ``"measured"``."""
+    settings = RecordFragilitySettings(suite=RecordSuite.from_stochastic(1, **SUITE),
+                                       levels=(0.5, 1.0), restitution="measured", epsilon=0.05)
+    for former in ("blocks", "rigid-blocks"):
+        stored = settings.to_dict()
+        stored["tolerance"] = stored.pop("epsilon")
+        stored["restitution"] = former
+        assert RecordFragilitySettings.from_dict(stored) == settings
+
+
 def test_results_do_not_depend_on_the_backend(suite_dir):
     settings = RecordFragilitySettings(suite=RecordSuite.from_paths(suite_dir),
                                        levels=(0.5, 1.0, 1.5), sample_size=3, bootstrap=50)

@@ -353,16 +353,16 @@ def analysing(args: argparse.Namespace):
 # the four-link model
 # ---------------------------------------------------------------------------------------------
 
-RESTITUTION_METAVAR = "computed|link|rigid-blocks|nominal|paper|elastic|VALUE"
+RESTITUTION_METAVAR = "computed|link|measured|nominal|paper|elastic|VALUE"
 """The restitution models (:data:`archquake.fourlink.impact.RESTITUTION_MODELS`) as the
 ``--restitution`` options show them."""
 
 RESTITUTION_HELP = (
     "'computed' from the momentum balance of the whole arch, 'link' from the paper's link-wise "
-    "rule (Housner's rule for the post-impact springing link), 'rigid-blocks' measured on the "
-    "rigid-block model of the arch (the kinetic energy its blocks keep at the impact; formerly "
-    "'blocks', still accepted), 'nominal' = the nominal arch's computed value (the paper's "
-    "practice for irregular arches), 'paper' = 0.875, 'elastic' = 1, or a number in (0, 1]")
+    "rule (Housner's rule for the post-impact springing link), 'measured' on the rigid-block "
+    "model of the arch (the kinetic energy its blocks keep at the impact), 'nominal' = the "
+    "nominal arch's computed value (the paper's practice for irregular arches), 'paper' = "
+    "0.875, 'elastic' = 1, or a number in (0, 1]")
 """The restitution models, as the help of every ``--restitution`` option lists them."""
 
 

@@ -21,7 +21,7 @@ README and the report) the two models agree for long pulses, where the arch fall
 swing, and differ for short ones, where it collapses only after impacts and the energy an impact
 leaves decides: there the four-link answer depends strongly on its coefficient of restitution,
 and the rigid blocks do not move on in a four-link mechanism after an impact
-(:mod:`archquake.fourlink.impact`, model ``"blocks"``).
+(:mod:`archquake.fourlink.impact`, model ``"measured"``).
 """
 
 from __future__ import annotations
@@ -165,19 +165,17 @@ def _scan(amplitudes_g) -> np.ndarray:
 
 
 def _four_link(dynamics, model: str, settings):
-    """``dynamics`` with restitution ``model``; ``"rigid-blocks"`` (or its former name
-    ``"blocks"``) measured with the rigid-block model's ``settings`` (its friction and time step)
-    when they are not the defaults."""
-    from ..fourlink.impact import canonical_restitution_model
+    """``dynamics`` with restitution ``model``; ``"measured"`` measured with the rigid-block
+    model's ``settings`` (its friction and time step) when they are not the defaults."""
     from ..rigid_blocks.dynamics import resolved_settings
 
-    if (canonical_restitution_model(model) == "rigid-blocks" and settings is not None
+    if (model == "measured" and settings is not None
             and settings != resolved_settings(None, dynamics.arch)):
-        from ..fourlink.impact import blocks_restitution
+        from ..fourlink.impact import measured_restitution
 
         mech_l, mech_r = dynamics.mechanisms
-        pair = (blocks_restitution(mech_l, mech_r, settings),
-                blocks_restitution(mech_r, mech_l, settings))
+        pair = (measured_restitution(mech_l, mech_r, settings),
+                measured_restitution(mech_r, mech_l, settings))
         return replace(dynamics, restitution=pair, restitution_model=model)
     return dynamics.with_restitution(model)
 
@@ -218,7 +216,7 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
     durations : sequence of float, optional
         Pulse durations t_p [s] (default :data:`archquake.defaults.COMPARE_DURATIONS`).
     restitutions : sequence of str
-        Restitution models of the four-link runs (default computed, link, paper, blocks).
+        Restitution models of the four-link runs (default computed, link, paper, measured).
     amplitudes_g : sequence of float, optional
         Increasing amplitude scan of both models [g] (default
         :data:`archquake.defaults.COMPARE_AMPLITUDES_G`, 0.3-3.0 g in 0.1 g steps).
@@ -231,7 +229,7 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
         Oppenheim's pulse).
     settings : archquake.rigid_blocks.BlockSettings, optional
         Friction, time step and outcome criteria of the rigid-block model (also those of the
-        ``"blocks"`` restitution).
+        ``"measured"`` restitution).
     workers : int, optional
         Local worker processes of the rigid-block curve, one duration per task.
     progress : bool

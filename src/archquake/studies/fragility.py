@@ -367,11 +367,14 @@ class FragilitySettings:
         -------
         FragilitySettings
         """
+        from ..fourlink.impact import stored_restitution_model
+
         return cls(nominal=arch_from_dict(data["nominal"]), sample_size=data["sample_size"],
                    epsilon=data.get("epsilon", data.get("tolerance")),
                    durations=tuple(data["durations"]),
                    amplitudes_g=tuple(data["amplitudes_g"]), seed=data["seed"],
-                   restitution=data["restitution"], limit_sample_size=data["limit_sample_size"],
+                   restitution=stored_restitution_model(data["restitution"]),
+                   limit_sample_size=data["limit_sample_size"],
                    limit_method=data["limit_method"], motion=data["motion"],
                    model=data.get("model", DEFAULT_MODEL), search=data.get("search"),
                    stride=data.get("stride", DEFAULT_STRIDE),

@@ -366,12 +366,15 @@ class RecordFragilitySettings:
         -------
         RecordFragilitySettings
         """
+        from ..fourlink.impact import stored_restitution_model
+
         return cls(suite=RecordSuite.from_dict(data["suite"]), levels=tuple(data["levels"]),
                    im=data["im"], nominal=arch_from_dict(data["nominal"]),
                    sample_size=data["sample_size"],
                    epsilon=data.get("epsilon", data.get("tolerance")),
                    seed=data["seed"],
-                   restitution=data["restitution"], bootstrap=data["bootstrap"],
+                   restitution=stored_restitution_model(data["restitution"]),
+                   bootstrap=data["bootstrap"],
                    confidence=data["confidence"], model=data.get("model", DEFAULT_MODEL),
                    search=data.get("search"),
                    stride=data.get("stride", DEFAULT_LEVEL_STRIDE),

@@ -183,7 +183,7 @@ class FourLinkPart:
     summary: dict
 
 
-RESTITUTION_RULES = ("computed", "link", "rigid-blocks", "paper", "elastic")
+RESTITUTION_RULES = ("computed", "link", "measured", "paper", "elastic")
 """The restitution rules an assessment reports
 (:data:`archquake.fourlink.impact.RESTITUTION_MODELS`; ``"nominal"`` is ``"computed"`` for the
 structure itself)."""

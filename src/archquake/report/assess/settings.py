@@ -283,7 +283,12 @@ class AssessmentSettings:
 
     @classmethod
     def from_dict(cls, data: dict) -> AssessmentSettings:
-        """Inverse of :meth:`to_dict`."""
+        """Inverse of :meth:`to_dict` (a restitution stored under a former name read as the
+        current one)."""
+        from ...fourlink.impact import stored_restitution_model
+
+        if "restitution" in data:
+            data = {**data, "restitution": stored_restitution_model(data["restitution"])}
         return cls(**{k: (tuple(v) if k == "durations" and v is not None else v)
                       for k, v in data.items()})
 

@@ -706,7 +706,7 @@ def model_comparison(settings: ReproductionSettings, nominal, blocks,
                                 settings=blocks.settings, dynamics=nominal,
                                 rigid_block=curve.result)
     # how the blocks move on after the closing impact of Mech-l (archquake.fourlink.impact,
-    # "blocks")
+    # "measured")
     mech_l, mech_r = nominal.mechanisms
     u_l, u_r = (np.column_stack(m.mode_shape()) for m in (mech_l, mech_r))
     impact = closing_impact(blocks.structure, u_l, blocks.settings)
