@@ -39,7 +39,7 @@ def test_bisection_below_float_resolution_ends():
 
     done = []
     worker = threading.Thread(target=lambda: done.append(
-        domain_slice(classify, [0.0, 1.0], resolution=1e-300)), daemon=True)
+        domain_slice(classify, [0.0, 1.0], resolution_g=1e-300)), daemon=True)
     worker.start()
     worker.join(10.0)
     assert done, "the bisection did not end"

@@ -123,7 +123,7 @@ def test_failure_search_keeps_undecided_apart_from_collapse():
             return Status.REST, 0
         return (Status.UNDECIDED, 0) if amplitude < 0.5 else (Status.COLLAPSE, 0)
 
-    piece = domain_slice(classify, np.linspace(0.1, 1.0, 10), resolution=1e-3)
+    piece = domain_slice(classify, np.linspace(0.1, 1.0, 10), resolution_g=1e-3)
     assert [iv.status for iv in piece.intervals] == ["rest", "undecided", "collapse"]
     assert piece.failure_acceleration_g == pytest.approx(0.5, abs=1e-3)
 

@@ -76,7 +76,7 @@ def run(args: argparse.Namespace) -> int:
     arch = options.arch_from_args(args)
     with options.analysing(args):
         comparison = compare_models(arch, durations, amplitudes_g=amplitudes,
-                                    resolution=args.resolution, direction=args.direction,
+                                    resolution_g=args.resolution, direction=args.direction,
                                     settings=settings, workers=args.workers,
                                     progress=not args.no_progress, search=args.search,
                                     stride=args.stride)

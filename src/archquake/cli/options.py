@@ -65,7 +65,7 @@ OPTION_NAMES = {
     "durations": "--durations",
     "amplitudes": "--amplitudes",
     "amplitudes_g": "--amplitudes",
-    "resolution": "--resolution",
+    "resolution_g": "--resolution",
     "extend_to_g": "--extend-to",
     "direction": "--direction",
     "levels": "--levels",

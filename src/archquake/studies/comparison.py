@@ -57,7 +57,7 @@ class ModelComparison:
         ``{restitution model: FailureDomain}`` of the four-link model, in the order given.
     amplitudes_g : ndarray
         The amplitude scan of both models [g].
-    resolution : float
+    resolution_g : float
         Bisection width of every boundary of both models [g].
     settings : BlockSettings
         Friction, time step and outcome criteria of the rigid-block model.
@@ -70,7 +70,7 @@ class ModelComparison:
     rigid_block: object
     four_link: dict
     amplitudes_g: np.ndarray
-    resolution: float
+    resolution_g: float
     settings: object = None
     skipped: dict = field(default_factory=dict)
 
@@ -180,7 +180,7 @@ def _four_link(dynamics, model: str, settings):
     return dynamics.with_restitution(model)
 
 
-def _check_curve(curve, durations, direction, motion, settings, resolution, grid) -> None:
+def _check_curve(curve, durations, direction, motion, settings, resolution_g, grid) -> None:
     from ..rigid_blocks import BlockSettings
     from .failure_domain import FailureDomain
 
@@ -194,7 +194,7 @@ def _check_curve(curve, durations, direction, motion, settings, resolution, grid
             and curve.direction == direction and curve.motion == motion
             and {k: v for k, v in described.items() if k != "model"}
             == {k: getattr(expected, k) for k in described if k != "model"}
-            and all(s.resolution == resolution and s.intervals[0].start == grid[0]
+            and all(s.resolution_g == resolution_g and s.intervals[0].start == grid[0]
                     and s.scanned_to_g == grid[-1] for s in curve.slices))
     if not same:
         raise ValueError("rigid_block must be the failure curve of the same durations, "
@@ -203,7 +203,7 @@ def _check_curve(curve, durations, direction, motion, settings, resolution, grid
 
 def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
                    restitutions: Sequence[str] = COMPARE_RESTITUTIONS, amplitudes_g=None,
-                   resolution: float = COMPARE_RESOLUTION_G, direction: str = "l",
+                   resolution_g: float = COMPARE_RESOLUTION_G, direction: str = "l",
                    motion: str = "oppenheim", settings=None, workers: int | None = None,
                    progress: bool = False, dynamics=None, rigid_block=None,
                    search: str | None = None, stride: int | None = None) -> ModelComparison:
@@ -220,7 +220,7 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
     amplitudes_g : sequence of float, optional
         Increasing amplitude scan of both models [g] (default
         :data:`archquake.defaults.COMPARE_AMPLITUDES_G`, 0.3-3.0 g in 0.1 g steps).
-    resolution : float
+    resolution_g : float
         Bisection width of every boundary of both models [g].
     direction : {"l", "r"}
         ``"l"``: the first pulse is ``-a g`` (opens Mech-l); ``"r"``: ``+a g``.
@@ -261,9 +261,9 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
     d = check_durations(COMPARE_DURATIONS if durations is None else durations)
     grid = _scan(amplitudes_g)
     check_direction(direction)
-    if not (isinstance(resolution, (int, float)) and math.isfinite(resolution)
-            and resolution > 0):
-        raise ValueError(f"resolution must be a finite number > 0 [g], got {resolution!r}")
+    if not (isinstance(resolution_g, (int, float)) and math.isfinite(resolution_g)
+            and resolution_g > 0):
+        raise ValueError(f"resolution_g must be a finite number > 0 [g], got {resolution_g!r}")
     names = tuple(restitutions)
     if not names:
         raise ValueError("restitutions must name at least one restitution model")
@@ -279,11 +279,11 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
     if rigid_block is None:
         blocks = RigidBlockModel(arch, settings)
         rigid_block = domain_of(blocks, d, grid, direction=direction, motion=motion,
-                                resolution=float(resolution), extend_to_g=None, search=search,
+                                resolution_g=float(resolution_g), extend_to_g=None, search=search,
                                 stride=DEFAULT_STRIDE if stride is None else stride,
                                 workers=workers, progress=progress)
     else:
-        _check_curve(rigid_block, d, direction, motion, settings, float(resolution), grid)
+        _check_curve(rigid_block, d, direction, motion, settings, float(resolution_g), grid)
     four_link, skipped = {}, {}
     for name in names:
         model = _four_link(dynamics, name, settings)
@@ -295,12 +295,12 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
                              f"the rule does not apply to this structure's mechanisms")
             continue
         four_link[name] = domain_of(model, d, grid, direction=direction,
-                                    resolution=float(resolution), extend_to_g=None,
+                                    resolution_g=float(resolution_g), extend_to_g=None,
                                     motion=motion)
     if not four_link:
         raise ValueError("no restitution model applies to this structure: "
                          + "; ".join(f"{n}: {why}" for n, why in skipped.items()))
-    return ModelComparison(arch, rigid_block, four_link, grid, float(resolution), settings,
+    return ModelComparison(arch, rigid_block, four_link, grid, float(resolution_g), settings,
                            skipped)
 
 

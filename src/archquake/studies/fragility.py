@@ -1055,7 +1055,7 @@ def _nominal_domains(settings: FragilitySettings, resolution_g: float | None) ->
 
         model = RigidBlockModel(settings.nominal, settings.block_settings)
     return tuple(domain_of(model, settings.durations, settings.amplitudes_g,
-                           direction=direction, resolution=resolution_g,
+                           direction=direction, resolution_g=resolution_g,
                            motion=settings.motion, extend_to_g=None, search=settings.search,
                            stride=settings.stride)
                  for direction in PULSE_SIGNS)
