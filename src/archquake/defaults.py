@@ -239,6 +239,10 @@ COMPARE_RESTITUTIONS = ("computed", "link", "paper", "measured")
 """Restitution models of the four-link model in a comparison (names of
 :data:`archquake.fourlink.impact.RESTITUTION_MODELS`)."""
 
+AGREEMENT_BAND = 0.05
+"""Relative difference [-] of the two models' failure accelerations called agreement (both
+reports)."""
+
 MAX_BLOCK_GRID_POINTS = 10_000
 """Most (duration, amplitude) points of a rigid-block failure curve's scan: some tens of minutes
 of analyses on two cores (a point costs 10-100 ms)."""

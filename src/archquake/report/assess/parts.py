@@ -370,7 +370,7 @@ def agreement(rows: list[dict]) -> dict:
     Returns
     -------
     dict
-        ``band`` (:data:`~archquake.report.assess.settings.AGREEMENT_BAND`), ``within``
+        ``band`` (:data:`~archquake.defaults.AGREEMENT_BAND`), ``within``
         (durations whose failure accelerations agree within it), ``compared`` (durations where
         both collapse in the scan), ``largest`` (``{"difference", "duration"}`` of the largest
         difference, or None), ``median_abs`` (median of the absolute differences), ``from``

@@ -19,6 +19,7 @@ import numpy as np
 
 from ...checks import check_integer
 from ...defaults import (
+    AGREEMENT_BAND,
     DEFAULT_EPSILON,
     DEFAULT_FRICTION,
     DEFAULT_RESTITUTION,
@@ -46,9 +47,6 @@ QUICK = {"duration_count": 4, "amplitude_points": 30, "domain_resolution_g": 2e-
          "fragility_amplitude_points": 21, "record_sample_size": 4, "record_levels": 6,
          "record_count": 6, "bootstrap": 50, "quick": True}
 """The reduced sizes of a quick assessment (:meth:`AssessmentSettings.quick_settings`)."""
-
-AGREEMENT_BAND = 0.05
-"""Relative difference [-] of the two models' failure accelerations called agreement."""
 
 def arch_extent(structure) -> float:
     """Horizontal extent of the arch of a structure (its piers left out) [m].

@@ -734,7 +734,7 @@ def comparison_statistics(summary: dict) -> dict:
     """What the comparison says, computed from its rows: relative differences per model and
     duration (None: no failure in the scan, or the rigid blocks' is not decided: an undecided
     band below it), from which duration on each model stays within
-    :data:`~archquake.report.paper.settings.AGREEMENT_BAND`, and the largest differences.
+    :data:`~archquake.defaults.AGREEMENT_BAND`, and the largest differences.
 
     Parameters
     ----------

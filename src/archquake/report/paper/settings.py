@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass, field
 
-from ...defaults import COMPARE_DURATIONS, COMPARE_RESOLUTION_G, REPORT_SEED
+from ...defaults import AGREEMENT_BAND, COMPARE_DURATIONS, COMPARE_RESOLUTION_G, REPORT_SEED
 from ...fourlink.impact import PAPER_RESTITUTION
 
 ARCH_NAMES = ("NA", "RA-1", "RA-2")
@@ -25,9 +25,6 @@ RECORD_LEVELS = {"pga": (0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6, 1.8, 2.0),
 """Stripes of the report's record-based fragility: every other level of
 :data:`archquake.studies.record_fragility.DEFAULT_LEVELS` from just above the activation of the
 arch."""
-
-AGREEMENT_BAND = 0.05
-"""Relative difference [-] called agreement of the two models' failure accelerations."""
 
 PHI_TOLERANCE = 5e-4
 """Largest difference [rad] (or [-] for ratios, [m] / 100 for lengths) called agreement with a
