@@ -26,6 +26,7 @@ from ...defaults import (
     DEFAULT_SEED,
     STUDY_DURATIONS,
 )
+from ...geometry import check_epsilon
 
 PAPER_DURATIONS = (0.1, 1.0)
 """First and last pulse duration t_p [s] of the paper's failure domain (Fig. 16), for
@@ -169,13 +170,7 @@ class AssessmentSettings:
         from ...fourlink.impact import check_restitution_model
         from ...rigid_blocks import BlockSettings
 
-        try:
-            eps = float(self.epsilon)
-        except (TypeError, ValueError):
-            eps = math.nan
-        if not 0.0 <= eps < 1.0:
-            raise ValueError(f"epsilon must be in [0, 1), got {self.epsilon!r}")
-        object.__setattr__(self, "epsilon", eps)
+        object.__setattr__(self, "epsilon", check_epsilon(self.epsilon))
         object.__setattr__(self, "seed", check_integer("seed", self.seed, minimum=0))
         object.__setattr__(self, "restitution", check_restitution_model(self.restitution))
         BlockSettings(friction=self.friction)  # checks the friction

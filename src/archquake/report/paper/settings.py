@@ -13,6 +13,7 @@ from dataclasses import asdict, dataclass, field
 
 from ...defaults import AGREEMENT_BAND, COMPARE_DURATIONS, COMPARE_RESOLUTION_G, REPORT_SEED
 from ...fourlink.impact import PAPER_RESTITUTION
+from ...geometry import check_epsilon
 
 ARCH_NAMES = ("NA", "RA-1", "RA-2")
 """The paper's three arches: the nominal one and two irregular ones [paper, Sect. 3]."""
@@ -126,8 +127,7 @@ class ReproductionSettings:
     quick: bool = False
 
     def __post_init__(self):
-        if not (0.0 <= self.epsilon < 1.0):
-            raise ValueError(f"epsilon must be in [0, 1), got {self.epsilon!r}")
+        check_epsilon(self.epsilon)
         for name in ("fragility_sample_size", "limit_sample_size", "record_count",
                      "record_sample_size", "rigid_fragility_sample_size"):
             value = getattr(self, name)
