@@ -392,42 +392,6 @@ class FragilitySettings:
         return hash(("FragilitySettings", frozen_value(self.to_dict())))
 
 
-def arch_outcomes(arch: BlockArch, durations, amplitudes_g, *, restitution=DEFAULT_RESTITUTION,
-                  nominal=None, motion: str = "oppenheim") -> dict[str, np.ndarray]:
-    """Outcomes of one arch over the (duration x amplitude) grid, for both pulse directions:
-    :func:`model_outcomes` of its :class:`~archquake.fourlink.FourLinkModel`.
-
-    Parameters
-    ----------
-    arch : BlockArch
-        The arch.
-    durations : sequence of float
-        Pulse durations t_p [s].
-    amplitudes_g : sequence of float
-        Pulse amplitudes a > 0 [g]; direction ``"l"`` applies ``-a g`` first, ``"r"`` ``+a g``.
-    restitution : str or float
-        Restitution model (:func:`archquake.fourlink.impact.check_restitution_model`).
-    nominal : BlockArch or FourLinkModel, optional
-        The nominal arch, for ``restitution="nominal"``.
-    motion : str
-        Pulse shape (:data:`archquake.ground_motion.ANALYTIC_GROUND_MOTIONS`).
-
-    Returns
-    -------
-    dict of ndarray
-        As :func:`model_outcomes`.
-
-    Raises
-    ------
-    ValueError
-        If the arch cannot be analysed (:meth:`archquake.fourlink.FourLinkModel.from_arch`).
-    """
-    from ..fourlink.dynamics import FourLinkModel
-
-    return model_outcomes(FourLinkModel.from_arch(arch, restitution, nominal), durations,
-                          amplitudes_g, motion=motion)
-
-
 def model_outcomes(model, durations, amplitudes_g, *, motion: str = "oppenheim",
                    search: str | None = None, stride: int = DEFAULT_STRIDE, screen=None
                    ) -> dict[str, np.ndarray]:
