@@ -21,7 +21,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 
-from archquake import ArchDynamics, oppenheim  # noqa: E402
+from archquake import FourLinkModel, oppenheim  # noqa: E402
 from archquake.fourlink.time_history import simulate  # noqa: E402
 from archquake.geometry import GRAVITY  # noqa: E402
 from archquake.ground_motion import ground_motion  # noqa: E402
@@ -40,7 +40,7 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cases", type=int, default=40, help="analyses per pulse and method")
     args = parser.parse_args(argv)
-    tables = ArchDynamics.from_arch(oppenheim()).tables
+    tables = FourLinkModel.from_arch(oppenheim()).tables
     rng = np.random.default_rng(0)
     amplitudes = -rng.uniform(0.4, 2.0, args.cases) * GRAVITY
     periods = rng.uniform(0.2, 1.0, args.cases)

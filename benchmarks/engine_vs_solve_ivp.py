@@ -232,10 +232,10 @@ def main(argv=None):
         def failure(tp):
             return 0.36 + 0.12 / tp
     else:
-        from archquake import ArchDynamics, irregular_arch, oppenheim
+        from archquake import FourLinkModel, irregular_arch, oppenheim
         nominal = oppenheim()
         arches = [nominal] + [irregular_arch(nominal, 0.1, rng=s) for s in range(args.arches)]
-        pairs = [ArchDynamics.from_arch(a).mechanisms for a in arches]
+        pairs = [FourLinkModel.from_arch(a).mechanisms for a in arches]
         def failure(tp):
             return 0.37 + 0.05 / tp
     tables = [(engine.tabulate(a), engine.tabulate(b)) for a, b in pairs]

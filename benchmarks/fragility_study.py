@@ -26,7 +26,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 
-from archquake import ArchDynamics, oppenheim  # noqa: E402
+from archquake import FourLinkModel, oppenheim  # noqa: E402
 from archquake.execution import process_pool  # noqa: E402
 from archquake.fourlink import engine  # noqa: E402
 from archquake.fourlink.engine.driver import integrate  # noqa: E402
@@ -42,7 +42,7 @@ def _grid_seconds(repeat: int = 3) -> float:
     """Seconds of one arch's full grid (both directions) with the compiled engine, best of
     ``repeat``."""
     arch = irregular_sample(oppenheim(), 0.1, 1, 0)[0]
-    dynamics = ArchDynamics.from_arch(arch, 0.645)
+    dynamics = FourLinkModel.from_arch(arch, 0.645)
     (tl, tr), (c_lr, c_rl) = dynamics.tables, dynamics.restitution
     d, a = np.meshgrid([0.4, 0.5, 0.6, 0.7], inclusive_range(0.2, 1.0, 0.01), indexing="ij")
     best = np.inf
@@ -65,7 +65,7 @@ def _concurrency_worker(repeat: int) -> float:
 
 def breakdown(settings: FragilitySettings) -> None:
     """Where the time of the dynamic study goes, per arch, in this process: the stages of
-    :meth:`ArchDynamics.from_arch`, timed one by one, then the compiled grid."""
+    :meth:`FourLinkModel.from_arch`, timed one by one, then the compiled grid."""
     arches = irregular_sample(settings.nominal, settings.epsilon, 10, settings.seed)
     nominal_pair = mechanisms(settings.nominal)
     times = {"limit analysis (hinges, k)": 0.0, "mechanisms + restitution": 0.0,
@@ -96,7 +96,7 @@ def breakdown(settings: FragilitySettings) -> None:
     print(f"  => {1e6 * times['integration (2 x outcomes_grid)'] / (n * analyses):.0f} us per "
           f"analysis ({analyses} analyses per arch)")
     # steps per analysis and the instant the outcome is decided (no integration after it)
-    dynamics = ArchDynamics.from_arch(arches[0], "nominal", settings.nominal)
+    dynamics = FourLinkModel.from_arch(arches[0], "nominal", settings.nominal)
     (tl, tr), (c_lr, c_rl) = dynamics.tables, dynamics.restitution
     tab = engine.pack_pair(tl, tr)
     steps, after = [], []

@@ -28,7 +28,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 
 from archquake import (
     GRAVITY,  # noqa: E402
-    ArchDynamics,  # noqa: E402
+    FourLinkModel,  # noqa: E402
 )
 from archquake.execution import process_pool  # noqa: E402
 from archquake.fourlink.engine import outcomes_grid  # noqa: E402
@@ -65,7 +65,7 @@ def breakdown(settings: RecordFragilitySettings, n_arches: int = 3) -> None:
     samples = motions[0].times.size
     for arch in arches:
         t0 = time.perf_counter()
-        dynamics = ArchDynamics.from_arch(arch, settings.restitution, settings.nominal)
+        dynamics = FourLinkModel.from_arch(arch, settings.restitution, settings.nominal)
         t_build += time.perf_counter() - t0
         for r, motion in enumerate(motions):
             signed = (factors[r][:, None] * np.array([1.0, -1.0])).ravel()
@@ -80,7 +80,7 @@ def breakdown(settings: RecordFragilitySettings, n_arches: int = 3) -> None:
                               signed[2 * j:2 * j + 2], motion)
                 per_level[j] += time.perf_counter() - t0
     # the cost of one sample at rest: a record just below activation, integrated anyway
-    dynamics = ArchDynamics.from_arch(settings.nominal, settings.restitution, settings.nominal)
+    dynamics = FourLinkModel.from_arch(settings.nominal, settings.restitution, settings.nominal)
     motion = motions[0]
     quiet = 0.999 * dynamics.tables[1].activation_g * GRAVITY / np.max(np.abs(motion.values))
     outcomes_grid(*dynamics.tables, *dynamics.restitution, [1.0], [quiet], motion)

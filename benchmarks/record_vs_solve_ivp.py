@@ -43,7 +43,7 @@ sys.path.insert(0, str(ROOT / "src"))
 
 from archquake import (  # noqa: E402
     GRAVITY,
-    ArchDynamics,  # noqa: E402
+    FourLinkModel,  # noqa: E402
     oppenheim,
 )
 from archquake.fourlink.engine import outcomes_grid  # noqa: E402
@@ -92,7 +92,7 @@ def _baseline_chunk(job):
     baseline = _baseline_module()
     suite, _ = _cases(args)
     arches = _arches(args.arches)
-    dynamics = [ArchDynamics.from_arch(arch, "nominal", arches[0]) for arch in arches]
+    dynamics = [FourLinkModel.from_arch(arch, "nominal", arches[0]) for arch in arches]
     pairs = [d.mechanisms for d in dynamics]
     coefficients = [d.restitution for d in dynamics]
     out = []
@@ -118,7 +118,7 @@ def main(argv=None):
     suite, cases = _cases(args)
     arches = _arches(args.arches)
     warm_up()
-    dynamics = [ArchDynamics.from_arch(arch, "nominal", arches[0]) for arch in arches]
+    dynamics = [FourLinkModel.from_arch(arch, "nominal", arches[0]) for arch in arches]
 
     # ---- engine: one compiled call per arch and record
     engine_out = {}

@@ -154,7 +154,7 @@ def domain_convergence(steps: list[tuple[float, int]], workers: int) -> None:
     found = {}
     for h, k in steps:
         model = RigidBlockModel(oppenheim(), settings=BlockSettings(time_step=h, coarse_factor=k))
-        domain = domain_of(model, durations, inclusive_range(0.3, 3.0, 0.1), resolution=0.001,
+        domain = domain_of(model, durations, inclusive_range(0.3, 3.0, 0.1), resolution_g=0.001,
                            workers=workers)
         found[h, k] = np.array([s.failure_acceleration_g for s in domain.slices])
     print("  t_p [s]        " + "".join(f"{d:9.2f}" for d in durations))

@@ -243,17 +243,17 @@ def main(argv=None) -> int:
     warm_up()
     start = time.perf_counter()
     curve = domain_of(RigidBlockModel(arch), DURATIONS, np.round(np.arange(0.10, 3.001, 0.05), 12),
-                      resolution=0.005, extend_to_g=None, workers=args.workers)
+                      resolution_g=0.005, extend_to_g=None, workers=args.workers)
     elapsed = time.perf_counter() - start
     print(f"  {elapsed:.1f} s wall (target <= 120 s), including starting the workers")
     four_link = {}
     if not args.no_four_link:
-        from archquake import ArchDynamics
+        from archquake import FourLinkModel
         from archquake.studies.failure_domain import inclusive_range
 
         for restitution in ("computed", "paper"):
-            domain = domain_of(ArchDynamics.from_arch(arch, restitution),
-                DURATIONS, inclusive_range(0.3, 3.0, 0.01), resolution=1e-3, extend_to_g=None)
+            domain = domain_of(FourLinkModel.from_arch(arch, restitution),
+                DURATIONS, inclusive_range(0.3, 3.0, 0.01), resolution_g=1e-3, extend_to_g=None)
             four_link[restitution] = domain.failure_accelerations_g
     print(f"  {'t_p [s]':>8} {'rigid blocks [g]':>17} {'recovery above':>16}"
           + "".join(f" {'four-link ' + r + ' [g]':>24}" for r in four_link))

@@ -40,14 +40,14 @@ from archquake.studies.failure_domain import domain_of, inclusive_range  # noqa:
 WIDTH, HEIGHT = 3.0, 6.0  # the piers [m]
 
 
-def failure_curves(structure, durations, grid, resolution):
+def failure_curves(structure, durations, grid, resolution_g):
     """The failure domains of both models (the four-link model with the paper's c_v, and the
     computed one) and of the rigid blocks, on one scan."""
     four_link = {c: domain_of(model_for(structure, restitution=c), durations, grid,
-                              resolution=resolution, extend_to_g=None)
+                              resolution_g=resolution_g, extend_to_g=None)
                  for c in ("paper", "computed")}
     rigid = domain_of(model_for(structure, "rigid-blocks"), durations, grid,
-                      resolution=resolution, extend_to_g=None)
+                      resolution_g=resolution_g, extend_to_g=None)
     return four_link, rigid
 
 
@@ -57,7 +57,7 @@ def main(argv=None):
     parser.add_argument("--out", default=".", help="directory of the figure")
     args = parser.parse_args(argv)
     durations = [0.3, 0.5, 0.7] if args.quick else [0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 1.0]
-    resolution = 0.02 if args.quick else 0.005
+    resolution_g = 0.02 if args.quick else 0.005
     grid = inclusive_range(0.05, 1.2, 0.05)
 
     paper = paper_values()["table1"]["NA"]["load_multiplier"]
@@ -69,7 +69,7 @@ def main(argv=None):
           + ", ".join(structure.joint_name(h.joint) for h in mech_l.hinges))
     rows = {}
     for name, s in (("on piers", structure), ("fixed springings", fixed)):
-        rows[name] = failure_curves(s, durations, grid, resolution)
+        rows[name] = failure_curves(s, durations, grid, resolution_g)
     print(f"{'t_p [s]':>7}  {'':<17}{'rigid blocks':>13} {'four-link paper':>16} "
           f"{'four-link computed':>19}  [g]")
     for name, (four_link, rigid) in rows.items():

@@ -100,8 +100,7 @@ def check_run(argv: list[str], status, out: str, err: str, *, names=()) -> str:
     of ``argv``)."""
     assert "Traceback" not in err and "Traceback" not in out, (argv, err[-2000:])
     lines = _lines(err)
-    others = [line for line in lines if not line.startswith("archquake: warning:")
-              and not line.startswith("archquake: --tolerance is deprecated")]
+    others = [line for line in lines if not line.startswith("archquake: warning:")]
     if isinstance(status, tuple):  # argparse refused the command line
         assert status[1] in (0, 2), (argv, status, err)
         if status[1] == 2:

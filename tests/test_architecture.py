@@ -2,7 +2,7 @@
 
 - the rigid-block model imports nothing of the four-link model, directly or through another
   module, so that it can check it; the one declared exception runs the other way: the four-link
-  model's ``"blocks"`` restitution (``archquake.fourlink.impact``) measures c_v on the rigid
+  model's ``"measured"`` restitution (``archquake.fourlink.impact``) measures c_v on the rigid
   blocks (``archquake.rigid_blocks.impacts``), and no other four-link module imports the blocks;
 - geometry and ground motions import neither model;
 - the leaves (command line, report, plotting, the interactive page) are imported by no other
@@ -24,9 +24,8 @@ import pytest
 from import_graph import ROOT, package_imports
 
 MODELS = ("archquake.fourlink", "archquake.rigid_blocks")
-LEAVES = ("archquake.cli", "archquake.report", "archquake.paper_reproduction",
-          "archquake.plotting", "archquake.rigid_blocks.plotting", "archquake.app",
-          "archquake.__main__")
+LEAVES = ("archquake.cli", "archquake.report", "archquake.plotting",
+          "archquake.rigid_blocks.plotting", "archquake.app", "archquake.__main__")
 REPORTS = ("archquake.report.paper", "archquake.report.assess")
 BLOCKS_RESTITUTION = ("archquake.fourlink.impact", "archquake.rigid_blocks.impacts")
 """The declared exception: the edge from the four-link model to the rigid blocks."""

@@ -19,7 +19,7 @@ import numba
 import numpy as np
 from archquake import oppenheim
 from archquake.fourlink import engine
-from archquake import ArchDynamics
+from archquake import FourLinkModel
 from archquake.ground_motion import oppenheim_pulse, read_record
 from archquake.fourlink.mechanism import mechanisms
 from archquake.fourlink.time_history import free_vibration, simulate
@@ -31,7 +31,7 @@ simulate(pair, oppenheim_pulse(-9.81, 0.27), (0.875, 0.875))
 simulate(pair, oppenheim_pulse(-9.81, 0.27), (0.875, 0.875), record=False)
 simulate(pair, read_record({record!r}, scale_to=0.5), (0.875, 0.875))
 free_vibration(pair, (1.0, 1.0), phi0=0.02, t_end=2.0)
-domain_of(ArchDynamics.from_arch(arch), [0.3, 0.4], np.linspace(0.3, 1.0, 8), resolution=0.01,
+domain_of(FourLinkModel.from_arch(arch), [0.3, 0.4], np.linspace(0.3, 1.0, 8), resolution_g=0.01,
           extend_to_g=None)
 tables = [engine.tabulate(m) for m in pair]
 tables[0].functions(np.linspace(tables[0].theta_lo, tables[0].theta_u, 5))

@@ -58,9 +58,9 @@ def example_argv(gallery_conf, script_vars) -> list[str]:
 
 
 def _is_alias(name: str, obj) -> bool:
-    """Whether ``obj`` is a class or function reached under a second name (a former name kept
-    for compatibility, ``ArchDynamics = FourLinkModel``): documented as a constant of its
-    module, whose docstring refers to the one documented object."""
+    """Whether ``obj`` is a class or function reached under a second name (``second =
+    first``): documented as a constant of its module, whose docstring refers to the one
+    documented object."""
     own = getattr(getattr(obj, "py_func", obj), "__name__", name)
     return (inspect.isclass(obj) or callable(obj)) and own != name
 
@@ -164,12 +164,8 @@ class CommandLineHelp(SphinxDirective):
         sections = [("archquake", parser)]
         for action in parser._actions:  # argparse keeps its subparsers here
             choices = getattr(action, "choices", None)
-            if isinstance(choices, dict):  # a former name shares its command's parser: once
-                seen = set()
-                for name, sub in choices.items():
-                    if id(sub) not in seen:
-                        seen.add(id(sub))
-                        sections.append((f"archquake {name}", sub))
+            if isinstance(choices, dict):
+                sections += [(f"archquake {name}", sub) for name, sub in choices.items()]
         out = []
         for title, sub in sections:
             section = nodes.section(ids=[nodes.make_id(f"command {title}")])

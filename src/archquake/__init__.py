@@ -21,7 +21,6 @@ from .constants import GRAVITY
 
 # name -> module that defines it (imported on first use)
 _LAZY = {
-    "ArchDynamics": "fourlink.model",
     "FourLinkModel": "fourlink.model",
     "RigidBlockModel": "rigid_blocks.model",
     "StructuralModel": "models",
@@ -55,7 +54,7 @@ def __dir__():
     return sorted([*globals(), *_LAZY])
 
 
-__all__ = ["GRAVITY", "MODELS", "ArchDynamics", "BlockArch", "CircularArch",
-           "FourLinkModel", "RigidBlockModel", "Status", "StructuralModel", "circular_arch",
-           "irregular_arch", "load_arch", "model_for", "oppenheim", "oppenheim_pulse",
-           "shaped_arch", "surveyed_arch", "__version__"]
+__all__ = ["GRAVITY", "MODELS", "BlockArch", "CircularArch", "FourLinkModel",
+           "RigidBlockModel", "Status", "StructuralModel", "circular_arch", "irregular_arch",
+           "load_arch", "model_for", "oppenheim", "oppenheim_pulse", "shaped_arch",
+           "surveyed_arch", "__version__"]

@@ -235,9 +235,13 @@ MIN_COMPARE_RESOLUTION_G = 1e-6
 """Finest bisection width of a comparison on the command line [g]: a rigid-block boundary is
 decided by time steps of 1 ms, finer widths only cost analyses."""
 
-COMPARE_RESTITUTIONS = ("computed", "link", "paper", "blocks")
+COMPARE_RESTITUTIONS = ("computed", "link", "paper", "measured")
 """Restitution models of the four-link model in a comparison (names of
 :data:`archquake.fourlink.impact.RESTITUTION_MODELS`)."""
+
+AGREEMENT_BAND = 0.05
+"""Relative difference [-] of the two models' failure accelerations called agreement (both
+reports)."""
 
 MAX_BLOCK_GRID_POINTS = 10_000
 """Most (duration, amplitude) points of a rigid-block failure curve's scan: some tens of minutes

@@ -9,8 +9,7 @@ friction, any mechanism). Both are built once for one structure and answer the s
 call the protocol and never know which model runs.
 
 ``model="four-link"`` or ``model="rigid-blocks"`` (:data:`MODELS`) is resolved here, by
-:func:`check_model` and :func:`model_for`; the former spellings of the rigid-block model
-(``"dem"``, ``"blocks"``, ``"rigid-block"``, ``"rigid_blocks"``) are accepted as aliases.
+:func:`check_model` and :func:`model_for`.
 
 >>> from archquake import GRAVITY, oppenheim
 >>> from archquake.ground_motion import oppenheim_pulse
@@ -25,11 +24,6 @@ from __future__ import annotations
 from typing import Any, ClassVar, Protocol, runtime_checkable
 
 from .defaults import DEFAULT_MODEL, DEFAULT_RESTITUTION, MODELS
-
-MODEL_ALIASES = {"fourlink": "four-link", "four_link": "four-link", "rigid_blocks": "rigid-blocks",
-                 "rigid-block": "rigid-blocks", "blocks": "rigid-blocks", "dem": "rigid-blocks"}
-"""Other spellings accepted for a model's name (former names of the rigid-block model among
-them)."""
 
 
 @runtime_checkable
@@ -75,12 +69,12 @@ class StructuralModel(Protocol):
 
 
 def check_model(model: str) -> str:
-    """The canonical name of a model (one of :data:`MODELS`).
+    """A model's name, checked (one of :data:`MODELS`).
 
     Parameters
     ----------
     model : str
-        ``"four-link"``, ``"rigid-blocks"`` or one of :data:`MODEL_ALIASES`.
+        ``"four-link"`` or ``"rigid-blocks"``.
 
     Returns
     -------
@@ -91,11 +85,10 @@ def check_model(model: str) -> str:
     ValueError
         For any other name; the message lists the models.
     """
-    name = MODEL_ALIASES.get(model, model) if isinstance(model, str) else model
-    if name not in MODELS:
+    if not isinstance(model, str) or model not in MODELS:
         raise ValueError(f"model must be one of {', '.join(repr(m) for m in MODELS)}, got "
                          f"{model!r}")
-    return name
+    return model
 
 
 def model_for(structure, model: str = DEFAULT_MODEL, *, restitution=DEFAULT_RESTITUTION,
@@ -138,5 +131,4 @@ def model_for(structure, model: str = DEFAULT_MODEL, *, restitution=DEFAULT_REST
                            else block_settings)
 
 
-__all__ = ["DEFAULT_MODEL", "MODELS", "MODEL_ALIASES", "StructuralModel", "check_model",
-           "model_for"]
+__all__ = ["DEFAULT_MODEL", "MODELS", "StructuralModel", "check_model", "model_for"]

@@ -702,7 +702,7 @@ def plot_incremental(result, ax=None, *, arch: int | None = None):
 
 
 COMPARISON_COLOURS = {"computed": "tab:blue", "link": "tab:orange", "paper": "tab:green",
-                      "rigid-blocks": "tab:red", "blocks": "tab:red", "nominal": "tab:purple",
+                      "measured": "tab:red", "nominal": "tab:purple",
                       "elastic": "tab:brown"}
 """Colour of the four-link model's curve for each restitution model."""
 

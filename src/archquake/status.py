@@ -41,33 +41,6 @@ class Status(enum.IntEnum):
         """Lower-case name: ``"rest"``, ``"recovery"``, ``"collapse"`` (``"undecided"``)."""
         return self.name.lower()
 
-    @classmethod
-    def from_label(cls, label: str) -> Status:
-        """The member named ``label``.
-
-        Parameters
-        ----------
-        label : str
-            ``"rest"``, ``"recovery"`` or ``"collapse"`` (any case).
-
-        Returns
-        -------
-        Status
-
-        Raises
-        ------
-        ValueError
-            For any other label (``"undecided"`` included: no result carries it).
-        """
-        try:
-            member = cls[str(label).upper()]
-        except KeyError:
-            member = None
-        if member is None or member is cls.UNDECIDED:
-            raise ValueError(f"status must be one of 'rest', 'recovery', 'collapse', "
-                             f"got {label!r}")
-        return member
-
     def __str__(self) -> str:
         return self.label
 

@@ -140,7 +140,7 @@ def test_domain_job_reports_progress_and_agrees_with_domain_of(client):
     result = seen[-1]["result"]
     assert result["figure"].startswith("data:image/png;base64,")
     model = model_for(oppenheim(), "four-link")
-    expected = domain_of(model, [0.3, 0.6], np.arange(3, 13) / 10, resolution=0.01,
+    expected = domain_of(model, [0.3, 0.6], np.arange(3, 13) / 10, resolution_g=0.01,
                          extend_to_g=3.0)
     assert result["four-link"]["failure"]["failure_g"] == pytest.approx(
         expected.failure_accelerations_g.tolist(), abs=1e-12)

@@ -9,7 +9,7 @@ import re
 
 import pytest
 
-from archquake import ArchDynamics, defaults
+from archquake import FourLinkModel, defaults
 from archquake.cli import COMMANDS, build_parser
 from archquake.defaults import DEFAULT_INTENSITY_MEASURES, REPORT_SEED
 from archquake.limit_analysis import both_directions
@@ -40,7 +40,7 @@ def _domain_default(name):
 
 BLOCKS = {"friction": _field_default(BlockSettings, "friction"),
           "time_step": _field_default(BlockSettings, "time_step")}
-RESTITUTION = _signature_default(ArchDynamics.from_arch, "restitution")
+RESTITUTION = _signature_default(FourLinkModel.from_arch, "restitution")
 
 LIBRARY = {
     "limit": {"method": _signature_default(both_directions, "method")},
@@ -48,12 +48,12 @@ LIBRARY = {
     "simulate": {"restitution": RESTITUTION},
     "rigid-blocks": BLOCKS,
     "domain": {"restitution": RESTITUTION, "model": DEFAULT_MODEL, **BLOCKS,
-               "resolution": _signature_default(domain_of, "resolution"),
+               "resolution": _signature_default(domain_of, "resolution_g"),
                "extend_to": _signature_default(domain_of, "extend_to_g"),
                "direction": _signature_default(domain_of, "direction"),
                "durations": _domain_default("DOMAIN_DURATIONS"),
                "amplitudes": _domain_default("DOMAIN_AMPLITUDES_G")},
-    "compare": {**BLOCKS, "resolution": _signature_default(compare_models, "resolution"),
+    "compare": {**BLOCKS, "resolution": _signature_default(compare_models, "resolution_g"),
                 "direction": _signature_default(compare_models, "direction"),
                 # compare_models takes durations=None for these
                 "durations": tuple(defaults.COMPARE_DURATIONS),

@@ -26,7 +26,7 @@ STRUCTURE = {
 }
 IRREGULAR = {"--epsilon": numbers(0.0, 0.3), "--seed": integers_text(0, 1000)}
 RESTITUTION = {"--restitution": st.one_of(
-    words(("computed", "link", "nominal", "paper", "elastic", "rigid-blocks", "blocks")),
+    words(("computed", "link", "nominal", "paper", "elastic", "measured", "blocks")),
     numbers(0.0, 1.0))}
 MOTION = {
     "--motion": words(("oppenheim", "rectangular", "sine", "harmonic", "ricker",

@@ -157,10 +157,10 @@ def test_free_vibration_beyond_the_point_of_no_return_prints_no_nan(capsys):
 
 
 def test_outcomes_of_identical_runs_are_equal_and_hash_alike():
-    from archquake import ArchDynamics, oppenheim
+    from archquake import FourLinkModel, oppenheim
     from archquake.ground_motion import oppenheim_pulse
 
-    dynamics = ArchDynamics.from_arch(oppenheim())
+    dynamics = FourLinkModel.from_arch(oppenheim())
     pulse = oppenheim_pulse(-0.3 * 9.81, 0.4)  # below k: rest, collapse_time nan
     a, b = dynamics.outcome(pulse), dynamics.outcome(pulse)
     assert math.isnan(a.collapse_time)

@@ -4,6 +4,7 @@ failure domain and the studies, the same numbers as the library and as ``compare
 import json
 
 import numpy as np
+import pytest
 
 from archquake.cli import main
 
@@ -24,18 +25,21 @@ def test_domain_of_the_rigid_blocks_equals_the_compare_column(capsys):
     assert all(r["model"] == "rigid-blocks" for r in domain)
 
 
-def test_domain_text_says_the_model_and_the_former_name_dem_is_accepted(capsys):
+def test_domain_text_says_the_model(capsys):
     argv = ["--durations", "0.6", "--amplitudes", "0.3:0.6:0.1", "--resolution", "0.01",
             "--extend-to", "0"]
-    assert main(["domain", "--model", "dem", *argv]) == 0
+    assert main(["domain", "--model", "rigid-blocks", *argv]) == 0
     text = capsys.readouterr().out
     assert "rigid-block model" in text and "search screened" in text
-    try:
-        code = main(["domain", "--model", "elastic", *argv])
-    except SystemExit as exc:  # refused by the option parser, with its usage line
-        code = exc.code
-    assert code == 2
-    assert "--model: must be one of 'four-link', 'rigid-blocks'" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("other", ["elastic", "dem", "blocks", "rigid_blocks"])
+def test_a_model_has_one_name(capsys, other):
+    with pytest.raises(SystemExit) as exc:  # refused by the option parser, with its usage line
+        main(["domain", "--model", other])
+    assert exc.value.code == 2
+    assert (f"--model: must be one of 'four-link', 'rigid-blocks', got {other!r}"
+            in capsys.readouterr().err)
 
 
 def test_fragility_with_the_rigid_blocks_records_its_model_and_search(capsys, tmp_path):

@@ -28,18 +28,12 @@ def modules_after(argv: list[str]) -> set[str]:
     return set(last.split()[1:])
 
 
-def command_name(name: str) -> str:
-    """The command of ``name``, a command's name or a former name of it."""
-    return next(n for n, c in COMMANDS.items() if name == n or name in c.aliases)
-
-
 def subparser(parser: argparse.ArgumentParser, name: str) -> argparse.ArgumentParser:
     (commands,) = [a for a in parser._actions if isinstance(a.choices, dict)]
     return commands.choices[name]
 
 
-HELP = [["--help"], ["--version"]] + [[name, "--help"] for name in COMMANDS] + [
-    [alias, "--help"] for command in COMMANDS.values() for alias in command.aliases]
+HELP = [["--help"], ["--version"]] + [[name, "--help"] for name in COMMANDS]
 
 
 @pytest.mark.parametrize("argv", HELP, ids=" ".join)
@@ -50,8 +44,7 @@ def test_help_and_version_import_no_numpy(argv):
     if argv[0].startswith("-"):
         assert not commands  # the table of commands: summaries without their modules
     else:
-        assert f"archquake.cli.{COMMANDS[command_name(argv[0])].module}" in commands
-        assert len(commands) <= 2  # fragility also takes the record study's options
+        assert commands == {f"archquake.cli.{COMMANDS[argv[0]].module}"}
 
 
 def test_every_command_has_its_module_with_configure_and_run():
@@ -72,7 +65,7 @@ def test_defaults_module_stays_light():
 
 def test_choices_and_defaults_shown_are_those_the_library_uses():
     from archquake import defaults
-    from archquake.fourlink.impact import RESTITUTION_ALIASES, RESTITUTION_MODELS
+    from archquake.fourlink.impact import RESTITUTION_MODELS
     from archquake.geometry import CENTRELINES, VOUSSOIR_FACES
     from archquake.ground_motion import ANALYTIC_GROUND_MOTIONS, GROUND_MOTIONS
     from archquake.reference_arches import paper_values
@@ -88,8 +81,7 @@ def test_choices_and_defaults_shown_are_those_the_library_uses():
     assert BlockSettings().time_step is None
     assert structure_time_step(defaults.REFERENCE_THICKNESS) == defaults.DEFAULT_TIME_STEP
     assert time_step_for(oppenheim()) == defaults.DEFAULT_TIME_STEP
-    names = set(RESTITUTION_MODELS) - set(RESTITUTION_ALIASES)
-    assert set(RESTITUTION_METAVAR.split("|")) == names | {"VALUE"}
+    assert set(RESTITUTION_METAVAR.split("|")) == set(RESTITUTION_MODELS) | {"VALUE"}
     # Oppenheim's arch of the help is the paper's [Sect. 2]: R = 10 m, 157.5 deg, 1.5 m, n = 7
     arch = paper_values()["oppenheim"]
     args = build_parser(["limit"]).parse_args(["limit"])
@@ -170,7 +162,6 @@ def test_workers_are_checked_once_for_every_command(capsys, tmp_path):
     out = ["--out", str(tmp_path / "o"), "--no-progress"]
     messages = {cli_error(capsys, argv).rsplit(", got", 1)[0] for argv in (
         ["fragility", "--workers", "0", *out],
-        ["fragility", *records, "--workers", "0", *out],
         ["record-fragility", *records, "--workers", "0", *out],
         ["compare", "--workers", "0", "--no-progress"])}
     assert len(messages) == 1 and messages.pop().startswith("--workers must be an integer in [1,")
@@ -181,53 +172,28 @@ def test_workers_are_checked_once_for_every_command(capsys, tmp_path):
 # --------------------------------------------------------------------------------------------
 
 
-def test_tolerance_is_a_deprecated_name_of_epsilon(capsys):
-    assert main(["limit", "--json", "--epsilon", "0.1", "--seed", "7"]) == 0
-    new = capsys.readouterr()
-    assert main(["limit", "--json", "--tolerance", "0.2", "--tolerance", "0.1", "--seed", "7"]) == 0
-    old = capsys.readouterr()
-    assert json.loads(old.out) == json.loads(new.out) and new.err == ""
-    assert old.err == "archquake: --tolerance is deprecated, use --epsilon\n"
+@pytest.mark.parametrize("argv, refusal", [
+    (["dem", "--json"], "invalid choice: 'dem'"),
+    (["limit", "--tolerance", "0.1"], "unrecognized arguments: --tolerance"),
+    (["limit", "--min-thickness"], "unrecognized arguments: --min-thickness"),
+    (["fragility", "--records", "r.csv", "--levels", "0.5,1", "--out", "o"],
+     "unrecognized arguments: --records"),
+])
+def test_former_spellings_are_refused_by_name(capsys, argv, refusal):
+    """``dem`` (now ``rigid-blocks``), ``--tolerance`` (``--epsilon``), ``limit
+    --min-thickness`` (``min-thickness``) and ``fragility --records`` (``record-fragility``)."""
+    with pytest.raises(SystemExit) as exc:
+        main(argv)
+    assert exc.value.code == 2
+    assert refusal in capsys.readouterr().err
 
 
-def test_dem_is_the_former_name_of_rigid_blocks(capsys):
-    argv = ["--amplitude", "-0.5", "--duration", "0.5", "--epsilon", "0.1", "--json"]
-    parser = build_parser()
-    new, old = (vars(parser.parse_args([name, *argv])) for name in ("rigid-blocks", "dem"))
-    assert new.pop("command") == "rigid-blocks" and old.pop("command") == "dem"
-    assert new == old
-    with pytest.raises(SystemExit):
-        main(["dem", "--help"])
-    assert "'archquake dem' is the former name" in " ".join(capsys.readouterr().out.split())
-
-
-def test_min_thickness_is_a_command_and_an_option_of_limit(capsys, paper):
+def test_min_thickness_is_a_command(capsys, paper):
     from archquake.limit_analysis import min_thickness
 
     shape = ["--voussoirs", "40", "--radius", "1", "--embrace", "180"]
     assert main(["min-thickness", "--json", *shape]) == 0
     command = json.loads(capsys.readouterr().out)
-    assert main(["limit", "--min-thickness", "--json", *shape]) == 0
-    assert json.loads(capsys.readouterr().out) == command
     assert command["min_thickness"] == min_thickness(1.0, 3.141592653589793, 40)
     # Heyman's semicircular arch of many voussoirs: t/R = 0.107 (Ochsendorf's 0.1075)
     assert command["ratio"] == pytest.approx(0.1075, abs=1e-3)
-
-
-def test_fragility_records_is_record_fragility(capsys, tmp_path):
-    argv = ["--records", str(DATA / "decaying_sine.csv"), str(DATA / "decaying_sine.AT2"),
-            "--levels", "0.3:0.9:0.3", "--samples", "2", "--seed", "3", "--no-progress",
-            "--json"]
-    summaries = []
-    for command in ("record-fragility", "fragility"):
-        out = tmp_path / command
-        assert main([command, *argv, "--out", str(out)]) == 0
-        summaries.append(json.loads(capsys.readouterr().out))
-    assert summaries[0] == summaries[1]
-    assert (tmp_path / "fragility" / "curves.csv").read_text() == (
-        tmp_path / "record-fragility" / "curves.csv").read_text()
-    # a pulse option is refused with --records, and the new command does not have it
-    assert main(["fragility", *argv, "--durations", "0.4", "--out", str(tmp_path / "x")]) == 2
-    assert "options of the pulse study" in capsys.readouterr().err
-    with pytest.raises(SystemExit):
-        main(["record-fragility", *argv, "--durations", "0.4", "--out", str(tmp_path / "x")])

@@ -1,7 +1,7 @@
-"""``--suite NAME``, the shared option of a built-in suite of real records: ``records``,
-``record-fragility`` and ``fragility --records`` take it instead of files, ``simulate`` and
-``rigid-blocks`` a ground motion of it by name (``--suite NAME --record NAME``); each gives
-what the library gives with the suite."""
+"""``--suite NAME``, the shared option of a built-in suite of real records: ``records`` and
+``record-fragility`` take it instead of files, ``simulate`` and ``rigid-blocks`` a ground motion
+of it by name (``--suite NAME --record NAME``); each gives what the library gives with the
+suite."""
 
 import importlib.util
 import json
@@ -65,12 +65,11 @@ def test_record_fragility_of_a_suite(tmp_path, capsys):
     (["record-fragility", "--records", "x.csv", "--suite", NAME, "--levels", "0.5,1"],
      "--records and --suite: give record files or a built-in suite, not both"),
     (["record-fragility", "--levels", "0.5,1"], "give the records: --records PATH... or --suite"),
-    (["fragility", "--im", "pga"], "give the records with --records PATH... or --suite NAME"),
     (["simulate", "--suite", NAME], f"--suite {NAME} needs --record NAME"),
     (["records", "--suite", "nowhere"], "--suite: unknown built-in record suite 'nowhere'"),
 ])
 def test_suite_errors_name_the_options(capsys, tmp_path, argv, message):
-    if argv[0] in ("record-fragility", "fragility"):
+    if argv[0] == "record-fragility":
         argv = [*argv, "--out", str(tmp_path / "out")]
     assert main(argv) == 2
     err = capsys.readouterr().err.strip()

@@ -1,5 +1,5 @@
 """Every ``archquake ...`` command line that README.md and the user guide show parses with the
-command line's parser (and is valid shell), the former spellings too; a few quick ones run."""
+command line's parser (and is valid shell); a few quick ones run."""
 
 import json
 import re
@@ -54,25 +54,6 @@ def guide_commands() -> list[str]:
     return out + [line for line in inline_commands() if " -" in line]
 
 
-FORMER_SPELLINGS = [
-    "archquake limit --json --tolerance 0.1 --seed 7 --plot arch.png",
-    "archquake limit --min-thickness --shape catenary --span 10 --rise 4.5 --voussoirs 40",
-    "archquake fragility --shape elliptical --span 19.6 --rise 8 --tolerance 0.05 --out study",
-    "archquake fragility --records records/ --im pga --levels 0.1:2.0:0.1 --out msa "
-    "--plot-dir figs",
-    "archquake fragility --records records/ --im pgv --levels 0.2:4.0:0.2 --out msa-pgv "
-    "--export-nrml arch.xml --json",
-    "archquake fragility --records records/ --levels 0.5:1.5:0.1 --tolerance 0 --samples 1 "
-    "--out na",
-    "archquake dem --amplitude -0.5 --duration 0.5 --json",
-    "archquake dem --amplitude -0.6 --duration 0.3 --plot dem.png --animate dem.gif",
-    "archquake mechanism --restitution blocks --json",
-    "archquake simulate --tolerance 0.1 --seed 3 --restitution blocks",
-]
-"""Command lines of the README before the names changed (``--tolerance`` for ``--epsilon``,
-``dem`` for ``rigid-blocks``, ``blocks`` for ``rigid-blocks``, ``fragility --records`` for
-``record-fragility``, ``limit --min-thickness`` for ``min-thickness``): they still work."""
-
 SHELL_PUNCTUATION = set("();<>|&")
 
 
@@ -99,29 +80,14 @@ def test_the_documents_show_command_lines():
 def test_inline_command_names_are_commands():
     from archquake.cli import COMMANDS
 
-    names = {alias for name, c in COMMANDS.items() for alias in (name, *c.aliases)}
     bare = [line.split()[1] for line in inline_commands() if " -" not in line]
-    assert bare and set(bare) <= names
+    assert bare and set(bare) <= set(COMMANDS)
 
 
-@pytest.mark.parametrize("line", readme_commands() + guide_commands() + FORMER_SPELLINGS)
+@pytest.mark.parametrize("line", readme_commands() + guide_commands())
 def test_command_line_parses(line, capsys):
     parse(line)
     capsys.readouterr()
-
-
-@pytest.mark.parametrize("former, current", [
-    ("limit --tolerance 0.1 --seed 7", "limit --epsilon 0.1 --seed 7"),
-    ("dem --amplitude -0.5 --duration 0.5", "rigid-blocks --amplitude -0.5 --duration 0.5"),
-    ("fragility --records r/ --levels 0.5:1.5:0.1 --tolerance 0 --samples 1 --out na",
-     "record-fragility --records r/ --levels 0.5:1.5:0.1 --epsilon 0 --samples 1 --out na"),
-])
-def test_a_former_spelling_gives_the_options_of_the_current_one(former, current, capsys):
-    old, new = vars(parse("archquake " + former)), vars(parse("archquake " + current))
-    capsys.readouterr()
-    for name, value in new.items():
-        if name != "command":
-            assert old[name] == value, name
 
 
 def test_quick_commands_of_the_readme_run(capsys, paper, tmp_path, monkeypatch):

@@ -1,5 +1,4 @@
-"""``archquake rigid-blocks`` (formerly ``archquake dem``): the rigid-block model from the
-command line."""
+"""``archquake rigid-blocks``: the rigid-block model from the command line."""
 
 import csv
 import json
@@ -30,7 +29,7 @@ def test_json_outcomes_around_activation(capsys):
 
 def test_recovery_with_output_and_plot(tmp_path, capsys):
     csv_path, png = tmp_path / "h.csv", tmp_path / "h.png"
-    assert main(["dem", "--amplitude", "-0.6", "--duration", "0.3", "--friction", "0.7",
+    assert main(["rigid-blocks", "--amplitude", "-0.6", "--duration", "0.3", "--friction", "0.7",
                  "--output", str(csv_path), "--plot", str(png)]) == 0
     out = capsys.readouterr().out
     assert "comes back to rest" in out and "friction 0.7" in out
@@ -45,7 +44,7 @@ def test_recovery_with_output_and_plot(tmp_path, capsys):
 def test_animation_of_a_short_record(tmp_path, capsys):
     """--t-end records a fixed time; undecided by then, the run says so."""
     gif = tmp_path / "h.gif"
-    assert main(["dem", "--amplitude", "-0.6", "--duration", "0.3", "--t-end", "0.4",
+    assert main(["rigid-blocks", "--amplitude", "-0.6", "--duration", "0.3", "--t-end", "0.4",
                  "--animate", str(gif)]) == 0
     assert "not decided" in capsys.readouterr().out
     assert gif.read_bytes()[:6] == b"GIF89a"
@@ -65,8 +64,7 @@ def test_record_and_irregular_arch(tmp_path, capsys):
     (["--scale-to", "0.3"], "--scale-to"),
     (["--record", "missing.csv"], "missing.csv"),
 ])
-@pytest.mark.parametrize("command", ["rigid-blocks", "dem"])
-def test_bad_options_are_reported(capsys, command, argv, message):
-    assert main([command, *argv]) == 2
+def test_bad_options_are_reported(capsys, argv, message):
+    assert main(["rigid-blocks", *argv]) == 2
     err = capsys.readouterr().err
     assert err.startswith("archquake: error:") and message in err

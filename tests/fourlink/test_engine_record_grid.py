@@ -9,7 +9,7 @@ record, :func:`archquake.fourlink.time_history.simulate` of ``record.scaled(f)``
 import numpy as np
 import pytest
 
-from archquake import ArchDynamics
+from archquake import FourLinkModel
 from archquake.fourlink import engine
 from archquake.fourlink.time_history import simulate
 from archquake.ground_motion import stochastic_motion
@@ -17,7 +17,7 @@ from archquake.ground_motion import stochastic_motion
 
 @pytest.fixture(scope="module")
 def dynamics(nominal):
-    dynamics = ArchDynamics.from_arch(nominal, "nominal")
+    dynamics = FourLinkModel.from_arch(nominal, "nominal")
     return dynamics.tables, dynamics.restitution, dynamics.load_multipliers
 
 

@@ -161,12 +161,12 @@ def test_surveyed_arch_runs_through_the_dynamics(nominal):
 def test_failure_domain_and_fragility_of_a_pointed_arch():
     """The studies take a shaped arch unchanged: below k the arch does not move, the k line of
     the domain is the limit analysis's, and a fragility study's settings store the arch."""
-    from archquake import ArchDynamics
+    from archquake import FourLinkModel
     from archquake.studies.fragility import FragilitySettings, run_fragility
 
     arch = arch_of("pointed")
     k = both_directions(arch)[0].load_multiplier
-    domain = domain_of(ArchDynamics.from_arch(arch, "computed"),
+    domain = domain_of(FourLinkModel.from_arch(arch, "computed"),
         [0.4, 0.6], np.linspace(0.05, 1.0, 20))
     assert domain.limit_multiplier == pytest.approx(k, abs=1e-12)
     for piece in domain.slices:

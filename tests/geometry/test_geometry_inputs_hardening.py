@@ -7,7 +7,7 @@ import warnings
 import numpy as np
 import pytest
 
-from archquake import ArchDynamics, oppenheim
+from archquake import FourLinkModel, oppenheim
 from archquake.geometry import circular_arch, irregular_arch, load_arch, shaped_arch, surveyed_arch
 from archquake.geometry.blocks import DENSITY_RANGE
 from archquake.ground_motion import ground_motion
@@ -33,8 +33,8 @@ def test_blocks_listed_right_to_left_give_the_same_four_link_answer():
         right_to_left = surveyed_arch(blocks[::-1])
     assert right_to_left.to_dict() == left_to_right.to_dict()
     assert right_to_left.joints == pytest.approx(_radial_joints(arch), abs=1e-12)
-    a = ArchDynamics.from_arch(left_to_right, "computed")
-    b = ArchDynamics.from_arch(right_to_left, "computed")
+    a = FourLinkModel.from_arch(left_to_right, "computed")
+    b = FourLinkModel.from_arch(right_to_left, "computed")
     assert a.restitution == b.restitution
     assert a.load_multipliers == b.load_multipliers
     pulse = ground_motion("oppenheim", -0.6 * 9.81, 0.5)
@@ -78,8 +78,8 @@ def test_density_within_the_range_scales_the_masses_exactly():
     low, high = DENSITY_RANGE
     light, heavy = (circular_arch(10.0, 2.0, 1.5, 7, density=d) for d in (low, high))
     assert heavy.masses == pytest.approx(light.masses * high / low, rel=1e-12)
-    k_light = ArchDynamics.from_arch(light, "computed").load_multipliers
-    k_heavy = ArchDynamics.from_arch(heavy, "computed").load_multipliers
+    k_light = FourLinkModel.from_arch(light, "computed").load_multipliers
+    k_heavy = FourLinkModel.from_arch(heavy, "computed").load_multipliers
     assert k_heavy == pytest.approx(k_light, rel=1e-9)
 
 

@@ -376,12 +376,12 @@ def test_cli_limit_geometry_file(capsys, tmp_path, nominal):
 
 
 def test_cli_min_thickness(capsys):
-    assert main(["limit", "--min-thickness", "--json", "--radius", "2", "--embrace", "180",
+    assert main(["min-thickness", "--json", "--radius", "2", "--embrace", "180",
                  "--voussoirs", "40"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["ratio"] == pytest.approx(out["min_thickness"] / 2.0)
     assert out["min_thickness"] == pytest.approx(min_thickness(2.0, math.pi, 40), rel=1e-9)
-    assert main(["limit", "--min-thickness"]) == 0
+    assert main(["min-thickness"]) == 0
     assert "t_min" in capsys.readouterr().out
 
 
@@ -399,7 +399,6 @@ def test_cli_plot_writes_png(tmp_path, capsys):
         ["limit", "--seed", "3"],
         ["limit", "--voussoirs", "2"],
         ["limit", "--geometry", "/nonexistent/arch.json"],
-        ["limit", "--min-thickness", "--epsilon", "0.1"],
         ["limit", "--thickness", "-1"],
     ],
 )
@@ -421,7 +420,7 @@ def test_cli_limit_help(capsys):
         main(["limit", "--help"])
     assert exc.value.code == 0
     out = capsys.readouterr().out
-    for option in ("--json", "--min-thickness", "--plot", "--method", "--epsilon"):
+    for option in ("--json", "--min-pier-width", "--plot", "--method", "--epsilon"):
         assert option in out
 
 

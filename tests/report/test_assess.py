@@ -124,7 +124,7 @@ def test_failure_accelerations_are_those_of_domain_of(quick):
     p = r["pulses"]
     model = model_for(pointed_arch(), "four-link", restitution=r["settings"]["restitution"])
     domain = domain_of(model, p["durations"], p["amplitudes_g"], direction=p["direction"],
-                       resolution=p["resolution_g"], extend_to_g=None)
+                       resolution_g=p["resolution_g"], extend_to_g=None)
     for row, s in zip(p["rows"], domain.slices, strict=True):
         expected = s.failure_acceleration_g
         assert row["four_link"] == (None if math.isnan(expected) else expected)
@@ -134,7 +134,7 @@ def test_failure_accelerations_are_those_of_domain_of(quick):
     i = next(i for i, row in enumerate(p["rows"]) if row["difference"] is not None)
     blocks = RigidBlockModel(pointed_arch(), BlockSettings(friction=r["settings"]["friction"]))
     one = domain_of(blocks, [p["durations"][i]], p["amplitudes_g"], direction=p["direction"],
-                    resolution=p["resolution_g"], extend_to_g=None)
+                    resolution_g=p["resolution_g"], extend_to_g=None)
     assert p["rows"][i]["rigid_blocks"] == one.slices[0].failure_acceleration_g
     row = p["rows"][i]
     assert row["difference"] == pytest.approx(row["four_link"] / row["rigid_blocks"] - 1.0)
@@ -165,7 +165,7 @@ def test_the_irregular_arches_are_those_of_run_fragility(quick):
 
 def test_record_fragility_is_that_of_run_record_fragility(quick):
     from archquake.ground_motion import RecordSuite
-    from archquake.studies.fits import lognormal_fit
+    from archquake.studies.fits import fit_lognormal_or_none
     from archquake.studies.record_fragility import (
         RecordFragilitySettings,
         run_record_fragility,
@@ -186,7 +186,7 @@ def test_record_fragility_is_that_of_run_record_fragility(quick):
     # the median is the maximum-likelihood fit of the stripes' counts
     trials = entry["analysed"] * entry["records"]
     failures = np.round(np.array(entry["probability"]) * trials)
-    assert lognormal_fit(entry["levels"], trials, failures).median == pytest.approx(
+    assert fit_lognormal_or_none(entry["levels"], trials, failures).median == pytest.approx(
         entry["lognormal"]["median"], rel=1e-12)
 
 

@@ -158,10 +158,10 @@ def test_comparison_section_comes_from_compare_models(report, nominal):
     settings = ReproductionSettings.quick_settings()
     comparison = compare_models(nominal, settings.comparison_durations,
                                 amplitudes_g=inclusive_range(0.3, 3.0, 0.1),
-                                resolution=settings.comparison_resolution_g)
+                                resolution_g=settings.comparison_resolution_g)
     section = results["comparison"]
     assert section["rows"] == json.loads(json.dumps(comparison.to_list()))
-    assert section["restitution"]["blocks"][0] == pytest.approx(0.7478, abs=1e-4)
+    assert section["restitution"]["measured"][0] == pytest.approx(0.7478, abs=1e-4)
     text = (out / "report.md").read_text()
     part = text[text.index("## How far to trust the four-link model"):]
     part = part[:part.index("\n## ", 5)]
@@ -243,7 +243,7 @@ def test_both_models_section_comes_from_the_studies(report):
                            settings.comparison_amplitude_step_g)
     four_link = domain_of(model_for(oppenheim(), restitution=0.875),
                           settings.comparison_durations, grid,
-                          resolution=settings.comparison_resolution_g, extend_to_g=None)
+                          resolution_g=settings.comparison_resolution_g, extend_to_g=None)
     assert both["domain"]["four_link_failure_g"] == four_link.failure_accelerations_g.tolist()
     assert both["domain"]["rigid_block_failure_g"] == [
         row["rigid_block"] for row in results["comparison"]["rows"]]

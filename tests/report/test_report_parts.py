@@ -142,11 +142,3 @@ def test_comparison_statistics_from_rows_computed_by_hand():
     assert st["all_from"] == 0.7 and st["short"] == [0.3, 0.5]
     assert st["largest_long"] == (pytest.approx(0.04), "y", 0.7)
     assert parts.long_pulses_agree(summary)
-
-
-def test_the_former_module_reexports_the_package():
-    import archquake.paper_reproduction as former
-    import archquake.report as report
-
-    for name in former.__all__:
-        assert getattr(former, name) is getattr(report, name), name

@@ -34,7 +34,7 @@ def calls(monkeypatch):
 
 def test_assessment_pulse_part_bounds_the_rigid_blocks_failure(calls):
     arch = oppenheim()
-    rigid = domain_of(RigidBlockModel(arch), DURATIONS, GRID, resolution=1e-3,
+    rigid = domain_of(RigidBlockModel(arch), DURATIONS, GRID, resolution_g=1e-3,
                       extend_to_g=None, search="exhaustive")
     four_link = assess_parts.four_link_domains(FourLinkModel.from_arch(arch), DURATIONS, GRID,
                                                1e-3)
@@ -85,7 +85,7 @@ def test_assessment_record_check_counts_undecided_pairs_apart():
 
 
 def test_reproduction_comparison_does_not_compare_an_undecided_failure(calls):
-    comparison = compare_models(oppenheim(), DURATIONS, amplitudes_g=GRID, resolution=1e-3,
+    comparison = compare_models(oppenheim(), DURATIONS, amplitudes_g=GRID, resolution_g=1e-3,
                                 restitutions=("paper",), search="exhaustive")
     summary = {"rows": comparison.to_list(), "restitution": comparison.restitution,
                "scan_g": [float(GRID[0]), float(GRID[-1]), 0.05]}

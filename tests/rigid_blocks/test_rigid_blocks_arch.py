@@ -25,10 +25,10 @@ from archquake.rigid_blocks import (
 from archquake.studies.failure_domain import domain_of
 
 
-def failure_curve(structure, durations, amplitudes_g, resolution, **options):
+def failure_curve(structure, durations, amplitudes_g, resolution_g, **options):
     """The rigid-block model's failure domain over a grid (no extension)."""
-    return domain_of(RigidBlockModel(structure), durations, amplitudes_g, resolution=resolution,
-                     extend_to_g=None, **options)
+    return domain_of(RigidBlockModel(structure), durations, amplitudes_g,
+                     resolution_g=resolution_g, extend_to_g=None, **options)
 
 ARCHES = {"NA": oppenheim()} | {f"irregular-{seed}": irregular_arch(oppenheim(), 0.10, rng=seed)
                                 for seed in (1, 2, 3)}
@@ -162,15 +162,15 @@ def test_long_pulse_failure_agrees_with_four_link_model(nominal):
     from archquake.studies.comparison import compare_models
 
     comparison = compare_models(nominal, [0.7, 1.0], amplitudes_g=np.arange(0.30, 0.61, 0.05),
-                                resolution=2e-3)
-    assert set(comparison.four_link) == {"computed", "link", "paper", "blocks"}
+                                resolution_g=2e-3)
+    assert set(comparison.four_link) == {"computed", "link", "paper", "measured"}
     for restitution, difference in comparison.relative_differences().items():
         assert np.all(np.abs(difference) < 0.05), (restitution, difference)
 
 
 def test_failure_curve_reports_activation_and_failure(nominal):
     curve = failure_curve(nominal, [0.5], amplitudes_g=np.arange(0.30, 0.61, 0.05),
-                          resolution=5e-3)
+                          resolution_g=5e-3)
     assert curve.model["model"] == "rigid-blocks"
     (row,) = curve.to_list()
     statuses = [iv["outcome"] for iv in row["intervals"]]
@@ -253,7 +253,7 @@ def test_bad_input_is_a_value_error(nominal):
 
 def test_failure_curve_on_two_workers_equals_the_serial_one(nominal):
     """Durations run on worker processes (which unpickle the arrays) give the same slices."""
-    kwargs = {"amplitudes_g": np.arange(0.35, 0.61, 0.05), "resolution": 0.01}
+    kwargs = {"amplitudes_g": np.arange(0.35, 0.61, 0.05), "resolution_g": 0.01}
     serial = failure_curve(nominal, [0.5, 0.7], **kwargs)
     parallel = failure_curve(nominal, [0.5, 0.7], workers=2, **kwargs)
     assert parallel.to_list() == serial.to_list()

@@ -152,7 +152,7 @@ def test_overturning_threshold_of_rectangular_pulse(block, duration):
     from archquake.studies.failure_domain import domain_of
 
     dem = domain_of(RigidBlockModel(block), [duration], np.arange(0.15, 1.0, 0.05),
-                    direction="r", motion="rectangular", resolution=1e-3,
+                    direction="r", motion="rectangular", resolution_g=1e-3,
                     extend_to_g=None).slices[0]
     assert dem.failure_acceleration_g == pytest.approx(ode, rel=1e-2)
     # and the block starts rocking at g tan(alpha) = 0.2 g (statics)

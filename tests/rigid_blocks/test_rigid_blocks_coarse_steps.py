@@ -22,7 +22,7 @@ def test_coarse_steps_find_the_failure_acceleration_of_a_four_times_finer_step(d
     found = {}
     for name, settings in (("coarse", COARSE), ("fine", BlockSettings(time_step=2.5e-4))):
         model = RigidBlockModel(oppenheim(), settings)
-        domain = domain_of(model, (duration,), (0.3, 0.4, 0.5, 0.6, 0.7), resolution=0.001,
+        domain = domain_of(model, (duration,), (0.3, 0.4, 0.5, 0.6, 0.7), resolution_g=0.001,
                            workers=1)
         found[name] = domain.slices[0].failure_acceleration_g
     assert found["coarse"] == pytest.approx(found["fine"], abs=0.002)

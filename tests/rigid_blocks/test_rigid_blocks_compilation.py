@@ -34,7 +34,7 @@ block_outcome(arch, pulse)
 simulate_blocks(arch, pulse, t_end=0.05)
 block_outcome(arch, read_record({record!r}, scale_to=0.1))
 copy = pickle.loads(pickle.dumps(from_arch(arch)))  # as a worker process receives it
-domain_of(RigidBlockModel(copy), [0.2], [0.1, 0.2], resolution=0.1, extend_to_g=None)
+domain_of(RigidBlockModel(copy), [0.2], [0.1, 0.2], resolution_g=0.1, extend_to_g=None)
 block_outcome(rectangular_block(0.4, 2.0), None)
 closing_impact(arch, np.ones((7, 3)))
 from archquake.rigid_blocks import solver

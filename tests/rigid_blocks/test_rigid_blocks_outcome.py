@@ -27,7 +27,7 @@ from archquake.studies.failure_domain import domain_slice
 
 
 def run_json(capsys, *argv):
-    assert main(["dem", *argv, "--json"]) == 0
+    assert main(["rigid-blocks", *argv, "--json"]) == 0
     return json.loads(capsys.readouterr().out)
 
 
@@ -43,7 +43,7 @@ def test_time_step_longer_than_the_motion_allows_is_refused(nominal, time_step):
 
 
 def test_cli_dem_refuses_a_time_step_of_a_second(capsys):
-    assert main(["dem", "--time-step", "1"]) == 2
+    assert main(["rigid-blocks", "--time-step", "1"]) == 2
     err = capsys.readouterr().err
     assert err.startswith("archquake: error: --time-step must be at most")  # names the option
     assert "never moves" not in err
@@ -108,7 +108,7 @@ def test_run_cut_short_is_undecided_not_a_collapse(nominal):
 
 
 def test_cli_dem_cut_short_says_undecided(capsys):
-    assert main(["dem", "--t-end", "0.1"]) == 0
+    assert main(["rigid-blocks", "--t-end", "0.1"]) == 0
     out = capsys.readouterr().out
     assert "undecided" in out and "nan" not in out and "collapses" not in out
     data = run_json(capsys, "--t-end", "0.1")
@@ -123,7 +123,7 @@ def test_failure_search_keeps_undecided_apart_from_collapse():
             return Status.REST, 0
         return (Status.UNDECIDED, 0) if amplitude < 0.5 else (Status.COLLAPSE, 0)
 
-    piece = domain_slice(classify, np.linspace(0.1, 1.0, 10), resolution=1e-3)
+    piece = domain_slice(classify, np.linspace(0.1, 1.0, 10), resolution_g=1e-3)
     assert [iv.status for iv in piece.intervals] == ["rest", "undecided", "collapse"]
     assert piece.failure_acceleration_g == pytest.approx(0.5, abs=1e-3)
 
@@ -145,7 +145,7 @@ def test_unsolved_contact_problem_is_undecided_not_a_motion():
 
 
 def test_recording_does_not_change_the_outcome(nominal):
-    """The default dem analysis (-1 g, t_p = 0.27 s): 0.463 rad and 1.23 m (those of every step
+    """The default analysis (-1 g, t_p = 0.27 s): 0.463 rad and 1.23 m (those of every step
     at a quarter of the step within 1e-3 rad and 0.02 m), whether the run stops at the decision
     or is recorded 0.5 s or 3 s beyond it (the recorded run once reported 1.1053 rad and
     4.1193 m); the summary's crown drop is the largest recorded up to the decision."""

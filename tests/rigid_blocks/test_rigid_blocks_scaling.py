@@ -133,9 +133,9 @@ def test_structure_beyond_the_block_limit_is_refused_up_front():
 
 
 def test_cli_dem_refuses_a_thousand_voussoirs(capsys):
-    """``archquake dem --voussoirs 1000`` answers at once with a one-line error (it grew to
+    """``archquake rigid-blocks --voussoirs 1000`` answers at once with a one-line error (it grew to
     gigabytes and printed nothing for minutes)."""
-    assert main(["dem", "--voussoirs", "1000"]) == 2
+    assert main(["rigid-blocks", "--voussoirs", "1000"]) == 2
     err = capsys.readouterr().err
     assert err.startswith("archquake: error:") and f"at most {MAX_BLOCKS} blocks" in err
     assert "voussoirs" in err and len(err.strip().splitlines()) == 1

@@ -12,7 +12,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
-from archquake import ArchDynamics  # noqa: E402
+from archquake import FourLinkModel  # noqa: E402
 from archquake.cli import main  # noqa: E402
 from archquake.plotting import plot_model_comparison, plot_model_differences  # noqa: E402
 from archquake.rigid_blocks import (
@@ -29,21 +29,21 @@ RESOLUTION = 0.01
 
 @pytest.fixture(scope="module")
 def comparison(nominal):
-    return compare_models(nominal, DURATIONS, amplitudes_g=GRID, resolution=RESOLUTION)
+    return compare_models(nominal, DURATIONS, amplitudes_g=GRID, resolution_g=RESOLUTION)
 
 
 def test_values_are_each_models_own_failure_curve(nominal, comparison):
-    """The four-link columns are ArchDynamics.failure_domain with each restitution model, the
+    """The four-link columns are FourLinkModel.failure_domain with each restitution model, the
     rigid-block column is the rigid-block model's failure domain: the same search, the same scan
     and resolution (its default strategy and the exhaustive grid give the same slices here)."""
-    rigid = domain_of(RigidBlockModel(nominal), DURATIONS, GRID, resolution=RESOLUTION,
+    rigid = domain_of(RigidBlockModel(nominal), DURATIONS, GRID, resolution_g=RESOLUTION,
                       extend_to_g=None, search="exhaustive")
     assert comparison.rigid_block.slices == rigid.slices
-    dynamics = ArchDynamics.from_arch(nominal)
-    assert list(comparison.four_link) == ["computed", "link", "paper", "blocks"]
+    dynamics = FourLinkModel.from_arch(nominal)
+    assert list(comparison.four_link) == ["computed", "link", "paper", "measured"]
     for model, domain in comparison.four_link.items():
         direct = domain_of(dynamics.with_restitution(model),
-            DURATIONS, GRID, resolution=RESOLUTION, extend_to_g=None)
+            DURATIONS, GRID, resolution_g=RESOLUTION, extend_to_g=None)
         assert domain.slices == direct.slices, model
         assert domain.restitution == direct.restitution
     rows = comparison.to_list()
@@ -78,7 +78,7 @@ def test_cli_text_names_both_models(capsys):
     assert main(["compare", "--durations", "0.7", "--amplitudes", "0.3:0.6:0.1",
                  "--resolution", "0.02", "--no-progress"]) == 0
     out = capsys.readouterr().out
-    assert "rigid blocks" in out and "paper 0.875" in out and "blocks 0.748" in out
+    assert "rigid blocks" in out and "paper 0.875" in out and "measured 0.748" in out
 
 
 def test_cli_plot(tmp_path, capsys):
@@ -104,34 +104,34 @@ def test_plots_draw_every_model(comparison):
     plt.close(ax.figure)
 
 
-def test_blocks_restitution_follows_the_friction_of_the_comparison(nominal):
-    """With a friction low enough for the joints to slide at the impact, the 'blocks' c_v is
+def test_measured_restitution_follows_the_friction_of_the_comparison(nominal):
+    """With a friction low enough for the joints to slide at the impact, the 'measured' c_v is
     measured with that friction."""
     settings = BlockSettings(friction=0.3)  # the lowest friction it stands with is 0.206
-    c = compare_models(nominal, (0.7,), amplitudes_g=(0.3, 0.5), resolution=0.05,
-                       restitutions=("blocks",), settings=settings)
-    from archquake.fourlink.impact import blocks_restitution
+    c = compare_models(nominal, (0.7,), amplitudes_g=(0.3, 0.5), resolution_g=0.05,
+                       restitutions=("measured",), settings=settings)
+    from archquake.fourlink.impact import measured_restitution
 
-    mech_l, mech_r = ArchDynamics.from_arch(nominal).mechanisms
-    assert c.restitution["blocks"][0] == pytest.approx(
-        blocks_restitution(mech_l, mech_r, settings), rel=1e-12)
-    assert c.restitution["blocks"][0] > 0.755  # 0.759, vs 0.748 at mu = 0.8
+    mech_l, mech_r = FourLinkModel.from_arch(nominal).mechanisms
+    assert c.restitution["measured"][0] == pytest.approx(
+        measured_restitution(mech_l, mech_r, settings), rel=1e-12)
+    assert c.restitution["measured"][0] > 0.755  # 0.759, vs 0.748 at mu = 0.8
 
 
 def test_precomputed_rigid_block_curve_is_checked(nominal, comparison):
-    again = compare_models(nominal, DURATIONS, amplitudes_g=GRID, resolution=RESOLUTION,
+    again = compare_models(nominal, DURATIONS, amplitudes_g=GRID, resolution_g=RESOLUTION,
                            rigid_block=comparison.rigid_block, restitutions=("paper",))
     assert again.rigid_block is comparison.rigid_block
     assert again.four_link["paper"].slices == comparison.four_link["paper"].slices
     with pytest.raises(ValueError, match="rigid_block must be the failure curve"):
-        compare_models(nominal, DURATIONS, amplitudes_g=GRID, resolution=2 * RESOLUTION,
+        compare_models(nominal, DURATIONS, amplitudes_g=GRID, resolution_g=2 * RESOLUTION,
                        rigid_block=comparison.rigid_block)
 
 
 @pytest.mark.parametrize("kwargs, match", [
     ({"restitutions": ("bogus",)}, "restitution must be one of"),
     ({"restitutions": ()}, "at least one"),
-    ({"resolution": 0.0}, "resolution"),
+    ({"resolution_g": 0.0}, "resolution_g"),
     ({"amplitudes_g": (0.5, 0.4)}, "increasing"),
     ({"direction": "x"}, "direction"),
     ({"durations": (0.0,)}, "durations"),

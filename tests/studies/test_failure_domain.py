@@ -4,7 +4,7 @@ import math
 import numpy as np
 import pytest
 
-from archquake import ArchDynamics
+from archquake import FourLinkModel
 from archquake.cli import main
 from archquake.fourlink.engine import check_restitution
 from archquake.fourlink.impact import restitution
@@ -37,7 +37,7 @@ def test_every_interval_found_including_non_monotone_ones():
              (0.5231, ("recovery", 0)), (0.6, ("collapse", 1))]
     classify, _ = make_classifier(edges)
     grid = [0.2 + 0.05 * i for i in range(17)]  # 0.2 .. 1.0
-    s = domain_slice(classify, grid, duration=0.4, resolution=1e-6)
+    s = domain_slice(classify, grid, duration=0.4, resolution_g=1e-6)
     got = [(iv.status, iv.half_cycle) for iv in s.intervals]
     assert got == [k for _, k in edges]
     for iv, (start, _) in zip(s.intervals[1:], edges[1:], strict=True):
@@ -51,7 +51,7 @@ def test_third_class_inside_one_scan_cell_is_resolved():
     # a narrow collapse window entirely inside one grid cell, between two rest/recovery classes
     edges = [(0.0, ("recovery", 0)), (0.5000, ("collapse", 3)), (0.5100, ("collapse", 1))]
     classify, _ = make_classifier(edges)
-    s = domain_slice(classify, [0.4, 0.6], resolution=1e-7)
+    s = domain_slice(classify, [0.4, 0.6], resolution_g=1e-7)
     assert [iv.half_cycle for iv in s.intervals] == [0, 3, 1]
     assert s.intervals[1].start == pytest.approx(0.5, abs=1e-7)
     assert s.intervals[2].start == pytest.approx(0.51, abs=1e-7)
@@ -78,8 +78,8 @@ def test_bad_grid(grid):
 def test_nominal_failure_acceleration_matches_paper_point_q(nominal, paper):
     # Fig. 17: Oppenheim's arch with c_v = 0.875 fails from 0.49 g at t_p = 0.40 s
     q = paper["dynamics"]["NA"]["failure_acceleration_tp040"]
-    domain = domain_of(ArchDynamics.from_arch(nominal, "paper"),
-        [0.40], inclusive_range(0.40, 0.60, 0.01), resolution=1e-4, extend_to_g=None)
+    domain = domain_of(FourLinkModel.from_arch(nominal, "paper"),
+        [0.40], inclusive_range(0.40, 0.60, 0.01), resolution_g=1e-4, extend_to_g=None)
     assert domain.restitution == (paper["dynamics"]["NA"]["restitution_paper"],) * 2
     assert domain.slices[0].failure_acceleration_g == pytest.approx(q, abs=0.01)
     # below Q the arch recovers (it moves: Q is above k), from Q on it collapses after an impact
@@ -91,8 +91,8 @@ def test_first_half_cycle_boundary_decreases_with_duration(nominal, paper):
     # Oppenheim's curve: the shorter the pulse, the larger the acceleration that overturns the
     # arch in the first half cycle; it stays above the activation multiplier k
     durations = inclusive_range(0.1, 1.0, 0.1)
-    domain = domain_of(ArchDynamics.from_arch(nominal, "paper"),
-        durations, np.geomspace(0.3, 20.0, 40), resolution=1e-3, extend_to_g=None)
+    domain = domain_of(FourLinkModel.from_arch(nominal, "paper"),
+        durations, np.geomspace(0.3, 20.0, 40), resolution_g=1e-3, extend_to_g=None)
     first = domain.first_half_cycle_accelerations_g
     assert np.all(np.isfinite(first))
     assert np.all(np.diff(first) < 0)
@@ -110,8 +110,8 @@ def test_domain_classification_agrees_with_direct_simulations(nominal, direction
     c_lr, c_rl = restitution("computed", *pair)
     assert max(c_lr, c_rl) > 1.0 > c_lr * c_rl
     durations = [0.3, 0.5]
-    domain = domain_of(ArchDynamics.from_arch(arch, "computed"),
-        durations, inclusive_range(0.2, 1.4, 0.05), direction=direction, resolution=1e-4,
+    domain = domain_of(FourLinkModel.from_arch(arch, "computed"),
+        durations, inclusive_range(0.2, 1.4, 0.05), direction=direction, resolution_g=1e-4,
         extend_to_g=None)
     sign = -1.0 if direction == "l" else 1.0
     checked = 0
@@ -152,7 +152,7 @@ def test_plot_failure_domain_draws_the_curves(nominal):
 
     from archquake.plotting import plot_failure_domain
 
-    domain = domain_of(ArchDynamics.from_arch(nominal, "paper"),
+    domain = domain_of(FourLinkModel.from_arch(nominal, "paper"),
         [0.4, 0.6, 0.8], np.geomspace(0.3, 2.0, 25), extend_to_g=None)
     ax = plot_failure_domain(domain)
     lines = {line.get_label(): line for line in ax.get_lines()}

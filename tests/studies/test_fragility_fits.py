@@ -18,9 +18,9 @@ from archquake.studies.fits import (
     empirical_cdf,
     evaluate_polynomial_fit,
     fit_lognormal,
+    fit_lognormal_or_none,
     fit_polynomial,
     log_likelihood,
-    lognormal_fit,
     probability_of_failure,
     probit_newton,
     rising_part,
@@ -249,7 +249,7 @@ def test_two_stripes_are_fitted_exactly_the_closed_form(z):
     beta = math.log(x[1] / x[0]) / (q2 - q1)
     theta = x[0] * math.exp(-beta * q1)
     for median, dispersion in (_newton(x, n, z), astuple(fit_lognormal(x, n, z)),
-                               astuple(lognormal_fit(x, n, z))):
+                               astuple(fit_lognormal_or_none(x, n, z))):
         assert median == pytest.approx(theta, rel=1e-7)
         assert dispersion == pytest.approx(beta, rel=1e-7)
 
@@ -294,13 +294,13 @@ def test_both_solvers_find_the_maximum_of_an_independent_likelihood(case):
 def test_separated_counts_have_no_maximum():
     """Every survival at or below every failure (the quick pulse study at t_p = 0.4 s): the
     likelihood grows without bound as the fit tends to a step. Newton says so (nan),
-    lognormal_fit gives None, and fit_lognormal stops at a near-step where the optimizer's
+    fit_lognormal_or_none gives None, and fit_lognormal stops at a near-step where the optimizer's
     tolerances leave it (the reason the two solvers are both kept, see the module)."""
     z = [0, 0, 0, 0, 2, 6]
     assert separated(PULSE_QUICK, 6, z)
     with np.errstate(invalid="ignore"):
         assert all(math.isnan(v) for v in _newton(PULSE_QUICK, 6, z))
-    assert lognormal_fit(PULSE_QUICK, 6, z) is None
+    assert fit_lognormal_or_none(PULSE_QUICK, 6, z) is None
     step = fit_lognormal(PULSE_QUICK, 6, z)
     assert step.dispersion < 0.05 and 0.40 <= step.median <= 0.45
     # a steeper curve through the same P at the mixed stripe (0.40 g) is more likely still

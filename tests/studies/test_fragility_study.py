@@ -133,6 +133,20 @@ def test_a_saved_study_reloads_as_the_same_result(small_result, tmp_path):
         load_fragility(tmp_path / "empty")
 
 
+@pytest.mark.parametrize("former", ["blocks", "rigid-blocks"])
+def test_settings_stored_under_former_names_load(former):
+    """A study stored by an earlier version loads: ``tolerance`` is read as ``epsilon`` and the
+    restitution measured on the rigid blocks, stored as ``"blocks"`` or ``"rigid-blocks"``, as
+    ``"measured"`` (the settings refuse those names when they are given)."""
+    settings = FragilitySettings(**TINY, restitution="measured", epsilon=0.05)
+    stored = settings.to_dict()
+    stored["tolerance"] = stored.pop("epsilon")
+    stored["restitution"] = former
+    assert FragilitySettings.from_dict(stored) == settings
+    with pytest.raises(ValueError, match=f"got '{former}'"):
+        FragilitySettings(**TINY, restitution=former)
+
+
 def test_irregular_arches_fail_below_the_nominal_failure_acceleration():
     # The paper's finding (Sect. 5.3.3, Fig. 21): where the nominal arch survives (a < Q),
     # some irregular arches (epsilon = 0.10) already fail, at every pulse duration.

@@ -59,7 +59,7 @@ def test_nominal_arch_fraction_equals_records_collapsing_in_simulate(suite_dir, 
                                                                      tmp_path, capsys):
     """``--epsilon 0 --samples 1`` is the nominal arch alone: at every stripe, P is the
     fraction of records that collapse it (either polarity) in simulate()."""
-    argv = ["fragility", "--records", str(suite_dir), "--im", "pga", "--levels", LEVELS,
+    argv = ["record-fragility", "--records", str(suite_dir), "--im", "pga", "--levels", LEVELS,
             "--epsilon", "0", "--samples", "1", "--out", str(tmp_path / "out"), "--json",
             "--no-progress"]
     assert main(argv) == 0
@@ -99,10 +99,10 @@ def test_stripes_of_arias_intensity_scale_records_as_scale_to_im(nominal_pair):
 def test_analyses_below_activation_are_exact_rests():
     """Skipped analyses (no sample reaches the activation acceleration) are what the engine
     decides when it integrates them, including factors a hair either side of the threshold."""
-    from archquake import ArchDynamics, oppenheim
+    from archquake import FourLinkModel, oppenheim
     from archquake.fourlink.engine import outcomes_grid
 
-    dynamics = ArchDynamics.from_arch(oppenheim(), "computed")
+    dynamics = FourLinkModel.from_arch(oppenheim(), "computed")
     tables, c = dynamics.tables, dynamics.restitution
     motion = stochastic_suite(1, seed=2, **SUITE)[0]
     k = tables[1].activation_g * 9.81  # Mech-r opens when xg'' > k_r g
@@ -172,6 +172,18 @@ def test_saved_study_reloads_as_the_same_result(small_study):
     assert stored["probability"] == result.probability.tolist()
     curves = pd.read_csv(out / "curves.csv")
     assert curves["probability"].to_numpy() == pytest.approx(result.probability)
+
+
+def test_settings_stored_under_former_names_load():
+    """``tolerance`` is read as ``epsilon``, the restitution ``"blocks"`` or ``"rigid-blocks"``
+    of an earlier version as ``"measured"``."""
+    settings = RecordFragilitySettings(suite=RecordSuite.from_stochastic(1, **SUITE),
+                                       levels=(0.5, 1.0), restitution="measured", epsilon=0.05)
+    for former in ("blocks", "rigid-blocks"):
+        stored = settings.to_dict()
+        stored["tolerance"] = stored.pop("epsilon")
+        stored["restitution"] = former
+        assert RecordFragilitySettings.from_dict(stored) == settings
 
 
 def test_results_do_not_depend_on_the_backend(suite_dir):
@@ -251,11 +263,10 @@ def test_plots_of_a_record_study(small_study):
     (["--levels", "0,0.5,1"], "--levels must be pga values > 0 [g]"),
     (["--levels", "1,0.5"], "--levels must increase"),
     ([], "--levels is required with --records"),
-    (["--levels", "0.5,1", "--durations", "0.4"], "--durations: options of the pulse study"),
     (["--levels", "0.5,1", "--samples", "0"], "--samples must be an integer in [1, 100000]"),
 ])
 def test_cli_bad_record_inputs_are_clear_errors(extra, message, suite_dir, tmp_path, capsys):
-    argv = ["fragility", "--records", str(suite_dir), "--out", str(tmp_path / "o"),
+    argv = ["record-fragility", "--records", str(suite_dir), "--out", str(tmp_path / "o"),
             "--no-progress", *extra]
     assert main(argv) == 2
     err = capsys.readouterr().err
@@ -266,13 +277,11 @@ def test_cli_bad_record_paths_are_clear_errors(tmp_path, capsys):
     empty = tmp_path / "empty"
     empty.mkdir()
     (empty / "notes.txt").write_text("no records here\n")
-    base = ["fragility", "--levels", "0.5,1", "--out", str(tmp_path / "o"), "--no-progress"]
+    base = ["record-fragility", "--levels", "0.5,1", "--out", str(tmp_path / "o"), "--no-progress"]
     assert main([*base, "--records", str(empty)]) == 2
     assert f"record folder '{empty}': no record files" in capsys.readouterr().err
     assert main([*base, "--records", str(tmp_path / "missing.csv")]) == 2
     assert "missing.csv': no such file" in capsys.readouterr().err
-    assert main(["fragility", "--im", "pgv", "--out", str(tmp_path / "o")]) == 2
-    assert "--im: only for a record-based study" in capsys.readouterr().err
 
 
 def test_settings_refuse_bad_values():
@@ -313,9 +322,9 @@ def test_cli_record_study_writes_tables_figures_and_nrml(suite_dir, tmp_path, ca
     import xml.etree.ElementTree as ET
 
     out, plots, nrml = tmp_path / "out", tmp_path / "figs", tmp_path / "arch.xml"
-    argv = ["fragility", "--records", str(suite_dir), "--im", "pgv", "--levels", "0.4:2.4:0.25",
-            "--samples", "2", "--out", str(out), "--plot-dir", str(plots), "--export-nrml",
-            str(nrml), "--no-progress"]
+    argv = ["record-fragility", "--records", str(suite_dir), "--im", "pgv", "--levels",
+            "0.4:2.4:0.25", "--samples", "2", "--out", str(out), "--plot-dir", str(plots),
+            "--export-nrml", str(nrml), "--no-progress"]
     assert main(argv) == 0
     text = capsys.readouterr().out
     assert "Record-based fragility: h = 2 irregular arches" in text and "pgv [m/s]" in text

@@ -63,7 +63,7 @@ def test_rigid_block_domain_is_the_same_by_every_strategy():
     Oppenheim's arch with rigid blocks, at a short and a long pulse."""
     model = model_for(oppenheim(), "rigid-blocks")
     grid = inclusive_range(0.3, 1.5, 0.1)
-    domains = {search: domain_of(model, [0.25, 0.5], grid, resolution=0.01, extend_to_g=None,
+    domains = {search: domain_of(model, [0.25, 0.5], grid, resolution_g=0.01, extend_to_g=None,
                                  search=search, stride=4)
                for search in ("exhaustive", "screened", "bisection")}
     for search, domain in domains.items():
@@ -82,8 +82,8 @@ def test_disagreement_of_two_domains_is_where_exactly_one_collapses():
     four_link, blocks = model_for(arch, "four-link", restitution="paper"), model_for(
         arch, "rigid-blocks")
     grid = inclusive_range(0.3, 1.5, 0.1)
-    first = domain_of(four_link, [0.2, 0.5], grid, resolution=0.01, extend_to_g=None)
-    second = domain_of(blocks, [0.2, 0.5], grid, resolution=0.01, extend_to_g=None)
+    first = domain_of(four_link, [0.2, 0.5], grid, resolution_g=0.01, extend_to_g=None)
+    second = domain_of(blocks, [0.2, 0.5], grid, resolution_g=0.01, extend_to_g=None)
     gap = domain_disagreement(first, second)
     assert gap.names == ("four-link", "rigid-blocks")
     short, long = gap.intervals

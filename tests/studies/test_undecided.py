@@ -57,7 +57,7 @@ def test_probability_bounds_count_undecided_as_survival_then_as_collapse():
 def test_domain_reports_the_undecided_band_and_bounds_the_failure_acceleration(calls, k_l):
     durations, grid = (0.4, 0.6), np.round(np.arange(0.2, 1.2001, 0.05), 10)
     domain = domain_of(RigidBlockModel(oppenheim()), durations, grid, direction="l",
-                       resolution=RESOLUTION, extend_to_g=None, search="exhaustive")
+                       resolution_g=RESOLUTION, extend_to_g=None, search="exhaustive")
     low, high = (k_l * m for m in forced.UNDECIDED_BAND)
     second = [k_l * m for m in forced.SECOND_BAND]
     short, long = domain.slices
@@ -86,7 +86,7 @@ def test_domain_reports_the_undecided_band_and_bounds_the_failure_acceleration(c
 def test_domain_without_undecided_analyses_reports_nothing_more(calls, k_l):
     """Below the undecided bands the domain and its JSON are as they always were."""
     grid = np.round(np.arange(0.05, 1.5 * k_l, 0.02), 10)
-    domain = domain_of(RigidBlockModel(oppenheim()), (0.6,), grid, resolution=RESOLUTION,
+    domain = domain_of(RigidBlockModel(oppenheim()), (0.6,), grid, resolution_g=RESOLUTION,
                        extend_to_g=None, search="exhaustive")
     assert domain.undecided == (0,) and domain.slices[0].undecided_bands_g == []
     assert set(domain.slices[0].to_dict()) == {"duration", "failure_acceleration",
@@ -249,7 +249,7 @@ def test_compare_never_compares_a_failure_acceleration_above_an_undecided_band(c
     from archquake.studies.comparison import compare_models
 
     grid = np.round(np.arange(0.2, 1.2001, 0.05), 10)
-    comparison = compare_models(oppenheim(), (0.4, 0.6), amplitudes_g=grid, resolution=1e-3,
+    comparison = compare_models(oppenheim(), (0.4, 0.6), amplitudes_g=grid, resolution_g=1e-3,
                                 restitutions=("computed",), search="exhaustive")
     made = sum(1 for c in calls if c[2] is Status.UNDECIDED)
     assert comparison.undecided_analyses == made > 0
@@ -282,7 +282,7 @@ def test_failure_domain_figure_shades_the_undecided_bands(calls):
     from archquake.plotting import DOMAIN_LABELS, plot_failure_domain
 
     grid = np.round(np.arange(0.2, 1.2001, 0.05), 10)
-    domain = domain_of(RigidBlockModel(oppenheim()), (0.4, 0.6), grid, resolution=1e-3,
+    domain = domain_of(RigidBlockModel(oppenheim()), (0.4, 0.6), grid, resolution_g=1e-3,
                        extend_to_g=None, search="exhaustive")
     ax = plot_failure_domain(domain)
     labels = [text.get_text() for text in ax.get_legend().get_texts()]

@@ -223,7 +223,7 @@ def failure_domain(spec: dict, report) -> dict:
             report(done, total, f"{name} model: t_p = {duration:g} s")
             piece = domain_of(model, [duration], settings["amplitudes"],
                               direction=settings["direction"], motion=settings["motion"],
-                              resolution=settings["resolution"],
+                              resolution_g=settings["resolution"],
                               extend_to_g=settings["extend_to"])
             first = first or piece
             slices += piece.slices

@@ -37,8 +37,6 @@ class Command(NamedTuple):
     ``run(args) -> int``."""
     summary: str
     """One line, as ``archquake --help`` lists it."""
-    aliases: tuple[str, ...] = ()
-    """Former names, still accepted."""
 
 
 COMMANDS = {
@@ -51,8 +49,7 @@ COMMANDS = {
         "limit analysis: horizontal load multipliers k_l, k_r and the collapse hinges"),
     "min-thickness": Command(
         "main_min_thickness",
-        "minimum thickness under its own weight of an arch of a shape (also limit "
-        "--min-thickness)"),
+        "minimum thickness under its own weight of an arch of a shape"),
     "mechanism": Command(
         "main_mechanism",
         "four-link mechanisms Mech-l and Mech-r: theta_u, links, critical angle, c_v"),
@@ -68,8 +65,7 @@ COMMANDS = {
         "(Figs. 17-21)"),
     "record-fragility": Command(
         "main_record_fragility",
-        "fragility of irregular arches under a suite of records: multiple-stripe analysis "
-        "(also fragility --records)"),
+        "fragility of irregular arches under a suite of records: multiple-stripe analysis"),
     "simulate": Command(
         "main_simulate",
         "time history of the rocking arch under a pulse, a record or a stochastic motion"),
@@ -79,7 +75,7 @@ COMMANDS = {
     "rigid-blocks": Command(
         "main_rigid_blocks",
         "rigid-block model of the arch (every voussoir a block, contacts with friction) under "
-        "a pulse or a recorded accelerogram (dem: its former name)", aliases=("dem",)),
+        "a pulse or a recorded accelerogram"),
     "compare": Command(
         "main_compare",
         "failure acceleration of the arch per pulse duration in the rigid-block model beside "
@@ -91,9 +87,6 @@ COMMANDS = {
 }
 """The commands: name -> :class:`Command`, in the order ``archquake --help`` lists them."""
 
-_NAMES = {alias: name for name, command in COMMANDS.items()
-          for alias in (name, *command.aliases)}
-
 DESCRIPTION = ("Seismic response of masonry arches with geometrical irregularities: limit "
                "analysis, four-link rocking dynamics with impacts, failure domains and "
                "fragility. Units: m, s, rad; angles on the command line in degrees and "
@@ -101,10 +94,10 @@ DESCRIPTION = ("Seismic response of masonry arches with geometrical irregulariti
 
 
 def command_module(name: str):
-    """The module of command ``name`` (or of a former name of it), imported."""
+    """The module of command ``name``, imported."""
     from importlib import import_module
 
-    return import_module(f"{__name__}.{COMMANDS[_NAMES[name]].module}")
+    return import_module(f"{__name__}.{COMMANDS[name].module}")
 
 
 def build_parser(commands=None) -> argparse.ArgumentParser:
@@ -120,13 +113,12 @@ def build_parser(commands=None) -> argparse.ArgumentParser:
     -------
     argparse.ArgumentParser
     """
-    wanted = set(COMMANDS) if commands is None else {_NAMES.get(c, c) for c in commands}
+    wanted = set(COMMANDS) if commands is None else set(commands)
     parser = argparse.ArgumentParser(prog="archquake", description=DESCRIPTION)
     parser.add_argument("--version", action="version", version=f"archquake {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
     for name, command in COMMANDS.items():
-        subparser = sub.add_parser(name, aliases=list(command.aliases), help=command.summary,
-                                   description=command.summary)
+        subparser = sub.add_parser(name, help=command.summary, description=command.summary)
         if name in wanted:
             command_module(name).configure(subparser)
     return parser

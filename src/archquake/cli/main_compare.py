@@ -21,10 +21,10 @@ DESCRIPTION = (
     "+a/2 for 2 t_p, then 0), the failure acceleration (lowest collapsing amplitude a) and the "
     "recovery bands above it, in the rigid-block model (every voussoir a block, contacts with "
     "friction) and in the four-link model with the restitution models computed, link, paper "
-    "and blocks (c_v measured on the rigid blocks: the restitution model 'rigid-blocks', "
-    "formerly 'blocks'). Both models scan the same amplitudes, bisect every boundary to the "
-    "same resolution and are not extended beyond the scan. Accelerations in g. The rigid-block "
-    "analyses are the long part (about a second per duration).")
+    "and measured (c_v measured on the rigid blocks). Both models scan the same amplitudes, "
+    "bisect every boundary to the same resolution and are not extended beyond the scan. "
+    "Accelerations in g. The rigid-block analyses are the long part (about a second per "
+    "duration).")
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
@@ -53,7 +53,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     options.add_plot_option(parser, "write the failure curves of both models against t_p")
     options.add_progress_option(parser, "no progress bar")
     options.add_json_option(parser, "machine-readable output: [{duration, rigid_block, "
-                                    "four_link: {computed, link, paper, blocks}, "
+                                    "four_link: {computed, link, paper, measured}, "
                                     "recovery_above, scanned_to, undecided, "
                                     "undecided_analyses}]")
 
@@ -76,7 +76,7 @@ def run(args: argparse.Namespace) -> int:
     arch = options.arch_from_args(args)
     with options.analysing(args):
         comparison = compare_models(arch, durations, amplitudes_g=amplitudes,
-                                    resolution=args.resolution, direction=args.direction,
+                                    resolution_g=args.resolution, direction=args.direction,
                                     settings=settings, workers=args.workers,
                                     progress=not args.no_progress, search=args.search,
                                     stride=args.stride)

@@ -77,7 +77,7 @@ def run(args: argparse.Namespace) -> int:
     model = options.model_from_args(args)
     with options.analysing(args):
         domain = domain_of(model, durations, amplitudes, direction=args.direction,
-                           resolution=args.resolution, extend_to_g=args.extend_to,
+                           resolution_g=args.resolution, extend_to_g=args.extend_to,
                            search=args.search,
                            stride=DEFAULT_STRIDE if args.stride is None else args.stride,
                            workers=args.workers,

@@ -1,8 +1,6 @@
 """``archquake fragility``: Monte Carlo fragility study under pulses (paper Sect. 5.3.3, Figs.
-17-21); :func:`archquake.studies.fragility.run_fragility`.
-
-``archquake fragility --records ...`` is the record-based study, ``archquake record-fragility``
-(:mod:`archquake.cli.main_record_fragility`): the options of both are accepted here.
+17-21); :func:`archquake.studies.fragility.run_fragility`. The study under recorded
+accelerograms is ``archquake record-fragility`` (:mod:`archquake.cli.main_record_fragility`).
 """
 
 from __future__ import annotations
@@ -20,7 +18,7 @@ from ..defaults import (
     STUDY_DURATIONS,
 )
 from ..ranges import parse_values, range_text
-from . import main_record_fragility, options
+from . import options
 from .output import print_json
 
 DESCRIPTION = (
@@ -34,12 +32,8 @@ DESCRIPTION = (
     "results.parquet/.csv (one row per analysis), curves.csv, summary.json and limit_sample/ to "
     "--out; checkpoints allow --resume.")
 
-PULSE_OPTIONS = ("durations", "amplitudes", "limit_samples", "limit_method")
-"""Options of the pulse study that a record-based one (``--records``) does not take."""
-
-
 def configure(parser: argparse.ArgumentParser) -> None:
-    """The options of ``archquake fragility`` (and of ``fragility --records``)."""
+    """The options of ``archquake fragility``."""
     parser.description = DESCRIPTION
     options.add_nominal_arch_options(parser)
     options.add_samples_option(parser)
@@ -62,14 +56,10 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="limit-analysis method of that sample (same k~; kinematic is "
                              "faster) (default: %(default)s)")
     options.add_study_output_options(parser)
-    parser.set_defaults(pulse_defaults={name: parser.get_default(name) for name in PULSE_OPTIONS})
-    main_record_fragility.add_record_options(parser, former=True)
 
 
 def run(args: argparse.Namespace) -> int:
-    """The pulse study of the options; the record-based study with ``--records``."""
-    if args.records or args.suite or args.im or args.levels or args.export_nrml:
-        return _run_records(args)
+    """The pulse study of the options."""
     from ..studies.fragility import CURVES_CSV, LIMIT_DIRECTORY, FragilitySettings, run_fragility
 
     settings = FragilitySettings(
@@ -184,22 +174,6 @@ def _print_undecided(summary: dict, undecided: dict) -> None:
     if any("nominal_failure_undecided_from" in row for row in summary["durations"]):
         print("a..b: the nominal arch is undecided from a below its lowest decided collapse b: "
               "Q lies between a and b")
-
-
-def _run_records(args: argparse.Namespace) -> int:
-    """``fragility --records ...``: the record-based study, refusing the pulse study's
-    options."""
-    if not args.records and not args.suite:
-        given = [option for option, value in (("--im", args.im), ("--levels", args.levels),
-                                              ("--export-nrml", args.export_nrml)) if value]
-        raise ValueError(f"{', '.join(given)}: only for a record-based study; give the records "
-                         "with --records PATH... or --suite NAME")
-    pulse_only = [f"--{name.replace('_', '-')}" for name in PULSE_OPTIONS
-                  if getattr(args, name) != args.pulse_defaults[name]]
-    if pulse_only:
-        raise ValueError(f"{', '.join(pulse_only)}: options of the pulse study, not of a "
-                         "record-based one (--records)")
-    return main_record_fragility.run(args)
 
 
 def _plot(result, plot_dir) -> list[str]:

@@ -23,11 +23,6 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--method", choices=LIMIT_METHODS, default=DEFAULT_LIMIT_METHOD,
                         help="static: linear program (HiGHS); kinematic: enumeration of the "
                              "mechanisms (default: %(default)s)")
-    parser.add_argument("--min-thickness", action="store_true",
-                        help="print the minimum thickness under its own weight of the arch of "
-                             "the shape options (its centreline and voussoirs kept, the "
-                             "thickness scaled) instead, and its ratio to the radius (circular "
-                             "arches) or to the span (as archquake min-thickness)")
     parser.add_argument("--min-pier-width", action="store_true",
                         help="print the narrowest equal rectangular piers on which the arch "
                              "(with its fill) stands under its own weight instead: give their "
@@ -43,16 +38,6 @@ def run(args: argparse.Namespace) -> int:
 
     if args.min_pier_width:
         return _min_pier_width(args)
-    if args.min_thickness:
-        if (args.geometry or args.epsilon is not None or args.plot
-                or args.thickness is not None):
-            raise ValueError("--min-thickness applies to an arch of a shape (--shape, --span, "
-                             "--rise or --radius, --embrace, and --voussoirs, --faces) whose "
-                             "thickness it finds; it cannot be combined with --thickness, "
-                             "--geometry, --epsilon or --plot")
-        from . import main_min_thickness
-
-        return main_min_thickness.run(args)
     arch = options.arch_from_args(args)
     with options.analysing(args):
         results = both_directions(arch, method=args.method)
@@ -119,8 +104,8 @@ def _min_pier_width(args: argparse.Namespace) -> int:
     if width is not None:
         raise ValueError(f"--min-pier-width finds the width: leave it blank in --piers "
                          f",HEIGHT[,COURSES], got {args.piers!r}")
-    if args.plot or args.min_thickness:
-        raise ValueError("--min-pier-width cannot be combined with --plot or --min-thickness")
+    if args.plot:
+        raise ValueError("--min-pier-width cannot be combined with --plot")
     arch = options.arch_from_args(args)
     with options.analysing(args):
         width = min_pier_width(arch, height, courses)

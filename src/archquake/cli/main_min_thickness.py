@@ -1,5 +1,5 @@
-"""``archquake min-thickness`` (also ``archquake limit --min-thickness``): the thinnest arch of a
-shape that stands under its own weight; :func:`archquake.limit_analysis.min_thickness` and
+"""``archquake min-thickness``: the thinnest arch of a shape that stands under its own weight;
+:func:`archquake.limit_analysis.min_thickness` and
 :func:`archquake.limit_analysis.shaped_min_thickness`."""
 
 from __future__ import annotations
@@ -13,8 +13,7 @@ from .output import print_json
 DESCRIPTION = (
     "The minimum thickness under its own weight of the arch of the shape options: its "
     "centreline and voussoirs kept, the thickness scaled until a line of thrust just fits; and "
-    "its ratio to the radius (circular arches) or to the span. The same as archquake limit "
-    "--min-thickness.")
+    "its ratio to the radius (circular arches) or to the span.")
 
 
 def configure(parser: argparse.ArgumentParser) -> None:

@@ -1,5 +1,4 @@
-"""``archquake record-fragility`` (also ``archquake fragility --records ...``): a
-multiple-stripe study of a suite of records;
+"""``archquake record-fragility``: a multiple-stripe study of a suite of records;
 :func:`archquake.studies.record_fragility.run_record_fragility`."""
 
 from __future__ import annotations
@@ -12,8 +11,6 @@ from ..ranges import parse_values
 from . import options
 from .output import print_json
 
-"""Intensity measure of the stripes unless ``--im`` names one."""
-
 DESCRIPTION = (
     "Every record is scaled to each --levels value of --im and applied in both polarities to "
     "the h irregular arches and to the nominal arch; an arch-record pair fails if it collapses "
@@ -25,17 +22,9 @@ DESCRIPTION = (
     "summary.json to --out.")
 
 
-def add_record_options(parser: argparse.ArgumentParser, *, former: bool = False) -> None:
-    """``--records`` or ``--suite``, ``--im``, ``--levels`` and ``--export-nrml``; with
-    ``former=True`` as ``archquake fragility`` takes them (the records make the study
-    record-based)."""
-    if former:
-        group = parser.add_argument_group(
-            "record-based fragility (multiple-stripe analysis, as archquake record-fragility)",
-            f"With --records: {DESCRIPTION} The pulse options --durations, --amplitudes, "
-            f"--limit-samples and --limit-method do not apply.")
-    else:
-        group = parser.add_argument_group("records and stripes")
+def add_record_options(parser: argparse.ArgumentParser) -> None:
+    """``--records`` or ``--suite``, ``--im``, ``--levels`` and ``--export-nrml``."""
+    group = parser.add_argument_group("records and stripes")
     group.add_argument("--records", nargs="+", metavar="PATH",
                        help="record files (PEER .AT2, CSV in g, ESM .ASC) and folders of them")
     options.add_suite_option(group)

@@ -41,7 +41,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Reproduce the paper into ``--out``."""
-    from ..paper_reproduction import ReproductionSettings, reproduce
+    from ..report import ReproductionSettings, reproduce
 
     changes = {}
     if args.seed is not None:
@@ -51,10 +51,10 @@ def run(args: argparse.Namespace) -> int:
 
         model = check_restitution_model(args.restitution)
         if isinstance(model, str):  # a model: its value for the nominal arch
-            from ..fourlink.model import ArchDynamics
+            from ..fourlink.model import FourLinkModel
             from ..reference_arches import oppenheim
 
-            model = ArchDynamics.from_arch(oppenheim(), model).restitution[0]
+            model = FourLinkModel.from_arch(oppenheim(), model).restitution[0]
         changes["restitution"] = model
     settings = (ReproductionSettings.quick_settings(**changes) if args.quick
                 else ReproductionSettings(**changes))

@@ -1,6 +1,5 @@
-"""``archquake rigid-blocks`` (formerly ``archquake dem``, still accepted): the rigid-block model
-of the arch under one ground motion; :func:`archquake.rigid_blocks.block_outcome` and
-:func:`archquake.rigid_blocks.simulate_blocks`."""
+"""``archquake rigid-blocks``: the rigid-block model of the arch under one ground motion;
+:func:`archquake.rigid_blocks.block_outcome` and :func:`archquake.rigid_blocks.simulate_blocks`."""
 
 from __future__ import annotations
 
@@ -16,8 +15,7 @@ DESCRIPTION = (
     "(never moved), recovery (back at rest after the excitation) or collapse (a block or the "
     "crown dropped by a thickness, or too little energy left to return), with the collapse "
     "time [s], the largest block rotation [rad], crown drop [m] and joint slip [m]. "
-    "Displacements are relative to the ground. 'archquake dem' is the former name of this "
-    "command.")
+    "Displacements are relative to the ground.")
 
 
 def configure(parser: argparse.ArgumentParser) -> None:

@@ -24,7 +24,6 @@ import argparse
 import contextlib
 import os
 import re
-import sys
 
 from ..constants import DEFAULT_DENSITY, DEFAULT_FILL_DENSITY
 from ..defaults import (
@@ -66,7 +65,7 @@ OPTION_NAMES = {
     "durations": "--durations",
     "amplitudes": "--amplitudes",
     "amplitudes_g": "--amplitudes",
-    "resolution": "--resolution",
+    "resolution_g": "--resolution",
     "extend_to_g": "--extend-to",
     "direction": "--direction",
     "levels": "--levels",
@@ -205,29 +204,6 @@ def _add_geometry_file_option(group) -> None:
                             "to right, optionally 'springings')")
 
 
-class DeprecatedName(argparse.Action):
-    """An option's former name: stores the value like the option and says once on stderr that
-    the name is deprecated (``archquake: --tolerance is deprecated, use --epsilon``)."""
-
-    def __init__(self, option_strings, dest, *, use: str, **kwargs):
-        super().__init__(option_strings, dest, **kwargs)
-        self.use = use
-        self.said = False
-
-    def __call__(self, parser, namespace, values, option_string=None):
-        if not self.said:
-            print(f"archquake: {option_string} is deprecated, use {self.use}", file=sys.stderr)
-            self.said = True
-        setattr(namespace, self.dest, values)
-
-
-def _add_epsilon_option(group, *, default, help: str) -> None:
-    group.add_argument("--epsilon", type=float, default=default, metavar="EPS", help=help)
-    group.add_argument("--tolerance", type=float, dest="epsilon", default=argparse.SUPPRESS,
-                       metavar="EPS", action=DeprecatedName, use="--epsilon",
-                       help=argparse.SUPPRESS)
-
-
 def add_arch_options(parser: argparse.ArgumentParser) -> None:
     """The arch of a command that analyses one: its shape (default Oppenheim's arch) or a file,
     and optionally one irregular arch drawn around it (``--epsilon``, ``--seed``)."""
@@ -235,10 +211,9 @@ def add_arch_options(parser: argparse.ArgumentParser) -> None:
     add_shape_options(group)
     _add_geometry_file_option(group)
     add_structure_options(parser)
-    _add_epsilon_option(group, default=None,
-                        help="draw one irregular arch around the arch above with the "
-                             "irregularity epsilon in [0, 1) of the paper's eq. (1) (formerly "
-                             "--tolerance, still accepted)")
+    group.add_argument("--epsilon", type=float, default=None, metavar="EPS",
+                       help="draw one irregular arch around the arch above with the "
+                            "irregularity epsilon in [0, 1) of the paper's eq. (1)")
     group.add_argument("--seed", type=int, default=None,
                        help=f"seed of the irregular draw (default: {DEFAULT_SEED})")
 
@@ -250,10 +225,9 @@ def add_nominal_arch_options(parser: argparse.ArgumentParser) -> None:
     add_shape_options(group)
     _add_geometry_file_option(group)
     add_structure_options(parser)
-    _add_epsilon_option(group, default=DEFAULT_EPSILON,
-                        help="irregularity epsilon in [0, 1) of the irregular arches drawn "
-                             "around the nominal arch (paper eq. 1; formerly --tolerance, still "
-                             "accepted; default: %(default)s)")
+    group.add_argument("--epsilon", type=float, default=DEFAULT_EPSILON, metavar="EPS",
+                       help="irregularity epsilon in [0, 1) of the irregular arches drawn "
+                            "around the nominal arch (paper eq. 1; default: %(default)s)")
     group.add_argument("--seed", type=int, default=DEFAULT_SEED,
                        help="root seed of the sample: arch i is drawn from "
                             "SeedSequence(seed, spawn_key=(i,)) (default: %(default)s)")
@@ -379,16 +353,16 @@ def analysing(args: argparse.Namespace):
 # the four-link model
 # ---------------------------------------------------------------------------------------------
 
-RESTITUTION_METAVAR = "computed|link|rigid-blocks|nominal|paper|elastic|VALUE"
+RESTITUTION_METAVAR = "computed|link|measured|nominal|paper|elastic|VALUE"
 """The restitution models (:data:`archquake.fourlink.impact.RESTITUTION_MODELS`) as the
 ``--restitution`` options show them."""
 
 RESTITUTION_HELP = (
     "'computed' from the momentum balance of the whole arch, 'link' from the paper's link-wise "
-    "rule (Housner's rule for the post-impact springing link), 'rigid-blocks' measured on the "
-    "rigid-block model of the arch (the kinetic energy its blocks keep at the impact; formerly "
-    "'blocks', still accepted), 'nominal' = the nominal arch's computed value (the paper's "
-    "practice for irregular arches), 'paper' = 0.875, 'elastic' = 1, or a number in (0, 1]")
+    "rule (Housner's rule for the post-impact springing link), 'measured' on the rigid-block "
+    "model of the arch (the kinetic energy its blocks keep at the impact), 'nominal' = the "
+    "nominal arch's computed value (the paper's practice for irregular arches), 'paper' = "
+    "0.875, 'elastic' = 1, or a number in (0, 1]")
 """The restitution models, as the help of every ``--restitution`` option lists them."""
 
 
@@ -403,12 +377,12 @@ def add_restitution_option(parser: argparse.ArgumentParser) -> None:
 def dynamics_from_args(args: argparse.Namespace):
     """The :class:`~archquake.fourlink.FourLinkModel` of the arch of the geometry options."""
     from ..fourlink.impact import check_restitution_model
-    from ..fourlink.model import ArchDynamics
+    from ..fourlink.model import FourLinkModel
 
     nominal, arch = arches_from_args(args)
     model = check_restitution_model(args.restitution)  # its error names --restitution alone
     with analysing(args):
-        return ArchDynamics.from_arch(arch, model, nominal)
+        return FourLinkModel.from_arch(arch, model, nominal)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -451,7 +425,7 @@ def block_settings_from_args(args: argparse.Namespace):
 
 
 def model_name(text: str) -> str:
-    """The canonical name of ``--model`` (:func:`archquake.models.check_model`)."""
+    """The name of ``--model``, checked (:func:`archquake.models.check_model`)."""
     from ..models import check_model
 
     try:
@@ -468,8 +442,7 @@ def add_model_options(parser: argparse.ArgumentParser, *, search: bool = True) -
                        metavar="four-link|rigid-blocks",
                        help="the dynamic model: the paper's four-link mechanism, or every "
                             "voussoir a rigid block with Coulomb friction (the trusted one for "
-                            "short pulses; 'dem' and 'blocks' are accepted) (default: "
-                            "%(default)s)")
+                            "short pulses) (default: %(default)s)")
     if search:
         add_search_options(group)
 

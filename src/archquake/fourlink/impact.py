@@ -88,7 +88,7 @@ pre-impact mechanism is at a pier's base and A' at the same base's other toe, A'
 with what it carries and the rule is Housner's rule for that rocking body; where A is higher up
 (Oppenheim's arch on piers 3 m x 6 m: A one joint above the left springing, Mech-r's link A'B'
 the left pier and the first voussoir, both at rest in Mech-l) the rule gives 0 and does not
-apply. The models ``"computed"`` and ``"blocks"`` balance the momentum of every block of the
+apply. The models ``"computed"`` and ``"measured"`` balance the momentum of every block of the
 chain, pier courses and fill included, and apply to any structure. It is
 not a consistent momentum balance of the arch: the impulse at B'
 is not negligible -- it is what sets the other two links of the post-impact mechanism in motion --,
@@ -106,8 +106,7 @@ Restitution measured on the rigid blocks
 The package's second model of the arch (:mod:`archquake.rigid_blocks`: every voussoir a rigid
 block, contacts at both ends of every joint, Newton's impact law with restitution 0, Coulomb
 friction) has impacts of its own, with no assumption on where the impulses act or which
-mechanism follows. Model ``"rigid-blocks"`` (formerly ``"blocks"``, still accepted;
-:func:`blocks_restitution`) measures them: the arch,
+mechanism follows. Model ``"measured"`` (:func:`measured_restitution`) measures them: the arch,
 closed in its undisplaced configuration, moves with the velocity field of the pre-impact
 mechanism returning to ``theta_u`` -- the state of every four-link impact --, one time step of
 the rigid-block model resolves the impact (:func:`archquake.rigid_blocks.impacts.closing_impact`),
@@ -386,8 +385,8 @@ def link_restitution(mech_from: FourLinkMechanism, mech_to: FourLinkMechanism) -
     return float(sense * momentum / inertia_about_pivot)
 
 
-def blocks_restitution(mech_from: FourLinkMechanism, mech_to: FourLinkMechanism,
-                       settings=None) -> float:
+def measured_restitution(mech_from: FourLinkMechanism, mech_to: FourLinkMechanism,
+                         settings=None) -> float:
     r"""Coefficient of restitution c_v measured on the rigid-block model of the same arch.
 
     The arch, closed in its undisplaced configuration, moves with the velocity field of
@@ -477,8 +476,8 @@ def _link(mech_l, mech_r, nominal):
     return link_restitution(mech_l, mech_r), link_restitution(mech_r, mech_l)
 
 
-def _blocks(mech_l, mech_r, nominal):
-    return blocks_restitution(mech_l, mech_r), blocks_restitution(mech_r, mech_l)
+def _measured(mech_l, mech_r, nominal):
+    return measured_restitution(mech_l, mech_r), measured_restitution(mech_r, mech_l)
 
 
 def _paper(mech_l, mech_r, nominal):
@@ -489,20 +488,13 @@ def _elastic(mech_l, mech_r, nominal):
     return 1.0, 1.0
 
 
-RESTITUTION_ALIASES = {"blocks": "rigid-blocks"}
-"""Former names of restitution models, still accepted everywhere: ``"blocks"`` is
-``"rigid-blocks"``. A model given by its former name keeps that name in what is stored and
-printed (settings, study files, keys of results), so that results written before stay readable
-and comparable."""
-
 RESTITUTION_MODELS = {
     "computed": _computed,
     "link": _link,
     "nominal": _nominal,
     "paper": _paper,
     "elastic": _elastic,
-    "rigid-blocks": _blocks,
-    **{former: _blocks for former in RESTITUTION_ALIASES},
+    "measured": _measured,
 }
 """Restitution models by name, each ``f(mech_l, mech_r, nominal) -> (c_l_to_r, c_r_to_l)``:
 
@@ -513,16 +505,20 @@ RESTITUTION_MODELS = {
   an irregular arch as the paper does [paper, Sect. 4.4];
 - ``"paper"``: 0.875, the value the paper uses for Oppenheim's arch [paper, Sect. 5.2];
 - ``"elastic"``: 1, no energy lost at impact [paper, Sect. 5.2, Figs. 9-11];
-- ``"rigid-blocks"``: :func:`blocks_restitution`, measured on the rigid-block model of this
-  arch (0.7478 for Oppenheim's arch); ``"blocks"`` is its former name
-  (:data:`RESTITUTION_ALIASES`).
+- ``"measured"``: :func:`measured_restitution`, measured on the rigid-block model of this
+  arch (0.7478 for Oppenheim's arch).
 """
 
+FORMER_RESTITUTION_NAMES = {"blocks": "measured", "rigid-blocks": "measured"}
+"""Names that results stored by earlier versions give a restitution model: ``"blocks"`` and then
+``"rigid-blocks"`` (the rigid-block model's own name) for ``"measured"``. Only the readers of
+stored results accept them (:func:`stored_restitution_model`)."""
 
-def canonical_restitution_model(model):
-    """The current name of a restitution model given by a former name
-    (:data:`RESTITUTION_ALIASES`); any other model as it is."""
-    return RESTITUTION_ALIASES.get(model, model) if isinstance(model, str) else model
+
+def stored_restitution_model(model):
+    """The restitution model of a stored result: a former name (:data:`FORMER_RESTITUTION_NAMES`)
+    read as the current one, any other model as it is (checked where the settings are made)."""
+    return FORMER_RESTITUTION_NAMES.get(model, model) if isinstance(model, str) else model
 
 
 def check_restitution_model(model) -> str | float:
@@ -555,12 +551,8 @@ def check_restitution_model(model) -> str | float:
     elif isinstance(model, numbers.Real) and not isinstance(model, bool):
         value = float(model)
     if math.isnan(value):
-        names = sorted(set(RESTITUTION_MODELS) - set(RESTITUTION_ALIASES))
-        former = ", ".join(f"{old!r} for {new!r}" for old, new in RESTITUTION_ALIASES.items())
-        raise ValueError(
-            f"restitution must be one of {names} (or the former name {former}) or a number "
-            f"in (0, 1], got {model!r}"
-        )
+        raise ValueError(f"restitution must be one of {sorted(RESTITUTION_MODELS)} or a number "
+                         f"in (0, 1], got {model!r}")
     if not (0.0 < value <= 1.0):
         raise ValueError(f"restitution coefficient must be in (0, 1], got {model!r}")
     return value

@@ -36,10 +36,10 @@ class FourLinkModel:
     tables.
 
     Build it with :meth:`from_arch` (or :func:`archquake.models.model_for` with
-    ``model="four-link"``); ``ArchDynamics`` is the same class under its former name. It
-    satisfies :class:`archquake.models.StructuralModel`. It is immutable and compared by identity;
-    building it costs two limit analyses and the tabulation of two mechanisms (a few tens of
-    milliseconds), after which every analysis is a call of the compiled engine.
+    ``model="four-link"``). It satisfies :class:`archquake.models.StructuralModel`. It is
+    immutable and compared by identity; building it costs two limit analyses and the tabulation
+    of two mechanisms (a few tens of milliseconds), after which every analysis is a call of the
+    compiled engine.
 
     Attributes
     ----------
@@ -186,7 +186,7 @@ class FourLinkModel:
             return mechanisms(nominal)
         if nominal is None:
             return self.mechanisms
-        raise ValueError(f"nominal must be an arch or an ArchDynamics, got "
+        raise ValueError(f"nominal must be an arch or a FourLinkModel, got "
                          f"{type(nominal).__name__}")
 
     # ------------------------------------------------------------------ quantities
@@ -313,6 +313,3 @@ class FourLinkModel:
         return outcomes_grid(table_l, table_r, c_lr, c_rl, durations,
                              GRAVITY * np.asarray(amplitudes_g, dtype=float), motion)
 
-
-ArchDynamics = FourLinkModel
-"""The former name of :class:`FourLinkModel` (the same class)."""

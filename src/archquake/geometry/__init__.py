@@ -84,7 +84,7 @@ from .blocks import (
 from .centrelines import CENTRELINES, SHAPES, Centreline, centreline
 from .files import arch_from_dict, load_arch
 from .fill import DEFAULT_FILL_INERTIA, FILL_INERTIA_MODELS, Fill
-from .irregular import irregular_arch, irregular_sample
+from .irregular import check_epsilon, irregular_arch, irregular_sample
 from .loads import BlockLoads
 from .piers import Pier
 from .shaped import VOUSSOIR_FACES, ShapedArch, shaped_arch
@@ -98,6 +98,6 @@ __all__ = [
     "MAX_GEOMETRY_FILE_BYTES", "MAX_VOUSSOIRS", "MIN_VOUSSOIRS", "RADIUS_RANGE", "SHAPES",
     "VOUSSOIR_FACES", "BlockArch", "BlockLoads", "Centreline", "CircularArch", "Fill", "Hinge",
     "Pier", "ShapedArch", "Structure", "StructureSpec", "SurveyedArch",
-    "arch_from_dict", "arch_on_piers", "centreline", "circular_arch", "irregular_arch",
-    "irregular_sample", "load_arch", "shaped_arch", "surveyed_arch",
+    "arch_from_dict", "arch_on_piers", "centreline", "check_epsilon", "circular_arch",
+    "irregular_arch", "irregular_sample", "load_arch", "shaped_arch", "surveyed_arch",
 ]

@@ -50,6 +50,33 @@ import numpy as np
 from .blocks import BlockArch
 
 
+def check_epsilon(epsilon) -> float:
+    r"""The one check of the paper's :math:`\varepsilon` (eq. (1)): a number in [0, 1).
+
+    Parameters
+    ----------
+    epsilon : float
+        :math:`\varepsilon` [-].
+
+    Returns
+    -------
+    float
+        ``epsilon`` as a float.
+
+    Raises
+    ------
+    ValueError
+        Naming ``epsilon`` when it is not a number in [0, 1).
+    """
+    try:
+        eps = float(epsilon)
+    except (TypeError, ValueError):
+        eps = float("nan")
+    if isinstance(epsilon, bool) or not 0.0 <= eps < 1.0:
+        raise ValueError(f"epsilon must be in [0, 1), got {epsilon!r}")
+    return eps
+
+
 def irregular_arch(nominal: BlockArch, epsilon: float,
                    rng: np.random.Generator | int | None = None) -> BlockArch:
     r"""Random irregular arch drawn around a nominal one [paper, Sect. 2, eq. (1)].
@@ -86,12 +113,7 @@ def irregular_arch(nominal: BlockArch, epsilon: float,
     ----------
     .. [1] The paper, Sect. 2, eq. (1) and Fig. 1b-c.
     """
-    try:
-        eps = float(epsilon)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"epsilon must be a number in [0, 1), got {epsilon!r}") from exc
-    if not (0.0 <= eps < 1.0):
-        raise ValueError(f"epsilon must be in [0, 1), got {epsilon!r}")
+    eps = check_epsilon(epsilon)
     perturbed = getattr(nominal, "perturbed", None)
     if not isinstance(nominal, BlockArch) or perturbed is None:
         raise ValueError(

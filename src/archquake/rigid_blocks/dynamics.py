@@ -910,32 +910,8 @@ def simulate_blocks(structure, motion: GroundMotion | None,
     )
 
 
-def with_settings(settings: BlockSettings | None, **changes) -> BlockSettings:
-    """``settings`` (default :class:`BlockSettings`) with some fields replaced.
-
-    Parameters
-    ----------
-    settings : BlockSettings or None
-        The settings to start from.
-    **changes
-        Fields of :class:`BlockSettings` and their new values (units as there).
-
-    Returns
-    -------
-    BlockSettings
-
-    Raises
-    ------
-    ValueError
-        If a new value is out of its range (:class:`BlockSettings`).
-    TypeError
-        If a name is not a field of :class:`BlockSettings`.
-    """
-    return replace(BlockSettings() if settings is None else settings, **changes)
-
-
 __all__ = ["CONTACT_STEP_FRACTION", "GROUND", "MAX_BLOCKS", "OPEN_REST_PERIODS", "PULSE_STEPS",
            "REST_PERIODS", "SETTLE_PERIODS", "BlockHistory", "BlockOutcome", "BlockSettings",
            "block_outcome", "check_size", "check_time_step", "contact_arrays",
            "observation_windows", "resolved_settings", "simulate_blocks", "structure_time_step",
-           "study_time_step", "time_step_for", "with_settings"]
+           "study_time_step", "time_step_for"]

@@ -69,7 +69,7 @@ import numpy as np
 
 from ..checks import check_integer, json_dumps
 from ..defaults import DEFAULT_RESTITUTION
-from ..geometry import BlockArch, arch_from_dict, irregular_arch
+from ..geometry import BlockArch, arch_from_dict, check_epsilon, irregular_arch
 from ..models import DEFAULT_MODEL, check_model
 
 STATUS_EXCLUDED = -2
@@ -181,13 +181,7 @@ class ArchSample:
             raise ValueError(f"nominal must be an arch with a centreline to draw irregular "
                              f"arches around (CircularArch or ShapedArch), got "
                              f"{type(self.nominal).__name__}")
-        try:
-            eps = float(self.epsilon)
-        except (TypeError, ValueError):
-            eps = math.nan
-        if not 0.0 <= eps < 1.0:
-            raise ValueError(f"epsilon must be in [0, 1), got {self.epsilon!r}")
-        object.__setattr__(self, "epsilon", eps)
+        object.__setattr__(self, "epsilon", check_epsilon(self.epsilon))
         object.__setattr__(self, "seed", check_integer("seed", self.seed, minimum=0))
 
     def generator(self, index: int) -> np.random.Generator:

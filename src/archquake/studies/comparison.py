@@ -21,7 +21,7 @@ README and the report) the two models agree for long pulses, where the arch fall
 swing, and differ for short ones, where it collapses only after impacts and the energy an impact
 leaves decides: there the four-link answer depends strongly on its coefficient of restitution,
 and the rigid blocks do not move on in a four-link mechanism after an impact
-(:mod:`archquake.fourlink.impact`, model ``"blocks"``).
+(:mod:`archquake.fourlink.impact`, model ``"measured"``).
 """
 
 from __future__ import annotations
@@ -57,7 +57,7 @@ class ModelComparison:
         ``{restitution model: FailureDomain}`` of the four-link model, in the order given.
     amplitudes_g : ndarray
         The amplitude scan of both models [g].
-    resolution : float
+    resolution_g : float
         Bisection width of every boundary of both models [g].
     settings : BlockSettings
         Friction, time step and outcome criteria of the rigid-block model.
@@ -70,7 +70,7 @@ class ModelComparison:
     rigid_block: object
     four_link: dict
     amplitudes_g: np.ndarray
-    resolution: float
+    resolution_g: float
     settings: object = None
     skipped: dict = field(default_factory=dict)
 
@@ -165,24 +165,22 @@ def _scan(amplitudes_g) -> np.ndarray:
 
 
 def _four_link(dynamics, model: str, settings):
-    """``dynamics`` with restitution ``model``; ``"rigid-blocks"`` (or its former name
-    ``"blocks"``) measured with the rigid-block model's ``settings`` (its friction and time step)
-    when they are not the defaults."""
-    from ..fourlink.impact import canonical_restitution_model
+    """``dynamics`` with restitution ``model``; ``"measured"`` measured with the rigid-block
+    model's ``settings`` (its friction and time step) when they are not the defaults."""
     from ..rigid_blocks.dynamics import resolved_settings
 
-    if (canonical_restitution_model(model) == "rigid-blocks" and settings is not None
+    if (model == "measured" and settings is not None
             and settings != resolved_settings(None, dynamics.arch)):
-        from ..fourlink.impact import blocks_restitution
+        from ..fourlink.impact import measured_restitution
 
         mech_l, mech_r = dynamics.mechanisms
-        pair = (blocks_restitution(mech_l, mech_r, settings),
-                blocks_restitution(mech_r, mech_l, settings))
+        pair = (measured_restitution(mech_l, mech_r, settings),
+                measured_restitution(mech_r, mech_l, settings))
         return replace(dynamics, restitution=pair, restitution_model=model)
     return dynamics.with_restitution(model)
 
 
-def _check_curve(curve, durations, direction, motion, settings, resolution, grid) -> None:
+def _check_curve(curve, durations, direction, motion, settings, resolution_g, grid) -> None:
     from ..rigid_blocks import BlockSettings
     from .failure_domain import FailureDomain
 
@@ -196,7 +194,7 @@ def _check_curve(curve, durations, direction, motion, settings, resolution, grid
             and curve.direction == direction and curve.motion == motion
             and {k: v for k, v in described.items() if k != "model"}
             == {k: getattr(expected, k) for k in described if k != "model"}
-            and all(s.resolution == resolution and s.intervals[0].start == grid[0]
+            and all(s.resolution_g == resolution_g and s.intervals[0].start == grid[0]
                     and s.scanned_to_g == grid[-1] for s in curve.slices))
     if not same:
         raise ValueError("rigid_block must be the failure curve of the same durations, "
@@ -205,7 +203,7 @@ def _check_curve(curve, durations, direction, motion, settings, resolution, grid
 
 def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
                    restitutions: Sequence[str] = COMPARE_RESTITUTIONS, amplitudes_g=None,
-                   resolution: float = COMPARE_RESOLUTION_G, direction: str = "l",
+                   resolution_g: float = COMPARE_RESOLUTION_G, direction: str = "l",
                    motion: str = "oppenheim", settings=None, workers: int | None = None,
                    progress: bool = False, dynamics=None, rigid_block=None,
                    search: str | None = None, stride: int | None = None) -> ModelComparison:
@@ -218,11 +216,11 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
     durations : sequence of float, optional
         Pulse durations t_p [s] (default :data:`archquake.defaults.COMPARE_DURATIONS`).
     restitutions : sequence of str
-        Restitution models of the four-link runs (default computed, link, paper, blocks).
+        Restitution models of the four-link runs (default computed, link, paper, measured).
     amplitudes_g : sequence of float, optional
         Increasing amplitude scan of both models [g] (default
         :data:`archquake.defaults.COMPARE_AMPLITUDES_G`, 0.3-3.0 g in 0.1 g steps).
-    resolution : float
+    resolution_g : float
         Bisection width of every boundary of both models [g].
     direction : {"l", "r"}
         ``"l"``: the first pulse is ``-a g`` (opens Mech-l); ``"r"``: ``+a g``.
@@ -231,7 +229,7 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
         Oppenheim's pulse).
     settings : archquake.rigid_blocks.BlockSettings, optional
         Friction, time step and outcome criteria of the rigid-block model (also those of the
-        ``"blocks"`` restitution).
+        ``"measured"`` restitution).
     workers : int, optional
         Local worker processes of the rigid-block curve, one duration per task.
     progress : bool
@@ -253,7 +251,7 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
     ModelComparison
     """
     from ..fourlink.impact import check_restitution_model
-    from ..fourlink.model import ArchDynamics
+    from ..fourlink.model import FourLinkModel
     from ..rigid_blocks import BlockSettings, RigidBlockModel
     from .failure_domain import check_direction, check_durations, domain_of
 
@@ -262,9 +260,9 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
     d = check_durations(COMPARE_DURATIONS if durations is None else durations)
     grid = _scan(amplitudes_g)
     check_direction(direction)
-    if not (isinstance(resolution, (int, float)) and math.isfinite(resolution)
-            and resolution > 0):
-        raise ValueError(f"resolution must be a finite number > 0 [g], got {resolution!r}")
+    if not (isinstance(resolution_g, (int, float)) and math.isfinite(resolution_g)
+            and resolution_g > 0):
+        raise ValueError(f"resolution_g must be a finite number > 0 [g], got {resolution_g!r}")
     names = tuple(restitutions)
     if not names:
         raise ValueError("restitutions must name at least one restitution model")
@@ -273,18 +271,18 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
             raise ValueError(f"restitutions must be names of restitution models, got {name!r}")
         check_restitution_model(name)
     if dynamics is None:
-        dynamics = ArchDynamics.from_arch(arch)
-    elif not isinstance(dynamics, ArchDynamics) or dynamics.arch is not arch:
-        raise ValueError("dynamics must be the ArchDynamics of arch")
+        dynamics = FourLinkModel.from_arch(arch)
+    elif not isinstance(dynamics, FourLinkModel) or dynamics.arch is not arch:
+        raise ValueError("dynamics must be the FourLinkModel of arch")
     blocks = RigidBlockModel(arch, BlockSettings() if settings is None else settings)
     settings = blocks.settings  # with the time step used
     if rigid_block is None:
         rigid_block = domain_of(blocks, d, grid, direction=direction, motion=motion,
-                                resolution=float(resolution), extend_to_g=None, search=search,
+                                resolution_g=float(resolution_g), extend_to_g=None, search=search,
                                 stride=DEFAULT_STRIDE if stride is None else stride,
                                 workers=workers, progress=progress)
     else:
-        _check_curve(rigid_block, d, direction, motion, settings, float(resolution), grid)
+        _check_curve(rigid_block, d, direction, motion, settings, float(resolution_g), grid)
     four_link, skipped = {}, {}
     for name in names:
         model = _four_link(dynamics, name, settings)
@@ -296,12 +294,12 @@ def compare_models(arch: BlockArch, durations: Sequence[float] | None = None, *,
                              f"the rule does not apply to this structure's mechanisms")
             continue
         four_link[name] = domain_of(model, d, grid, direction=direction,
-                                    resolution=float(resolution), extend_to_g=None,
+                                    resolution_g=float(resolution_g), extend_to_g=None,
                                     motion=motion)
     if not four_link:
         raise ValueError("no restitution model applies to this structure: "
                          + "; ".join(f"{n}: {why}" for n, why in skipped.items()))
-    return ModelComparison(arch, rigid_block, four_link, grid, float(resolution), settings,
+    return ModelComparison(arch, rigid_block, four_link, grid, float(resolution_g), settings,
                            skipped)
 
 

@@ -127,13 +127,13 @@ class DomainSlice:
         Pulse duration t_p [s].
     intervals : tuple of Interval
         Ordered, contiguous intervals covering the scanned amplitude range [g].
-    resolution : float
+    resolution_g : float
         Width [g] to which every boundary between intervals was bisected.
     """
 
     duration: float
     intervals: tuple[Interval, ...]
-    resolution: float
+    resolution_g: float
 
     @property
     def failure_acceleration_g(self) -> float:
@@ -271,7 +271,7 @@ def domain_slice(
     amplitudes: Sequence[float],
     *,
     duration: float = math.nan,
-    resolution: float = 1e-4,
+    resolution_g: float = 1e-4,
 ) -> DomainSlice:
     """Outcome intervals of ``classify(amplitude)`` over the scanned ``amplitudes``.
 
@@ -283,7 +283,7 @@ def domain_slice(
         Increasing scan grid [g]; its ends are the ends of the domain.
     duration : float
         Pulse duration t_p [s] (recorded in the result).
-    resolution : float
+    resolution_g : float
         Bisection width of the boundaries [g]; a width below the spacing of floating-point
         numbers ends with the boundary between two neighbouring floats.
 
@@ -296,7 +296,7 @@ def domain_slice(
     Raises
     ------
     ValueError
-        If ``amplitudes`` is not increasing with at least two values, or ``resolution <= 0``.
+        If ``amplitudes`` is not increasing with at least two values, or ``resolution_g <= 0``.
     RuntimeError
         If new classes keep appearing inside an edge (more than 60 nested bisections).
 
@@ -305,7 +305,7 @@ def domain_slice(
     A classifier with one class change, at 0.3:
 
     >>> s = domain_slice(lambda a: ("collapse", 1) if a >= 0.3 else ("recovery", 0),
-    ...                  [0.1, 0.2, 0.4, 0.5], resolution=1e-3)
+    ...                  [0.1, 0.2, 0.4, 0.5], resolution_g=1e-3)
     >>> [(iv.status, round(iv.start, 3)) for iv in s.intervals]
     [('recovery', 0.1), ('collapse', 0.3)]
     >>> abs(s.failure_acceleration_g - 0.3) <= 0.5e-3
@@ -314,18 +314,18 @@ def domain_slice(
     grid = np.asarray(amplitudes, dtype=float)
     if grid.ndim != 1 or grid.size < 2 or np.any(np.diff(grid) <= 0):
         raise ValueError("amplitudes must be an increasing sequence of at least two values [g]")
-    if not (resolution > 0):
-        raise ValueError(f"resolution must be > 0 [g], got {resolution!r}")
+    if not (resolution_g > 0):
+        raise ValueError(f"resolution_g must be > 0 [g], got {resolution_g!r}")
     keys = [_key(classify(a)) for a in grid]
     starts: list[tuple[float, OutcomeKey]] = [(float(grid[0]), keys[0])]
     for i in range(grid.size - 1):
         if keys[i] != keys[i + 1]:
-            starts += _refine(classify, grid[i], keys[i], grid[i + 1], keys[i + 1], resolution)
+            starts += _refine(classify, grid[i], keys[i], grid[i + 1], keys[i + 1], resolution_g)
     intervals = []
     for j, (start, key) in enumerate(starts):
         end = starts[j + 1][0] if j + 1 < len(starts) else float(grid[-1])
         intervals.append(Interval(float(start), float(end), key[0], key[1]))
-    return DomainSlice(float(duration), tuple(intervals), float(resolution))
+    return DomainSlice(float(duration), tuple(intervals), float(resolution_g))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -441,7 +441,7 @@ class FailureDomain:
 
     def to_dict(self) -> dict:
         """The whole domain as JSON-ready data, from which :meth:`from_dict` rebuilds it: the
-        slices of :meth:`to_list`, each with its ``resolution`` [g], and every attribute.
+        slices of :meth:`to_list`, each with its ``resolution_g`` [g], and every attribute.
 
         Returns
         -------
@@ -459,7 +459,7 @@ class FailureDomain:
         True
         """
         return {
-            "slices": [{**s.to_dict(), "resolution": s.resolution} for s in self.slices],
+            "slices": [{**s.to_dict(), "resolution_g": s.resolution_g} for s in self.slices],
             "direction": self.direction, "limit_multiplier": self.limit_multiplier,
             "load_multipliers": list(self.load_multipliers),
             "restitution": [json_float(c) for c in self.restitution], "motion": self.motion,
@@ -475,7 +475,8 @@ class FailureDomain:
         data : dict
             :meth:`to_dict`'s form (the derived numbers of a slice, such as its
             ``failure_acceleration``, are read from its intervals, not from the dict; a domain
-            written before undecided analyses were counted has none recorded).
+            written before undecided analyses were counted has none recorded; a slice's width
+            kept under its former key ``resolution`` is read too).
 
         Returns
         -------
@@ -483,7 +484,8 @@ class FailureDomain:
         """
         slices = tuple(DomainSlice(s["duration"],
                                    tuple(Interval.from_dict(iv) for iv in s["intervals"]),
-                                   s["resolution"]) for s in data["slices"])
+                                   s.get("resolution_g", s.get("resolution")))
+                       for s in data["slices"])
         restitution = tuple(math.nan if c is None else c for c in data["restitution"])
         return cls(slices, data["direction"], data["limit_multiplier"],
                    tuple(data["load_multipliers"]), restitution, data["motion"],
@@ -542,7 +544,7 @@ def check_direction(direction: str) -> str:
 
 
 def domain_of(model, durations=None, amplitudes_g=None, *, direction: str = "l",
-              resolution: float = DEFAULT_RESOLUTION_G, motion: str = "oppenheim",
+              resolution_g: float = DEFAULT_RESOLUTION_G, motion: str = "oppenheim",
               extend_to_g: float | None = DEFAULT_EXTEND_TO_G, search: str | None = None,
               stride: int = DEFAULT_STRIDE, screen=None, workers: int | None = None,
               progress: bool = False) -> FailureDomain:
@@ -553,7 +555,7 @@ def domain_of(model, durations=None, amplitudes_g=None, *, direction: str = "l",
     recovery, collapse in half cycle h: the regions of Fig. 16 of [1]_; the rigid-block model
     does not count half cycles) is found at every amplitude of ``amplitudes_g`` by the strategy
     ``search`` (:mod:`archquake.studies.strategies`), and every change of outcome class is then
-    bisected to ``resolution`` (:func:`domain_slice`). With its defaults and the four-link model
+    bisected to ``resolution_g`` (:func:`domain_slice`). With its defaults and the four-link model
     it is ``archquake domain`` with its defaults.
 
     Parameters
@@ -568,7 +570,7 @@ def domain_of(model, durations=None, amplitudes_g=None, *, direction: str = "l",
         :data:`archquake.defaults.DOMAIN_AMPLITUDES_G`).
     direction : {"l", "r"}
         ``"l"``: the first pulse is ``-a g`` and opens Mech-l; ``"r"``: ``+a g``, Mech-r.
-    resolution : float
+    resolution_g : float
         Bisection width of every boundary [g].
     motion : str
         Pulse shape, a name of :data:`archquake.ground_motion.ANALYTIC_GROUND_MOTIONS`; default
@@ -603,7 +605,7 @@ def domain_of(model, durations=None, amplitudes_g=None, *, direction: str = "l",
     ------
     ValueError
         For an invalid direction, durations, amplitudes (increasing, >= 0, at most
-        :data:`~archquake.defaults.MAX_ACCELERATION_G`), resolution, search, ``extend_to_g``
+        :data:`~archquake.defaults.MAX_ACCELERATION_G`), ``resolution_g``, search, ``extend_to_g``
         or ``workers``, or a scan of more than :data:`~archquake.defaults.MAX_GRID_POINTS`
         analyses (:data:`~archquake.defaults.MAX_BLOCK_GRID_POINTS` for the rigid blocks).
     archquake.errors.CannotStandError
@@ -627,9 +629,9 @@ def domain_of(model, durations=None, amplitudes_g=None, *, direction: str = "l",
     d = check_durations(inclusive_range(*DOMAIN_DURATIONS) if durations is None else durations)
     a = check_amplitudes(inclusive_range(*DOMAIN_AMPLITUDES_G) if amplitudes_g is None
                          else amplitudes_g)
-    if not (isinstance(resolution, int | float) and math.isfinite(resolution)
-            and resolution > 0):
-        raise ValueError(f"resolution must be a finite number > 0 [g], got {resolution!r}")
+    if not (isinstance(resolution_g, int | float) and math.isfinite(resolution_g)
+            and resolution_g > 0):
+        raise ValueError(f"resolution_g must be a finite number > 0 [g], got {resolution_g!r}")
     if extend_to_g is not None and extend_to_g <= a[-1]:
         extend_to_g = None  # the grid already reaches the cap
     if extend_to_g is not None and not (math.isfinite(extend_to_g)
@@ -646,7 +648,7 @@ def domain_of(model, durations=None, amplitudes_g=None, *, direction: str = "l",
     screen_model = screen
     if search == "screened" and screen is None:
         screen_model = model if name == "four-link" else _four_link_screen(model.structure)
-    job = _SliceJob(model, screen_model, sign, a, float(resolution), motion, extend_to_g,
+    job = _SliceJob(model, screen_model, sign, a, float(resolution_g), motion, extend_to_g,
                     search, stride)
     if name == "four-link" and search == "exhaustive":
         job = job.with_scan(model.outcomes(d[:, None], sign * a[None, :], motion))
@@ -712,7 +714,7 @@ class _SliceJob:
     screen: object
     sign: float
     grid: np.ndarray
-    resolution: float
+    resolution_g: float
     motion: str
     extend_to_g: float | None
     search: str
@@ -720,7 +722,7 @@ class _SliceJob:
     scan: dict | None = None  # the four-link model's whole (duration x amplitude) grid
 
     def with_scan(self, scan: dict) -> _SliceJob:
-        return _SliceJob(self.model, self.screen, self.sign, self.grid, self.resolution,
+        return _SliceJob(self.model, self.screen, self.sign, self.grid, self.resolution_g,
                          self.motion, self.extend_to_g, self.search, self.stride, scan)
 
     def outcome_keys(self, duration: float, amplitudes, smooth: bool = False):
@@ -787,7 +789,7 @@ def _domain_slice_of(job: _SliceJob, index: int, tp: float) -> tuple[DomainSlice
             analyses[1] += key == UNDECIDED_KEY
         return _decode(key)
 
-    piece = domain_slice(classify, grid, duration=float(tp), resolution=job.resolution)
+    piece = domain_slice(classify, grid, duration=float(tp), resolution_g=job.resolution_g)
     return piece, count + analyses[0], undecided + analyses[1]
 
 

@@ -15,7 +15,7 @@ The lognormal fragility function
 
     is written once (:func:`log_likelihood`, in the probit form
     :math:`\eta_j = (\ln x_j - \ln\theta)/\beta`). :func:`fit_lognormal` maximises it for one
-    set of counts, :func:`lognormal_fit` too but gives None where no maximum exists
+    set of counts, :func:`fit_lognormal_or_none` too but gives None where no maximum exists
     (:func:`separated`), :func:`probit_newton` for many sets at once (the bootstrap, the
     per-record fits), :func:`rising_part` chooses the part of a non-monotone pulse fragility
     curve a lognormal CDF can describe.
@@ -191,8 +191,8 @@ def fit_lognormal(amplitudes, trials, failures) -> LognormalFragility:
     from the amplitude nearest 50 % failures and :math:`\beta = 0.3`. Separated data (every
     survival at an amplitude no higher than every failure) have no maximum: the fit then tends
     to a step, and its dispersion is only as small as the optimizer's tolerances leave it
-    (:func:`separated` tells such data; :func:`lognormal_fit` gives None for them). Where both
-    exist, the fit agrees with :func:`probit_newton` to about 1e-8 (relative).
+    (:func:`separated` tells such data; :func:`fit_lognormal_or_none` gives None for them).
+    Where both exist, the fit agrees with :func:`probit_newton` to about 1e-8 (relative).
 
     Parameters
     ----------
@@ -216,7 +216,7 @@ def fit_lognormal(amplitudes, trials, failures) -> LognormalFragility:
 
     See Also
     --------
-    lognormal_fit : the same fit, None where no maximum exists.
+    fit_lognormal_or_none : the same fit, None where no maximum exists.
 
     References
     ----------
@@ -371,7 +371,7 @@ def separated(levels, trials, failures) -> bool:
     return bool(np.max(x[survives]) <= np.min(x[fails]))
 
 
-def lognormal_fit(levels, trials, failures) -> LognormalFragility | None:
+def fit_lognormal_or_none(levels, trials, failures) -> LognormalFragility | None:
     """Maximum-likelihood lognormal fragility of stripe counts, or None when none exists.
 
     Parameters
@@ -776,6 +776,6 @@ def empirical_cdf(values) -> tuple[np.ndarray, np.ndarray]:
 __all__ = [
     "BAND_POINTS", "DISPERSIONS", "BootstrapBand", "CommonDispersionFit", "LognormalFragility",
     "bootstrap_lognormal", "common_dispersion_fit", "dispersions", "empirical_cdf",
-    "evaluate_polynomial_fit", "fit_lognormal", "fit_polynomial", "log_likelihood",
-    "lognormal_fit", "probability_of_failure", "probit_newton", "rising_part", "separated",
+    "evaluate_polynomial_fit", "fit_lognormal", "fit_lognormal_or_none", "fit_polynomial",
+    "log_likelihood", "probability_of_failure", "probit_newton", "rising_part", "separated",
 ]

@@ -367,11 +367,14 @@ class FragilitySettings:
         -------
         FragilitySettings
         """
+        from ..fourlink.impact import stored_restitution_model
+
         return cls(nominal=arch_from_dict(data["nominal"]), sample_size=data["sample_size"],
                    epsilon=data.get("epsilon", data.get("tolerance")),
                    durations=tuple(data["durations"]),
                    amplitudes_g=tuple(data["amplitudes_g"]), seed=data["seed"],
-                   restitution=data["restitution"], limit_sample_size=data["limit_sample_size"],
+                   restitution=stored_restitution_model(data["restitution"]),
+                   limit_sample_size=data["limit_sample_size"],
                    limit_method=data["limit_method"], motion=data["motion"],
                    model=data.get("model", DEFAULT_MODEL), search=data.get("search"),
                    stride=data.get("stride", DEFAULT_STRIDE),
@@ -1016,7 +1019,7 @@ def _nominal_domains(settings: FragilitySettings, resolution_g: float | None) ->
 
         model = RigidBlockModel(settings.nominal, settings.block_settings)
     return tuple(domain_of(model, settings.durations, settings.amplitudes_g,
-                           direction=direction, resolution=resolution_g,
+                           direction=direction, resolution_g=resolution_g,
                            motion=settings.motion, extend_to_g=None, search=settings.search,
                            stride=settings.stride)
                  for direction in PULSE_SIGNS)

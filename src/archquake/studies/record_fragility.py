@@ -26,7 +26,7 @@ likelihood on the binomial counts per stripe (Eq. (11) in [1]_):
     \{\hat\theta, \hat\beta\} = \arg\max_{\theta, \beta} \sum_j \Bigl[z_j \ln P(x_j)
     + (n_j - z_j) \ln\bigl(1 - P(x_j)\bigr)\Bigr]
 
-(:func:`archquake.studies.fits.lognormal_fit`; none exists for separated counts,
+(:func:`archquake.studies.fits.fit_lognormal_or_none`; none exists for separated counts,
 :func:`archquake.studies.fits.separated`). Three dispersions are reported
 (:func:`archquake.studies.fits.dispersions`):
 
@@ -158,7 +158,7 @@ from .fits import (
     bootstrap_lognormal,
     common_dispersion_fit,
     dispersions,
-    lognormal_fit,
+    fit_lognormal_or_none,
 )
 from .record_outcomes import POLARITIES, REST_MARGIN, record_outcomes, searched_record_outcomes
 from .undecided import undecided_summary
@@ -366,12 +366,15 @@ class RecordFragilitySettings:
         -------
         RecordFragilitySettings
         """
+        from ..fourlink.impact import stored_restitution_model
+
         return cls(suite=RecordSuite.from_dict(data["suite"]), levels=tuple(data["levels"]),
                    im=data["im"], nominal=arch_from_dict(data["nominal"]),
                    sample_size=data["sample_size"],
                    epsilon=data.get("epsilon", data.get("tolerance")),
                    seed=data["seed"],
-                   restitution=data["restitution"], bootstrap=data["bootstrap"],
+                   restitution=stored_restitution_model(data["restitution"]),
+                   bootstrap=data["bootstrap"],
                    confidence=data["confidence"], model=data.get("model", DEFAULT_MODEL),
                    search=data.get("search"),
                    stride=data.get("stride", DEFAULT_LEVEL_STRIDE),
@@ -961,8 +964,8 @@ def record_fragility_result(settings: RecordFragilitySettings, table: pd.DataFra
     failed = sample.any(axis=-1)
     nominal_failed = nominal.any(axis=-1)
     h, r = failed.shape[:2]
-    total = lognormal_fit(levels, h * r, failed.sum(axis=(0, 1)))
-    nominal_fit = lognormal_fit(levels, r, nominal_failed.sum(axis=0))
+    total = fit_lognormal_or_none(levels, h * r, failed.sum(axis=(0, 1)))
+    nominal_fit = fit_lognormal_or_none(levels, r, nominal_failed.sum(axis=0))
     geometric = None
     if settings.epsilon > 0.0:
         geometric = common_dispersion_fit(levels, h, failed.sum(axis=0))

@@ -155,23 +155,6 @@ class MechanismTable:
         a, b, c, m, v = self.functions(theta)
         return np.stack([m, c * m, b * m / GRAVITY, a * m, v])
 
-    def coefficients_at(self, theta):
-        """Interpolated coefficients of the equation of motion at ``theta``, as
-        :meth:`archquake.fourlink.mechanism.FourLinkMechanism.coefficients` gives them exactly.
-
-        Parameters
-        ----------
-        theta : float or array_like
-            Lagrangian coordinate [rad].
-
-        Returns
-        -------
-        M, L, F, P : ndarray
-            [kg m^2/m], [kg m^2/m], [kg m/m], [kg m/m], of the shape of ``theta``.
-        """
-        m, l_, f, p, _ = self.evaluate(theta)
-        return m, l_, f, p
-
     def potential_energy(self, theta):
         """Interpolated potential energy of eq. (3) of the paper at ``theta``.
 

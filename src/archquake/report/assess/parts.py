@@ -182,7 +182,7 @@ class FourLinkPart:
     summary: dict
 
 
-RESTITUTION_RULES = ("computed", "link", "rigid-blocks", "paper", "elastic")
+RESTITUTION_RULES = ("computed", "link", "measured", "paper", "elastic")
 """The restitution rules an assessment reports
 (:data:`archquake.fourlink.impact.RESTITUTION_MODELS`; ``"nominal"`` is ``"computed"`` for the
 structure itself)."""
@@ -247,7 +247,7 @@ def pulse_grid(k: float, settings: AssessmentSettings) -> np.ndarray:
     return np.round(np.linspace(start, top, settings.amplitude_points), 4)
 
 
-def four_link_domains(model, durations, amplitudes_g, resolution: float) -> dict:
+def four_link_domains(model, durations, amplitudes_g, resolution_g: float) -> dict:
     """The four-link model's failure domains under Oppenheim's pulse, both ways, on the scan of
     the assessment (:func:`archquake.studies.failure_domain.domain_of`, no extension beyond the
     scan, so both models cover the same range).
@@ -259,7 +259,7 @@ def four_link_domains(model, durations, amplitudes_g, resolution: float) -> dict
         Pulse durations t_p [s].
     amplitudes_g : array_like
         The scan [g] (:func:`pulse_grid`).
-    resolution : float
+    resolution_g : float
         Bisection width of every boundary [g].
 
     Returns
@@ -269,11 +269,11 @@ def four_link_domains(model, durations, amplitudes_g, resolution: float) -> dict
     """
     from ...studies.failure_domain import domain_of
 
-    return {d: domain_of(model, durations, amplitudes_g, direction=d, resolution=resolution,
+    return {d: domain_of(model, durations, amplitudes_g, direction=d, resolution_g=resolution_g,
                          extend_to_g=None) for d in DIRECTIONS}
 
 
-def rigid_block_domain(structure, durations, amplitudes_g, direction: str, resolution: float,
+def rigid_block_domain(structure, durations, amplitudes_g, direction: str, resolution_g: float,
                        friction: float):
     """The rigid-block model's failure domain under Oppenheim's pulse, one way, on the scan of
     the assessment (a task for the second process: module level, picklable arguments).
@@ -287,7 +287,7 @@ def rigid_block_domain(structure, durations, amplitudes_g, direction: str, resol
         The scan [g] (:func:`pulse_grid`).
     direction : {"l", "r"}
         The direction of the first pulse.
-    resolution : float
+    resolution_g : float
         Bisection width of every boundary [g].
     friction : float
         Coulomb friction coefficient of the joints [-].
@@ -304,7 +304,7 @@ def rigid_block_domain(structure, durations, amplitudes_g, direction: str, resol
 
     model = RigidBlockModel(structure, BlockSettings(friction=friction))
     return domain_of(model, durations, amplitudes_g, direction=direction,
-                     resolution=resolution, extend_to_g=None)
+                     resolution_g=resolution_g, extend_to_g=None)
 
 
 @dataclass(frozen=True, eq=False)
@@ -369,7 +369,7 @@ def agreement(rows: list[dict]) -> dict:
     Returns
     -------
     dict
-        ``band`` (:data:`~archquake.report.assess.settings.AGREEMENT_BAND`), ``within``
+        ``band`` (:data:`~archquake.defaults.AGREEMENT_BAND`), ``within``
         (durations whose failure accelerations agree within it), ``compared`` (durations where
         both collapse in the scan), ``largest`` (``{"difference", "duration"}`` of the largest
         difference, or None), ``median_abs`` (median of the absolute differences), ``from``
@@ -449,13 +449,13 @@ def pulse_part(four_link: dict | None, rigid_blocks, governing: str,
                 four_link["r" if governing == "l" else "l"].slices[i].failure_acceleration_g)
         rows.append(row)
     disagreement = significant = None
-    resolution = rigid_blocks.slices[0].resolution
+    resolution_g = rigid_blocks.slices[0].resolution_g
     if fl is not None:
         disagreement = domain_disagreement(fl, rigid_blocks)
-        significant = significant_disagreement(disagreement, 2.0 * resolution)
+        significant = significant_disagreement(disagreement, 2.0 * resolution_g)
     summary = {
         "direction": governing, "amplitudes_g": [float(a) for a in amplitudes_g],
-        "resolution_g": rigid_blocks.slices[0].resolution,
+        "resolution_g": rigid_blocks.slices[0].resolution_g,
         "durations": [s.duration for s in rigid_blocks.slices],
         "rigid_blocks": {"domain": rigid_blocks.to_list(), "model": rigid_blocks.model,
                          "search": rigid_blocks.search,
@@ -469,7 +469,7 @@ def pulse_part(four_link: dict | None, rigid_blocks, governing: str,
                                 for d, dom in four_link.items()}
         summary["disagreement"] = disagreement.to_list()
         summary["disagreement_width_g"] = [float(w) for w in disagreement.width_g()]
-        summary["disagreement_shown_above_g"] = 2.0 * resolution
+        summary["disagreement_shown_above_g"] = 2.0 * resolution_g
         summary["agreement"] = agreement(rows)
         summary["agreement"]["disagreeing"] = [
             float(d) for d, w in zip(significant.durations, significant.width_g(), strict=True)

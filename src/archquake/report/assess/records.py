@@ -251,7 +251,7 @@ class StructureStripes:
     integrated : int
         Analyses integrated (the others never reach the activation: at rest).
     lognormal : LognormalFragility or None
-        The maximum-likelihood fit (:func:`archquake.studies.fits.lognormal_fit`).
+        The maximum-likelihood fit (:func:`archquake.studies.fits.fit_lognormal_or_none`).
     band : BootstrapBand or None
         Its bootstrap band over the records.
     """
@@ -303,7 +303,7 @@ def structure_stripes(model, suite, im: str, levels, *, bootstrap: int, seed: in
     StructureStripes
     """
     from ...ground_motion.suites import stripe_measure
-    from ...studies.fits import bootstrap_lognormal, lognormal_fit
+    from ...studies.fits import bootstrap_lognormal, fit_lognormal_or_none
     from ...studies.record_fragility import BOOTSTRAP_KEY, DEFAULT_CONFIDENCE, record_outcomes
 
     measure = stripe_measure(im)
@@ -316,7 +316,7 @@ def structure_stripes(model, suite, im: str, levels, *, bootstrap: int, seed: in
         collapsed[r] = (out["status"].reshape(2, -1) == 2).T
         integrated += int(out["integrated"].sum())
     failed = collapsed.any(axis=-1)
-    fit = lognormal_fit(x, failed.shape[0], failed.sum(axis=0))
+    fit = fit_lognormal_or_none(x, failed.shape[0], failed.sum(axis=0))
     band = None
     if fit is not None:
         stream = np.random.default_rng(

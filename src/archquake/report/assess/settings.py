@@ -19,12 +19,14 @@ import numpy as np
 
 from ...checks import check_integer
 from ...defaults import (
+    AGREEMENT_BAND,
     DEFAULT_EPSILON,
     DEFAULT_FRICTION,
     DEFAULT_RESTITUTION,
     DEFAULT_SEED,
     STUDY_DURATIONS,
 )
+from ...geometry import check_epsilon
 
 PAPER_DURATIONS = (0.1, 1.0)
 """First and last pulse duration t_p [s] of the paper's failure domain (Fig. 16), for
@@ -46,9 +48,6 @@ QUICK = {"duration_count": 4, "amplitude_points": 30, "domain_resolution_g": 2e-
          "fragility_amplitude_points": 21, "record_sample_size": 4, "record_levels": 6,
          "record_count": 6, "bootstrap": 50, "quick": True}
 """The reduced sizes of a quick assessment (:meth:`AssessmentSettings.quick_settings`)."""
-
-AGREEMENT_BAND = 0.05
-"""Relative difference [-] of the two models' failure accelerations called agreement."""
 
 def arch_extent(structure) -> float:
     """Horizontal extent of the arch of a structure (its piers left out) [m].
@@ -171,13 +170,7 @@ class AssessmentSettings:
         from ...fourlink.impact import check_restitution_model
         from ...rigid_blocks import BlockSettings
 
-        try:
-            eps = float(self.epsilon)
-        except (TypeError, ValueError):
-            eps = math.nan
-        if not 0.0 <= eps < 1.0:
-            raise ValueError(f"epsilon must be in [0, 1), got {self.epsilon!r}")
-        object.__setattr__(self, "epsilon", eps)
+        object.__setattr__(self, "epsilon", check_epsilon(self.epsilon))
         object.__setattr__(self, "seed", check_integer("seed", self.seed, minimum=0))
         object.__setattr__(self, "restitution", check_restitution_model(self.restitution))
         BlockSettings(friction=self.friction)  # checks the friction
@@ -283,7 +276,12 @@ class AssessmentSettings:
 
     @classmethod
     def from_dict(cls, data: dict) -> AssessmentSettings:
-        """Inverse of :meth:`to_dict`."""
+        """Inverse of :meth:`to_dict` (a restitution stored under a former name read as the
+        current one)."""
+        from ...fourlink.impact import stored_restitution_model
+
+        if "restitution" in data:
+            data = {**data, "restitution": stored_restitution_model(data["restitution"])}
         return cls(**{k: (tuple(v) if k == "durations" and v is not None else v)
                       for k, v in data.items()})
 

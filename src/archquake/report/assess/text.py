@@ -327,7 +327,7 @@ def mechanism_rows(results: dict) -> list[list[str]]:
 RESTITUTION_WORDS = {
     "computed": "momentum balance of the impact of this structure (the default)",
     "link": "the paper's link-wise rule (Housner's rule for the post-impact springing link)",
-    "rigid-blocks": "measured on the rigid-block model: the kinetic energy its blocks keep",
+    "measured": "measured on the rigid-block model: the kinetic energy its blocks keep",
     "paper": "the paper's value for Oppenheim's arch",
     "elastic": "no energy lost at an impact",
 }

@@ -520,10 +520,10 @@ def failure_domain(settings: ReproductionSettings, arches: Arches,
     from ...studies.failure_domain import domain_of
 
     domain = domain_of(nominal.with_restitution(pair[0]), settings.domain_durations, grid,
-                       resolution=settings.domain_resolution_g, extend_to_g=None)
+                       resolution_g=settings.domain_resolution_g, extend_to_g=None)
     q = {}
     for name, case in cases.items():  # point Q, to 1e-4 g, with both coefficients
-        part = domain_of(nominal.with_restitution(case.pair[0]), (0.4,), grid, resolution=1e-4,
+        part = domain_of(nominal.with_restitution(case.pair[0]), (0.4,), grid, resolution_g=1e-4,
                          extend_to_g=None)
         q[name] = part.slices[0].failure_acceleration_g
     return FailureDomainPart(domain, {
@@ -671,7 +671,7 @@ def rigid_block_curve(blocks, settings: ReproductionSettings):
     from ...studies.failure_domain import domain_of
 
     return domain_of(blocks, settings.comparison_durations, comparison_grid(settings),
-                     resolution=settings.comparison_resolution_g, extend_to_g=None)
+                     resolution_g=settings.comparison_resolution_g, extend_to_g=None)
 
 
 def model_comparison(settings: ReproductionSettings, nominal, blocks,
@@ -702,11 +702,11 @@ def model_comparison(settings: ReproductionSettings, nominal, blocks,
         curve = run_here(rigid_block_curve, blocks, settings)
     grid = comparison_grid(settings)
     comparison = compare_models(nominal.arch, settings.comparison_durations,
-                                amplitudes_g=grid, resolution=settings.comparison_resolution_g,
+                                amplitudes_g=grid, resolution_g=settings.comparison_resolution_g,
                                 settings=blocks.settings, dynamics=nominal,
                                 rigid_block=curve.result)
     # how the blocks move on after the closing impact of Mech-l (archquake.fourlink.impact,
-    # "blocks")
+    # "measured")
     mech_l, mech_r = nominal.mechanisms
     u_l, u_r = (np.column_stack(m.mode_shape()) for m in (mech_l, mech_r))
     impact = closing_impact(blocks.assembly, u_l, blocks.settings)
@@ -722,7 +722,7 @@ def model_comparison(settings: ReproductionSettings, nominal, blocks,
         "load_multiplier": comparison.load_multiplier,
         "scan_g": [float(comparison.amplitudes_g[0]), float(comparison.amplitudes_g[-1]),
                    settings.comparison_amplitude_step_g],
-        "resolution_g": comparison.resolution, "friction": block_settings.friction,
+        "resolution_g": comparison.resolution_g, "friction": block_settings.friction,
         "time_step": block_settings.time_step,
         "coarse_factor": block_settings.coarse_factor, "half_cycle_at_failure": half_cycles,
         "impact": {"energy_ratio": impact.energy_ratio, "mech_r_share": impact.mode_share(u_r),
@@ -734,7 +734,7 @@ def comparison_statistics(summary: dict) -> dict:
     """What the comparison says, computed from its rows: relative differences per model and
     duration (None: no failure in the scan, or the rigid blocks' is not decided: an undecided
     band below it), from which duration on each model stays within
-    :data:`~archquake.report.paper.settings.AGREEMENT_BAND`, and the largest differences.
+    :data:`~archquake.defaults.AGREEMENT_BAND`, and the largest differences.
 
     Parameters
     ----------
@@ -993,7 +993,7 @@ def two_models(settings: ReproductionSettings, arches: Arches, cases: dict,
     four_link = arches.nominal.with_restitution(cases["paper"].pair[0])
     four_link_domain = domain_of(four_link, settings.comparison_durations,
                                  comparison_grid(settings),
-                                 resolution=settings.comparison_resolution_g, extend_to_g=None)
+                                 resolution_g=settings.comparison_resolution_g, extend_to_g=None)
     gap = domain_disagreement(four_link_domain, rigid_domain)
     result = rigid.result
     m = result.settings.sample_size

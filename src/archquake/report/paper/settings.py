@@ -11,8 +11,9 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass, field
 
-from ...defaults import COMPARE_DURATIONS, COMPARE_RESOLUTION_G, REPORT_SEED
+from ...defaults import AGREEMENT_BAND, COMPARE_DURATIONS, COMPARE_RESOLUTION_G, REPORT_SEED
 from ...fourlink.impact import PAPER_RESTITUTION
+from ...geometry import check_epsilon
 
 ARCH_NAMES = ("NA", "RA-1", "RA-2")
 """The paper's three arches: the nominal one and two irregular ones [paper, Sect. 3]."""
@@ -25,9 +26,6 @@ RECORD_LEVELS = {"pga": (0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6, 1.8, 2.0),
 """Stripes of the report's record-based fragility: every other level of
 :data:`archquake.studies.record_fragility.DEFAULT_LEVELS` from just above the activation of the
 arch."""
-
-AGREEMENT_BAND = 0.05
-"""Relative difference [-] called agreement of the two models' failure accelerations."""
 
 PHI_TOLERANCE = 5e-4
 """Largest difference [rad] (or [-] for ratios, [m] / 100 for lengths) called agreement with a
@@ -129,8 +127,7 @@ class ReproductionSettings:
     quick: bool = False
 
     def __post_init__(self):
-        if not (0.0 <= self.epsilon < 1.0):
-            raise ValueError(f"epsilon must be in [0, 1), got {self.epsilon!r}")
+        check_epsilon(self.epsilon)
         for name in ("fragility_sample_size", "limit_sample_size", "record_count",
                      "record_sample_size", "rigid_fragility_sample_size"):
             value = getattr(self, name)

@@ -541,7 +541,7 @@ def comparison_text(summary: dict) -> list[str]:
              f"impacts with restitution 0, time step {1000 * summary['time_step']:g} ms, "
              f"{summary.get('coarse_factor', 1)} steps taken as one between the contacts' "
              f"events; "
-             f"'blocks' is the c_v measured on its impacts). Failure acceleration: the lowest "
+             f"'measured' is the c_v measured on its impacts). Failure acceleration: the lowest "
              f"amplitude of Oppenheim's pulse that collapses the arch, both models on the same "
              f"scan ({summary['scan_g'][0]:g}-{top:g} g in {summary['scan_g'][2]:g} g steps) "
              f"with every boundary bisected to {summary['resolution_g']:g} g; the same numbers "
@@ -583,14 +583,14 @@ def comparison_text(summary: dict) -> list[str]:
                         if all((by_duration[n][d] or 0) >= 2 for d in st["short"])]
         first_swing = [n for n in names if n not in after_impact]
         blocks = ""
-        if "blocks" in names:
-            close = [d for d in st["short"] if diff["blocks"][d] is not None]
+        if "measured" in names:
+            close = [d for d in st["short"] if diff["measured"][d] is not None]
             if close:
-                worst = max(abs(diff["blocks"][d]) for d in close)
-                blocks = (f" With the c_v measured on the blocks ({c['blocks'][0]:.3f}) the "
+                worst = max(abs(diff["measured"][d]) for d in close)
+                blocks = (f" With the c_v measured on the blocks ({c['measured'][0]:.3f}) the "
                           f"four-link model comes within {100 * worst:.1f} % of the rigid "
                           f"blocks at t_p = {', '.join(f'{d:g}' for d in close)} s")
-                missing = [d for d in st["short"] if diff["blocks"][d] is None]
+                missing = [d for d in st["short"] if diff["measured"][d] is None]
                 blocks += (f", but not at {', '.join(f'{d:g}' for d in missing)} s."
                            if missing else ".")
         text.append(
@@ -612,7 +612,7 @@ def comparison_text(summary: dict) -> list[str]:
               f"of Mech-l they keep {100 * impact['energy_ratio']:.0f} % of the kinetic "
               f"energy, of which {100 * (1 - impact['mech_r_share']):.0f} % moves outside "
               f"Mech-r, with hinges at joints {', '.join(map(str, impact['hinges']))} "
-              f"(archquake.fourlink.impact, model 'blocks'), so no single c_v reproduces them."
+              f"(archquake.fourlink.impact, model 'measured'), so no single c_v reproduces them."
             + blocks)
     bands_fl = sorted({r["duration"] for r in rows for v in r["recovery_above"]["four_link"]
                        .values() if v})
@@ -733,7 +733,7 @@ def record_text(record: dict, settings: dict) -> str:
         f"sqrt(rtr^2 + geo^2) beside the total for comparison; bands: "
         f"{settings['record_bootstrap']} bootstrap resamples. The sizes are reduced to fit the "
         f"report's time budget (the full study is 40 arches x 20 records x 20 levels: "
-        f"`archquake fragility --records ...` or examples/record_fragility.py --full). "
+        f"`archquake record-fragility ...` or examples/record_fragility.py --full). "
         + " ".join(weaker(im, e) for im, e in record.items()))
 
 

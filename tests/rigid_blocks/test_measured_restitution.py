@@ -1,4 +1,4 @@
-"""The restitution measured on the rigid-block model ('blocks'): Housner's coefficient for a
+"""The restitution measured on the rigid-block model ('measured'): Housner's coefficient for a
 block, Moreau's projection for a frictionless arch, its invariances, the registry entry and the
 command line."""
 
@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 from scipy.optimize import nnls
 
-from archquake import ArchDynamics, irregular_arch, oppenheim
+from archquake import FourLinkModel, irregular_arch, oppenheim
 from archquake.cli import main
-from archquake.fourlink.impact import RESTITUTION_MODELS, restitution
+from archquake.fourlink.impact import restitution
 from archquake.rigid_blocks import GROUND, BlockSettings, from_arch, rectangular_block
 from archquake.rigid_blocks.impacts import closing_impact, equivalent_restitution
 
@@ -66,7 +66,7 @@ def test_frictionless_arch_impact_is_moreaus_projection(nominal):
     the velocity before on the cone {J v >= 0} in the metric of M (Moreau 1988); here by
     non-negative least squares on the contact impulses, v = v0 + M^-1 J^T lambda."""
     asm = from_arch(nominal)
-    mech_l, _ = ArchDynamics.from_arch(nominal).mechanisms
+    mech_l, _ = FourLinkModel.from_arch(nominal).mechanisms
     v0 = np.column_stack(mech_l.mode_shape())
     jac = contact_jacobian(asm)
     m = np.column_stack((asm.masses, asm.masses, asm.inertias)).ravel()
@@ -84,7 +84,7 @@ def test_measurement_does_not_depend_on_time_step_or_friction_above_sticking(nom
     """Documented invariances: the impact law is homogeneous in the velocities (the weight's
     impulse is 1e-4 of them), so the time step does not matter; from mu = 0.5 up the joints
     stick at the impact and the friction coefficient does not matter; below it they slide."""
-    mech_l, mech_r = ArchDynamics.from_arch(nominal).mechanisms
+    mech_l, mech_r = FourLinkModel.from_arch(nominal).mechanisms
     modes = [np.column_stack(m.mode_shape()) for m in (mech_l, mech_r)]
     reference = equivalent_restitution(nominal, *modes)
     for settings in (BlockSettings(time_step=1e-4), BlockSettings(friction=0.5),
@@ -94,14 +94,14 @@ def test_measurement_does_not_depend_on_time_step_or_friction_above_sticking(nom
     assert equivalent_restitution(nominal, *modes, BlockSettings(friction=0.1)) > reference + 0.05
 
 
-def test_regression_blocks_restitution_of_oppenheims_arch(nominal):
+def test_regression_measured_restitution_of_oppenheims_arch(nominal):
     """The value the documentation quotes (0.7478), between the computed value (a motion
     forced into Mech-r) and the frictionless projection of the test above (the joints free to
     slide keep more energy); the same both ways on the symmetric arch."""
-    c_lr, c_rl = ArchDynamics.from_arch(nominal, "blocks").restitution
+    c_lr, c_rl = FourLinkModel.from_arch(nominal, "measured").restitution
     assert c_lr == pytest.approx(0.7478, abs=1e-4)
     assert c_rl == pytest.approx(c_lr, rel=1e-9)
-    mech_l, mech_r = ArchDynamics.from_arch(nominal).mechanisms
+    mech_l, mech_r = FourLinkModel.from_arch(nominal).mechanisms
     frictionless = equivalent_restitution(
         nominal, *[np.column_stack(m.mode_shape()) for m in (mech_l, mech_r)],
         BlockSettings(friction=0.0))
@@ -118,12 +118,12 @@ def test_regression_blocks_restitution_of_oppenheims_arch(nominal):
     assert hinges.tolist() == [0, 2, 3, 5, 7]
 
 
-def test_irregular_arch_blocks_restitution_mirrors():
+def test_irregular_arch_measured_restitution_mirrors():
     """The impact Mech-l -> Mech-r of an arch is the impact Mech-r -> Mech-l of its mirror
     image: the two coefficients swap."""
     arch = irregular_arch(oppenheim(), 0.10, rng=1)
-    c_lr, c_rl = ArchDynamics.from_arch(arch, "blocks").restitution
-    m_lr, m_rl = ArchDynamics.from_arch(arch.mirrored(), "blocks").restitution
+    c_lr, c_rl = FourLinkModel.from_arch(arch, "measured").restitution
+    m_lr, m_rl = FourLinkModel.from_arch(arch.mirrored(), "measured").restitution
     assert abs(c_lr - c_rl) > 0.01  # an irregular arch: they differ
     assert m_lr == pytest.approx(c_rl, rel=1e-3)
     assert m_rl == pytest.approx(c_lr, rel=1e-3)
@@ -135,26 +135,24 @@ def test_impact_module_loads_the_rigid_blocks_only_on_demand():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True)
     assert out.stdout.strip() == "[]"
-    assert RESTITUTION_MODELS["rigid-blocks"] is RESTITUTION_MODELS["blocks"]  # former name
 
 
-@pytest.mark.parametrize("name", ["rigid-blocks", "blocks"])
-def test_cli_mechanism_prints_blocks_restitution(capsys, nominal, name):
-    assert main(["mechanism", "--restitution", name, "--json"]) == 0
+def test_cli_mechanism_prints_measured_restitution(capsys, nominal):
+    assert main(["mechanism", "--restitution", "measured", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
-    expected = ArchDynamics.from_arch(nominal, "rigid-blocks").restitution
+    expected = FourLinkModel.from_arch(nominal, "measured").restitution
     assert out["restitution"]["l_to_r"] == pytest.approx(expected[0], rel=1e-12)
     assert out["restitution"]["r_to_l"] == pytest.approx(expected[1], rel=1e-12)
 
 
 @pytest.mark.parametrize("command", ["mechanism", "domain", "fragility", "simulate",
                                      "reproduce"])
-def test_every_restitution_option_lists_blocks(capsys, command):
+def test_every_restitution_option_lists_measured(capsys, command):
     with pytest.raises(SystemExit):
         main([command, "--help"])
     text = " ".join(capsys.readouterr().out.split())
-    assert "--restitution" in text and "'rigid-blocks' measured on the rigid-block model" in text
-    assert "formerly 'blocks', still accepted" in text
+    assert "--restitution" in text and "'measured' on the rigid-block model" in text
+    assert "'rigid-blocks' measured" not in text and "formerly" not in text
 
 
 def test_bad_mode_is_a_value_error(nominal):
@@ -164,19 +162,18 @@ def test_bad_mode_is_a_value_error(nominal):
         equivalent_restitution(nominal, np.ones((7, 3)), np.zeros((7, 3)))
 
 
-def test_former_name_blocks_is_the_rigid_blocks_model_and_keeps_its_spelling(nominal):
-    from archquake.fourlink.impact import (
-        RESTITUTION_ALIASES,
-        canonical_restitution_model,
-        check_restitution_model,
-    )
-    from archquake.fourlink.mechanism import mechanisms
+@pytest.mark.parametrize("former", ["blocks", "rigid-blocks"])
+def test_former_names_are_refused_and_read_from_stored_results(capsys, former):
+    """The restitution measured on the rigid blocks has one name, ``"measured"``; the names it
+    had (``"blocks"``, then ``"rigid-blocks"``, the model's own name) are refused where a model
+    is given and read as ``"measured"`` only where a stored result is read."""
+    from archquake.fourlink.impact import check_restitution_model, stored_restitution_model
 
-    assert RESTITUTION_ALIASES == {"blocks": "rigid-blocks"}
-    pair = mechanisms(nominal)
-    assert restitution("blocks", *pair) == restitution("rigid-blocks", *pair)
-    # stored as given: study files and result keys written with "blocks" stay as they were
-    assert check_restitution_model("blocks") == "blocks"
-    assert canonical_restitution_model("blocks") == "rigid-blocks"
-    with pytest.raises(ValueError, match=r"'rigid-blocks'\] \(or the former name 'blocks'"):
-        check_restitution_model("block")
+    with pytest.raises(ValueError, match=rf"restitution must be one of .*'measured'.*got "
+                                         rf"'{former}'"):
+        check_restitution_model(former)
+    assert main(["mechanism", "--restitution", former]) == 2
+    assert f"got '{former}'" in capsys.readouterr().err
+    assert stored_restitution_model(former) == "measured"
+    for model in ("computed", "nominal", 0.875):
+        assert stored_restitution_model(model) == model
