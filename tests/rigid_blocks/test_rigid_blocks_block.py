@@ -26,7 +26,8 @@ from archquake.rigid_blocks import (
     rectangular_block,
     simulate_blocks,
 )
-from archquake.rigid_blocks.solver import local_coulomb, mean_acceleration
+from archquake.rigid_blocks.contact_problem import local_coulomb
+from archquake.rigid_blocks.solver import mean_acceleration
 
 WIDTH, HEIGHT = 0.4, 2.0
 B, H = WIDTH / 2, HEIGHT / 2

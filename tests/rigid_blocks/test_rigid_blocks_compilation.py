@@ -37,13 +37,13 @@ copy = pickle.loads(pickle.dumps(from_arch(arch)))  # as a worker process receiv
 domain_of(RigidBlockModel(copy), [0.2], [0.1, 0.2], resolution_g=0.1, extend_to_g=None)
 block_outcome(rectangular_block(0.4, 2.0), None)
 closing_impact(arch, np.ones((7, 3)))
-from archquake.rigid_blocks import solver
+from archquake.rigid_blocks import band, contact_problem, contacts, solver
 import archquake.ground_motion as gm
 """
 
 
 def compiled_signatures(cache_dir=None) -> dict:
-    return probe(SCRIPT, "solver, gm", cache_dir)
+    return probe(SCRIPT, "contacts, band, contact_problem, solver, gm", cache_dir)
 
 
 def test_every_rigid_block_entry_point_is_compiled_once():

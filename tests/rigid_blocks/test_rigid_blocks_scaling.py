@@ -17,16 +17,16 @@ from archquake.rigid_blocks import (
     block_outcome,
     from_arch,
 )
-from archquake.rigid_blocks.dynamics import contact_arrays, simulate_blocks
-from archquake.rigid_blocks.solver import (
+from archquake.rigid_blocks.band import (
     ARCH_BANDWIDTH,
     arch_cholesky_solve,
     arch_lu_solve,
     band_cholesky_solve,
     band_lu_solve,
     band_solve,
-    incidence,
 )
+from archquake.rigid_blocks.contact_problem import incidence
+from archquake.rigid_blocks.dynamics import contact_arrays, simulate_blocks
 
 
 def band_of(dense: np.ndarray, kl: int) -> np.ndarray:

@@ -9,9 +9,12 @@ four-link equations of motion, so that it can check them.
 :class:`RigidBlockModel` is the model's front door (the protocol of :mod:`archquake.models`);
 its failure domain and fragility studies are those of :mod:`archquake.studies`, as for the
 four-link model. Modules: :mod:`.assembly` (blocks and joints), :mod:`.model` (the front door),
-:mod:`.solver` (the compiled scheme), :mod:`.dynamics` (analyses, their outcome criteria and
-results), :mod:`.impacts` (the impact of a closing structure and its equivalent coefficient of
-restitution), :mod:`.plotting` (figures and animations; a leaf, imported on demand).
+:mod:`.solver` (the compiled scheme: its driver), by stage of a step :mod:`.contacts` (the
+contact geometry), :mod:`.contact_problem` (the impulses of a step; :mod:`.lemke` its fallback)
+and :mod:`.band` (the band solvers of its linear systems), :mod:`.dynamics` (analyses, their
+outcome criteria and results), :mod:`.impacts` (the impact of a closing structure and its
+equivalent coefficient of restitution), :mod:`.plotting` (figures and animations; a leaf,
+imported on demand).
 """
 
 from .assembly import GROUND, Assembly, from_arch, rectangular_block

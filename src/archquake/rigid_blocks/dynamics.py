@@ -112,6 +112,8 @@ from ..ground_motion import LINEAR, STEP, GroundMotion
 from ..status import Status
 from . import solver
 from .assembly import GROUND, Assembly, from_arch
+from .contact_problem import ACTIVE_SET_SOLVES
+from .contacts import CONTACT_FIELDS
 
 MAX_BLOCKS = 100
 r"""Largest number of blocks of a structure that the rigid-block model analyses [-].
@@ -124,7 +126,7 @@ for Oppenheim's 7 voussoirs, 20 for 50, 75 for 100 under a 1 g pulse), and an an
 100 blocks takes seconds to minutes. A larger structure is refused before anything is
 built. Above about ten blocks the active-set method may also cycle at the onset of motion or at
 an impact; the step is then solved by Lemke's algorithm, which cannot cycle and costs a dense
-tableau (:mod:`archquake.rigid_blocks.solver`, "Contact problem"): most of the time of an
+tableau (:mod:`archquake.rigid_blocks.contact_problem`, "Contact problem"): most of the time of an
 analysis of 100 blocks."""
 
 CONTACT_STEP_FRACTION = 0.02
@@ -173,7 +175,7 @@ class BlockSettings:
     max_iterations : int
         Largest number of Gauss-Seidel sweeps per step [-], >= 1: the last resort of the contact
         problem, after the active-set method and Lemke's algorithm
-        (:mod:`archquake.rigid_blocks.solver`, "Contact problem"; not reached in any test).
+        (:mod:`archquake.rigid_blocks.contact_problem`, "Contact problem"; not reached in any test).
     collapse_drop : float
         Drop of a block centroid or of the crown that defines a collapse, as a fraction of the
         thickness [-], > 0.
@@ -209,9 +211,10 @@ class BlockSettings:
     active_set_solves : int
         Largest number of linear solves of the active-set method in a step before Lemke's
         algorithm solves the step's contact problem [-], >= 0
-        (:mod:`archquake.rigid_blocks.solver`, "Contact problem"): the active-set method is fast
-        but may cycle, Lemke's algorithm cannot. 0 solves every step by Lemke's algorithm (a
-        check of the active-set method: the same motion to round-off, many times slower).
+        (:mod:`archquake.rigid_blocks.contact_problem`, "Contact problem"): the active-set
+        method is fast but may cycle, Lemke's algorithm cannot. 0 solves every step by Lemke's
+        algorithm (a check of the active-set method: the same motion to round-off, many times
+        slower).
 
     Raises
     ------
@@ -259,7 +262,7 @@ class BlockSettings:
     open_rest_window: float = 1.0
     settle_time: float = 20.0
     coarse_factor: int = DEFAULT_COARSE_FACTOR
-    active_set_solves: int = solver.ACTIVE_SET_SOLVES
+    active_set_solves: int = ACTIVE_SET_SOLVES
 
     def __post_init__(self):
         for f in fields(self):
@@ -476,11 +479,11 @@ def contact_arrays(assembly: Assembly) -> dict[str, np.ndarray]:
     """The packed arrays of the compiled solver: contact ``2 j + k`` is end ``k`` of joint j.
 
     ``bodies`` (nb, 4): mass [kg/m], inertia [kg m] and centroid [m] of every block
-    (:data:`archquake.rigid_blocks.solver.BODY_FIELDS`); ``contacts`` (nc, 12): the contact
+    (:data:`archquake.rigid_blocks.contacts.BODY_FIELDS`); ``contacts`` (nc, 12): the contact
     point relative to the centroid of body a and of body b in the undeformed configuration (the
     absolute point for the ground) [m], the joint's unit normal and tangent [-], the position of
     the end along the joint (0 or its length), the face of body a along the joint and the joint's
-    length [m] (:data:`~archquake.rigid_blocks.solver.CONTACT_FIELDS`); ``contact_bodies``
+    length [m] (:data:`~archquake.rigid_blocks.contacts.CONTACT_FIELDS`); ``contact_bodies``
     (nc, 2) int: bodies a and b (:data:`GROUND` for a support).
 
     Parameters
@@ -512,7 +515,7 @@ def contact_arrays(assembly: Assembly) -> dict[str, np.ndarray]:
             "length": np.repeat(lengths, 2),
         }
         contacts = np.column_stack([np.reshape(x, (2 * nj, -1)) for x in columns.values()])
-        assert contacts.shape[1] == len(solver.CONTACT_FIELDS)
+        assert contacts.shape[1] == len(CONTACT_FIELDS)
         bodies = np.column_stack((assembly.masses, assembly.inertias, assembly.centroids))
         assembly._cache["contacts"] = {
             "bodies": np.ascontiguousarray(bodies, dtype=float),

@@ -42,7 +42,7 @@ whose square is the ratio ``r`` of the kinetic energies after and before the imp
     \tfrac12 (v - v_0)^T \mathbf{M} (v - v_0)
 
 (``H_n`` the normal Jacobian rows of the closed contacts,
-:mod:`archquake.rigid_blocks.solver`); with enough friction the joints stick at the impact and
+:mod:`archquake.rigid_blocks.contacts`); with enough friction the joints stick at the impact and
 the result no longer depends on ``mu`` (for Oppenheim's arch from about ``mu = 0.5`` up).
 
 The measurement is independent of the rate ``theta'_i`` because the impact law is positively

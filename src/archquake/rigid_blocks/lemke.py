@@ -1,8 +1,8 @@
 r"""Lemke's complementary pivoting on the contact problem: the fallback that cannot cycle.
 
-The contact problem of a step (:mod:`archquake.rigid_blocks.solver`, "Contact problem") asks,
-for the ``m`` active contacts with Delassus matrix ``W`` (2m x 2m, symmetric positive
-semidefinite) and free velocities :math:`u^f`, for impulses ``P = (P_n, P_t)`` with
+The contact problem of a step (:mod:`archquake.rigid_blocks.contact_problem`, "Contact
+problem") asks, for the ``m`` active contacts with Delassus matrix ``W`` (2m x 2m, symmetric
+positive semidefinite) and free velocities :math:`u^f`, for impulses ``P = (P_n, P_t)`` with
 :math:`u = u^f + W P` and
 
 .. math::
@@ -31,10 +31,10 @@ velocity,
 :math:`u_t = 0`.
 
 Why it has a solution, and why Lemke's algorithm finds it: the solver adds a compliance
-:math:`\rho` (:data:`archquake.rigid_blocks.solver.REGULARISATION`, relative to the diagonal)
-to ``W``, which makes it positive definite (two contacts per joint make ``W`` itself singular:
-four impulses for three relative motions), and here the same :math:`\rho` to the last diagonal
-block, :math:`\mu P_n - \beta^+ - \beta^- + \rho \lambda \ge 0` (a friction force that may
+:math:`\rho` (:data:`archquake.rigid_blocks.contact_problem.REGULARISATION`, relative to the
+diagonal) to ``W``, which makes it positive definite (two contacts per joint make ``W`` itself
+singular: four impulses for three relative motions), and here the same :math:`\rho` to the last
+diagonal block, :math:`\mu P_n - \beta^+ - \beta^- + \rho \lambda \ge 0` (a friction force that may
 exceed Coulomb's by :math:`\rho` times the slip rate, in the scaled units below: nothing a
 double can hold beside the impulses). Then ``M`` is copositive-plus: :math:`z^T M z = P^T W P
 + \mu P_n \lambda + \rho \lambda^2 \ge 0` for :math:`z \ge 0` (the coupling of

@@ -1,0 +1,678 @@
+r"""The contact problem of a time step: the impulses of the active contacts.
+
+Everything here is ``numba``-compiled. The driver (:func:`archquake.rigid_blocks.solver.run`;
+the law solved here is stated in that module's "Time stepping") calls :func:`solve_active_set`,
+where it gives up :func:`solve_lemke`, and should that fail :func:`solve_contacts`. The
+Delassus matrix is assembled here from the Jacobians of the contacts
+(:mod:`archquake.rigid_blocks.contacts`) and its systems are solved by the band solvers of
+:mod:`archquake.rigid_blocks.band`.
+
+Contact problem
+---------------
+With the free velocity :math:`v^f = v_k + \mathbf{M}^{-1} \int f\,dt` (the step without contact
+impulses), the local velocities of the active contacts are affine in their impulses, through
+the Delassus matrix:
+
+.. math::
+
+    u = u^f + W P, \qquad u^f = H_k v^f, \qquad W = H_k \mathbf{M}^{-1} H_k^T.
+
+It is solved exactly (to round-off) by a primal-dual active-set method,
+:func:`solve_active_set`: guess the state of every contact (open, stick, slide either way; the
+previous step's states), solve the linear system in the impulses that the states define, switch
+the states that the solution contradicts, repeat (usually 1-2 solves; the normal rows of the
+contacts that stick or slide and the tangential rows of the sticking ones carry a compliance of
+:data:`REGULARISATION` times their diagonal, which picks the smallest of the statically
+indeterminate impulses). Two contacts couple only through a block they both touch, so with the
+contacts numbered joint by joint ``W`` is a band matrix (for an arch each joint couples with its
+two neighbours: half-bandwidth 7 in the impulses, whatever the number of blocks): it is
+assembled block by block and solved in band storage, by Cholesky's factorisation when no
+contact slides (the system is then symmetric positive definite), else by Gaussian elimination
+(:func:`~.band.band_cholesky_solve`, :func:`~.band.band_lu_solve`, :func:`~.band.band_solve`):
+a step costs time and memory linear in the number of blocks.
+
+The active-set method has no guarantee of convergence: its states can cycle (measured on
+Oppenheim's arch cut into 50 voussoirs under its pulse: at 79 of 4,000 steps, at the onset of
+the motion and at impacts, where tens of contacts change state at once; with one switch per
+solve, in the manner of Murty's least-index rule, most of these still cycle after 2,000
+solves). Where it gives up after :data:`ACTIVE_SET_SOLVES` solves, the step's problem is
+solved by **Lemke's algorithm** (:func:`solve_lemke`, :mod:`archquake.rigid_blocks.lemke`),
+which cannot cycle: in two dimensions Coulomb's law is exactly a linear complementarity problem
+(Stewart and Trinkle's formulation, with the slip rate as an unknown), whose matrix, with the
+compliance above and the same on the slip rate, is copositive-plus, and whose problem is
+feasible; Lemke's algorithm with the lexicographic ratio test then ends on a solution after
+finitely many pivots (Cottle, Pang and Stone, Thm. 4.4.13; the module's docstring). Its
+solution's states are handed back to the active-set method, which solves the same states to
+round-off (so that both methods give the same impulses where both converge); where it would
+switch them, Lemke's impulses are kept. The fallback costs a dense tableau: 4 unknowns per
+active contact and about 1.5 pivots per unknown, 0.2 s for the 93 active contacts of the
+50-voussoir arch (``benchmarks/rigid_block_contact_solver.py``), paid only at the steps where
+the active-set method gave up. Should Lemke's algorithm end without a solution (never observed:
+a guard against round-off), projected Gauss-Seidel takes over [1]_ (Ch. 13),
+:func:`solve_contacts`: sweeps forward and backward in turn, each contact's problem solved
+exactly by :func:`local_coulomb` with the others' impulses fixed,
+
+.. math::
+
+    P_c \leftarrow \operatorname{local}\bigl(u_c - W_{cc} P_c,\; W_{cc},\; \mu\bigr), \qquad
+    v \leftarrow v + \mathbf{M}^{-1} H_c^T \Delta P_c,
+
+stopping when :math:`\max_c (|\Delta P_{n,c}| + |\Delta P_{t,c}|) \le \mathrm{tol}\;\bar m g h`
+(the impulse of a mean block's weight over a step, scaled) or after ``max_iterations`` sweeps
+(counted as unconverged: the outcome is then undecided). Gauss-Seidel alone converges slowly on
+an arch (the thrust runs through a chain of blocks and the friction split between the two ends
+of a joint is indeterminate), and its residual velocities make a still arch creep; hence the
+direct methods.
+
+References
+----------
+.. [1] V. Acary, B. Brogliato, "Numerical methods for nonsmooth dynamical systems", Springer
+   (2008), Ch. 12-13 (Gauss-Seidel for the contact problem).
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+from .band import (
+    ARCH_BANDWIDTH,
+    arch_cholesky_solve,
+    arch_lu_solve,
+    band_cholesky_solve,
+    band_lu_solve,
+    band_solve,
+)
+from .contacts import apply_impulse, delassus_block, relative_velocity
+from .lemke import LEMKE_SOLVED, solve_contact_lcp
+
+REGULARISATION = 1e-9
+"""Compliance of the rows of the contact problem that hold a velocity to zero (the normal row of a
+contact that sticks or slides, the tangential row of one that sticks), relative to their
+diagonal [-]."""
+
+ACTIVE_SET_SOLVES = 60
+"""Default largest number of linear solves of the active-set method in a step before Lemke's
+algorithm takes over [-] (the setting ``active_set_solves``)."""
+
+POLISH_SOLVES = 4
+"""Largest number of linear solves of the active-set method from the states of Lemke's
+solution [-] (:func:`solve_lemke`): one where they hold to its tolerances."""
+
+SINGLE_SWITCH_AFTER = 10
+"""After this many solves [-] the active-set method switches one contradicted state per solve (the
+first one, in the manner of Murty's least-index rule) instead of all, which ends cycles."""
+
+
+@numba.njit(cache=True, _nrt=False)
+def local_coulomb(ufn, uft, wnn, wnt, wtt, mu):
+    r"""Exact solution of one contact's problem: impulses ``(P_n, P_t)`` [N s/m].
+
+    The local velocity is ``u = uf + W P`` (``uf`` without this contact's impulse, ``W`` its
+    2 x 2 Delassus block); the law is ``0 <= u_n perp P_n >= 0`` with Coulomb friction. The cases
+    are tried in turn:
+
+    .. math::
+
+        \text{separation:}\quad P = 0 \quad \text{if } u^f_n \ge 0,
+
+        \text{stick:}\quad P = -W^{-1} u^f \quad \text{if } P_n \ge 0,\;
+        |P_t| \le \mu P_n \quad (u = 0),
+
+        \text{slide:}\quad P_t = \sigma \mu P_n, \quad
+        P_n = \frac{-u^f_n}{W_{nn} + \sigma \mu W_{nt}} \quad
+        \text{if } \sigma u_t \le 0 \quad (u_n = 0,\; \sigma = +1 \text{ then } -1),
+
+    with :math:`u_t = u^f_t + (W_{nt} + \sigma \mu W_{tt}) P_n`; a sliding case whose
+    denominator is not positive is skipped. Should none hold (not reached for a positive
+    definite ``W`` and a moderate mu), a frictionless push :math:`P = (-u^f_n / W_{nn}, 0)` is
+    returned.
+
+    Parameters
+    ----------
+    ufn, uft : float
+        Normal and tangential velocity without this contact's impulse [m/s].
+    wnn, wnt, wtt : float
+        Entries of the symmetric 2 x 2 Delassus block [m/kg], i.e. (m/s) per
+        (N s/m).
+    mu : float
+        Friction coefficient [-], >= 0.
+
+    Returns
+    -------
+    pn, pt : float
+        Normal and tangential impulse [N s/m].
+    """
+    if ufn >= 0.0:
+        return 0.0, 0.0
+    det = wnn * wtt - wnt * wnt
+    pn = (-ufn * wtt + uft * wnt) / det
+    pt = (-uft * wnn + ufn * wnt) / det
+    if pn >= 0.0 and abs(pt) <= mu * pn:
+        return pn, pt
+    for s in (1.0, -1.0):
+        denominator = wnn + s * mu * wnt
+        if denominator <= 0.0:
+            continue
+        pn = -ufn / denominator
+        ut = uft + (wnt + s * mu * wtt) * pn
+        if s * ut <= 0.0:
+            return pn, s * mu * pn
+    # not reached for a positive definite W and a moderate mu; fall back to a frictionless push
+    return -ufn / wnn, 0.0
+
+
+@numba.njit(cache=True, _nrt=False)
+def solve_contacts(v, inv_mass, contact_bodies, jac, w, active, impulse, mu, tol_impulse,
+                   max_iterations):
+    r"""Projected Gauss-Seidel on the active contacts; ``v`` enters free and leaves corrected.
+
+    The warm start ``impulse`` of the active contacts is applied first (the others are set to
+    0); then every sweep visits the active contacts, forward on even sweeps and backward on odd
+    ones, and replaces each one's impulse by the exact solution of its own problem with the
+    others fixed [1]_:
+
+    .. math::
+
+        u^f_c = u_c(v) - W_{cc} P_c, \qquad
+        P_c^{new} = \operatorname{local\_coulomb}(u^f_c, W_{cc}, \mu), \qquad
+        v \leftarrow v + \mathbf{M}^{-1} H_c^T (P_c^{new} - P_c).
+
+    It stops after the first sweep in which no impulse changed by more than ``tol_impulse``
+    (measured as :math:`|\Delta P_n| + |\Delta P_t|`), or after ``max_iterations`` sweeps.
+
+    Parameters
+    ----------
+    v : array (nb, 3)
+        In: the free velocities; out: the velocities at the end of the step [m/s, m/s, rad/s].
+    inv_mass : array (nb, >= 2)
+        Inverse masses [m/kg] and inertias [1/(kg m)].
+    contact_bodies : array of int (nc, 2)
+        Bodies of every contact (-1: the ground).
+    jac : array (nc, 12)
+        Jacobian rows (:func:`~.contacts.contact_geometry`).
+    w : array (nc, 3)
+        Work space: the Delassus blocks ``(W_nn, W_nt, W_tt)`` of the active contacts [m/kg].
+    active : array of bool (nc,)
+        The active set.
+    impulse : array (nc, 2)
+        In: the warm start; out: the impulses ``(P_n, P_t)`` [N s/m].
+    mu : float
+        Friction coefficient [-].
+    tol_impulse : float
+        Largest change of an impulse in the last sweep [N s/m].
+    max_iterations : int
+        Largest number of sweeps.
+
+    Returns
+    -------
+    sweeps : int
+        Sweeps made.
+    converged : bool
+        Whether the tolerance was met.
+
+    References
+    ----------
+    .. [1] V. Acary, B. Brogliato, "Numerical methods for nonsmooth dynamical systems",
+       Springer (2008), Ch. 13.
+    """
+    nc = contact_bodies.shape[0]
+    for c in range(nc):
+        if active[c]:
+            a, b = contact_bodies[c, 0], contact_bodies[c, 1]
+            w[c, 0], w[c, 1], w[c, 2] = delassus_block(inv_mass, a, b, jac, c)
+            apply_impulse(v, inv_mass, a, b, jac, c, impulse[c, 0], impulse[c, 1])
+        else:
+            impulse[c, 0] = 0.0
+            impulse[c, 1] = 0.0
+    sweeps = 0
+    while sweeps < max_iterations:
+        change = 0.0
+        for i in range(nc):
+            c = i if sweeps % 2 == 0 else nc - 1 - i
+            if not active[c]:
+                continue
+            a, b = contact_bodies[c, 0], contact_bodies[c, 1]
+            un, ut = relative_velocity(v, a, b, jac, c)
+            pn, pt = impulse[c, 0], impulse[c, 1]
+            ufn = un - (w[c, 0] * pn + w[c, 1] * pt)
+            uft = ut - (w[c, 1] * pn + w[c, 2] * pt)
+            new_pn, new_pt = local_coulomb(ufn, uft, w[c, 0], w[c, 1], w[c, 2], mu)
+            dpn, dpt = new_pn - pn, new_pt - pt
+            if dpn != 0.0 or dpt != 0.0:
+                apply_impulse(v, inv_mass, a, b, jac, c, dpn, dpt)
+                impulse[c, 0] = new_pn
+                impulse[c, 1] = new_pt
+                change = max(change, abs(dpn) + abs(dpt))
+        sweeps += 1
+        if change <= tol_impulse:
+            return sweeps, True
+    return sweeps, False
+
+
+@numba.njit(cache=True)
+def incidence(contact_bodies, nb):
+    """The contacts of every block, and the half-bandwidth of the contact problem.
+
+    Parameters
+    ----------
+    contact_bodies : array of int (nc, 2)
+        Bodies a and b of every contact (-1: the ground).
+    nb : int
+        Number of blocks.
+
+    Returns
+    -------
+    pointer : array of int (nb + 1,)
+        The contacts of block ``i`` are the rows ``pointer[i]:pointer[i + 1]`` of
+        ``incident``.
+    incident : array of int (2 nc, 2)
+        Block by block, each of its contacts (increasing) and the block's side in it: 0 if it
+        is body a, 1 if body b.
+    half_bandwidth : int
+        The largest ``|c - d|`` [-] of two contacts that touch one block: the Delassus block
+        of ``c, d`` is zero beyond it (at least 1, the two ends of a joint).
+    """
+    nc = contact_bodies.shape[0]
+    pointer = np.zeros(nb + 1, dtype=np.int64)
+    for c in range(nc):
+        for side in range(2):
+            body = contact_bodies[c, side]
+            if body >= 0:
+                pointer[body + 1] += 1
+    for i in range(nb):
+        pointer[i + 1] += pointer[i]
+    fill = pointer[:nb].copy()
+    incident = np.zeros((max(pointer[nb], 1), 2), dtype=np.int64)
+    for c in range(nc):
+        for side in range(2):
+            body = contact_bodies[c, side]
+            if body >= 0:
+                incident[fill[body], 0] = c
+                incident[fill[body], 1] = side
+                fill[body] += 1
+    half_bandwidth = 1
+    for i in range(nb):
+        if pointer[i + 1] > pointer[i]:
+            half_bandwidth = max(half_bandwidth,
+                                 incident[pointer[i + 1] - 1, 0] - incident[pointer[i], 0])
+    return pointer, incident, half_bandwidth
+
+
+@numba.njit(cache=True, inline="always")
+def _coupling(scaled, c, side_c, d, side_d, wband, i, k):
+    """Add a block's part of the Delassus block of contacts c, d, ``H_c,b M_b^-1 H_d,b^T``
+    [m/kg], to rows ``2i, 2i+1`` and columns ``2k, 2k+1`` (``k >= i``; for ``k = i`` the upper
+    triangle only) of ``W`` in upper band storage ``wband`` (:func:`_assemble_delassus`), from
+    the rows of ``scaled``: the Jacobian rows of each contact scaled by ``M_b^-1/2``;
+    ``side_c``, ``side_d`` (0 or 6) say whether the block is body a or b of each contact."""
+    uc, ud = np.uint64(side_c), np.uint64(side_d)
+    rc, rd = np.uint64(c), np.uint64(d)
+    cnx, cny, cnr = scaled[rc, uc], scaled[rc, uc + 1], scaled[rc, uc + 2]
+    ctx, cty, ctr = scaled[rc, uc + 3], scaled[rc, uc + 4], scaled[rc, uc + 5]
+    dnx, dny, dnr = scaled[rd, ud], scaled[rd, ud + 1], scaled[rd, ud + 2]
+    dtx, dty, dtr = scaled[rd, ud + 3], scaled[rd, ud + 4], scaled[rd, ud + 5]
+    rn, rt = np.uint64(2 * i), np.uint64(2 * i + 1)
+    off = np.uint64(2 * (k - i))
+    wband[rn, off] += cnx * dnx + cny * dny + cnr * dnr
+    wband[rn, off + 1] += cnx * dtx + cny * dty + cnr * dtr
+    wband[rt, off] += ctx * dtx + cty * dty + ctr * dtr
+    if k > i:
+        wband[rt, off - 1] += ctx * dnx + cty * dny + ctr * dnr
+
+
+@numba.njit(cache=True, inline="always")
+def _scaled_rows(inv_mass, body, jac, c, first, scaled):
+    """Jacobian rows ``first .. first + 5`` of contact ``c`` (of block ``body``) scaled by
+    ``M_body^-1/2``: ``(m^-1/2, m^-1/2, I^-1/2)`` per row of 3, into ``scaled[c]``."""
+    ub, uc, f = np.uint64(body), np.uint64(c), np.uint64(first)
+    sm, si = inv_mass[ub, 2], inv_mass[ub, 3]
+    scaled[uc, f] = sm * jac[uc, f]
+    scaled[uc, f + 1] = sm * jac[uc, f + 1]
+    scaled[uc, f + 2] = si * jac[uc, f + 2]
+    scaled[uc, f + 3] = sm * jac[uc, f + 3]
+    scaled[uc, f + 4] = sm * jac[uc, f + 4]
+    scaled[uc, f + 5] = si * jac[uc, f + 5]
+
+
+@numba.njit(cache=True, inline="always")
+def _assemble_delassus(v, inv_mass, contact_bodies, jac, m, idx, pos, pointer, incident, kl,
+                       wband, uf, scaled):
+    r"""The Delassus matrix :math:`W = H M^{-1} H^T = \sum_b H_b M_b^{-1} H_b^T` of the ``m``
+    active contacts ``idx[:m]`` and their free velocities :math:`u^f = H v` (into ``uf``), rows
+    ``2 i`` normal and ``2 i + 1`` tangential of the ``i``-th.
+
+    ``W`` is symmetric: its upper band is stored, ``wband[r, s]`` = :math:`W_{r, r + s}`
+    (``s = 0 .. kl``). Block by block (``pointer``, ``incident``: :func:`incidence`), every pair
+    of active contacts that touch it couples: the cost is linear in the number of contacts.
+    Each entry is a dot product of Jacobian rows scaled by :math:`M_b^{-1/2}` (``scaled``, work
+    space (nc, 12))."""
+    size = 2 * m
+    for r in range(size):
+        for off in range(kl + 1):
+            wband[r, off] = 0.0
+    for i in range(m):
+        c = idx[i]
+        a, b = contact_bodies[c, 0], contact_bodies[c, 1]
+        uf[2 * i], uf[2 * i + 1] = relative_velocity(v, a, b, jac, c)
+        if a >= 0:
+            _scaled_rows(inv_mass, a, jac, c, 0, scaled)
+        if b >= 0:
+            _scaled_rows(inv_mass, b, jac, c, 6, scaled)
+    for body in range(pointer.size - 1):
+        end = pointer[body + 1]
+        for e in range(pointer[body], end):
+            c = incident[e, 0]
+            i = pos[c]
+            if i < 0:
+                continue
+            side_c = 6 * incident[e, 1]
+            for e2 in range(e, end):  # contacts in increasing order: k >= i
+                d = incident[e2, 0]
+                k = pos[d]
+                if k >= 0:
+                    _coupling(scaled, c, side_c, d, 6 * incident[e2, 1], wband, i, k)
+
+
+@numba.njit(cache=True, inline="always")
+def _state_system(m, idx, state, mu, kl, wband, uf, aband, rhs, scale, full):
+    r"""The linear system of the active-set method for the current ``state`` of every active
+    contact (:func:`solve_active_set`), in the band ``aband`` (half-bandwidth ``kl``, rows
+    zero-padded to ``3 kl + 1`` columns, :func:`~.band.band_solve`), ``rhs`` and the size of
+    every row, ``scale``: ``W`` (from its upper band ``wband``) with the compliance on its
+    diagonal; the rows and columns of an open contact those of the identity (``P = 0``); the
+    tangential row of a sliding one ``P_t - sigma mu P_n = 0``.
+
+    Returns whether a contact slides. If none does, the system is symmetric positive definite
+    and only its upper half is written (what :func:`~.band.band_cholesky_solve` reads), unless
+    ``full``. For an arch's half-bandwidth (:data:`~.band.ARCH_BANDWIDTH`) the entries outside
+    the band are not written for Cholesky's factorisation (:func:`~.band.arch_cholesky_solve`
+    does not read them), unless ``full`` (for :func:`~.band.band_solve`, whose row
+    interchanges fill the padding)."""
+    size = 2 * m
+    sliding = False
+    for i in range(m):
+        sliding = sliding or state[idx[i]] >= 2
+    ukl = np.uint64(kl)
+    # the arch's Cholesky (arch_cholesky_solve) reads the upper band and nothing else
+    lean = kl == ARCH_BANDWIDTH and not (sliding or full)
+    for r in range(size):
+        ur = np.uint64(r)
+        if not lean:
+            for off in range(kl):
+                aband[ur, np.uint64(off)] = 0.0
+            for off in range(2 * kl + 1, 3 * kl + 1):
+                aband[ur, np.uint64(off)] = 0.0
+        for off in range(kl + 1):
+            aband[ur, ukl + np.uint64(off)] = wband[ur, np.uint64(off)]
+        aband[ur, ukl] += REGULARISATION * wband[ur, 0]
+        rhs[ur] = -uf[ur]
+    if sliding or full:  # the lower half too
+        for r in range(size):
+            ur = np.uint64(r)
+            for s in range(1, min(kl, size - 1 - r) + 1):
+                us = np.uint64(s)
+                aband[ur + us, ukl - us] = wband[ur, us]
+    for i in range(m):
+        st = state[idx[i]]
+        if st == 0:
+            for r in (2 * i, 2 * i + 1):
+                for col in range(max(0, r - kl), min(size, r + kl + 1)):
+                    aband[r, col - r + kl] = 0.0
+                    aband[col, r - col + kl] = 0.0
+                aband[r, kl] = 1.0
+                rhs[r] = 0.0
+        elif st >= 2:
+            rt = 2 * i + 1
+            for off in range(2 * kl + 1):
+                aband[rt, off] = 0.0
+            aband[rt, kl] = 1.0
+            aband[rt, kl - 1] = -mu if st == 2 else mu
+            rhs[rt] = 0.0
+    for r in range(size):
+        scale[r] = abs(aband[r, kl])
+    return sliding
+
+
+@numba.njit(cache=True, inline="always")
+def _row_velocity(r, size, kl, wband, uf, impulses):
+    r"""Row ``r`` of :math:`u = u^f + W P` [m/s] from the upper band ``wband`` of ``W``."""
+    u = uf[r]
+    for s in range(min(kl, size - 1 - r) + 1):
+        u += wband[r, s] * impulses[r + s]
+    for s in range(1, min(kl, r) + 1):
+        u += wband[r - s, s] * impulses[r - s]
+    return u
+
+
+@numba.njit(cache=True, inline="always")
+def _switch_states(m, idx, state, mu, p_tol, u_tol, kl, wband, uf, impulses, solves):
+    """Switch the states that the impulses ``impulses`` (rows ``2 i``, ``2 i + 1`` of the
+    ``i``-th active contact) contradict (:func:`solve_active_set`); after
+    :data:`SINGLE_SWITCH_AFTER` solves only the first. The velocities ``u = u^f + W P`` are
+    computed where a test needs them: the normal one of an open contact, the tangential one of
+    a sliding contact (a sticking one has ``u = 0`` up to the compliance). Returns whether any
+    state changed."""
+    size = 2 * m
+    changed = False
+    for i in range(m):
+        c = idx[i]
+        pn, pt = impulses[2 * i], impulses[2 * i + 1]
+        st = state[c]
+        new = st
+        if st == 0:
+            if _row_velocity(2 * i, size, kl, wband, uf, impulses) < -u_tol:
+                new = 1
+        elif pn < -p_tol:
+            new = 0
+        elif st == 1:
+            if abs(pt) > mu * pn + p_tol:
+                new = 2 if pt > 0.0 else 3
+        elif st == 2:
+            if _row_velocity(2 * i + 1, size, kl, wband, uf, impulses) > u_tol:
+                new = 1
+        elif _row_velocity(2 * i + 1, size, kl, wband, uf, impulses) < -u_tol:
+            new = 1
+        if new != st and not (changed and solves > SINGLE_SWITCH_AFTER):
+            state[c] = new
+            changed = True
+    return changed
+
+
+@numba.njit(cache=True, _nrt=False)
+def solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse, state, mu, p_tol, u_tol,
+                     work, max_solves):
+    r"""Contact problem of a step by a primal-dual active-set method; ``v`` enters free.
+
+    Every active contact has a state (-1 for an inactive one): 0 open (``P = 0``), 1 stick
+    (``u = 0``), 2 slide with ``P_t = +mu P_n`` and 3 slide with ``P_t = -mu P_n``
+    (``u_n = 0``). For the current states the impulses solve one linear system in the
+    Delassus matrix ``W = H M^-1 H^T`` (assembled once), with
+    ``u = u^f + W P`` and :math:`\rho` = :data:`REGULARISATION`:
+
+    .. math::
+
+        \text{open:}\quad P_n = 0,\; P_t = 0,
+
+        \text{stick:}\quad (W P)_n + \rho W_{nn} P_n = -u^f_n, \quad
+        (W P)_t + \rho W_{tt} P_t = -u^f_t,
+
+        \text{slide } (\sigma = \pm 1):\quad (W P)_n + \rho W_{nn} P_n = -u^f_n, \quad
+        P_t = \sigma \mu P_n.
+
+    The states that the solution contradicts are switched and the system is solved again,
+    until none is:
+
+    .. math::
+
+        \text{open} \to \text{stick if } u_n < -\epsilon_u; \qquad
+        \text{stick or slide} \to \text{open if } P_n < -\epsilon_P;
+
+        \text{stick} \to \text{slide } \operatorname{sign}(P_t) \text{ if }
+        |P_t| > \mu P_n + \epsilon_P; \qquad
+        \text{slide } \sigma \to \text{stick if } \sigma u_t > \epsilon_u
+
+    (``u`` evaluated without the compliance). After :data:`SINGLE_SWITCH_AFTER` solves only the
+    first contradicted state is switched per solve; after :data:`ACTIVE_SET_SOLVES` the method
+    gives up. The compliance picks the smallest impulses among the statically indeterminate
+    ones (the split of the friction force between the two ends of a joint). The states start
+    from the previous step's; a newly active contact starts sticking. On convergence the
+    impulses are written to ``impulse`` and applied to ``v``; otherwise ``v`` and ``impulse``
+    keep their input values (the impulses of the previous step, 0 for an inactive contact) and
+    the caller falls back to Gauss-Seidel.
+
+    Two contacts couple only through a block they both touch, so ``W`` is a band matrix when
+    the contacts are numbered along the structure (an arch: joint by joint, each coupled to its
+    two neighbours): it is assembled block by block in band storage
+    (:func:`_assemble_delassus`) and the system of the states solved by Cholesky's
+    factorisation if no contact slides (:func:`~.band.band_cholesky_solve`: it is then
+    symmetric positive definite), else by Gaussian elimination (:func:`~.band.band_lu_solve`,
+    and with pivoting, :func:`~.band.band_solve`, should a pivot be small), at a cost linear in
+    the number of contacts.
+
+    Parameters
+    ----------
+    v : array (nb, 3)
+        In: the free velocities; out (if converged): the velocities at the end of the step
+        [m/s, m/s, rad/s].
+    inv_mass : array (nb, 4)
+        Inverse masses [m/kg] and inertias [1/(kg m)], and their square roots.
+    contact_bodies : array of int (nc, 2)
+        Bodies of every contact (-1: the ground).
+    jac : array (nc, 12)
+        Jacobian rows (:func:`~.contacts.contact_geometry`).
+    active : array of bool (nc,)
+        The active set.
+    impulse : array (nc, 2)
+        Out: the impulses ``(P_n, P_t)`` [N s/m] (0 for inactive contacts).
+    state : array of int (nc,)
+        In: the previous step's states; out: the new ones.
+    mu : float
+        Friction coefficient [-].
+    p_tol, u_tol : float
+        Tolerances :math:`\epsilon_P` [N s/m] and :math:`\epsilon_u` [m/s] of the switching
+        tests.
+    work : tuple
+        ``(idx, pos, pointer, incident, kl, wband, aband, rhs, uf, scale, scaled)``: the block
+        incidence ``pointer, incident`` of :func:`incidence` and the half-bandwidth of the
+        impulses ``kl = 2 b + 1`` (``b`` that of the contacts); work space: ``idx``, ``pos``
+        (nc,) int (the active contacts, and the position of each among them, -1 if inactive),
+        ``wband`` (2 nc, kl + 1), ``aband`` (2 nc, 3 kl + 1), ``rhs``, ``uf``, ``scale``
+        (2 nc,), ``scaled`` (nc, 12).
+
+    Returns
+    -------
+    solves : int
+        Linear solves made (0 if no contact is active).
+    converged : bool
+        Whether a consistent set of states was found.
+    """
+    idx, pos, pointer, incident, kl, wband, aband, rhs, uf, scale, scaled = work
+    nc = contact_bodies.shape[0]
+    m = 0
+    for c in range(nc):
+        if active[c]:
+            idx[m] = c
+            pos[c] = m
+            m += 1
+            if state[c] < 0:  # newly active: guess that it sticks
+                state[c] = 1
+        else:
+            pos[c] = -1
+            state[c] = -1
+            impulse[c, 0] = 0.0
+            impulse[c, 1] = 0.0
+    if m == 0:
+        return 0, True
+    _assemble_delassus(v, inv_mass, contact_bodies, jac, m, idx, pos, pointer, incident, kl,
+                       wband, uf, scaled)
+    solves = 0
+    converged = False
+    while solves < max_solves:
+        sliding = _state_system(m, idx, state, mu, kl, wband, uf, aband, rhs, scale, False)
+        if sliding and kl == ARCH_BANDWIDTH:
+            solved = arch_lu_solve(aband, rhs, 2 * m, scale)
+        elif sliding:
+            solved = band_lu_solve(aband, rhs, 2 * m, kl, scale)
+        elif kl == ARCH_BANDWIDTH:
+            solved = arch_cholesky_solve(aband, rhs, 2 * m)
+        else:
+            solved = band_cholesky_solve(aband, rhs, 2 * m, kl)
+        if not solved:  # a small pivot: assemble again and pivot
+            _state_system(m, idx, state, mu, kl, wband, uf, aband, rhs, scale, True)
+            band_solve(aband, rhs, 2 * m, kl)
+        solves += 1
+        if not _switch_states(m, idx, state, mu, p_tol, u_tol, kl, wband, uf, rhs, solves):
+            converged = True
+            break
+    if converged:
+        for i in range(m):
+            c = idx[i]
+            impulse[c, 0] = rhs[2 * i] if state[c] != 0 else 0.0
+            impulse[c, 1] = rhs[2 * i + 1] if state[c] != 0 else 0.0
+            apply_impulse(v, inv_mass, contact_bodies[c, 0], contact_bodies[c, 1], jac, c,
+                           impulse[c, 0], impulse[c, 1])
+    return solves, converged
+
+
+@numba.njit(cache=True)
+def solve_lemke(v, inv_mass, contact_bodies, jac, active, impulse, state, mu, p_tol, u_tol,
+                work):
+    r"""Contact problem of a step by Lemke's algorithm, where the active-set method gave up;
+    ``v`` enters free.
+
+    The Delassus matrix and free velocities of the active contacts, as
+    :func:`solve_active_set` left them in ``work``, are written out dense and the problem solved
+    as a linear complementarity problem (:mod:`archquake.rigid_blocks.lemke`: a method that
+    cannot cycle, and a problem that always has a solution). Its states are handed back to the
+    active-set method, which then solves them to round-off (usually in one linear solve, the
+    impulses then those it would have found had it converged); should it switch them and fail
+    again, Lemke's impulses are applied as they are.
+
+    Parameters
+    ----------
+    v, inv_mass, contact_bodies, jac, active, impulse, state, mu, p_tol, u_tol, work
+        As for :func:`solve_active_set`, called just before with the same arguments (``v``
+        unchanged since).
+
+    Returns
+    -------
+    pivots : int
+        Pivots of Lemke's algorithm and linear solves of the active-set method after it.
+    converged : bool
+        Whether the problem was solved (False only if Lemke's algorithm failed, not observed).
+    """
+    idx, pos, pointer, incident, kl, wband, aband, rhs, uf, scale, scaled = work
+    nc = contact_bodies.shape[0]
+    m = 0
+    for c in range(nc):
+        if active[c]:
+            m += 1
+    size = 2 * m
+    dense = np.zeros((size, size))
+    for r in range(size):
+        for s in range(min(kl, size - 1 - r) + 1):
+            dense[r, r + s] = wband[r, s]
+            dense[r + s, r] = wband[r, s]
+    free = uf[:size].copy()
+    impulses = np.zeros(size)
+    states = np.zeros(m, dtype=np.int64)
+    code, pivots = solve_contact_lcp(dense, free, mu, REGULARISATION, impulses, states)
+    if code != LEMKE_SOLVED:
+        return pivots, False
+    for i in range(m):
+        state[idx[i]] = states[i]
+    v_free = v.copy()
+    solves, converged = solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse,
+                                         state, mu, p_tol, u_tol, work, POLISH_SOLVES)
+    if converged:
+        return pivots + solves, True
+    v[:] = v_free  # the active-set method switched Lemke's states and failed: Lemke's impulses
+    for i in range(m):
+        c = idx[i]
+        state[c] = states[i]
+        impulse[c, 0] = impulses[2 * i]
+        impulse[c, 1] = impulses[2 * i + 1]
+        apply_impulse(v, inv_mass, contact_bodies[c, 0], contact_bodies[c, 1], jac, c,
+                       impulse[c, 0], impulse[c, 1])
+    return pivots + solves, True
