@@ -3,8 +3,9 @@ r"""Rigid-block dynamics of an arch (or any :class:`Assembly`) under a ground mo
 :func:`block_outcome` decides what happens (the fast path: no record, stops as soon as the
 outcome is certain); :func:`simulate_blocks` records the time history as well. Both run the one
 compiled driver :func:`archquake.rigid_blocks.solver.run` (Moreau-Jean time stepping [1]_, [2]_
-with unilateral contacts, Coulomb friction and restitution 0; see that module for the scheme,
-the contact detection and the frame of the ground). A single block
+with unilateral contacts, Coulomb friction and restitution 0; see that module for the scheme
+and the frame of the ground, :mod:`~archquake.rigid_blocks.contacts` for the contact detection
+and :mod:`~archquake.rigid_blocks.contact_problem` for the contact problem). A single block
 (:func:`~archquake.rigid_blocks.assembly.rectangular_block`) rocks as Housner's [3]_; an arch is
 a discrete model of the kind against which the four-link model has been checked [4]_.
 
