@@ -502,8 +502,8 @@ def _contact_work(v_old, v, v_free, bodies):
 
     .. math::
 
-        \sum_c P_c \cdot H_c rac{v_k + v_{k+1}}{2}
-        = rac{v_k + v_{k+1}}{2} \cdot \mathbf{M} (v_{k+1} - v^f),
+        \sum_c P_c \cdot H_c \frac{v_k + v_{k+1}}{2}
+        = \frac{v_k + v_{k+1}}{2} \cdot \mathbf{M} (v_{k+1} - v^f),
 
     since :math:`\mathbf{M} (v_{k+1} - v^f) = H^T P`: a sum over the blocks, not the
     contacts."""
