@@ -37,13 +37,16 @@ copy = pickle.loads(pickle.dumps(from_arch(arch)))  # as a worker process receiv
 domain_of(RigidBlockModel(copy), [0.2], [0.1, 0.2], resolution_g=0.1, extend_to_g=None)
 block_outcome(rectangular_block(0.4, 2.0), None)
 closing_impact(arch, np.ones((7, 3)))
-from archquake.rigid_blocks import band, contact_problem, contacts, solver
+from archquake.geometry import circular_arch
+many = circular_arch(10.0, 2.748893571891069, 1.5, 15)  # the active set cycles: Lemke solves
+assert block_outcome(many, oppenheim_pulse(-1.0 * GRAVITY, 0.27)).fallback_steps > 0
+from archquake.rigid_blocks import band, contact_problem, contacts, lemke, solver
 import archquake.ground_motion as gm
 """
 
 
 def compiled_signatures(cache_dir=None) -> dict:
-    return probe(SCRIPT, "contacts, band, contact_problem, solver, gm", cache_dir)
+    return probe(SCRIPT, "contacts, band, contact_problem, lemke, solver, gm", cache_dir)
 
 
 def test_every_rigid_block_entry_point_is_compiled_once():
@@ -60,6 +63,7 @@ def test_every_rigid_block_function_is_compiled_once_on_a_fresh_cache(tmp_path):
     """Everything compiled from scratch: the helpers too."""
     counts = compiled_signatures(tmp_path)
     assert counts.get("run") == 1 and counts.get("contact_geometry") == 1
+    assert counts.get("lemke") == 1 and counts.get("solve_lemke") == 1
     twice = {name: n for name, n in counts.items() if n > 1}
     assert not twice, f"compiled more than once: {twice}"
 

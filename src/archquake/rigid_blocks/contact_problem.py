@@ -664,7 +664,8 @@ def solve_lemke(v, inv_mass, contact_bodies, jac, active, impulse, state, mu, p_
         state[idx[i]] = states[i]
     v_free = v.copy()
     solves, converged = solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse,
-                                         state, mu, p_tol, u_tol, work, POLISH_SOLVES)
+                                         state, mu, p_tol, u_tol, work,
+                                         min(POLISH_SOLVES, 2 * m))  # an int64, as run's
     if converged:
         return pivots + solves, True
     v[:] = v_free  # the active-set method switched Lemke's states and failed: Lemke's impulses

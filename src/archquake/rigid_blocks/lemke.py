@@ -239,10 +239,7 @@ def lemke(mat, q, cover):
     tab = original.copy()
     basis = np.arange(n)
     z0 = 2 * n
-    r = 0
-    for i in range(1, n):
-        if q[i] / cover[i] < q[r] / cover[r]:
-            r = i
+    r = np.argmin(q / cover)  # an int64 (a literal 0 would compile _pivot twice)
     _pivot(tab, r, z0)
     leaving = basis[r]
     basis[r] = z0
