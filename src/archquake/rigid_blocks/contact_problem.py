@@ -38,16 +38,17 @@ solve, in the manner of Murty's least-index rule, most of these still cycle afte
 solves). Where it gives up after :data:`ACTIVE_SET_SOLVES` solves, the step's problem is
 solved by **Lemke's algorithm** (:func:`solve_lemke`, :mod:`archquake.rigid_blocks.lemke`),
 which cannot cycle: in two dimensions Coulomb's law is exactly a linear complementarity problem
-(Stewart and Trinkle's formulation, with the slip rate as an unknown), whose matrix, with the
-compliance above and the same on the slip rate, is copositive-plus, and whose problem is
-feasible; Lemke's algorithm with the lexicographic ratio test then ends on a solution after
-finitely many pivots (Cottle, Pang and Stone, Thm. 4.4.13; the module's docstring). Its
-solution's states are handed back to the active-set method, which solves the same states to
-round-off (so that both methods give the same impulses where both converge); where it would
-switch them, Lemke's impulses are kept. The fallback costs a dense tableau: 4 unknowns per
-active contact and about 1.5 pivots per unknown, 0.2 s for the 93 active contacts of the
-50-voussoir arch (``benchmarks/rigid_block_contact_solver.py``), paid only at the steps where
-the active-set method gave up. Should Lemke's algorithm end without a solution (never observed:
+(Stewart and Trinkle's formulation, with the slip rate as an unknown), whose matrix, with a
+compliance on ``W`` and on the slip rate (:data:`~archquake.rigid_blocks.lemke.LEMKE_COMPLIANCE`,
+1e-5: a better conditioned tableau than at this module's 1e-9), is copositive-plus, and whose
+problem is feasible; Lemke's algorithm with the lexicographic ratio test then ends on a solution
+after finitely many pivots (Cottle, Pang and Stone, Thm. 4.4.13; the module's docstring). Its
+solution's states are handed back to the active-set method, which solves the same states at
+this module's compliance to round-off (so that both methods give the same impulses where both
+converge); where it would switch them, Lemke's impulses are kept. The fallback costs a dense
+tableau: 4 unknowns per active contact and about 1.3 pivots per unknown, 45 ms for the 74-98
+active contacts of the 50-voussoir arch (``benchmarks/rigid_block_contact_solver.py``), paid
+only at the steps where the active-set method gave up. Should Lemke's algorithm end without a solution (never observed:
 a guard against round-off), projected Gauss-Seidel takes over [1]_ (Ch. 13),
 :func:`solve_contacts`: sweeps forward and backward in turn, each contact's problem solved
 exactly by :func:`local_coulomb` with the others' impulses fixed,
@@ -84,7 +85,7 @@ from .band import (
     band_solve,
 )
 from .contacts import apply_impulse, delassus_block, relative_velocity
-from .lemke import LEMKE_SOLVED, solve_contact_lcp
+from .lemke import LEMKE_COMPLIANCE, LEMKE_SOLVED, solve_contact_lcp
 
 REGULARISATION = 1e-9
 """Compliance of the rows of the contact problem that hold a velocity to zero (the normal row of a
@@ -657,7 +658,7 @@ def solve_lemke(v, inv_mass, contact_bodies, jac, active, impulse, state, mu, p_
     free = uf[:size].copy()
     impulses = np.zeros(size)
     states = np.zeros(m, dtype=np.int64)
-    code, pivots = solve_contact_lcp(dense, free, mu, REGULARISATION, impulses, states)
+    code, pivots = solve_contact_lcp(dense, free, mu, LEMKE_COMPLIANCE, impulses, states)
     if code != LEMKE_SOLVED:
         return pivots, False
     for i in range(m):

@@ -46,17 +46,17 @@ algorithm with the lexicographic ratio test [3]_ visits no basis twice, and on a
 problem with a copositive-plus matrix it ends on a solution ([3]_, Thm. 4.4.13; Anitescu and
 Potra [2]_ for the time-stepping problems of rigid bodies).
 
-In floating point the singular ``W`` makes the tableau ill-conditioned (:math:`1/\rho`), so the
+In floating point the singular ``W`` makes the tableau ill-conditioned (:math:`1/\rho`): the
+solver hands Lemke's algorithm the problem with the compliance :data:`LEMKE_COMPLIANCE`
+(1e-5), and solves the states it finds again at its own 1e-9 with the active-set method. The
 tableau is computed afresh from its basis before a ray is accepted and at the end, and every
 solution is checked against the problem as stated (:data:`ACCURACY`). Should round-off still
-spoil an attempt (a ray or an inaccurate solution, seen on random problems with three times
-fewer degrees of freedom than impulses, never on an arch), it is made again with another
-covering vector and then with the larger compliances :data:`COMPLIANCES`; the solver then hands
-the states to its active-set method, which solves them at its own compliance.
+spoil an attempt (a ray or an inaccurate solution), it is made again with another covering
+vector and then with ten and a hundred times the compliance (:data:`RETRY_FACTORS`).
 
 Cost: the algorithm is written on a dense tableau of ``4 m`` rows (``m`` active contacts) and
 ``8 m + 2`` columns, one pivot costing about :math:`32 m^2` operations, and it takes about 1.5
-pivots per row: 0.2 s for the 93 active contacts of Oppenheim's arch cut into 50 voussoirs
+pivots per row: 45 ms for the 74-98 active contacts of Oppenheim's arch cut into 50 voussoirs
 (``benchmarks/rigid_block_contact_solver.py``). The solver uses it only where its active-set
 method gave up.
 
@@ -92,9 +92,17 @@ MAX_PIVOTS_PER_ROW = 50
 """Largest number of pivots per row of the tableau before the algorithm gives up [-] (never
 reached in the tests; a guard against round-off loops)."""
 
-COMPLIANCES = (0.0, 1e-7, 1e-5, 1e-3)
-"""Compliances tried in turn, each with two covering vectors, should round-off spoil an attempt
-of Lemke's algorithm [-] (relative to the diagonal of ``W``; at least the solver's own)."""
+LEMKE_COMPLIANCE = 1e-5
+"""Compliance of the problem that Lemke's algorithm solves for the solver [-] (relative to the
+diagonal of ``W``, and on the slip rate): larger than the solver's own (1e-9), since the
+tableau's round-off grows with the inverse of the compliance (on the 79 problems at which the
+active-set method gave up on the 50-voussoir arch: 79 solved at the first attempt in 25,900
+pivots at 1e-5, 54 in 45,700 at 1e-9). The solver solves the states found again at its own
+compliance (:func:`archquake.rigid_blocks.contact_problem.solve_lemke`)."""
+
+RETRY_FACTORS = (1.0, 10.0, 100.0)
+"""Factors of the compliance tried in turn, each with two covering vectors, should round-off
+spoil an attempt of Lemke's algorithm (a ray or an inaccurate solution) [-]."""
 
 ACCURACY = 1e-8
 """Largest violation of the LCP by a solution that :func:`lemke` returns, relative to the
@@ -325,7 +333,7 @@ def contact_lcp(w, uf, mu, compliance):
     mu : float
         Friction coefficient [-].
     compliance : float
-        Added to the diagonal of ``W``, relative to it [-] (the solver's regularisation).
+        Added to the diagonal of ``W``, relative to it, and on the slip rate [-].
 
     Returns
     -------
@@ -399,8 +407,8 @@ def solve_contact_lcp(w, uf, mu, compliance, impulses, states):
     m = uf.size // 2
     pivots = 0
     code = LEMKE_RAY
-    for attempt in range(2 * len(COMPLIANCES)):
-        mat, q, s = contact_lcp(w, uf, mu, max(compliance, COMPLIANCES[attempt // 2]))
+    for attempt in range(2 * len(RETRY_FACTORS)):
+        mat, q, s = contact_lcp(w, uf, mu, compliance * RETRY_FACTORS[attempt // 2])
         cover = np.ones(q.size)
         if attempt % 2 == 1:  # another path: the covering vector of a perturbed q
             for i in range(q.size):
