@@ -10,7 +10,7 @@ import pytest
 from archquake.geometry import circular_arch
 from archquake.ground_motion import oppenheim_pulse
 from archquake.rigid_blocks import BlockSettings, block_outcome, from_arch
-from archquake.rigid_blocks.contact_problem import REGULARISATION, local_coulomb
+from archquake.rigid_blocks.contact_problem import local_coulomb
 from archquake.rigid_blocks.dynamics import simulate_blocks
 from archquake.rigid_blocks.lemke import (
     LEMKE_COMPLIANCE,
