@@ -49,8 +49,8 @@ converge); where it would switch them, Lemke's impulses are kept. The fallback c
 tableau: 4 unknowns per active contact and about 1.3 pivots per unknown, 45 ms for the 74-98
 active contacts of the 50-voussoir arch (``benchmarks/rigid_block_contact_solver.py``), paid
 only at the steps where the active-set method gave up. Should Lemke's algorithm end without a
-solution (never observed: a guard against round-off), projected Gauss-Seidel takes over [1]_ (Ch. 13),
-:func:`solve_contacts`: sweeps forward and backward in turn, each contact's problem solved
+solution (never observed: a guard against round-off), projected Gauss-Seidel takes over [1]_
+(Ch. 13), :func:`solve_contacts`: sweeps forward and backward in turn, each contact's problem solved
 exactly by :func:`local_coulomb` with the others' impulses fixed,
 
 .. math::
