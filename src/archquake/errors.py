@@ -56,8 +56,9 @@ class _Naming(dict):
 
 class DescriptionError(ValueError):
     """A description of a structure or a ground motion refused (bad input): the message names
-    the description's fields, and :meth:`naming` says the same with other names for them (the
-    command line names its options, ``--piers`` for ``piers``).
+    the description's fields, and :meth:`~archquake.errors.DescriptionError.naming` says the
+    same with other names for them (the command line names its options, ``--piers`` for
+    ``piers``).
 
     Parameters
     ----------

@@ -206,7 +206,7 @@ def _accurate(mat, q, z):
 def lemke(mat, q, cover):
     r"""Solve the linear complementarity problem :math:`w = q + M z`, :math:`0 \le w \perp z
     \ge 0` by Lemke's algorithm with the covering vector ``cover`` and the lexicographic ratio
-    test [3]_ (module docstring).
+    test (Cottle, Pang and Stone: the module docstring).
 
     The tableau is computed afresh from its basis before a ray is accepted and at the end, so
     that the round-off of many pivots does not decide; the solution is checked against the
