@@ -207,6 +207,11 @@ DEFAULT_TIME_STEP = 1e-3
 other structure's default step is scaled from it
 (:func:`archquake.rigid_blocks.dynamics.structure_time_step`)."""
 
+REST_MARGIN = 1e-12
+"""Relative margin [-] below the activation acceleration within which an analysis of a scaled
+record is integrated rather than declared at rest (round-off of the interpolation between
+samples; :meth:`archquake.fourlink.FourLinkModel.scaled_record_outcomes`)."""
+
 DEFAULT_COARSE_FACTOR = 2
 """Steps of the time step that the rigid-block model takes as one while no contact starts or
 stops carrying an impulse (:class:`archquake.rigid_blocks.BlockSettings`; every impact,

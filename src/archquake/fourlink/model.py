@@ -26,6 +26,7 @@ import numpy as np
 from ..defaults import (
     DEFAULT_LIMIT_METHOD,
     DEFAULT_RESTITUTION,
+    REST_MARGIN,
 )
 from ..geometry import GRAVITY, BlockArch
 
@@ -70,6 +71,31 @@ class FourLinkModel:
 
     name: ClassVar[str] = "four-link"
     """The model's name (:data:`archquake.models.MODELS`)."""
+    grid_in_one_call: ClassVar[bool] = True
+    """A whole grid of pulses, or every level of a record, is one compiled call
+    (:meth:`outcomes`, :meth:`scaled_record_outcomes`)."""
+    counts_half_cycles: ClassVar[bool] = True
+    """An outcome says in which half cycle the arch collapses."""
+    checks_standing: ClassVar[bool] = False
+    """An arch that cannot stand is refused when the model is built (:meth:`from_arch`)."""
+
+    def check_motion(self, motion) -> float:
+        """Any ground motion is resolved (the engine integrates with an adaptive step).
+
+        Parameters
+        ----------
+        motion : GroundMotion
+            Horizontal ground acceleration [m/s^2].
+
+        Returns
+        -------
+        float
+            inf: no time step to refuse.
+        """
+        return float("inf")
+
+    def check_stands(self) -> None:
+        """Nothing to check: the model of an arch that cannot stand is never built."""
 
     @property
     def structure(self) -> BlockArch:
@@ -313,3 +339,65 @@ class FourLinkModel:
         return outcomes_grid(table_l, table_r, c_lr, c_rl, durations,
                              GRAVITY * np.asarray(amplitudes_g, dtype=float), motion)
 
+
+    def scaled_record_outcomes(self, motion, factors) -> dict[str, np.ndarray]:
+        """Outcomes under one record scaled by each of ``factors``, in one compiled call.
+
+        An analysis whose scaled record stays strictly inside the activation accelerations
+        (``-k_l g < s xg'' < k_r g`` at every sample, eq. (2) of the paper, with the relative
+        margin :data:`archquake.defaults.REST_MARGIN`) is at rest without being integrated: the
+        record is piecewise linear, so its extremes are samples, and the engine would decide
+        the same.
+
+        Parameters
+        ----------
+        motion : GroundMotion
+            A ``LINEAR`` record [m/s^2].
+        factors : array_like of float
+            Signed scale factors [-]; a negative factor applies the reversed record.
+
+        Returns
+        -------
+        dict of ndarray
+            ``status`` (0 rest, 1 recovery, 2 collapse), ``half_cycle``, ``impacts``,
+            ``collapse_time`` [s], ``max_phi`` [rad] and ``integrated`` (False where the scaled
+            record stays below the activation acceleration: rest, not integrated), one per
+            factor.
+
+        Raises
+        ------
+        ValueError
+            If ``motion`` is not piecewise linear, or as
+            :func:`archquake.fourlink.engine.outcomes_grid`.
+        RuntimeError
+            As :func:`archquake.fourlink.engine.outcomes_grid`.
+        """
+        from ..ground_motion import LINEAR
+        from .engine import outcomes_grid
+
+        if motion.kind != LINEAR:
+            raise ValueError(f"record_outcomes takes a piecewise-linear record, got kind "
+                             f"{motion.kind} ({motion.name!r})")
+        table_l, table_r = self.tables
+        c_lr, c_rl = self.restitution
+        s = np.asarray(factors, dtype=float).ravel()
+        v_max, v_min = float(np.max(motion.values)), float(np.min(motion.values))
+        # rounding is monotone: max(v * s) is v_max * s for s > 0 and v_min * s for s < 0
+        high = np.where(s > 0, s * v_max, s * v_min)
+        low = np.where(s > 0, s * v_min, s * v_max)
+        threshold_r = table_r.activation_g * GRAVITY  # Mech-r opens when xg'' > k_r g
+        threshold_l = -table_l.activation_g * GRAVITY  # Mech-l opens when xg'' < -k_l g
+        run = ~((high < threshold_r * (1.0 - REST_MARGIN))
+                & (low > threshold_l * (1.0 - REST_MARGIN)))
+        out = {"status": np.zeros(s.size, dtype=np.int8),
+               "half_cycle": np.zeros(s.size, dtype=np.int16),
+               "impacts": np.zeros(s.size, dtype=np.int32),
+               "collapse_time": np.full(s.size, np.nan), "max_phi": np.zeros(s.size),
+               "integrated": run}
+        if np.any(run):
+            signed = s[run]
+            grid = outcomes_grid(table_l, table_r, c_lr, c_rl, np.ones(signed.size), signed,
+                                 motion)
+            for name in ("status", "half_cycle", "impacts", "collapse_time", "max_phi"):
+                out[name][run] = grid[name]
+        return out

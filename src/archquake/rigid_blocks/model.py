@@ -72,6 +72,12 @@ class RigidBlockModel:
 
     name: ClassVar[str] = "rigid-blocks"
     """The model's name (:data:`archquake.models.MODELS`)."""
+    grid_in_one_call: ClassVar[bool] = False
+    """Every analysis is its own call: a study searches its grid."""
+    counts_half_cycles: ClassVar[bool] = False
+    """An outcome does not say in which half cycle the structure collapses."""
+    checks_standing: ClassVar[bool] = True
+    """A study checks that an arch stands before it builds the model (:meth:`check_stands`)."""
 
     def __post_init__(self):
         if not isinstance(self.settings, BlockSettings):
@@ -118,6 +124,27 @@ class RigidBlockModel:
             Naming ``time_step``, the longest step allowed and why.
         """
         return check_time_step(self.settings.time_step, motion, self.assembly.thickness)
+
+    def check_stands(self) -> None:
+        """Refuse, before any dynamics, an arch that cannot stand under its own weight with its
+        friction (:func:`archquake.limit_analysis.standing_with_friction`): every amplitude
+        would collapse it, and the lowest one scanned is no failure acceleration. An
+        :class:`Assembly` is not checked.
+
+        Raises
+        ------
+        archquake.errors.CannotStandError
+            With the reason of the verdict.
+        """
+        from ..errors import CannotStandError
+        from ..geometry import BlockArch
+        from ..limit_analysis import standing_with_friction
+
+        if not isinstance(self.structure, BlockArch):
+            return
+        verdict = standing_with_friction(self.structure, self.settings.friction)
+        if not verdict.stands:
+            raise CannotStandError(verdict.reason)
 
     def describe(self) -> dict:
         """JSON-ready name and settings of the model (what results record of it).
