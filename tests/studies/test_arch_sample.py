@@ -12,6 +12,7 @@ from archquake.errors import CannotStandError, NeverCollapsesError
 from archquake.execution import StudyPlan, run_study
 from archquake.geometry import irregular_sample
 from archquake.limit_analysis import limit_sample, load_multipliers
+from archquake.models import ModelSpec
 from archquake.studies.arch_sample import (
     EXCLUSIONS,
     ArchSample,
@@ -146,7 +147,7 @@ def test_the_nominal_model_is_built_once_per_arch_and_restitution(nominal):
     a = nominal_model(nominal)
     again = nominal_model(type(nominal).from_dict(nominal.to_dict()))  # an equal arch
     assert again is a
-    assert nominal_model(nominal, "paper") is not a
-    assert nominal_model(nominal, "paper").restitution == (0.875, 0.875)
+    assert nominal_model(nominal, ModelSpec(restitution="paper")) is not a
+    assert nominal_model(nominal, ModelSpec(restitution="paper")).restitution == (0.875, 0.875)
     assert a.load_multipliers == pytest.approx(load_multipliers(nominal), abs=1e-9)
     assert nominal_json(nominal) == nominal_json(type(nominal).from_dict(nominal.to_dict()))

@@ -14,6 +14,7 @@ from archquake.fourlink.time_history import simulate
 from archquake.geometry import GRAVITY, irregular_sample
 from archquake.ground_motion import oppenheim_pulse
 from archquake.limit_analysis import limit_sample, load_multipliers
+from archquake.models import ModelSpec
 from archquake.results_io import load_study
 from archquake.studies.arch_sample import STATUS_EXCLUDED
 from archquake.studies.failure_domain import inclusive_range
@@ -138,13 +139,13 @@ def test_settings_stored_under_former_names_load(former):
     """A study stored by an earlier version loads: ``tolerance`` is read as ``epsilon`` and the
     restitution measured on the rigid blocks, stored as ``"blocks"`` or ``"rigid-blocks"``, as
     ``"measured"`` (the settings refuse those names when they are given)."""
-    settings = FragilitySettings(**TINY, restitution="measured", epsilon=0.05)
+    settings = FragilitySettings(**TINY, model=ModelSpec(restitution="measured"), epsilon=0.05)
     stored = settings.to_dict()
     stored["tolerance"] = stored.pop("epsilon")
     stored["restitution"] = former
     assert FragilitySettings.from_dict(stored) == settings
     with pytest.raises(ValueError, match=f"got '{former}'"):
-        FragilitySettings(**TINY, restitution=former)
+        FragilitySettings(**TINY, model=ModelSpec(restitution=former))
 
 
 def test_irregular_arches_fail_below_the_nominal_failure_acceleration():

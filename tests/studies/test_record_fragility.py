@@ -15,6 +15,7 @@ from archquake.fourlink.impact import restitution
 from archquake.fourlink.mechanism import mechanisms
 from archquake.fourlink.time_history import simulate
 from archquake.ground_motion import RecordSuite, read_suite, scale_to_im, stochastic_suite
+from archquake.models import ModelSpec
 from archquake.studies.arch_sample import STATUS_EXCLUDED
 from archquake.studies.fits import LognormalFragility
 from archquake.studies.record_fragility import (
@@ -86,7 +87,8 @@ def test_stripes_of_arias_intensity_scale_records_as_scale_to_im(nominal_pair):
     pair, c = nominal_pair
     suite = RecordSuite.from_stochastic(2, seed=4, **SUITE)
     settings = RecordFragilitySettings(suite=suite, levels=(0.05, 0.2, 0.6), im="arias",
-                                       sample_size=1, epsilon=0.0, restitution="computed")
+                                       sample_size=1, epsilon=0.0,
+                                       model=ModelSpec(restitution="computed"))
     result = run_record_fragility(settings, backend="serial", progress=False)
     nominal = result.table[result.table["arch"] == NOMINAL_ARCH]
     for row, motion in zip(nominal.itertuples(), [m for m in suite.motions() for _ in range(6)],
@@ -178,7 +180,8 @@ def test_settings_stored_under_former_names_load():
     """``tolerance`` is read as ``epsilon``, the restitution ``"blocks"`` or ``"rigid-blocks"``
     of an earlier version as ``"measured"``."""
     settings = RecordFragilitySettings(suite=RecordSuite.from_stochastic(1, **SUITE),
-                                       levels=(0.5, 1.0), restitution="measured", epsilon=0.05)
+                                       levels=(0.5, 1.0), model=ModelSpec(restitution="measured"),
+                                       epsilon=0.05)
     for former in ("blocks", "rigid-blocks"):
         stored = settings.to_dict()
         stored["tolerance"] = stored.pop("epsilon")

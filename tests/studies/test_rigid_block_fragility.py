@@ -10,6 +10,7 @@ import pytest
 from archquake import GRAVITY
 from archquake.cli import main
 from archquake.ground_motion import oppenheim_pulse
+from archquake.models import ModelSpec
 from archquake.results_io import load_study
 from archquake.rigid_blocks import RigidBlockModel
 from archquake.studies.fragility import FragilitySettings, run_fragility
@@ -82,7 +83,7 @@ def test_an_interrupted_study_resumes_and_a_change_of_model_is_refused(serial, t
     four_link = FragilitySettings(**{**TINY, "model": "four-link"})
     with pytest.raises(ValueError, match="differ"):
         run_fragility(four_link, out, backend="serial", resume=True, **FAST)
-    coarser = FragilitySettings(**TINY, time_step=0.002)
+    coarser = FragilitySettings(**{**TINY, "model": ModelSpec("rigid-blocks", time_step=0.002)})
     with pytest.raises(ValueError, match="differ"):
         run_fragility(coarser, out, backend="serial", resume=True, **FAST)
 
@@ -90,19 +91,19 @@ def test_an_interrupted_study_resumes_and_a_change_of_model_is_refused(serial, t
 def test_the_time_step_reaches_every_analysis():
     """A study at h = 2 ms: its rows are the outcomes of the model with that step (and it says
     so), and the settings round-trip through their JSON form."""
-    settings = FragilitySettings(**{**TINY, "sample_size": 1, "search": "exhaustive"},
-                                 time_step=0.002)
+    settings = FragilitySettings(**{**TINY, "sample_size": 1, "search": "exhaustive",
+                                    "model": ModelSpec("rigid-blocks", time_step=0.002)})
     assert FragilitySettings.from_dict(settings.to_dict()) == settings
     assert settings.to_dict()["time_step"] == 0.002
     result = run_fragility(settings, backend="serial", **FAST)
-    model = RigidBlockModel(settings.sample.arch(0), settings.block_settings)
+    model = settings.model.build(settings.sample.arch(0))
     assert model.settings.time_step == 0.002
     rows = result.table[result.table["direction"] == "r"]
     for _, row in rows.iloc[::3].iterrows():
         pulse = oppenheim_pulse(row["amplitude_g"] * GRAVITY, row["duration"])
         assert int(model.outcome(pulse).status) == row["status"]
     with pytest.raises(ValueError, match="time_step"):
-        FragilitySettings(**TINY, time_step=-1.0)
+        ModelSpec("rigid-blocks", time_step=-1.0)
 
 
 def test_a_step_that_cannot_resolve_the_study_is_refused_before_any_analysis(capsys):
@@ -111,12 +112,13 @@ def test_a_step_that_cannot_resolve_the_study_is_refused_before_any_analysis(cap
     are made, not when the first arch is analysed; the four-link model ignores the step."""
     limit = 0.02 * math.sqrt(1.5 / GRAVITY)
     assert limit == pytest.approx(0.00782, abs=1e-5)
-    FragilitySettings(**TINY, time_step=0.999 * limit)
+    FragilitySettings(**{**TINY, "model": ModelSpec("rigid-blocks", time_step=0.999 * limit)})
     with pytest.raises(ValueError, match=r"time_step must be at most 0.00782 s .* 1.5 m thick"):
-        FragilitySettings(**TINY, time_step=1.01 * limit)
+        FragilitySettings(**{**TINY, "model": ModelSpec("rigid-blocks", time_step=1.01 * limit)})
     with pytest.raises(ValueError, match=r"at most 0.003 s .* shortest piece 0.06 s"):
-        FragilitySettings(**{**TINY, "durations": (0.06, 0.4)}, time_step=0.004)
-    FragilitySettings(**{**TINY, "model": "four-link"}, time_step=0.5)
+        FragilitySettings(**{**TINY, "durations": (0.06, 0.4),
+                             "model": ModelSpec("rigid-blocks", time_step=0.004)})
+    FragilitySettings(**{**TINY, "model": ModelSpec("four-link", time_step=0.5)})
     assert main(["fragility", "--model", "rigid-blocks", "--time-step", "0.009", "--samples",
                  "2", "--out", "never-written"]) == 2
     err = capsys.readouterr().err

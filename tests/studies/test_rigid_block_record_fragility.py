@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 from archquake.ground_motion import RecordSuite
+from archquake.models import ModelSpec
 from archquake.rigid_blocks import RigidBlockModel
 from archquake.studies.record_fragility import RecordFragilitySettings, run_record_fragility
 
@@ -61,8 +62,8 @@ def test_a_collapse_during_a_record_is_not_inferred_between_two_collapses():
     tables = {}
     for search in ("screened", "exhaustive"):
         settings = RecordFragilitySettings(suite=suite, levels=(1.0, 1.2, 1.4), sample_size=1,
-                                           model="rigid-blocks", search=search, bootstrap=10,
-                                           coarse_factor=1)
+                                           model=ModelSpec("rigid-blocks", coarse_factor=1),
+                                           search=search, bootstrap=10)
         table = run_record_fragility(settings, backend="serial", progress=False).table
         tables[search] = table[table["arch"] == 0].sort_values(["level", "polarity"])
     exhaustive = tables["exhaustive"]
@@ -79,7 +80,7 @@ def test_a_step_longer_than_a_records_spacing_is_refused_before_any_analysis(tmp
                                                   for x in t))
     suite = RecordSuite.from_paths([record])
     settings = RecordFragilitySettings(suite=suite, levels=LEVELS, sample_size=1, seed=2,
-                                       model="rigid-blocks", time_step=0.005)
+                                       model=ModelSpec("rigid-blocks", time_step=0.005))
     with pytest.raises(ValueError, match=r"time_step must be at most 0.004 s .* sample spacing"):
         run_record_fragility(settings, tmp_path / "study", backend="serial", progress=False)
     assert not (tmp_path / "study").exists()

@@ -140,8 +140,7 @@ def _expected_fragility(settings):
     """P_F bounds and counts from the forced pattern and each arch's own load multipliers."""
     failed, undecided, count = [], [], 0
     for i in range(settings.sample_size):
-        member = settings.sample.member(i, model="rigid-blocks",
-                                        block_settings=settings.block_settings)
+        member = settings.sample.member(i, settings.model)
         if member.model is None:
             continue
         k_l, k_r = member.model.load_multipliers
@@ -219,8 +218,7 @@ def test_record_fragility_bounds_the_stripes_by_the_undecided_pairs(calls, capsy
     result = run_record_fragility(settings, backend="serial", progress=False)
     codes = []
     for i in result.arches:  # each analysed arch's pattern, the same for every record
-        member = settings.sample.member(int(i), model="rigid-blocks",
-                                        block_settings=settings.block_settings)
+        member = settings.sample.member(int(i), settings.model)
         k = min(member.model.load_multipliers)
         codes.append([forced.status_of(x / k) for x in levels])
     codes = np.array(codes)

@@ -68,9 +68,8 @@ from typing import Any
 import numpy as np
 
 from ..checks import check_integer, json_dumps
-from ..defaults import DEFAULT_RESTITUTION
 from ..geometry import BlockArch, arch_from_dict, check_epsilon, irregular_arch
-from ..models import DEFAULT_MODEL, check_model
+from ..models import ModelSpec, model_spec
 
 STATUS_EXCLUDED = -2
 """``status`` of the rows of an excluded arch in a study table (not analysed; see
@@ -259,8 +258,7 @@ class ArchSample:
         except ValueError:  # the nominal arch and epsilon are valid: the draw itself is not
             return None, "not an arch"
 
-    def member(self, index: int, *, restitution=DEFAULT_RESTITUTION,
-               model: str = DEFAULT_MODEL, block_settings=None) -> SampledArch:
+    def member(self, index: int, model: ModelSpec | str | None = None) -> SampledArch:
         """Arch ``index`` with its model, or the reason it is excluded (the rule of the module
         docstring).
 
@@ -268,14 +266,10 @@ class ArchSample:
         ----------
         index : int
             Arch index, >= 0.
-        restitution : str or float
-            Restitution model of the four-link model
-            (:func:`archquake.fourlink.impact.check_restitution_model`); ``"nominal"`` takes the
+        model : ModelSpec or str, optional
+            The model and its settings (:func:`archquake.models.model_spec`; default the
+            four-link model, restitution ``"computed"``); restitution ``"nominal"`` takes the
             nominal arch's coefficients (:func:`nominal_model`).
-        model : str
-            ``"four-link"`` or ``"rigid-blocks"`` (:func:`archquake.models.model_for`).
-        block_settings : BlockSettings, optional
-            Settings of the rigid-block model.
 
         Returns
         -------
@@ -287,14 +281,12 @@ class ArchSample:
             Any error that is not one of :data:`EXCLUSIONS` (the caller names the arch,
             :func:`study_error`).
         """
+        spec = model_spec(model)
         arch, why = self.draw(index)
         if arch is None:
             return SampledArch(int(index), None, None, why)
-        nominal = None
-        if restitution == "nominal":
-            nominal = nominal_model(self.nominal, model=model)
-        built, why = analysable_model(arch, restitution=restitution, nominal=nominal, model=model,
-                                      block_settings=block_settings)
+        nominal = nominal_model(self.nominal) if spec.needs_nominal else None
+        built, why = analysable_model(arch, spec, nominal=nominal)
         return SampledArch(int(index), arch, built, why)
 
     def load_multipliers(self, indices, method: str) -> tuple[np.ndarray, np.ndarray]:
@@ -350,8 +342,8 @@ class ArchSample:
         return f"irregular arch {index} (SeedSequence({self.seed}, spawn_key=({index},)))"
 
 
-def analysable_model(arch: BlockArch, *, restitution=DEFAULT_RESTITUTION, nominal=None,
-                     model: str = DEFAULT_MODEL, block_settings=None) -> tuple[Any, str]:
+def analysable_model(arch: BlockArch, model: ModelSpec | str | None = None, *,
+                     nominal=None) -> tuple[Any, str]:
     """The model of an arch, or why the arch cannot be analysed (:data:`EXCLUSIONS`).
 
     The rule is the same for both models where it can be: an arch that cannot stand (no line
@@ -364,14 +356,10 @@ def analysable_model(arch: BlockArch, *, restitution=DEFAULT_RESTITUTION, nomina
     ----------
     arch : BlockArch
         The arch.
-    restitution : str or float
-        Restitution model (:func:`archquake.models.model_for`).
+    model : ModelSpec or str, optional
+        The model and its settings (:func:`archquake.models.model_spec`).
     nominal : BlockArch or FourLinkModel, optional
         The nominal arch, for ``restitution="nominal"``.
-    model : str
-        The model's name.
-    block_settings : BlockSettings, optional
-        Settings of the rigid-block model.
 
     Returns
     -------
@@ -386,17 +374,16 @@ def analysable_model(arch: BlockArch, *, restitution=DEFAULT_RESTITUTION, nomina
     """
     from ..errors import CannotStandError, NeverCollapsesError
     from ..limit_analysis import load_multipliers
-    from ..models import model_for
 
+    spec = model_spec(model)
     try:
-        if check_model(model) == "rigid-blocks":
+        if spec.checks_standing:
             k = np.asarray(load_multipliers(arch), dtype=float)  # the same verdict on standing
             if np.any(np.isnan(k) | (k < 0.0)):
                 raise CannotStandError("the arch cannot stand under its own weight")
             if np.all(np.isinf(k)):
                 raise NeverCollapsesError("no collapse mechanism in either direction")
-        return model_for(arch, model, restitution=restitution, nominal=nominal,
-                         block_settings=block_settings), ""
+        return spec.build(arch, nominal), ""
     except CannotStandError:
         return None, "cannot stand"
     except NeverCollapsesError:
@@ -424,15 +411,12 @@ def nominal_json(nominal: BlockArch) -> str:
 
 
 @functools.lru_cache(maxsize=8)
-def _model_of(nominal: str, restitution, model: str):
-    from ..models import model_for
-
-    return model_for(arch_from_dict(json.loads(nominal)), model, restitution=restitution)
+def _model_of(nominal: str, model: ModelSpec):
+    return model.build(arch_from_dict(json.loads(nominal)))
 
 
-def nominal_model(nominal: BlockArch, restitution=DEFAULT_RESTITUTION, *,
-                  model: str = DEFAULT_MODEL):
-    """The model of the nominal arch, built once per process and (arch, restitution, model).
+def nominal_model(nominal: BlockArch, model: ModelSpec | str | None = None):
+    """The model of the nominal arch, built once per process and (arch, model spec).
 
     Every chunk of a study needs it (its mechanisms for ``restitution="nominal"``, the record
     study's nominal arch); building it (limit analyses, linkage, tables) in every chunk cost
@@ -442,10 +426,9 @@ def nominal_model(nominal: BlockArch, restitution=DEFAULT_RESTITUTION, *,
     ----------
     nominal : BlockArch
         The nominal arch (identified by :func:`nominal_json`).
-    restitution : str or float
-        Restitution model (:func:`archquake.fourlink.impact.check_restitution_model`).
-    model : str
-        ``"four-link"`` or ``"rigid-blocks"``.
+    model : ModelSpec or str, optional
+        The model and its settings (:func:`archquake.models.model_spec`; default the four-link
+        model, restitution ``"computed"``).
 
     Returns
     -------
@@ -456,14 +439,10 @@ def nominal_model(nominal: BlockArch, restitution=DEFAULT_RESTITUTION, *,
     ValueError
         If the arch cannot be analysed (:func:`check_nominal` says so in a study's words).
     """
-    from ..fourlink.impact import check_restitution_model
-
-    return _model_of(nominal_json(nominal), check_restitution_model(restitution),
-                     check_model(model))
+    return _model_of(nominal_json(nominal), model_spec(model))
 
 
-def check_nominal(nominal: BlockArch, restitution=DEFAULT_RESTITUTION, *,
-                  model: str = DEFAULT_MODEL):
+def check_nominal(nominal: BlockArch, model: ModelSpec | str | None = None):
     """Refuse, before any study, a nominal arch that cannot be analysed (e.g. it cannot stand
     under its own weight): every result of a study is compared with it.
 
@@ -471,10 +450,8 @@ def check_nominal(nominal: BlockArch, restitution=DEFAULT_RESTITUTION, *,
     ----------
     nominal : BlockArch
         The nominal arch.
-    restitution : str or float
-        Restitution model.
-    model : str
-        The model's name.
+    model : ModelSpec or str, optional
+        The model and its settings (:func:`archquake.models.model_spec`).
 
     Returns
     -------
@@ -487,7 +464,7 @@ def check_nominal(nominal: BlockArch, restitution=DEFAULT_RESTITUTION, *,
         ``"the nominal arch cannot be analysed: ..."``.
     """
     try:
-        return nominal_model(nominal, restitution, model=model)
+        return nominal_model(nominal, model)
     except ValueError as exc:
         raise ValueError(f"the nominal arch cannot be analysed: {exc}") from exc
 

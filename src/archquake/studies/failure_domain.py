@@ -61,6 +61,7 @@ from ..defaults import (
     MAX_GRID_POINTS,
     MAX_PULSE_DURATION,
 )
+from ..models import screening_model
 from ..ranges import inclusive_range
 from ..status import Status
 from .strategies import DEFAULT_STRIDE
@@ -641,16 +642,16 @@ def domain_of(model, durations=None, amplitudes_g=None, *, direction: str = "l",
     if workers is not None and (isinstance(workers, bool) or int(workers) != workers
                                 or workers < 1):
         raise ValueError(f"workers must be an integer >= 1, got {workers!r}")
-    single = name != "four-link"
+    single = not model.grid_in_one_call
     _check_scan_size(d.size, a, extend_to_g, MAX_BLOCK_GRID_POINTS if single else
                      MAX_GRID_POINTS)
-    _check_stands(model)
+    model.check_stands()
     screen_model = screen
     if search == "screened" and screen is None:
-        screen_model = model if name == "four-link" else _four_link_screen(model.structure)
+        screen_model = screening_model(model)
     job = _SliceJob(model, screen_model, sign, a, float(resolution_g), motion, extend_to_g,
                     search, stride)
-    if name == "four-link" and search == "exhaustive":
+    if model.grid_in_one_call and search == "exhaustive":
         job = job.with_scan(model.outcomes(d[:, None], sign * a[None, :], motion))
     slices = _run_slices(job, d, workers if single else None, progress)
     try:
@@ -663,36 +664,6 @@ def domain_of(model, durations=None, amplitudes_g=None, *, direction: str = "l",
                          motion, None if extend_to_g is None else float(extend_to_g),
                          model.describe(), search, tuple(n for _, n, _ in slices),
                          tuple(u for _, _, u in slices))
-
-
-def _check_stands(model) -> None:
-    """Refuse, before any dynamics, a rigid-block structure that cannot stand under its own
-    weight with its friction (:func:`archquake.limit_analysis.standing_with_friction`): every
-    amplitude would collapse it, and the lowest one scanned is no failure acceleration. (The
-    four-link model refuses such an arch when it is built.)"""
-    from ..errors import CannotStandError
-    from ..geometry import BlockArch
-    from ..limit_analysis import standing_with_friction
-
-    if model.name == "four-link" or not isinstance(model.structure, BlockArch):
-        return
-    verdict = standing_with_friction(model.structure, model.settings.friction)
-    if not verdict.stands:
-        raise CannotStandError(verdict.reason)
-
-
-def _four_link_screen(structure):
-    """The four-link model of ``structure`` (default restitution), or None where there is none
-    (a structure that is not an arch, or whose collapse is no four-link mechanism)."""
-    from ..fourlink import FourLinkModel
-    from ..geometry import BlockArch
-
-    if not isinstance(structure, BlockArch):
-        return None
-    try:
-        return FourLinkModel.from_arch(structure)
-    except ValueError:
-        return None
 
 
 def _encode(status, half_cycle) -> np.ndarray:
@@ -821,7 +792,7 @@ def _run_slices(job: _SliceJob, durations: np.ndarray, workers: int | None,
 def _target(model) -> Callable[[np.ndarray], bool]:
     """What an extension of the scan looks for: the collapse in the first half cycle (four-link
     model) or any collapse (models that do not count half cycles)."""
-    if model.name == "four-link":
+    if model.counts_half_cycles:
         return lambda keys: bool(np.any(keys == int(Status.COLLAPSE) * 1000 + 1))
     return lambda keys: bool(np.any(keys // 1000 == int(Status.COLLAPSE)))
 

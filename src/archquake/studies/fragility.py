@@ -87,14 +87,10 @@ import pandas as pd
 from .._equality import frozen_value
 from ..checks import check_integer, json_float
 from ..defaults import (
-    DEFAULT_COARSE_FACTOR,
     DEFAULT_EPSILON,
-    DEFAULT_FRICTION,
-    DEFAULT_RESTITUTION,
     DEFAULT_SAMPLE_LIMIT_METHOD,
     DEFAULT_SEARCH,
     DEFAULT_SEED,
-    DEFAULT_TIME_STEP,
     LIMIT_METHODS,
     LIMIT_SAMPLE_SIZE,
     MAX_ACCELERATION_G,
@@ -108,7 +104,7 @@ from ..defaults import (
     STUDY_SAMPLE_SIZE,
 )
 from ..geometry import GRAVITY, BlockArch, arch_from_dict
-from ..models import DEFAULT_MODEL
+from ..models import DEFAULT_MODEL, ModelSpec, model_spec
 from ..reference_arches import oppenheim
 from .arch_sample import (
     STATUS_EXCLUDED,
@@ -177,10 +173,6 @@ class FragilitySettings:
         amplitudes at most :data:`~archquake.defaults.MAX_GRID_POINTS`.
     seed : int
         Root seed (>= 0); arch i uses ``SeedSequence(seed, spawn_key=(i,))``.
-    restitution : str or float
-        Restitution model (:func:`archquake.fourlink.impact.check_restitution_model`; default
-        ``"computed"``, each arch its own; ``"nominal"`` is the paper's practice, see the module
-        docstring).
     limit_sample_size : int
         Number s of arches of the limit-analysis CDF of k~ (the paper: 1000), at most
         :data:`~archquake.defaults.MAX_LIMIT_SAMPLES`.
@@ -190,29 +182,21 @@ class FragilitySettings:
     motion : str
         Pulse shape, a name of :data:`archquake.ground_motion.ANALYTIC_GROUND_MOTIONS` (default
         Oppenheim's pulse).
-    model : {"four-link", "rigid-blocks"}
-        The dynamic model of every arch (:func:`archquake.models.model_for`; default the
-        paper's four-link model). ``restitution`` applies to the four-link model only.
+    model : ModelSpec or str
+        The dynamic model of every arch and its settings (:class:`archquake.models.ModelSpec`;
+        a name stands for its spec with the default settings; default the paper's four-link
+        model, restitution ``"computed"``, each arch its own: ``"nominal"`` is the paper's
+        practice, see the module docstring). Recorded resolved for the nominal arch
+        (:meth:`~archquake.models.ModelSpec.resolved`: the rigid blocks' time step chosen from
+        it unless given, 1 ms for Oppenheim's arch; how the study's outcomes depend on it:
+        :func:`archquake.rigid_blocks.dynamics.structure_time_step` and the user guide, "What a
+        rigid-block study costs").
     search : {"exhaustive", "bisection", "screened"}, optional
         How each arch's amplitude lines are searched (:mod:`archquake.studies.strategies`;
         default :data:`archquake.defaults.DEFAULT_SEARCH` of the model).
     stride : int, optional
         Grid steps between the coarse points of ``bisection`` and ``screened`` [-] (default
         :data:`archquake.defaults.DEFAULT_STRIDE`).
-    time_step : float, optional
-        Time step h of the rigid-block model [s], one for every arch of the study (default:
-        chosen from the nominal structure,
-        :func:`archquake.rigid_blocks.dynamics.structure_time_step`: 1 ms for Oppenheim's arch;
-        ignored by the four-link model). How the study's outcomes depend on it:
-        :func:`~archquake.rigid_blocks.dynamics.structure_time_step` and the user guide, "What
-        a rigid-block study costs".
-    coarse_factor : int
-        Steps of ``time_step`` the rigid-block model takes as one while no contact starts or
-        stops carrying an impulse [-], >= 1 (default 2; 1: every step at ``time_step``;
-        :class:`archquake.rigid_blocks.BlockSettings`).
-    friction : float
-        Coulomb friction coefficient of the rigid-block model's joints [-] (ignored by the
-        four-link model).
 
     Raises
     ------
@@ -227,33 +211,23 @@ class FragilitySettings:
     durations: tuple[float, ...] = DEFAULT_DURATIONS
     amplitudes_g: tuple[float, ...] = DEFAULT_AMPLITUDES_G
     seed: int = DEFAULT_SEED
-    restitution: str | float = DEFAULT_RESTITUTION
     limit_sample_size: int = LIMIT_SAMPLE_SIZE
     limit_method: str = DEFAULT_SAMPLE_LIMIT_METHOD
     motion: str = "oppenheim"
-    model: str = DEFAULT_MODEL
+    model: ModelSpec | str = DEFAULT_MODEL
     search: str | None = None
     stride: int | None = None
-    friction: float = DEFAULT_FRICTION
-    time_step: float | None = None
-    coarse_factor: int = DEFAULT_COARSE_FACTOR
 
     def __post_init__(self) -> None:
-        from ..fourlink.impact import check_restitution_model
         from ..ground_motion import ANALYTIC_GROUND_MOTIONS
-        from ..models import check_model
         from .strategies import check_search, check_stride
 
-        object.__setattr__(self, "model", check_model(self.model))
+        # resolved for the nominal structure (its time step), then recorded
+        object.__setattr__(self, "model", model_spec(self.model).resolved(self.nominal))
         object.__setattr__(self, "search", check_search(
-            DEFAULT_SEARCH[self.model] if self.search is None else self.search))
+            self.model.default_search if self.search is None else self.search))
         object.__setattr__(self, "stride", check_stride(
             DEFAULT_STRIDE if self.stride is None else self.stride))
-        from ..rigid_blocks.dynamics import study_time_step
-
-        # chosen from the nominal structure unless given, then recorded
-        object.__setattr__(self, "time_step", study_time_step(self.time_step, self.nominal))
-        _ = self.block_settings  # checks the friction and the time step
         sample = ArchSample(self.nominal, self.epsilon, self.seed)  # nominal, epsilon, seed
         check_integer("sample_size", self.sample_size, maximum=MAX_SAMPLES)
         check_integer("limit_sample_size", self.limit_sample_size, maximum=MAX_LIMIT_SAMPLES)
@@ -285,7 +259,6 @@ class FragilitySettings:
                              f"{MAX_STUDY_ANALYSES} in one study (MAX_STUDY_ANALYSES): use "
                              f"fewer arches or a coarser grid, or run several studies with "
                              f"different seeds")
-        object.__setattr__(self, "restitution", check_restitution_model(self.restitution))
         if self.limit_method not in LIMIT_METHODS:
             raise ValueError(f"limit_method must be one of {LIMIT_METHODS}, got "
                              f"{self.limit_method!r}")
@@ -298,27 +271,16 @@ class FragilitySettings:
         object.__setattr__(self, "epsilon", sample.epsilon)
         object.__setattr__(self, "durations", tuple(float(x) for x in d))
         object.__setattr__(self, "amplitudes_g", tuple(float(x) for x in a))
-        if self.model == "rigid-blocks":
-            self._check_time_step(float(d.min()))
+        self._check_motion(float(d.min()))
 
-    def _check_time_step(self, shortest: float) -> None:
-        """Refuse, before any analysis, a time step that cannot resolve the shortest pulse on
-        the nominal arch (:meth:`archquake.rigid_blocks.RigidBlockModel.check_motion`; an
-        irregular arch thinner than the nominal one by epsilon may still refuse a step at the
-        limit when it is analysed)."""
+    def _check_motion(self, shortest: float) -> None:
+        """Refuse, before any analysis, a model that cannot resolve the shortest pulse on the
+        nominal arch (:meth:`archquake.models.ModelSpec.check_motion`: the rigid blocks' time
+        step; an irregular arch thinner than the nominal one by epsilon may still refuse a step
+        at the limit when it is analysed)."""
         from ..ground_motion import ground_motion
-        from ..rigid_blocks import RigidBlockModel
 
-        RigidBlockModel(self.nominal, self.block_settings).check_motion(
-            ground_motion(self.motion, GRAVITY, shortest))
-
-    @property
-    def block_settings(self):
-        """The rigid-block model's settings (:class:`archquake.rigid_blocks.BlockSettings`)."""
-        from ..rigid_blocks import BlockSettings
-
-        return BlockSettings(friction=self.friction, time_step=self.time_step,
-                             coarse_factor=self.coarse_factor)
+        self.model.check_motion(self.nominal, ground_motion(self.motion, GRAVITY, shortest))
 
     @property
     def sample(self) -> ArchSample:
@@ -335,6 +297,7 @@ class FragilitySettings:
         dict
             Every field, the nominal arch as :meth:`archquake.geometry.CircularArch.to_dict`.
         """
+        model = self.model.to_dict()  # its keys stored flat, as before the spec
         return {
             "nominal": self.nominal.to_dict(),
             "sample_size": self.sample_size,
@@ -342,16 +305,14 @@ class FragilitySettings:
             "durations": list(self.durations),
             "amplitudes_g": list(self.amplitudes_g),
             "seed": self.seed,
-            "restitution": self.restitution,
+            "restitution": model.pop("restitution"),
             "limit_sample_size": self.limit_sample_size,
             "limit_method": self.limit_method,
             "motion": self.motion,
-            "model": self.model,
+            "model": model.pop("model"),
             "search": self.search,
             "stride": self.stride,
-            "friction": self.friction,
-            "time_step": self.time_step,
-            "coarse_factor": self.coarse_factor,
+            **model,
         }
 
     @classmethod
@@ -367,20 +328,14 @@ class FragilitySettings:
         -------
         FragilitySettings
         """
-        from ..fourlink.impact import stored_restitution_model
-
         return cls(nominal=arch_from_dict(data["nominal"]), sample_size=data["sample_size"],
                    epsilon=data.get("epsilon", data.get("tolerance")),
                    durations=tuple(data["durations"]),
                    amplitudes_g=tuple(data["amplitudes_g"]), seed=data["seed"],
-                   restitution=stored_restitution_model(data["restitution"]),
                    limit_sample_size=data["limit_sample_size"],
                    limit_method=data["limit_method"], motion=data["motion"],
-                   model=data.get("model", DEFAULT_MODEL), search=data.get("search"),
-                   stride=data.get("stride", DEFAULT_STRIDE),
-                   friction=data.get("friction", DEFAULT_FRICTION),
-                   time_step=data.get("time_step", DEFAULT_TIME_STEP),
-                   coarse_factor=data.get("coarse_factor", 1))  # saved before coarse steps: 1
+                   model=ModelSpec.from_dict(data), search=data.get("search"),
+                   stride=data.get("stride", DEFAULT_STRIDE))
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, FragilitySettings):
@@ -431,7 +386,7 @@ def model_outcomes(model, durations, amplitudes_g, *, motion: str = "oppenheim",
         ``status`` holds the integer codes of :class:`archquake.status.Status`.
     """
     search = DEFAULT_SEARCH[model.name] if search is None else search
-    if not (model.name == "four-link" and search == "exhaustive"):
+    if not (model.grid_in_one_call and search == "exhaustive"):
         return _searched_outcomes(model, durations, amplitudes_g, motion, search, stride,
                                   screen)
     d = np.asarray(durations, dtype=float)
@@ -523,12 +478,12 @@ def fragility_task(chunk) -> dict[str, np.ndarray]:
     parts = []
     for item in chunk.items:
         try:
-            member = sample.member(item, restitution=settings.restitution, model=settings.model,
-                                   block_settings=settings.block_settings)
+            member = sample.member(item, settings.model)
             if member.model is not None:
                 screen = None
-                if settings.search == "screened" and settings.model != "four-link":
-                    screen = sample.member(item).model  # the four-link model, where it has one
+                screening = settings.model.screening()  # default restitution
+                if settings.search == "screened" and screening is not None:
+                    screen = sample.member(item, screening).model  # where the arch has one
                 columns = model_outcomes(member.model, *grid, motion=settings.motion,
                                          search=settings.search, stride=settings.stride,
                                          screen=screen)
@@ -1001,23 +956,13 @@ def warm_up() -> None:
     run_fragility(tiny, backend="serial", progress=False)
 
 
-NOMINAL_RESOLUTION_G = {"four-link": 1e-4, "rigid-blocks": 2e-3}
-"""Default bisection width of the nominal arch's failure acceleration per model [g]: the
-four-link model's analyses are cheap; a rigid-block one costs about a thousand of them, and a
-fifth of the paper's 0.01 g step is enough to place the step of eq. (10) on the grid."""
-
-
 def _nominal_domains(settings: FragilitySettings, resolution_g: float | None) -> tuple:
     """The nominal arch's failure domains over the study grid, directions l and r (point Q of
-    Fig. 16 per duration), to ``resolution_g`` [g] (default :data:`NOMINAL_RESOLUTION_G`)."""
+    Fig. 16 per duration), to ``resolution_g`` [g] (default
+    :attr:`archquake.models.ModelSpec.nominal_resolution_g` of the model)."""
     if resolution_g is None:
-        resolution_g = NOMINAL_RESOLUTION_G[settings.model]
-    if settings.model == "four-link":
-        model = nominal_model(settings.nominal, settings.restitution)
-    else:
-        from ..rigid_blocks import RigidBlockModel
-
-        model = RigidBlockModel(settings.nominal, settings.block_settings)
+        resolution_g = settings.model.nominal_resolution_g
+    model = nominal_model(settings.nominal, settings.model)
     return tuple(domain_of(model, settings.durations, settings.amplitudes_g,
                            direction=direction, resolution_g=resolution_g,
                            motion=settings.motion, extend_to_g=None, search=settings.search,
@@ -1075,12 +1020,13 @@ def run_fragility(
     progress : bool
         Progress bars on stderr.
     chunk_size, limit_chunk_size : int
-        Arches per chunk of the dynamic study (default 2 with the four-link model, 1 with the
+        Arches per chunk of the dynamic study (default
+        :attr:`archquake.models.ModelSpec.chunk_size`: 2 with the four-link model, 1 with the
         rigid blocks, whose arch takes seconds) and of the limit sample (recorded; a resumed
         study must use the same).
     nominal_resolution_g : float, optional
         Bisection width of the nominal failure acceleration [g] (default
-        :data:`NOMINAL_RESOLUTION_G` of the model).
+        :attr:`archquake.models.ModelSpec.nominal_resolution_g` of the model).
 
     Returns
     -------
@@ -1101,9 +1047,9 @@ def run_fragility(
 
     if not isinstance(settings, FragilitySettings):
         raise ValueError(f"settings must be FragilitySettings, got {type(settings).__name__}")
-    check_nominal(settings.nominal, settings.restitution, model=settings.model)
-    if chunk_size is None:  # a rigid-block arch is seconds of work: one per chunk balances
-        chunk_size = 2 if settings.model == "four-link" else 1
+    check_nominal(settings.nominal, settings.model)
+    if chunk_size is None:
+        chunk_size = settings.model.chunk_size
     plan = StudyPlan(settings.to_dict(), settings.seed, settings.sample_size,
                      check_integer("chunk_size", chunk_size))
     limit_settings = {"nominal": settings.nominal.to_dict(),

@@ -123,21 +123,16 @@ import pandas as pd
 from .._equality import frozen_value
 from ..checks import check_integer
 from ..defaults import (
-    DEFAULT_COARSE_FACTOR,
     DEFAULT_EPSILON,
-    DEFAULT_FRICTION,
     DEFAULT_IM,
     DEFAULT_LEVEL_STRIDE,
-    DEFAULT_RESTITUTION,
-    DEFAULT_SEARCH,
     DEFAULT_SEED,
-    DEFAULT_TIME_STEP,
     MAX_SAMPLES,
     STUDY_SAMPLE_SIZE,
 )
 from ..geometry import BlockArch, arch_from_dict
 from ..ground_motion.suites import RecordSuite, stripe_measure
-from ..models import DEFAULT_MODEL
+from ..models import DEFAULT_MODEL, ModelSpec, model_spec
 from ..reference_arches import oppenheim
 from ..status import Status
 from .arch_sample import (
@@ -209,16 +204,16 @@ class RecordFragilitySettings:
     seed : int
         Root seed (>= 0) of the arches (arch i uses ``SeedSequence(seed, spawn_key=(i,))``, as
         in :class:`archquake.studies.fragility.FragilitySettings`) and of the bootstrap.
-    restitution : str or float
-        Restitution model (:func:`archquake.fourlink.impact.check_restitution_model`; default
-        ``"computed"``, :data:`archquake.defaults.DEFAULT_RESTITUTION`, as in
-        :class:`archquake.studies.fragility.FragilitySettings`).
     bootstrap : int
         Number of bootstrap resamples of the confidence bands (>= 10).
     confidence : float
         Confidence level of the bands [-], in (0, 1).
-    model : {"four-link", "rigid-blocks"}
-        The dynamic model of every arch (:func:`archquake.models.model_for`).
+    model : ModelSpec or str
+        The dynamic model of every arch and its settings (:class:`archquake.models.ModelSpec`,
+        as in :class:`~archquake.studies.fragility.FragilitySettings`; a name stands for its
+        spec with the default settings; default the four-link model, restitution
+        ``"computed"``). Recorded resolved for the nominal arch (the rigid blocks' time step
+        chosen from it unless given; at most the records' sample spacing).
     search : {"exhaustive", "bisection", "screened"}, optional
         How each (arch, record, polarity) line of levels is searched
         (:mod:`archquake.studies.strategies`; default :data:`archquake.defaults.DEFAULT_SEARCH`
@@ -226,16 +221,6 @@ class RecordFragilitySettings:
     stride : int, optional
         Levels between the coarse points of ``bisection`` and ``screened`` [-] (default
         :data:`archquake.defaults.DEFAULT_LEVEL_STRIDE`).
-    time_step : float, optional
-        Time step of the rigid-block model [s], as in
-        :class:`~archquake.studies.fragility.FragilitySettings` (default: that of the nominal
-        structure; at most the records' sample spacing).
-    coarse_factor : int
-        Steps of ``time_step`` the rigid-block model takes as one while no contact starts or
-        stops carrying an impulse [-], >= 1 (default 2; 1: every step at ``time_step``;
-        :class:`archquake.rigid_blocks.BlockSettings`).
-    friction : float
-        Coulomb friction coefficient of the rigid-block model's joints [-].
 
     Raises
     ------
@@ -250,31 +235,21 @@ class RecordFragilitySettings:
     sample_size: int = STUDY_SAMPLE_SIZE
     epsilon: float = DEFAULT_EPSILON
     seed: int = DEFAULT_SEED
-    restitution: str | float = DEFAULT_RESTITUTION
     bootstrap: int = DEFAULT_BOOTSTRAP
     confidence: float = DEFAULT_CONFIDENCE
-    model: str = DEFAULT_MODEL
+    model: ModelSpec | str = DEFAULT_MODEL
     search: str | None = None
     stride: int | None = None
-    friction: float = DEFAULT_FRICTION
-    time_step: float | None = None
-    coarse_factor: int = DEFAULT_COARSE_FACTOR
 
     def __post_init__(self) -> None:
-        from ..fourlink.impact import check_restitution_model
-        from ..models import check_model
         from .strategies import check_search, check_stride
 
-        object.__setattr__(self, "model", check_model(self.model))
+        # resolved for the nominal structure (its time step), then recorded
+        object.__setattr__(self, "model", model_spec(self.model).resolved(self.nominal))
         object.__setattr__(self, "search", check_search(
-            DEFAULT_SEARCH[self.model] if self.search is None else self.search))
+            self.model.default_search if self.search is None else self.search))
         object.__setattr__(self, "stride", check_stride(
             DEFAULT_LEVEL_STRIDE if self.stride is None else self.stride))
-        from ..rigid_blocks.dynamics import study_time_step
-
-        # chosen from the nominal structure unless given, then recorded
-        object.__setattr__(self, "time_step", study_time_step(self.time_step, self.nominal))
-        _ = self.block_settings  # checks the friction and the time step
 
         if not isinstance(self.suite, RecordSuite):
             raise ValueError(f"suite must be a RecordSuite, got {type(self.suite).__name__}")
@@ -296,7 +271,6 @@ class RecordFragilitySettings:
             raise ValueError(f"confidence must be in (0, 1), got {self.confidence!r}")
         sample = ArchSample(self.nominal, self.epsilon, self.seed)  # nominal, epsilon, seed
         check_integer("sample_size", self.sample_size, maximum=MAX_SAMPLES)
-        object.__setattr__(self, "restitution", check_restitution_model(self.restitution))
         object.__setattr__(self, "im", im.name)
         object.__setattr__(self, "levels", tuple(float(v) for v in x))
         object.__setattr__(self, "sample_size", int(self.sample_size))
@@ -316,14 +290,6 @@ class RecordFragilitySettings:
         ``(nominal, epsilon, seed)``, arches ``0 .. sample_size - 1``."""
         return ArchSample(self.nominal, self.epsilon, self.seed)
 
-    @property
-    def block_settings(self):
-        """The rigid-block model's settings (:class:`archquake.rigid_blocks.BlockSettings`)."""
-        from ..rigid_blocks import BlockSettings
-
-        return BlockSettings(friction=self.friction, time_step=self.time_step,
-                             coarse_factor=self.coarse_factor)
-
     def to_dict(self) -> dict:
         """The settings as JSON-ready data, as stored with the results.
 
@@ -333,6 +299,7 @@ class RecordFragilitySettings:
             Every field (the suite by :meth:`archquake.ground_motion.RecordSuite.to_dict`, the
             nominal arch by :meth:`archquake.geometry.CircularArch.to_dict`) and ``im_unit``.
         """
+        model = self.model.to_dict()  # its keys stored flat, as before the spec
         return {
             "suite": self.suite.to_dict(),
             "im": self.im,
@@ -342,15 +309,13 @@ class RecordFragilitySettings:
             "sample_size": self.sample_size,
             "epsilon": self.epsilon,
             "seed": self.seed,
-            "restitution": self.restitution,
+            "restitution": model.pop("restitution"),
             "bootstrap": self.bootstrap,
             "confidence": self.confidence,
-            "model": self.model,
+            "model": model.pop("model"),
             "search": self.search,
             "stride": self.stride,
-            "friction": self.friction,
-            "time_step": self.time_step,
-            "coarse_factor": self.coarse_factor,
+            **model,
         }
 
     @classmethod
@@ -366,21 +331,14 @@ class RecordFragilitySettings:
         -------
         RecordFragilitySettings
         """
-        from ..fourlink.impact import stored_restitution_model
-
         return cls(suite=RecordSuite.from_dict(data["suite"]), levels=tuple(data["levels"]),
                    im=data["im"], nominal=arch_from_dict(data["nominal"]),
                    sample_size=data["sample_size"],
                    epsilon=data.get("epsilon", data.get("tolerance")),
-                   seed=data["seed"],
-                   restitution=stored_restitution_model(data["restitution"]),
-                   bootstrap=data["bootstrap"],
-                   confidence=data["confidence"], model=data.get("model", DEFAULT_MODEL),
+                   seed=data["seed"], bootstrap=data["bootstrap"],
+                   confidence=data["confidence"], model=ModelSpec.from_dict(data),
                    search=data.get("search"),
-                   stride=data.get("stride", DEFAULT_LEVEL_STRIDE),
-                   friction=data.get("friction", DEFAULT_FRICTION),
-                   time_step=data.get("time_step", DEFAULT_TIME_STEP),
-                   coarse_factor=data.get("coarse_factor", 1))  # saved before coarse steps: 1
+                   stride=data.get("stride", DEFAULT_LEVEL_STRIDE))
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, RecordFragilitySettings):
@@ -449,24 +407,25 @@ def record_fragility_task(chunk) -> dict[str, np.ndarray]:
             arch_id, label = NOMINAL_ARCH, "the nominal arch"
         try:
             screen = None
+            # the four-link model of the study's restitution screens a model that needs one
+            screening = settings.model.screening(settings.model.restitution)
             if arch_id == NOMINAL_ARCH:
-                model, excluded = nominal_model(settings.nominal, settings.restitution), ""
-                k = model.load_multipliers
-                if settings.model != "four-link":
-                    from ..rigid_blocks import RigidBlockModel
-
-                    screen = model
-                    model = RigidBlockModel(settings.nominal, settings.block_settings)
+                excluded = ""
+                if screening is None:
+                    model = nominal_model(settings.nominal, settings.model)
+                    k = model.load_multipliers
+                else:
+                    screen = nominal_model(settings.nominal, screening)
+                    k = screen.load_multipliers
+                    model = settings.model.build(settings.nominal)
             else:
-                member = sample.member(item, restitution=settings.restitution,
-                                       model=settings.model,
-                                       block_settings=settings.block_settings)
+                member = sample.member(item, settings.model)
                 model, excluded = member.model, member.excluded
                 k = member.load_multipliers
-                if model is not None and settings.model != "four-link":
-                    screen = sample.member(item, restitution=settings.restitution).model
+                if model is not None and screening is not None:
+                    screen = sample.member(item, screening).model
             c = getattr(model, "restitution", (math.nan, math.nan))
-            searched = settings.model != "four-link" or settings.search != "exhaustive"
+            searched = not settings.model.grid_in_one_call or settings.search != "exhaustive"
             for r, motion in enumerate(motions):
                 signed = (factors[r][:, None] * np.array(POLARITIES, dtype=float)[None, :]).ravel()
                 n = signed.size
@@ -1105,13 +1064,9 @@ def run_record_fragility(
     # read every record and its IM here, so that a bad file or a level that would scale a
     # record beyond any acceleration analysed stops the study before it starts
     settings.suite.scale_factors(settings.im, settings.levels)
-    check_nominal(settings.nominal, settings.restitution, model=settings.model)
-    if settings.model == "rigid-blocks":  # a step that cannot follow a record: before any analysis
-        from ..rigid_blocks import RigidBlockModel
-
-        nominal = RigidBlockModel(settings.nominal, settings.block_settings)
-        for motion in settings.suite.motions(cached=True):
-            nominal.check_motion(motion)
+    check_nominal(settings.nominal, settings.model)
+    for motion in settings.suite.motions(cached=True):  # a step that cannot follow a record
+        settings.model.check_motion(settings.nominal, motion)  # refused before any analysis
     out = None if out_dir is None else Path(out_dir)
     if resume and out is not None:
         _check_resume(out, settings)

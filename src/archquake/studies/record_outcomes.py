@@ -11,28 +11,23 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..constants import GRAVITY
+from ..defaults import REST_MARGIN
 
 POLARITIES = (1, -1)
 """Polarities of a record: +1 as recorded, -1 reversed (``GroundMotion.reversed()``)."""
-REST_MARGIN = 1e-12
-"""Relative margin [-] below the activation acceleration within which an analysis is integrated
-rather than declared at rest (round-off of the interpolation between samples)."""
 
 
 
 def record_outcomes(dynamics, motion, factors) -> dict[str, np.ndarray]:
-    """Outcomes of one arch under one record scaled by each of ``factors``.
-
-    An analysis whose scaled record stays strictly inside the activation accelerations
-    (``-k_l g < s xg'' < k_r g`` at every sample, eq. (2) of the paper, with the relative margin
-    :data:`REST_MARGIN`) is at rest without being integrated: the record is piecewise linear, so
-    its extremes are samples, and the engine would decide the same.
+    """Outcomes of one arch under one record scaled by each of ``factors``, in one call of a
+    model whose grid is one call (:meth:`archquake.fourlink.FourLinkModel.scaled_record_outcomes`:
+    an analysis whose scaled record stays strictly inside the activation accelerations, with
+    the relative margin :data:`REST_MARGIN`, is at rest without being integrated).
 
     Parameters
     ----------
-    dynamics : FourLinkModel
-        The arch's four-link model (:class:`~archquake.fourlink.FourLinkModel`).
+    dynamics : StructuralModel
+        The arch's model, one whose grid is one call (``grid_in_one_call``).
     motion : GroundMotion
         A ``LINEAR`` record [m/s^2].
     factors : array_like of float
@@ -48,39 +43,9 @@ def record_outcomes(dynamics, motion, factors) -> dict[str, np.ndarray]:
     Raises
     ------
     ValueError
-        If ``motion`` is not piecewise linear, or as
-        :func:`archquake.fourlink.engine.outcomes_grid`.
-    RuntimeError
-        As :func:`archquake.fourlink.engine.outcomes_grid`.
+        If ``motion`` is not piecewise linear, or as the model's method.
     """
-    from ..fourlink.engine import outcomes_grid
-    from ..ground_motion import LINEAR
-
-    if motion.kind != LINEAR:
-        raise ValueError(f"record_outcomes takes a piecewise-linear record, got kind "
-                         f"{motion.kind} ({motion.name!r})")
-    table_l, table_r = dynamics.tables
-    c_lr, c_rl = dynamics.restitution
-    s = np.asarray(factors, dtype=float).ravel()
-    v_max, v_min = float(np.max(motion.values)), float(np.min(motion.values))
-    # rounding is monotone: max(v * s) is v_max * s for s > 0 and v_min * s for s < 0
-    high = np.where(s > 0, s * v_max, s * v_min)
-    low = np.where(s > 0, s * v_min, s * v_max)
-    threshold_r = table_r.activation_g * GRAVITY  # Mech-r opens when xg'' > k_r g
-    threshold_l = -table_l.activation_g * GRAVITY  # Mech-l opens when xg'' < -k_l g
-    run = ~((high < threshold_r * (1.0 - REST_MARGIN)) & (low > threshold_l * (1.0 - REST_MARGIN)))
-    out = {"status": np.zeros(s.size, dtype=np.int8),
-           "half_cycle": np.zeros(s.size, dtype=np.int16),
-           "impacts": np.zeros(s.size, dtype=np.int32),
-           "collapse_time": np.full(s.size, np.nan), "max_phi": np.zeros(s.size),
-           "integrated": run}
-    if np.any(run):
-        signed = s[run]
-        grid = outcomes_grid(table_l, table_r, c_lr, c_rl, np.ones(signed.size), signed, motion)
-        for name in ("status", "half_cycle", "impacts", "collapse_time", "max_phi"):
-            out[name][run] = grid[name]
-    return out
-
+    return dynamics.scaled_record_outcomes(motion, factors)
 
 
 def searched_record_outcomes(model, motion, factors, *, search: str = "screened",

@@ -262,7 +262,7 @@ def pulse_grid_outcomes(model, durations, amplitudes_g, *, motion: str = "oppenh
         status = np.zeros((d.size, a.size), dtype=np.int64)
         half_cycle = np.zeros((d.size, a.size), dtype=np.int64)
         analysed = np.zeros((d.size, a.size), dtype=bool)
-        if search == "exhaustive" and model.name == "four-link":
+        if search == "exhaustive" and model.grid_in_one_call:
             out = model.outcomes(d[:, None], sign * a[None, :], motion)  # one compiled call
             status[:], half_cycle[:] = out["status"], out["half_cycle"]
             analysed[:] = True
