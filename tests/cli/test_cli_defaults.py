@@ -13,7 +13,7 @@ from archquake import FourLinkModel, defaults
 from archquake.cli import COMMANDS, build_parser
 from archquake.defaults import DEFAULT_INTENSITY_MEASURES, REPORT_SEED
 from archquake.limit_analysis import both_directions
-from archquake.models import DEFAULT_MODEL
+from archquake.models import DEFAULT_MODEL, ModelSpec
 from archquake.ranges import parse_values
 from archquake.report.paper.settings import ReproductionSettings
 from archquake.rigid_blocks import BlockSettings
@@ -41,6 +41,10 @@ def _domain_default(name):
 BLOCKS = {"friction": _field_default(BlockSettings, "friction"),
           "time_step": _field_default(BlockSettings, "time_step")}
 RESTITUTION = _signature_default(FourLinkModel.from_arch, "restitution")
+SPEC = {option: _field_default(ModelSpec, field) for option, field in
+        (("model", "name"), ("restitution", "restitution"), ("friction", "friction"),
+         ("time_step", "time_step"), ("coarse_factor", "coarse_factor"))}
+"""The defaults of the model options of a study: those of the spec the study takes."""
 
 LIBRARY = {
     "limit": {"method": _signature_default(both_directions, "method")},
@@ -61,19 +65,15 @@ LIBRARY = {
     "fragility": {"samples": _field_default(FragilitySettings, "sample_size"),
                   "epsilon": _field_default(FragilitySettings, "epsilon"),
                   "seed": _field_default(FragilitySettings, "seed"),
-                  "restitution": _field_default(FragilitySettings, "restitution"),
+                  **SPEC,
                   "limit_samples": _field_default(FragilitySettings, "limit_sample_size"),
                   "limit_method": _field_default(FragilitySettings, "limit_method"),
-                  "model": _field_default(FragilitySettings, "model"),
-                  "friction": _field_default(FragilitySettings, "friction"),
-                  "time_step": _field_default(FragilitySettings, "time_step"),
                   "durations": tuple(_field_default(FragilitySettings, "durations")),
                   "amplitudes": tuple(_field_default(FragilitySettings, "amplitudes_g"))},
-    "record-fragility": {name: _field_default(RecordFragilitySettings, field) for name, field in
-                         (("samples", "sample_size"), ("epsilon", "epsilon"), ("seed", "seed"),
-                          ("restitution", "restitution"), ("model", "model"),
-                          ("friction", "friction"), ("time_step", "time_step"),
-                          ("im", "im"))},
+    "record-fragility": {**SPEC, **{name: _field_default(RecordFragilitySettings, field)
+                                    for name, field in (("samples", "sample_size"),
+                                                        ("epsilon", "epsilon"), ("seed", "seed"),
+                                                        ("im", "im"))}},
     "reproduce": {"seed": _field_default(ReproductionSettings, "seed")},
     "records": {"im": DEFAULT_INTENSITY_MEASURES},
 }

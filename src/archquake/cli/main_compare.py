@@ -68,7 +68,7 @@ def run(args: argparse.Namespace) -> int:
         # the library takes any width > 0; finer than this only costs rigid-block analyses
         raise ValueError(f"--resolution must be >= {MIN_COMPARE_RESOLUTION_G:g} g, got "
                          f"{args.resolution}")
-    settings = options.block_settings_from_args(args)
+    settings = options.model_spec_from_args(args, "rigid-blocks").block_settings
     if args.plot:
         from .output import check_figure_path
 

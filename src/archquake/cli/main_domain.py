@@ -74,14 +74,14 @@ def run(args: argparse.Namespace) -> int:
                          f"{args.resolution}")
     from ..studies.failure_domain import domain_of
 
-    model = options.model_from_args(args)
+    model = options.structure_model(args, options.model_spec_from_args(args))
     with options.analysing(args):
         domain = domain_of(model, durations, amplitudes, direction=args.direction,
                            resolution_g=args.resolution, extend_to_g=args.extend_to,
                            search=args.search,
                            stride=DEFAULT_STRIDE if args.stride is None else args.stride,
                            workers=args.workers,
-                           progress=model.name != "four-link")
+                           progress=not model.grid_in_one_call)
     if args.plot:
         from .output import pyplot, save_figure
 
@@ -92,7 +92,7 @@ def run(args: argparse.Namespace) -> int:
         save_figure(ax.figure, args.plot)
     if args.json:
         rows = domain.to_list()
-        if model.name != "four-link":  # the model is said where the four-link output is as before
+        if not model.counts_half_cycles:  # the model is said where the output is as before
             for row, sl, undecided in zip(rows, domain.slices, domain.undecided, strict=True):
                 row["model"] = model.name
                 row["recovery_above"] = [list(b) for b in sl.recovery_above_g]
@@ -101,7 +101,7 @@ def run(args: argparse.Namespace) -> int:
                 del row["first_half_cycle_acceleration"]
         print_json(rows)
         return 0
-    four_link = model.name == "four-link"
+    four_link = model.counts_half_cycles  # the table of the paper's Fig. 16
     if four_link:
         c_lr, c_rl = domain.restitution
         what = f"restitution {c_lr:.4f} (l->r), {c_rl:.4f} (r->l)"

@@ -67,10 +67,9 @@ def run(args: argparse.Namespace) -> int:
         epsilon=args.epsilon,
         durations=tuple(parse_values(args.durations, "--durations")),
         amplitudes_g=tuple(parse_values(args.amplitudes, "--amplitudes")),
-        seed=args.seed, restitution=args.restitution, limit_sample_size=args.limit_samples,
-        limit_method=args.limit_method, model=args.model, search=args.search,
-        stride=args.stride, friction=args.friction, time_step=args.time_step,
-        coarse_factor=args.coarse_factor)
+        seed=args.seed, limit_sample_size=args.limit_samples,
+        limit_method=args.limit_method, model=options.model_spec_from_args(args),
+        search=args.search, stride=args.stride)
     result = run_fragility(settings, args.out, workers=args.workers, scheduler=args.scheduler,
                            resume=args.resume, progress=not args.no_progress)
     written = []
@@ -82,13 +81,12 @@ def run(args: argparse.Namespace) -> int:
         return 0
     n_analyses = len(result.table)
     c_lr, c_rl = summary["nominal_restitution"]
-    if settings.model == "four-link":
-        model = f"restitution {settings.restitution!r} (nominal arch: {c_lr:.4f})"
+    if settings.model.grid_in_one_call:
+        model = f"{settings.model.settings_text()} (nominal arch: {c_lr:.4f})"
     else:
         analysed = int(result.table["analysed"].sum())
-        model = (f"rigid-block model (friction {settings.friction:g}, time step "
-                 f"{settings.time_step:g} s, coarse factor {settings.coarse_factor}), search "
-                 f"{settings.search!r}: {analysed} analysed, the others inferred")
+        model = (f"{settings.model.settings_text()}, search {settings.search!r}: {analysed} "
+                 f"analysed, the others inferred")
     from ..studies.undecided import undecided_warning
 
     undecided = summary["undecided"]

@@ -26,7 +26,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """The mechanisms and restitution of the arch of the options."""
-    dynamics = options.dynamics_from_args(args)
+    dynamics = options.structure_model(args, options.model_spec_from_args(args, "four-link"))
     mech_l, mech_r = dynamics.mechanisms
     c_lr, c_rl = dynamics.restitution
     out = {}

@@ -55,7 +55,6 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """The record-based study of the options."""
-    from ..fourlink.impact import check_restitution_model
     from ..studies.record_fragility import (
         CURVES_CSV,
         INCREMENTAL_CSV,
@@ -75,11 +74,8 @@ def run(args: argparse.Namespace) -> int:
         suite=suite,
         levels=tuple(parse_values(args.levels, "--levels")), im=im.name,
         nominal=options.nominal_arch_from_args(args), sample_size=args.samples,
-        epsilon=args.epsilon, seed=args.seed,
-        restitution=check_restitution_model(args.restitution), model=args.model,
-        search=args.search, stride=args.stride, friction=args.friction,
-        time_step=args.time_step,
-        coarse_factor=args.coarse_factor)
+        epsilon=args.epsilon, seed=args.seed, model=options.model_spec_from_args(args),
+        search=args.search, stride=args.stride)
     result = run_record_fragility(settings, args.out, workers=args.workers,
                                   scheduler=args.scheduler, resume=args.resume,
                                   progress=not args.no_progress)
@@ -117,7 +113,7 @@ def _print(result, summary: dict) -> None:
           f"{s.epsilon:g}, seed {s.seed}) and the nominal arch, {len(result.records)} records "
           f"x {result.levels.size} levels of {s.im} [{unit}] x 2 polarities = "
           f"{analyses['total']} analyses ({analyses['at_rest_without_integration']} at rest "
-          f"without integration); restitution {s.restitution!r}")
+          f"without integration); restitution {s.model.restitution!r}")
     curves = result.curves()
     print(f"{'level [' + unit + ']':>12} {'P irregular':>12} {'P nominal':>10} "
           f"{'lognormal':>10} {'band':>15}")

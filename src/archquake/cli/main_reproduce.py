@@ -47,14 +47,14 @@ def run(args: argparse.Namespace) -> int:
     if args.seed is not None:
         changes["seed"] = args.seed
     if args.restitution is not None:
-        from ..fourlink.impact import check_restitution_model
+        from ..models import ModelSpec
 
-        model = check_restitution_model(args.restitution)
+        spec = ModelSpec(restitution=args.restitution)
+        model = spec.restitution
         if isinstance(model, str):  # a model: its value for the nominal arch
-            from ..fourlink.model import FourLinkModel
             from ..reference_arches import oppenheim
 
-            model = FourLinkModel.from_arch(oppenheim(), model).restitution[0]
+            model = spec.build(oppenheim()).restitution[0]
         changes["restitution"] = model
     settings = (ReproductionSettings.quick_settings(**changes) if args.quick
                 else ReproductionSettings(**changes))

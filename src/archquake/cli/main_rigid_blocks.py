@@ -39,11 +39,10 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """The rigid-block analysis of the arch of the options under the motion of the options."""
-    from ..rigid_blocks import RigidBlockModel
-
+    spec = options.model_spec_from_args(args, "rigid-blocks")
     arch = options.arch_from_args(args)
     motion = options.motion_from_args(args)
-    model = RigidBlockModel(arch, options.block_settings_from_args(args))
+    model = spec.build(arch)
     settings = model.settings  # with the time step used
     if args.animate:  # checked before the analysis, which may take a while
         from pathlib import Path

@@ -46,7 +46,7 @@ def run(args: argparse.Namespace) -> int:
         if motion:
             raise ValueError(f"--phi0 (free vibration on a still ground) cannot be combined "
                              f"with the ground motion options {', '.join(motion)}")
-    dynamics = options.dynamics_from_args(args)
+    dynamics = options.structure_model(args, options.model_spec_from_args(args, "four-link"))
     coefficients = dynamics.restitution
     if args.phi0 is not None:
         history = dynamics.free_vibration(

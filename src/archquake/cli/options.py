@@ -374,17 +374,6 @@ def add_restitution_option(parser: argparse.ArgumentParser) -> None:
              f"(default: %(default)s)")
 
 
-def dynamics_from_args(args: argparse.Namespace):
-    """The :class:`~archquake.fourlink.FourLinkModel` of the arch of the geometry options."""
-    from ..fourlink.impact import check_restitution_model
-    from ..fourlink.model import FourLinkModel
-
-    nominal, arch = arches_from_args(args)
-    model = check_restitution_model(args.restitution)  # its error names --restitution alone
-    with analysing(args):
-        return FourLinkModel.from_arch(arch, model, nominal)
-
-
 # ---------------------------------------------------------------------------------------------
 # the rigid-block model
 # ---------------------------------------------------------------------------------------------
@@ -408,15 +397,6 @@ def add_rigid_block_options(parser: argparse.ArgumentParser, *, time_step: bool 
                                  "time step: 2 halves the time of a study at the accuracy of "
                                  "the time step (user guide, 'What a rigid-block study costs'); "
                                  "1 takes every step at the time step (default: %(default)s)")
-
-
-def block_settings_from_args(args: argparse.Namespace):
-    """The :class:`~archquake.rigid_blocks.BlockSettings` of ``--friction`` and
-    ``--time-step``."""
-    from ..rigid_blocks import BlockSettings
-
-    return BlockSettings(friction=args.friction, time_step=args.time_step,
-                         coarse_factor=getattr(args, "coarse_factor", DEFAULT_COARSE_FACTOR))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -462,16 +442,32 @@ def add_search_options(group) -> None:
                             f"levels of a record-based study)")
 
 
-def model_from_args(args: argparse.Namespace):
-    """The model of ``--model`` for the arch of the geometry options: the four-link model with
-    ``--restitution``, or the rigid blocks with ``--friction`` and ``--time-step``."""
-    if args.model == "four-link":
-        return dynamics_from_args(args)
-    from ..rigid_blocks import RigidBlockModel
+def model_spec_from_args(args: argparse.Namespace, name: str | None = None):
+    """The :class:`~archquake.models.ModelSpec` of the model options a command has:
+    ``--model`` (or ``name``, for a command of one model), ``--restitution``, ``--friction``,
+    ``--time-step``, ``--coarse-factor`` (each option the dest of a field of the spec; one a
+    command lacks takes the spec's default). A refused setting names its option
+    (:func:`option_message`)."""
+    from dataclasses import fields
 
-    arch = arch_from_args(args)
+    from ..models import ModelSpec
+
+    values = {}
+    for spec_field in fields(ModelSpec):
+        dest = "model" if spec_field.name == "name" else spec_field.name
+        if getattr(args, dest, None) is not None:
+            values[spec_field.name] = getattr(args, dest)
+    if name is not None:
+        values["name"] = name
+    return ModelSpec(**values)
+
+
+def structure_model(args: argparse.Namespace, spec):
+    """The model ``spec`` (:func:`model_spec_from_args`) builds for the arch of the geometry
+    options (with the nominal arch, for ``--restitution nominal``)."""
+    nominal, arch = arches_from_args(args)
     with analysing(args):
-        return RigidBlockModel(arch, block_settings_from_args(args))
+        return spec.build(arch, nominal)
 
 
 # ---------------------------------------------------------------------------------------------
