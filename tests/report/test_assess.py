@@ -26,7 +26,7 @@ from archquake.cli import main
 from archquake.geometry import arch_on_piers, shaped_arch
 from archquake.ground_motion import stochastic_suite
 from archquake.limit_analysis import both_directions, shaped_min_thickness, standing
-from archquake.models import model_for
+from archquake.models import ModelSpec, model_for
 from archquake.reference_arches import oppenheim
 from archquake.report.assess import assess, choose_suite
 from archquake.report.assess.settings import AssessmentSettings
@@ -179,7 +179,8 @@ def test_record_fragility_is_that_of_run_record_fragility(quick):
     again = run_record_fragility(RecordFragilitySettings(
         suite=suite, levels=tuple(entry["levels"]), im="pga", nominal=pointed_arch(),
         sample_size=s["record_sample_size"], epsilon=s["epsilon"], seed=s["seed"],
-        restitution=s["restitution"], bootstrap=s["bootstrap"]), progress=False)
+        model=ModelSpec(restitution=s["restitution"]), bootstrap=s["bootstrap"]),
+        progress=False)
     assert entry["lognormal"]["median"] == again.lognormal.median
     assert entry["lognormal"]["dispersion"] == again.lognormal.dispersion
     assert entry["nominal_lognormal"]["median"] == again.nominal_lognormal.median

@@ -25,8 +25,8 @@ def test_the_step_scales_with_the_square_root_of_the_thickness():
     assert structure_time_step(0.4) == pytest.approx(1e-3 * math.sqrt(0.4 / 1.5), rel=1e-15)
     # a step given is kept; the study's step is that of its nominal arch (Oppenheim's: 1 ms)
     assert RigidBlockModel(SMALL, BlockSettings(time_step=0.002)).settings.time_step == 0.002
-    assert FragilitySettings().time_step == DEFAULT_TIME_STEP
-    assert FragilitySettings(nominal=SMALL).time_step == pytest.approx(DEFAULT_TIME_STEP / 2)
+    assert FragilitySettings().model.time_step == DEFAULT_TIME_STEP
+    assert FragilitySettings(nominal=SMALL).model.time_step == pytest.approx(DEFAULT_TIME_STEP / 2)
     history = simulate_blocks(SMALL, oppenheim_pulse(-0.3 * GRAVITY, 0.2), t_end=0.01)
     assert history.settings.time_step == pytest.approx(5e-4)  # the history states the step
 

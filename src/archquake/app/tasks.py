@@ -33,9 +33,10 @@ DOMAIN_DEFAULTS = {"durations": "0.1:1.0:0.1", "amplitudes": "0.05:1.5:0.05",
 rigid blocks' domain takes seconds, not minutes."""
 
 
-def model_settings(spec: dict):
-    """The page's settings of both models, checked: the four-link model's restitution model
-    and the rigid blocks' :class:`~archquake.rigid_blocks.BlockSettings` (its friction).
+def model_settings(spec: dict) -> dict:
+    """The page's settings of both models, checked: ``{name: ModelSpec}``
+    (:class:`archquake.models.ModelSpec`, with the page's restitution and friction) for every
+    model of :data:`archquake.models.MODELS`.
 
     Raises
     ------
@@ -43,8 +44,7 @@ def model_settings(spec: dict):
         Naming ``restitution`` or ``friction``.
     """
     from ..defaults import DEFAULT_FRICTION, DEFAULT_RESTITUTION
-    from ..fourlink.impact import check_restitution_model
-    from ..rigid_blocks import BlockSettings
+    from ..models import MODELS, ModelSpec
 
     settings = spec.get("models") or {}
     if not isinstance(settings, dict):
@@ -54,26 +54,22 @@ def model_settings(spec: dict):
         restitution = float(restitution)
     except (TypeError, ValueError):
         pass
-    restitution = check_restitution_model(restitution)
     friction = settings.get("friction")
     try:
         friction = DEFAULT_FRICTION if friction in (None, "") else float(friction)
     except (TypeError, ValueError):
         raise ValueError(f"friction must be a number >= 0, got {friction!r}") from None
-    return restitution, BlockSettings(friction=friction)
+    checked = ModelSpec(restitution=restitution, friction=friction)
+    return {name: replace(checked, name=name) for name in MODELS}
 
 
 def models_of(spec: dict, structure, nominal) -> dict:
     """Both models of the structure with the page's settings (:func:`model_settings`):
     ``{name: model, or the message why it cannot be built}``."""
-    from ..models import model_for
-
-    restitution, block_settings = model_settings(spec)
     out = {}
-    for name in ("four-link", "rigid-blocks"):
+    for name, model in model_settings(spec).items():
         try:
-            out[name] = model_for(structure, name, restitution=restitution, nominal=nominal,
-                                  block_settings=block_settings)
+            out[name] = model.build(structure, nominal)
         except ValueError as exc:  # cannot stand, not a four-link mechanism, ...
             out[name] = f"{exc}"
     return out

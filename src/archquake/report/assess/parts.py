@@ -202,10 +202,8 @@ def four_link_part(structure, settings: AssessmentSettings) -> FourLinkPart:
     -------
     FourLinkPart
     """
-    from ...fourlink import FourLinkModel
-
     try:
-        model = FourLinkModel.from_arch(structure, settings.restitution)
+        model = settings.model_spec("four-link").build(structure)
     except ValueError as exc:
         return FourLinkPart(None, {"applies": False, "reason": str(exc)})
     mechanisms = {}
@@ -299,10 +297,10 @@ def rigid_block_domain(structure, durations, amplitudes_g, direction: str, resol
         :class:`~archquake.rigid_blocks.RigidBlockModel` (its default search: screened by the
         four-link model).
     """
-    from ...rigid_blocks import BlockSettings, RigidBlockModel
+    from ...models import ModelSpec
     from ...studies.failure_domain import domain_of
 
-    model = RigidBlockModel(structure, BlockSettings(friction=friction))
+    model = ModelSpec("rigid-blocks", friction=friction).build(structure)
     return domain_of(model, durations, amplitudes_g, direction=direction,
                      resolution_g=resolution_g, extend_to_g=None)
 
@@ -561,7 +559,7 @@ def irregularity_part(structure, settings: AssessmentSettings, durations, amplit
     study = FragilitySettings(
         nominal=structure, sample_size=settings.fragility_sample_size,
         epsilon=settings.epsilon, durations=tuple(durations), amplitudes_g=tuple(amplitudes_g),
-        seed=settings.seed, restitution=settings.restitution,
+        seed=settings.seed, model=settings.model_spec("four-link"),
         limit_sample_size=settings.limit_sample_size)
     resume = resume and resumable_study(directory) is not None  # only where it was started
     result = run_fragility(study, directory, resume=resume, progress=False, backend="serial")

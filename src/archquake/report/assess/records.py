@@ -88,7 +88,7 @@ def record_study(structure, suite, im: str, levels, settings: AssessmentSettings
     study = RecordFragilitySettings(
         suite=suite, levels=tuple(levels), im=im, nominal=structure,
         sample_size=settings.record_sample_size, epsilon=settings.epsilon, seed=settings.seed,
-        restitution=settings.restitution, bootstrap=settings.bootstrap)
+        model=settings.model_spec("four-link"), bootstrap=settings.bootstrap)
     resume = resume and resumable_study(directory) is not None  # only where it was started
     return run_record_fragility(study, directory, resume=resume, progress=False,
                                 backend="serial")
@@ -123,10 +123,10 @@ def rigid_block_record_outcomes(structure, suite: dict, level_pga: float,
         2 collapse, -1 undecided) as recorded and reversed.
     """
     from ...ground_motion.suites import RecordSuite
-    from ...rigid_blocks import BlockSettings, RigidBlockModel
+    from ...models import ModelSpec
 
     records = RecordSuite.from_dict(suite)
-    model = RigidBlockModel(structure, BlockSettings(friction=friction))
+    model = ModelSpec("rigid-blocks", friction=friction).build(structure)
     out = []
     for motion, pga in zip(records.motions(cached=True), records.intensities("pga"),
                            strict=True):

@@ -167,13 +167,10 @@ class AssessmentSettings:
     quick: bool = False
 
     def __post_init__(self):
-        from ...fourlink.impact import check_restitution_model
-        from ...rigid_blocks import BlockSettings
-
         object.__setattr__(self, "epsilon", check_epsilon(self.epsilon))
         object.__setattr__(self, "seed", check_integer("seed", self.seed, minimum=0))
-        object.__setattr__(self, "restitution", check_restitution_model(self.restitution))
-        BlockSettings(friction=self.friction)  # checks the friction
+        # the restitution and the friction are checked as the model's settings
+        object.__setattr__(self, "restitution", self.model_spec().restitution)
         if self.sa_period is not None:
             if not (isinstance(self.sa_period, int | float) and math.isfinite(self.sa_period)
                     and 0.0 < self.sa_period <= 10.0):
@@ -267,6 +264,23 @@ class AssessmentSettings:
         if self.quick:
             chosen = (chosen[0], chosen[-1])
         return tuple(sorted({max(0.01, round(t * scale, 2)) for t in chosen}))
+
+    def model_spec(self, name: str = "four-link"):
+        """The :class:`~archquake.models.ModelSpec` of model ``name`` with the assessment's
+        restitution and friction (every other setting at its default).
+
+        Parameters
+        ----------
+        name : {"four-link", "rigid-blocks"}
+            The model.
+
+        Returns
+        -------
+        ModelSpec
+        """
+        from ...models import ModelSpec
+
+        return ModelSpec(name, restitution=self.restitution, friction=self.friction)
 
     def to_dict(self) -> dict:
         """Every setting by name (what ``results.json`` and ``assessment.json`` record)."""

@@ -592,6 +592,7 @@ def fragility(settings: ReproductionSettings, cases: dict, progress: bool = Fals
     FragilityPart
     """
     from ...execution import default_backend
+    from ...models import ModelSpec
     from ...studies.failure_domain import inclusive_range
     from ...studies.fragility import FragilitySettings, run_fragility
 
@@ -601,7 +602,7 @@ def fragility(settings: ReproductionSettings, cases: dict, progress: bool = Fals
         durations=settings.fragility_durations,
         amplitudes_g=tuple(inclusive_range(settings.amplitude_min_g, settings.amplitude_max_g,
                                            settings.amplitude_step_g).tolist()),
-        seed=settings.seed, restitution=pair[0],
+        seed=settings.seed, model=ModelSpec(restitution=pair[0]),
         limit_sample_size=settings.limit_sample_size)
     result = run_fragility(study, progress=progress)
     summary = result.summary()
@@ -868,7 +869,7 @@ def record_fragility(settings: ReproductionSettings,
         summaries[im] = {
             "unit": summary["im_unit"], "levels": summary["levels"],
             "records": len(result.records), "sample_size": result.settings.sample_size,
-            "restitution": result.settings.restitution,
+            "restitution": result.settings.model.restitution,
             "probability": summary["probability"],
             "nominal_probability": summary["nominal"]["probability"],
             "lognormal": {k: summary["lognormal"][k] for k in ("median", "dispersion")},
