@@ -46,6 +46,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 from archquake import oppenheim  # noqa: E402
 from archquake.defaults import DEFAULT_COARSE_FACTOR, DEFAULT_TIME_STEP  # noqa: E402
 from archquake.execution import process_pool  # noqa: E402
+from archquake.models import ModelSpec  # noqa: E402
 from archquake.rigid_blocks import BlockSettings, RigidBlockModel  # noqa: E402
 from archquake.rigid_blocks.model import warm_up  # noqa: E402
 from archquake.studies.failure_domain import domain_of, inclusive_range  # noqa: E402
@@ -102,8 +103,8 @@ def main(argv: list[str] | None = None) -> int:
     results = {}
     with process_pool(args.workers, warm_up=warm_up) as pool:
         for h, k in steps:
-            settings = FragilitySettings(**PAPER, sample_size=args.arches, time_step=h,
-                                         coarse_factor=k)
+            settings = FragilitySettings(**{**PAPER, "model": ModelSpec(
+                "rigid-blocks", time_step=h, coarse_factor=k)}, sample_size=args.arches)
             start = time.perf_counter()
             results[h, k] = (run_fragility(settings, pool=pool, progress=False),
                              time.perf_counter() - start)

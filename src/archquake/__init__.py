@@ -25,6 +25,7 @@ _LAZY = {
     "RigidBlockModel": "rigid_blocks.model",
     "StructuralModel": "models",
     "MODELS": "models",
+    "ModelSpec": "models",
     "model_for": "models",
     "BlockArch": "geometry",
     "CircularArch": "geometry",
@@ -54,7 +55,7 @@ def __dir__():
     return sorted([*globals(), *_LAZY])
 
 
-__all__ = ["GRAVITY", "MODELS", "BlockArch", "CircularArch", "FourLinkModel",
+__all__ = ["GRAVITY", "MODELS", "BlockArch", "CircularArch", "FourLinkModel", "ModelSpec",
            "RigidBlockModel", "Status", "StructuralModel", "circular_arch", "irregular_arch",
            "load_arch", "model_for", "oppenheim", "oppenheim_pulse", "shaped_arch",
            "surveyed_arch", "__version__"]
