@@ -32,7 +32,9 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 
+from archquake.defaults import DEFAULT_COARSE_FACTOR  # noqa: E402
 from archquake.execution import process_pool  # noqa: E402
+from archquake.models import ModelSpec  # noqa: E402
 from archquake.rigid_blocks.model import warm_up  # noqa: E402
 from archquake.studies.failure_domain import inclusive_range  # noqa: E402
 from archquake.studies.fragility import FragilitySettings, run_fragility  # noqa: E402
@@ -83,23 +85,22 @@ def main(argv: list[str] | None = None) -> int:
                              "(BlockSettings.coarse_factor; default 2; 1: every step at the "
                              "time step, twice the time)")
     args = parser.parse_args(argv)
-    if args.time_step is not None:
-        PAPER["time_step"] = args.time_step
-    if args.coarse_factor is not None:
-        PAPER["coarse_factor"] = args.coarse_factor
+    blocks = ModelSpec("rigid-blocks", time_step=args.time_step,
+                       coarse_factor=(DEFAULT_COARSE_FACTOR if args.coarse_factor is None
+                                      else args.coarse_factor))
 
     status = 0
     with process_pool(args.workers, warm_up=warm_up) as pool:
         tiny = FragilitySettings(**{**PAPER, "durations": (0.4,), "amplitudes_g": (0.3, 0.6),
-                                    "limit_sample_size": 2}, sample_size=2, model="rigid-blocks")
+                                    "limit_sample_size": 2}, sample_size=2, model=blocks)
         _study(tiny, pool)  # every worker compiled and warm
 
         if not args.skip_full:
-            settings = FragilitySettings(**PAPER, sample_size=args.arches, model="rigid-blocks")
+            settings = FragilitySettings(**PAPER, sample_size=args.arches, model=blocks)
             result, wall = _study(settings, pool)
             done, grid = _analysed(result)
-            print(f"Full study, rigid blocks (h = {settings.time_step * 1e3:g} ms, coarse "
-                  f"factor {settings.coarse_factor}), search {settings.search!r} (stride "
+            print(f"Full study, rigid blocks (h = {settings.model.time_step * 1e3:g} ms, coarse "
+                  f"factor {settings.model.coarse_factor}), search {settings.search!r} (stride "
                   f"{settings.stride}): {args.arches} arches x {len(PAPER['durations'])} "
                   f"durations x {len(PAPER['amplitudes_g'])} amplitudes x 2 directions = "
                   f"{grid} grid points")
@@ -111,8 +112,8 @@ def main(argv: list[str] | None = None) -> int:
             status = 1 if _undecided(result) else status
 
         n = args.exhaustive_arches
-        default = FragilitySettings(**PAPER, sample_size=n, model="rigid-blocks")
-        exhaustive = FragilitySettings(**PAPER, sample_size=n, model="rigid-blocks",
+        default = FragilitySettings(**PAPER, sample_size=n, model=blocks)
+        exhaustive = FragilitySettings(**PAPER, sample_size=n, model=blocks,
                                        search="exhaustive")
         fast, fast_wall = _study(default, pool)
         full, full_wall = _study(exhaustive, pool)
@@ -128,7 +129,7 @@ def main(argv: list[str] | None = None) -> int:
               f"amplitude: {same_pf}; undecided grid points: {_undecided(fast)} and "
               f"{_undecided(full)}")
         status = 1 if _undecided(fast) + _undecided(full) else status
-        quick = FragilitySettings(**PAPER, sample_size=n, model="rigid-blocks",
+        quick = FragilitySettings(**PAPER, sample_size=n, model=blocks,
                                   search="bisection")
         rough, rough_wall = _study(quick, pool)
         rough_done, _ = _analysed(rough)

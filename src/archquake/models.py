@@ -263,7 +263,7 @@ class ModelSpec:
     def resolved(self, structure) -> ModelSpec:
         """The spec with what a structure decides made explicit, as a study records it: the
         time step chosen from ``structure`` unless given
-        (:func:`archquake.rigid_blocks.dynamics.study_time_step`).
+        (:meth:`archquake.rigid_blocks.RigidBlockModel.study_time_step`).
 
         Parameters
         ----------
@@ -274,9 +274,10 @@ class ModelSpec:
         -------
         ModelSpec
         """
-        from .rigid_blocks.dynamics import study_time_step
+        from .rigid_blocks import RigidBlockModel
 
-        return replace(self, time_step=study_time_step(self.time_step, structure))
+        return replace(self, time_step=RigidBlockModel.study_time_step(self.time_step,
+                                                                       structure))
 
     def build(self, structure, nominal=None):
         """The model of ``structure``, built once (:func:`model_for` with this spec).

@@ -33,6 +33,7 @@ from .dynamics import (
     resolved_settings,
     simulate_blocks,
     structure_assembly,
+    study_time_step,
 )
 
 
@@ -124,6 +125,25 @@ class RigidBlockModel:
             Naming ``time_step``, the longest step allowed and why.
         """
         return check_time_step(self.settings.time_step, motion, self.assembly.thickness)
+
+    @staticmethod
+    def study_time_step(time_step: float | None, structure) -> float:
+        """The time step of a study of ``structure`` [s]: ``time_step`` if given, else the one
+        chosen from the structure (:func:`~archquake.rigid_blocks.dynamics.study_time_step`),
+        what a study records before any model is built.
+
+        Parameters
+        ----------
+        time_step : float or None
+            The step given [s].
+        structure : BlockArch or Assembly
+            The (nominal) structure.
+
+        Returns
+        -------
+        float
+        """
+        return study_time_step(time_step, structure)
 
     def check_stands(self) -> None:
         """Refuse, before any dynamics, an arch that cannot stand under its own weight with its
