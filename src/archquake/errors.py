@@ -88,3 +88,21 @@ class DescriptionError(ValueError):
     def literal(value) -> str:
         """``str(value)`` for a template: its braces doubled."""
         return str(value).replace("{", "{{").replace("}", "}}")
+
+    @classmethod
+    def check_fields(cls, data, known, what: str) -> None:
+        """Refuse ``data`` unless it is a dict whose keys are among ``known``, naming ``what``
+        it describes (``"structure"``, ``"ground motion"``).
+
+        Raises
+        ------
+        DescriptionError
+            For something else than a dict, or an unknown field (all of them named).
+        """
+        if not isinstance(data, dict):
+            raise cls(f"the {what} must be described by a JSON object, got "
+                      f"{type(data).__name__}")
+        unknown = sorted(set(data) - set(known))
+        if unknown:
+            raise cls(f"unknown {what} field(s) {cls.literal(unknown)}; known: "
+                      f"{cls.literal(list(known))}")

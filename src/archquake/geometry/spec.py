@@ -514,14 +514,7 @@ class StructureSpec:
             For something else than a dict, an unknown field, or a value the description
             refuses.
         """
-        if not isinstance(data, dict):
-            raise DescriptionError(f"the structure must be described by a JSON object, got "
-                                   f"{type(data).__name__}")
-        known = [f.name for f in fields(cls)]
-        unknown = sorted(set(data) - set(known))
-        if unknown:
-            raise DescriptionError(f"unknown structure field(s) {_literal(unknown)}; known: "
-                                   f"{_literal(known)}")
+        DescriptionError.check_fields(data, [f.name for f in fields(cls)], "structure")
         return cls(**{k: v for k, v in data.items() if v is not None and v != ""})
 
 

@@ -320,14 +320,7 @@ class MotionSpec:
             For something else than a dict, an unknown field, or a value the description
             refuses.
         """
-        if not isinstance(data, dict):
-            raise DescriptionError(f"the ground motion must be described by a JSON object, got "
-                                   f"{type(data).__name__}")
-        known = [f.name for f in fields(cls)]
-        unknown = sorted(set(data) - set(known))
-        if unknown:
-            raise DescriptionError(f"unknown ground motion field(s) {_literal(unknown)}; known: "
-                                   f"{_literal(known)}")
+        DescriptionError.check_fields(data, [f.name for f in fields(cls)], "ground motion")
         return cls(**{k: v for k, v in data.items() if v is not None and v != "" and v != {}})
 
 
