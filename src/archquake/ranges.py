@@ -23,6 +23,42 @@ RANGE_TOLERANCE = 1e-9
 stop to be the stop."""
 
 
+def number(text) -> float:
+    """A number written as text, read as a person reads it: ``float(text)``, but ``_`` refused.
+
+    Python reads ``"3_0"`` as 30 and ``"1_000"`` as 1000 (digit grouping); on a command line or
+    in a form such a value is a typo, and a pier 30 m wide instead of 3 m is a silently wrong
+    answer. Every number the command line, the page and the descriptions read as text goes
+    through here (argparse's message then reads ``invalid number value: '3_0'``).
+
+    Parameters
+    ----------
+    text : str or float
+        The text of a number (or a number, returned as a float).
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    ValueError
+        If ``text`` is not the text of a number, or holds ``_``.
+
+    Examples
+    --------
+    >>> number(" 2.5 ")
+    2.5
+    >>> number("3_0")
+    Traceback (most recent call last):
+    ...
+    ValueError: '3_0' is not a number (a '_' in it)
+    """
+    if isinstance(text, str) and "_" in text:
+        raise ValueError(f"{text!r} is not a number (a '_' in it)")
+    return float(text)
+
+
 def inclusive_range(start: float, stop: float, step: float) -> np.ndarray:
     """``start, start + step, ...`` up to ``stop``, never beyond it; ``stop`` included when a
     step lands on it within :data:`RANGE_TOLERANCE` of the step.
@@ -119,7 +155,7 @@ def parse_values(text: str, name: str) -> list[float]:
             continue
         pieces = part.split(":")
         try:
-            numbers = [float(x) for x in pieces]
+            numbers = [number(x) for x in pieces]
         except ValueError:
             raise ValueError(f"{name}: cannot read {part!r}; give numbers separated by commas "
                              "or a range start:stop:step") from None
@@ -150,4 +186,4 @@ def range_text(values: tuple[float, float, float]) -> str:
     return ":".join(f"{v:g}" for v in values)
 
 
-__all__ = ["RANGE_TOLERANCE", "inclusive_range", "parse_values", "range_text"]
+__all__ = ["RANGE_TOLERANCE", "inclusive_range", "number", "parse_values", "range_text"]

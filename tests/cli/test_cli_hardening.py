@@ -200,3 +200,39 @@ def test_a_pulse_duration_of_days_is_refused_naming_the_option(capsys):
 def test_an_empty_file_name_is_refused(capsys, argv):
     assert main(argv) == 2
     assert "must name a file or directory" in error_line(capsys)
+
+
+# --- a '_' in a number is a typo, not digit grouping --------------------------------------------
+
+@pytest.mark.parametrize("argv, option", [
+    (["limit", "--piers", "2_5,6"], "--piers"),  # Python reads 25
+    (["limit", "--piers", "3,1_2"], "--piers"),
+    (["limit", "--span", "1_2", "--rise", "5", "--shape", "pointed"], "--span"),
+    (["limit", "--thickness", "1_0"], "--thickness"),
+    (["domain", "--amplitudes", "0.2:0_9:0.1"], "--amplitudes"),
+    (["simulate", "--amplitude", "0_5"], "--amplitude"),
+])
+def test_number_with_an_underscore_is_refused(capsys, argv, option):
+    """``float("2_5")`` is 25 to Python: a pier ten times too wide without a word. Every number
+    read from text refuses a '_', naming the option (argparse's usage may come first)."""
+    try:
+        code = main(argv)
+    except SystemExit as exc:  # an option's type is argparse's to refuse
+        code = exc.code
+    assert code == 2
+    last = capsys.readouterr().err.strip().splitlines()[-1]
+    assert "error" in last and option in last and "_" in last
+
+
+def test_description_field_with_an_underscore_is_refused():
+    """The page's JSON goes to the same descriptions: a field written '1_5' is refused by name."""
+    from archquake.errors import DescriptionError
+    from archquake.geometry.spec import StructureSpec
+    from archquake.ground_motion.spec import MotionSpec
+
+    with pytest.raises(DescriptionError, match="piers"):
+        StructureSpec.from_dict({"piers": "3_0,6"}).build()
+    with pytest.raises(DescriptionError, match="thickness"):
+        StructureSpec.from_dict({"thickness": "1_5"}).build()
+    with pytest.raises(DescriptionError, match="amplitude"):
+        MotionSpec.from_dict({"motion": "oppenheim", "amplitude": "0_4"}).build()

@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 import shlex
 
+from ..ranges import number
 from . import options
 
 DESCRIPTION = (
@@ -35,7 +36,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
                            help="record files (PEER .AT2, CSV in g, ESM .ASC) and folders of "
                                 "them")
     options.add_suite_option(exclusive)
-    group.add_argument("--sa-period", type=float, default=None, metavar="T",
+    group.add_argument("--sa-period", type=number, default=None, metavar="T",
                        help="also the fragility in Sa(T), the 5%%-damped spectral "
                             "acceleration at period T [s]")
     parser.add_argument("--quick", action="store_true",

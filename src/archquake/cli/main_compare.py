@@ -12,7 +12,7 @@ from ..defaults import (
     COMPARE_RESOLUTION_G,
     MIN_COMPARE_RESOLUTION_G,
 )
-from ..ranges import parse_values, range_text
+from ..ranges import number, parse_values, range_text
 from . import options
 from .output import print_json
 
@@ -39,7 +39,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         metavar="LIST",
                         help="scan grid of amplitudes a [g] of both models, increasing "
                              "(default: %(default)s)")
-    parser.add_argument("--resolution", type=float, default=COMPARE_RESOLUTION_G, metavar="G",
+    parser.add_argument("--resolution", type=number, default=COMPARE_RESOLUTION_G, metavar="G",
                         help=f"bisection width of every boundary [g], >= "
                              f"{MIN_COMPARE_RESOLUTION_G:g} (default: %(default)s)")
     parser.add_argument("--direction", choices=("l", "r"), default="l",

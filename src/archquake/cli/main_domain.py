@@ -15,7 +15,7 @@ from ..defaults import (
     MAX_GRID_POINTS,
     MIN_RESOLUTION_G,
 )
-from ..ranges import parse_values, range_text
+from ..ranges import number, parse_values, range_text
 from . import options
 from .output import print_json
 
@@ -47,7 +47,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help=f"scan grid of amplitudes a [g], increasing; durations x "
                              f"amplitudes (with the extension) at most {MAX_GRID_POINTS} "
                              f"(default: %(default)s)")
-    parser.add_argument("--extend-to", type=float, default=DEFAULT_EXTEND_TO_G, metavar="G",
+    parser.add_argument("--extend-to", type=number, default=DEFAULT_EXTEND_TO_G, metavar="G",
                         help="where the grid holds no collapse in the first half cycle (the "
                              "rigid blocks: no collapse), scan on at its last spacing (times "
                              "--stride for the faster searches) until it is found, up to this "
@@ -56,7 +56,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--direction", choices=("l", "r"), default="l",
                         help="l: the first pulse is -a g (opens Mech-l); r: +a g (Mech-r) "
                              "(default: %(default)s)")
-    parser.add_argument("--resolution", type=float, default=DEFAULT_RESOLUTION_G, metavar="G",
+    parser.add_argument("--resolution", type=number, default=DEFAULT_RESOLUTION_G, metavar="G",
                         help=f"bisection width of every boundary [g], >= "
                              f"{MIN_RESOLUTION_G:g} (default: %(default)s)")
     options.add_plot_option(parser, "write the failure-domain figure")

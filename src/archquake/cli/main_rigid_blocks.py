@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import argparse
 
+from ..ranges import number
 from . import options
 from .output import print_json
 
@@ -24,7 +25,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     options.add_arch_options(parser)
     options.add_motion_options(parser)
     options.add_rigid_block_options(parser)
-    parser.add_argument("--t-end", type=float, default=None,
+    parser.add_argument("--t-end", type=number, default=None,
                         help="record up to this time [s] (default: until 0.5 s after the "
                              "outcome is decided)")
     parser.add_argument("--output", metavar="history.csv",

@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 import math
 
+from ..ranges import number
 from . import options
 from .output import print_json
 
@@ -26,9 +27,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
     options.add_arch_options(parser)
     options.add_restitution_option(parser)
     options.add_motion_options(parser)
-    parser.add_argument("--phi0", type=float, default=None,
+    parser.add_argument("--phi0", type=number, default=None,
                         help="free vibration instead: release Mech-l from rest at phi0 [rad]")
-    parser.add_argument("--t-end", type=float, default=None,
+    parser.add_argument("--t-end", type=number, default=None,
                         help="end of the record [s] (default: a few seconds after the outcome "
                              f"is decided; {FREE_VIBRATION_TIME:g} s with --phi0)")
     parser.add_argument("--output", metavar="history.csv",

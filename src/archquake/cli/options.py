@@ -50,6 +50,7 @@ from ..defaults import (
     circular_defaults,
 )
 from ..errors import DescriptionError
+from ..ranges import number
 
 # ---------------------------------------------------------------------------------------------
 # library parameters -> options
@@ -172,18 +173,18 @@ def add_shape_options(group, *, thickness: bool = True) -> None:
     group.add_argument("--shape", choices=SHAPES, default=None,
                        help=f"shape of the centreline (default: {SHAPES[0]}); every shape but the "
                             "circle is given by --span and --rise, with its springings on y = 0")
-    group.add_argument("--span", type=float, default=None,
+    group.add_argument("--span", type=number, default=None,
                        help="span of the centreline [m] (with --rise)")
-    group.add_argument("--rise", type=float, default=None,
+    group.add_argument("--rise", type=number, default=None,
                        help="rise of the centreline [m] (with --span)")
-    group.add_argument("--radius", type=float, default=None,
+    group.add_argument("--radius", type=number, default=None,
                        help=f"mean radius R of a circular arch [m] (default: "
                             f"{defaults['radius']:g} unless --span and --rise are given)")
-    group.add_argument("--embrace", type=float, default=None,
+    group.add_argument("--embrace", type=number, default=None,
                        help=f"angle of embrace alpha of a circular arch [deg] (default: "
                             f"{defaults['embrace']:g})")
     if thickness:
-        group.add_argument("--thickness", type=float, default=None,
+        group.add_argument("--thickness", type=number, default=None,
                            help=f"thickness t, normal to the centreline [m] (default: "
                                 f"{defaults['thickness']:g})")
     voussoirs = defaults["voussoirs"]
@@ -211,7 +212,7 @@ def add_arch_options(parser: argparse.ArgumentParser) -> None:
     add_shape_options(group)
     _add_geometry_file_option(group)
     add_structure_options(parser)
-    group.add_argument("--epsilon", type=float, default=None, metavar="EPS",
+    group.add_argument("--epsilon", type=number, default=None, metavar="EPS",
                        help="draw one irregular arch around the arch above with the "
                             "irregularity epsilon in [0, 1) of the paper's eq. (1)")
     group.add_argument("--seed", type=int, default=None,
@@ -225,7 +226,7 @@ def add_nominal_arch_options(parser: argparse.ArgumentParser) -> None:
     add_shape_options(group)
     _add_geometry_file_option(group)
     add_structure_options(parser)
-    group.add_argument("--epsilon", type=float, default=DEFAULT_EPSILON, metavar="EPS",
+    group.add_argument("--epsilon", type=number, default=DEFAULT_EPSILON, metavar="EPS",
                        help="irregularity epsilon in [0, 1) of the irregular arches drawn "
                             "around the nominal arch (paper eq. 1; default: %(default)s)")
     group.add_argument("--seed", type=int, default=DEFAULT_SEED,
@@ -251,9 +252,9 @@ def add_structure_options(parser: argparse.ArgumentParser) -> None:
                             "unequal piers)")
     group.add_argument("--pier-right", metavar="WIDTH,HEIGHT[,COURSES]",
                        help="the pier under the right springing only")
-    group.add_argument("--fill-cover", type=float, metavar="M",
+    group.add_argument("--fill-cover", type=number, metavar="M",
                        help="a level fill over the arch, this deep above the crown [m]")
-    group.add_argument("--fill-density", type=float, metavar="KG/M3",
+    group.add_argument("--fill-density", type=number, metavar="KG/M3",
                        help=f"density of the fill [kg/m^3] (default: {DEFAULT_FILL_DENSITY:g})")
     group.add_argument("--fill-inertia", choices=FILL_INERTIA_MODELS,
                        help="where the fill's horizontal inertia force acts: none (dead load "
@@ -264,7 +265,7 @@ def add_structure_options(parser: argparse.ArgumentParser) -> None:
                        help="a passive reaction of the fill toward midspan on each voussoir: "
                             "angle of friction PHI [deg] and mobilised fraction of Rankine's "
                             "passive pressure in [0, 1]")
-    group.add_argument("--density", type=float, metavar="KG/M3",
+    group.add_argument("--density", type=number, metavar="KG/M3",
                        help=f"density of the masonry, arch and piers [kg/m^3] (default: "
                             f"{DEFAULT_DENSITY:g})")
 
@@ -382,11 +383,11 @@ def add_restitution_option(parser: argparse.ArgumentParser) -> None:
 def add_rigid_block_options(parser: argparse.ArgumentParser, *, time_step: bool = True) -> None:
     """``--friction`` and (unless ``time_step=False``) ``--time-step`` of the rigid-block
     model."""
-    parser.add_argument("--friction", type=float, default=DEFAULT_FRICTION, metavar="MU",
+    parser.add_argument("--friction", type=number, default=DEFAULT_FRICTION, metavar="MU",
                         help="Coulomb friction coefficient of the joints of the rigid-block "
                              "model, >= 0 (default: %(default)s)")
     if time_step:
-        parser.add_argument("--time-step", type=float, default=None, metavar="H",
+        parser.add_argument("--time-step", type=number, default=None, metavar="H",
                             help="time step of the rigid-block model [s] (default: chosen from "
                                  "the structure, 1 ms x sqrt(t / 1.5 m) for a thickness t: "
                                  "1 ms for Oppenheim's arch)")
@@ -629,11 +630,11 @@ def add_motion_options(parser: argparse.ArgumentParser) -> None:
                         "harmonic, ricker, ricker-antisymmetric, cycloidal-a, cycloidal-b, "
                         "cycloidal-c, mavroeidis-papageorgiou, record (--record FILE) or "
                         f"stochastic (Rezaeian-Der Kiureghian model) (default: {DEFAULT_MOTION})")
-    m.add_argument("--amplitude", type=float, default=None,
+    m.add_argument("--amplitude", type=number, default=None,
                    help=f"signed peak acceleration of a pulse [g], within "
                         f"+-{MAX_ACCELERATION_G:g}; -1 starts Mech-l "
                         f"(default: {DEFAULT_PULSE[0]})")
-    m.add_argument("--duration", type=float, default=None,
+    m.add_argument("--duration", type=number, default=None,
                    help="time scale of a pulse [s]: its duration t_p (oppenheim, rectangular) "
                         f"or its period (the others) (default: {DEFAULT_PULSE[1]})")
     m.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
@@ -643,7 +644,7 @@ def add_motion_options(parser: argparse.ArgumentParser) -> None:
                         "significant_duration [s], midpoint_time [s], filter_frequency [Hz], "
                         "filter_frequency_rate [Hz/s], filter_damping, high_pass_frequency "
                         "[Hz], dt [s], duration [s])")
-    m.add_argument("--cycles", type=float, default=None,
+    m.add_argument("--cycles", type=number, default=None,
                    help=f"cycles of the harmonic motion, at most {MAX_CYCLES} (same as --param "
                         f"cycles=N)")
     m.add_argument("--record", metavar="FILE",
@@ -651,7 +652,7 @@ def add_motion_options(parser: argparse.ArgumentParser) -> None:
                         ".AT2 or ESM ASCII (implies --motion record); with --suite the name of "
                         "a ground motion of the suite")
     add_suite_option(m, "from which --record names a ground motion")
-    m.add_argument("--scale-to", type=float, default=None, metavar="PGA",
+    m.add_argument("--scale-to", type=number, default=None, metavar="PGA",
                    help="scale the record or stochastic motion to this peak ground "
                         "acceleration [g]")
     m.add_argument("--reverse", action="store_true",

@@ -46,6 +46,7 @@ from ..defaults import (
     circular_defaults,
 )
 from ..errors import DescriptionError
+from ..ranges import number
 
 SHAPE_FIELDS = ("shape", "span", "rise", "radius", "embrace", "thickness", "voussoirs", "faces")
 """The fields that describe an arch by its shape."""
@@ -72,7 +73,7 @@ def number_field(name: str, value) -> float:
         return float(value)
     if isinstance(value, str):
         try:
-            return float(value)
+            return number(value)
         except ValueError:
             pass
     raise DescriptionError(f"{{{name}}} must be a number, got {_literal(repr(value))}")
@@ -116,7 +117,7 @@ def _numbers(name: str, value, low: int, high: int, *, blank_first: bool = False
         try:
             if isinstance(part, bool) or part is None:
                 raise ValueError
-            out.append(float(part))
+            out.append(number(part))
         except (TypeError, ValueError):
             hint = (" (a blank WIDTH only with limit --min-pier-width)" if k == 0 and blank
                     else "")

@@ -44,6 +44,7 @@ from ..defaults import (
     MAX_ACCELERATION_G,
 )
 from ..errors import DescriptionError
+from ..ranges import number
 
 STOCHASTIC_PARAMETERS = ("seed", "arias_intensity", "significant_duration", "midpoint_time",
                          "filter_frequency", "filter_frequency_rate", "filter_damping",
@@ -63,7 +64,7 @@ def _number(name: str, value) -> float:
         return float(value)
     if isinstance(value, str):
         try:
-            return float(value)
+            return number(value)
         except ValueError:
             pass
     raise DescriptionError(f"{{{name}}} must be a number, got {_literal(repr(value))}")
