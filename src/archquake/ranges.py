@@ -4,8 +4,9 @@ The command line's list options (``--amplitudes 0.2:0.8:0.01``, ``--durations 0.
 ``--levels``) and the page's fields of the same names are read here, so both take the same text
 and refuse it with the same message, which names what was read (the option, or the field).
 :func:`inclusive_range` is the grid of one range, also the default grids of the studies
-(:mod:`archquake.defaults`). The module imports numpy only to make a grid, so that the command
-line shows its defaults (:func:`range_text`) without it.
+(:mod:`archquake.defaults`). :func:`number` and :func:`number_field` read one number, for the
+command line and for the descriptions' fields. The module imports numpy only to make a grid, so
+that the command line shows its defaults (:func:`range_text`) without it.
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ import math
 from typing import TYPE_CHECKING
 
 from .defaults import MAX_GRID_POINTS
+from .errors import DescriptionError
 
 if TYPE_CHECKING:
     import numpy as np
@@ -57,6 +59,21 @@ def number(text) -> float:
     if isinstance(text, str) and "_" in text:
         raise ValueError(f"{text!r} is not a number (a '_' in it)")
     return float(text)
+
+
+def number_field(name: str, value) -> float:
+    """``value`` of the field ``name`` as a float: a number or the text of one (its range is
+    checked where it is used); a :class:`~archquake.errors.DescriptionError` naming the field
+    otherwise."""
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        return float(value)
+    if isinstance(value, str):
+        try:
+            return number(value)
+        except ValueError:
+            pass
+    raise DescriptionError(f"{{{name}}} must be a number, got "
+                           f"{DescriptionError.literal(repr(value))}")
 
 
 def inclusive_range(start: float, stop: float, step: float) -> np.ndarray:
@@ -186,4 +203,5 @@ def range_text(values: tuple[float, float, float]) -> str:
     return ":".join(f"{v:g}" for v in values)
 
 
-__all__ = ["RANGE_TOLERANCE", "inclusive_range", "number", "parse_values", "range_text"]
+__all__ = ["RANGE_TOLERANCE", "inclusive_range", "number", "number_field", "parse_values",
+           "range_text"]

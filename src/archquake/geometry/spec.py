@@ -46,7 +46,7 @@ from ..defaults import (
     circular_defaults,
 )
 from ..errors import DescriptionError
-from ..ranges import number
+from ..ranges import number, number_field
 
 SHAPE_FIELDS = ("shape", "span", "rise", "radius", "embrace", "thickness", "voussoirs", "faces")
 """The fields that describe an arch by its shape."""
@@ -63,20 +63,6 @@ _CHOICES = {"shape": SHAPES, "faces": VOUSSOIR_FACES, "fill_inertia": FILL_INERT
 
 def _literal(value) -> str:
     return DescriptionError.literal(value)
-
-
-def number_field(name: str, value) -> float:
-    """``value`` of the field ``name`` as a float: a number or the text of one (its range is
-    checked where it is used); a :class:`~archquake.errors.DescriptionError` naming the field
-    otherwise."""
-    if isinstance(value, int | float) and not isinstance(value, bool):
-        return float(value)
-    if isinstance(value, str):
-        try:
-            return number(value)
-        except ValueError:
-            pass
-    raise DescriptionError(f"{{{name}}} must be a number, got {_literal(repr(value))}")
 
 
 def integer_field(name: str, value) -> int:

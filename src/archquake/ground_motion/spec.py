@@ -44,7 +44,7 @@ from ..defaults import (
     MAX_ACCELERATION_G,
 )
 from ..errors import DescriptionError
-from ..ranges import number
+from ..ranges import number_field
 
 STOCHASTIC_PARAMETERS = ("seed", "arias_intensity", "significant_duration", "midpoint_time",
                          "filter_frequency", "filter_frequency_rate", "filter_damping",
@@ -57,17 +57,6 @@ MOTIONS = ANALYTIC_GROUND_MOTIONS + ("record", "stochastic")
 
 def _literal(value) -> str:
     return DescriptionError.literal(value)
-
-
-def _number(name: str, value) -> float:
-    if isinstance(value, int | float) and not isinstance(value, bool):
-        return float(value)
-    if isinstance(value, str):
-        try:
-            return number(value)
-        except ValueError:
-            pass
-    raise DescriptionError(f"{{{name}}} must be a number, got {_literal(repr(value))}")
 
 
 @dataclass(frozen=True)
@@ -132,7 +121,7 @@ class MotionSpec:
         set_ = object.__setattr__
         for name in ("amplitude", "duration", "cycles", "scale_to"):
             if getattr(self, name) is not None:
-                set_(self, name, _number(name, getattr(self, name)))
+                set_(self, name, number_field(name, getattr(self, name)))
         for name in ("motion", "record", "suite"):
             value = getattr(self, name)
             if value is not None and not isinstance(value, str):
@@ -221,7 +210,7 @@ class MotionSpec:
                 raise DescriptionError(f"{{params}} {shown} does not apply to {{motion}} {kind}; "
                                        f"its parameters: {options}")
             try:
-                out[name] = _number("params", value)
+                out[name] = number_field("params", value)
             except DescriptionError:
                 raise DescriptionError(f"{{params}} {shown}: {_literal(repr(value))} is not a "
                                        f"number") from None
