@@ -1,0 +1,21 @@
+"""The site: its seismic action (code spectra and the national-grid hazard) and what is checked
+against it.
+
+:mod:`archquake.site.spectra`
+    elastic response spectra of NTC 2018, EN 1998-1 and a user's table; the NTC 2018 hazard of
+    a site on the national grid and the return period of a limit state.
+"""
+
+from .spectra import (
+    ElasticSpectrum,
+    NtcSiteHazard,
+    ec8_spectrum,
+    ntc2018_spectrum,
+    read_ntc_site,
+    read_spectrum,
+    return_period,
+    user_spectrum,
+)
+
+__all__ = ["ElasticSpectrum", "NtcSiteHazard", "ec8_spectrum", "ntc2018_spectrum",
+           "read_ntc_site", "read_spectrum", "return_period", "user_spectrum"]
