@@ -80,6 +80,10 @@ COMMANDS = {
         "main_compare",
         "failure acceleration of the arch per pulse duration in the rigid-block model beside "
         "the four-link model with each restitution model"),
+    "spectrum": Command(
+        "main_spectrum",
+        "elastic response spectrum of a site: NTC 2018, EN 1998-1, a user's table, or the NTC "
+        "2018 hazard of a site at a limit state"),
     "app": Command(
         "main_app",
         "interactive page in the browser: shape the structure, see its thrust line and k, "

@@ -212,7 +212,7 @@ def _periods(period) -> np.ndarray:
         raise ValueError(f"period must be a number or an array of numbers [s], got {period!r}")
     if not np.all(np.isfinite(t)) or np.any(t < 0.0):
         bad = t[~(np.isfinite(t) & (t >= 0.0))].ravel()[0]
-        raise ValueError(f"period must be finite and >= 0 [s], got {bad!r}")
+        raise ValueError(f"period must be finite and >= 0 [s], got {float(bad)!r}")
     return t
 
 
