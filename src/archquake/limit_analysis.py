@@ -1056,6 +1056,51 @@ def limit_analysis(arch: BlockArch, direction: str = "l",
     return result
 
 
+def virtual_displacements(result: LimitAnalysis) -> np.ndarray:
+    r"""Horizontal virtual displacement of every block's horizontal load in the collapse
+    mechanism.
+
+    The mechanism of ``result`` (its hinges, or its hinges and separating joint) moves its
+    blocks rigidly; block :math:`i` of a moving part turning at rate :math:`\omega` with a
+    point at height :math:`y_0` moving horizontally at :math:`v_0` has the horizontal velocity
+    :math:`v_0 - \omega (y - y_0)` at height :math:`y` (a rigid-body field), taken on the line
+    of action :math:`y = b_i` of its horizontal load :math:`H_i`
+    (:class:`~archquake.geometry.BlockLoads`). The field is scaled so that the largest
+    displacement is 1 and the horizontal loads do positive work; blocks outside the mechanism
+    (a pier below a hinge at its bed joint, the blocks beyond the springing hinges) do not
+    move.
+
+    These are the :math:`\delta_{x,i}` of the participating mass of a local mechanism
+    (:mod:`archquake.site.local_mechanism`).
+
+    Parameters
+    ----------
+    result : LimitAnalysis
+        A collapse mechanism (:func:`limit_analysis`), in the frame of ``result.arch``.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        :math:`\delta_{x,i}` [-] of every block of ``result.arch``, in [-1, 1] (0 for a block
+        that does not move).
+
+    Examples
+    --------
+    Oppenheim's arch (Table 1 of the paper: hinges at joints 0, 3, 5, 7): every voussoir moves.
+
+    >>> from archquake import oppenheim
+    >>> dx = virtual_displacements(limit_analysis(oppenheim(), "l"))
+    >>> round(float(dx.max()), 6), bool((dx > 0).all())
+    (1.0, True)
+    """
+    s = _scaled(result.arch)
+    blocks, sense = _mechanism_motion(s, result.hinges, result.separation)
+    dx = np.zeros(result.arch.n_voussoirs)
+    for j0, j1, vx0, rate, y0 in blocks:
+        dx[j0:j1] = sense * (vx0 - rate * (s.horizontal_y[j0:j1] - y0))
+    return dx / np.max(np.abs(dx))
+
+
 def _check_stands_at_rest(arch: BlockArch) -> None:
     """Refuse an asymmetric structure that admits thrust lines only under a push in one
     direction: its load multipliers in the two directions are then of opposite signs, and the

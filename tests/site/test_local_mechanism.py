@@ -1,0 +1,193 @@
+"""The code check of a local mechanism (Circolare 2019 §C8.7.1), each quantity against an
+independent value: hand sums, closed forms, the paper's numbers, a second route."""
+
+import math
+
+import numpy as np
+import pytest
+
+from archquake import oppenheim
+from archquake.constants import GRAVITY
+from archquake.fourlink.mechanism import mechanisms
+from archquake.geometry import arch_on_piers
+from archquake.limit_analysis import both_directions, virtual_displacements
+from archquake.site.local_mechanism import (
+    KNOWLEDGE_LEVELS,
+    SiteAction,
+    capacity_curve,
+    check_local_mechanism,
+    confidence_factor,
+    participation,
+    participation_of,
+    rigid_capacity_curve,
+)
+
+
+class LinearSpectrum:
+    """A stand-in spectrum proportional to a_g: PGA = 1.2 a_g, a plateau 2.5 PGA up to
+    0.5 s, then 1/T; SDe = Se g (T / 2 pi)^2."""
+
+    def __init__(self, ag):
+        self.pga = 1.2 * ag
+
+    def acceleration(self, period):
+        period = np.asarray(period, dtype=float)
+        return 2.5 * self.pga * np.minimum(1.0, 0.5 / np.maximum(period, 1e-12))
+
+    def displacement(self, period):
+        period = np.asarray(period, dtype=float)
+        return self.acceleration(period) * GRAVITY * (period / (2.0 * math.pi)) ** 2
+
+
+def test_one_block_participates_whole():
+    # M* = (P dx)^2 / (g P dx^2) = P / g, e* = 1, whatever dx
+    p = participation_of(0.25, [2000.0], [2000.0], [0.7], "l")
+    assert p.mass_fraction == pytest.approx(1.0, rel=1e-14)
+    assert p.participating_mass == pytest.approx(2000.0 / GRAVITY, rel=1e-14)
+
+
+def test_portal_frame_by_hand():
+    # two columns of mass mc, height h, turning about their bases (centroids at h/2 move
+    # h/2 per radian) and a beam of mass mb moving h:
+    # M* = (mc + mb)^2 / (mc/2 + mb), e* = M* / (2 mc + mb)
+    mc, mb, h = 3.0, 5.0, 4.0
+    masses = np.array([mc, mc, mb])
+    p = participation_of(0.3, masses * GRAVITY, masses * GRAVITY, [h / 2, h / 2, h], "l")
+    m_star = (mc + mb) ** 2 / (mc / 2 + mb)
+    assert p.participating_mass == pytest.approx(m_star, rel=1e-13)
+    assert p.mass_fraction == pytest.approx(m_star / (2 * mc + mb), rel=1e-13)  # 64/6.5/11
+
+
+def test_a0_star_from_alpha0_and_the_knowledge_level():
+    # a0* = alpha0 g / (e* FC): Oppenheim's alpha0 = 0.37 (Table 1 of the paper)
+    result = both_directions(oppenheim())[0]
+    p = participation(result, confidence_factor("LC1"))
+    assert p.alpha0 == pytest.approx(0.37, abs=5e-4)
+    assert p.spectral_acceleration == pytest.approx(
+        p.alpha0 * GRAVITY / (p.mass_fraction * 1.35), rel=1e-14)
+    assert KNOWLEDGE_LEVELS == {"LC1": 1.35, "LC2": 1.20, "LC3": 1.00}
+
+
+@pytest.mark.parametrize("structure", [oppenheim(), arch_on_piers(oppenheim(), 3.0, 6.0, 2)],
+                         ids=["oppenheim", "on-piers"])
+def test_participation_two_routes_agree(structure):
+    # the limit analysis's virtual displacements (rigid-body fields of its mechanism) and the
+    # four-link mechanism's mode shape (finite differences of its closure) give one e*
+    limit = both_directions(structure)
+    for result, mech in zip(limit, mechanisms(structure, limit), strict=True):
+        from_limit = participation(result)
+        from_curve = capacity_curve(mech).participation
+        assert from_curve.mass_fraction == pytest.approx(from_limit.mass_fraction, rel=1e-8)
+        assert from_curve.participating_mass == pytest.approx(
+            from_limit.participating_mass, rel=1e-8)
+        assert from_curve.alpha0 == pytest.approx(result.load_multiplier, rel=1e-8)
+
+
+def test_blocks_outside_the_mechanism_do_not_move():
+    # on piers 3 m x 6 m of two courses the hinges are at joints 3, 5, 8, 11: the left pier's
+    # two courses and the first voussoir stay, and are not in the sum of weights
+    structure = arch_on_piers(oppenheim(), 3.0, 6.0, 2)
+    result = both_directions(structure)[0]
+    dx = virtual_displacements(result)
+    assert result.hinges[0].joint == 3
+    assert np.all(dx[:3] == 0.0) and np.all(dx[3:] > 0.0)
+    p = participation(result)
+    assert p.moving_weight == pytest.approx(structure.loads.vertical[3:].sum(), rel=1e-14)
+
+
+def test_capacity_curve_is_the_equation_of_motion_static_balance():
+    # alpha(theta) by virtual work on the displaced blocks equals -F/P of the equation of
+    # motion (fourlink.equations_of_motion, written independently); it falls to zero at the
+    # critical angle, theta_u - theta_cr = 0.0691 rad for Oppenheim's arch (Sect. 5.1)
+    mech, _ = mechanisms(oppenheim())
+    curve = capacity_curve(mech)
+    _, _, f, p = mech.coefficients(mech.theta_u - curve.rotation)
+    np.testing.assert_allclose(curve.multiplier, -f / p, atol=1e-8)
+    assert curve.rotation[-1] == pytest.approx(0.0691, abs=5e-5)
+    assert curve.rotation[-1] == pytest.approx(mech.phi_cr, abs=1e-9)
+    assert curve.multiplier[0] == pytest.approx(0.37, abs=5e-4)
+    assert curve.multiplier[-1] == pytest.approx(0.0, abs=1e-9)
+
+
+def _rocking_block(half_width, half_height):
+    """A block of width 2b and height 2h on the ground, turning about its right toe (0, 0)."""
+    centroid = np.array([[-half_width, half_height]])
+
+    def positions(phi):
+        c, s = np.cos(-phi)[:, None], np.sin(-phi)[:, None]  # clockwise, toward +x
+        x, y = centroid[:, 0], centroid[:, 1]
+        return np.stack((c * x - s * y, s * x + c * y), axis=-1)
+
+    return positions
+
+
+def test_rocking_block_capacity_curve_closed_form():
+    # alpha(phi) = tan(atan(b/h) - phi); the curve ends at phi = atan(b/h), where the
+    # centroid stands over the toe, having moved b (half the width); e* = 1 so d0* = b and
+    # a0* = (b/h) g
+    b, h = 0.4, 1.5
+    curve = rigid_capacity_curve([1000.0], _rocking_block(b, h), math.pi / 2, points=101)
+    np.testing.assert_allclose(curve.multiplier, np.tan(math.atan(b / h) - curve.rotation),
+                               atol=1e-8)
+    assert curve.rotation[-1] == pytest.approx(math.atan(b / h), abs=1e-10)
+    assert curve.participation.mass_fraction == pytest.approx(1.0, rel=1e-12)
+    assert curve.d0 == pytest.approx(b, rel=1e-9)
+    assert curve.spectral_acceleration[0] == pytest.approx(b / h * GRAVITY, rel=1e-8)
+    # the secant point at SLC: d_s = 0.4 * 0.4 * b; a* there from the closed form
+    d_s, a_s, t_s = curve.secant("SLC")
+    assert d_s == pytest.approx(0.16 * b, rel=1e-9)
+    r = math.hypot(b, h)
+    phi_s = math.atan(b / h) - math.asin((b - d_s) / r)  # x of the centroid: -r sin(a - phi)
+    assert a_s == pytest.approx(math.tan(math.atan(b / h) - phi_s) * GRAVITY, rel=1e-4)
+    assert t_s == pytest.approx(2 * math.pi * math.sqrt(d_s / a_s), rel=1e-12)
+
+
+def test_linear_and_nonlinear_checks_against_hand_values():
+    arch = oppenheim()
+    fc = 1.2
+    check = check_local_mechanism(arch, [SiteAction("SLV", 0.25, LinearSpectrum),
+                                         SiteAction("SLC", 0.30, LinearSpectrum)],
+                                  confidence_factor=fc)
+    part = participation(both_directions(arch)[0], fc)
+    for c in check.linear:
+        # a0* >= a_g S / q: demand 1.2 * 0.25 / 2 = 0.15 g; the PGA capacity 1.2 ag / 2 = a0*
+        assert c.demand == pytest.approx(0.15, rel=1e-14)
+        assert c.capacity == pytest.approx(part.spectral_acceleration_g, rel=1e-12)
+        assert c.pga_capacity == pytest.approx(c.capacity * 2.0 / 1.2, rel=1e-5)
+        assert c.passes == (c.capacity >= 0.15)
+    curve = capacity_curve(mechanisms(arch)[0], fc)
+    for c in check.nonlinear:
+        d_u = {"SLV": 0.24, "SLC": 0.40}[c.limit_state] * curve.d0
+        assert c.ultimate_displacement == pytest.approx(d_u, rel=1e-9)
+        ag = {"SLV": 0.25, "SLC": 0.30}[c.limit_state]
+        demand = float(LinearSpectrum(ag).displacement(c.secant_period))
+        assert c.demand == pytest.approx(demand, rel=1e-12)
+        # SDe is proportional to a_g: the capacity is a_g d_u / SDe(T_s)
+        assert c.pga_capacity == pytest.approx(ag * d_u / demand, rel=1e-5)
+    assert check.holds("SLV") == any(all(c.passes for c in route)
+                                     for route in check.routes("SLV").values())
+
+
+def test_verdict_fails_where_no_route_holds():
+    # at a_g = 2.5 x the least PGA capacity every check fails
+    arch = oppenheim()
+    check = check_local_mechanism(arch, SiteAction("SLV", 0.2, LinearSpectrum))
+    capacity = check.pga_capacity("SLV")
+    strong = check_local_mechanism(arch, SiteAction("SLV", min(1.4, 2.5 * capacity),
+                                                    LinearSpectrum))
+    assert strong.holds("SLV") is False and strong.passes is False
+    assert strong.holds("SLC") is None
+
+
+def test_bad_input_is_named():
+    with pytest.raises(ValueError, match="knowledge_level"):
+        confidence_factor("LC4")
+    with pytest.raises(ValueError, match="confidence_factor"):
+        confidence_factor(value=0.9)
+    with pytest.raises(ValueError, match="limit_state"):
+        SiteAction("SLD", 0.2, LinearSpectrum)
+    with pytest.raises(ValueError, match="ag"):
+        SiteAction("SLV", -0.2, LinearSpectrum)
+    with pytest.raises(ValueError, match="behaviour_factor"):
+        check_local_mechanism(oppenheim(), SiteAction("SLV", 0.2, LinearSpectrum),
+                              behaviour_factor=0.5)
