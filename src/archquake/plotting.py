@@ -869,3 +869,49 @@ def plot_disagreement(disagreement, ax=None):
         extra = list(previous.legend_handles) if previous is not None else []
         ax.legend(handles=extra + handles, loc="upper right", fontsize=7, framealpha=0.9)
     return ax
+
+
+def plot_capacity_curve(check, ax=None):
+    r"""The capacity curves of a local-mechanism check (Circolare 2019 §C8.7.1.2.2): spectral
+    acceleration :math:`a^*` [g] against spectral displacement :math:`d^*` [m] in each
+    direction, with every limit state's displacement capacity :math:`d_u^*` (marker on the
+    curve) and demand :math:`S_{De}(T_s)` (cross on the axis), and the linear check's
+    :math:`a_0^*` against its demand.
+
+    Parameters
+    ----------
+    check : LocalMechanismCheck
+        :func:`archquake.site.local_mechanism.check_local_mechanism`.
+    ax : matplotlib.axes.Axes, optional
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    ax = _axes(ax)
+    g = 9.81
+    colours = {"l": "C0", "r": "C1"}
+    styles = {"SLV": "o", "SLC": "s"}
+    for curve in check.curves:
+        colour = colours[curve.direction]
+        ax.plot(curve.spectral_displacement, curve.spectral_acceleration / g, color=colour,
+                label=f"{_MECHANISM_NAMES[curve.direction]} capacity")
+        for c in check.nonlinear:
+            if c.direction != curve.direction:
+                continue
+            a_u = float(curve.acceleration_at(c.ultimate_displacement)) / g
+            ax.plot(c.ultimate_displacement, a_u, styles[c.limit_state], color=colour,
+                    markerfacecolor="white",
+                    label=f"{c.limit_state} $d_u^*$ = {c.ultimate_displacement:.3f} m, "
+                          f"demand {c.demand:.3f} m ({_MECHANISM_NAMES[c.direction]})")
+            ax.plot(c.demand, 0.0, "x", color=colour, clip_on=False)
+    for c in check.linear:
+        if c.direction == "l" or not check.curves:
+            ax.axhline(c.demand, color="0.4", ls="--", lw=1,
+                       label=f"linear {c.limit_state} demand $a_g S/q$ = {c.demand:.3f} g")
+    ax.set_xlabel("spectral displacement $d^*$ [m]")
+    ax.set_ylabel("spectral acceleration $a^*$ [g]")
+    ax.set_xlim(left=0.0)
+    ax.set_ylim(bottom=0.0)
+    ax.legend(fontsize=7)
+    return ax

@@ -191,3 +191,50 @@ def test_bad_input_is_named():
     with pytest.raises(ValueError, match="behaviour_factor"):
         check_local_mechanism(oppenheim(), SiteAction("SLV", 0.2, LinearSpectrum),
                               behaviour_factor=0.5)
+
+
+def test_ntc_action_at_another_ag_keeps_the_site():
+    # NTC 2018 soil C, F0 2.4, Tc* 0.3 s: at a_g = 0.25 g the action itself; at 0.1 g,
+    # S_S = min(1.5, 1.70 - 0.60 * 2.4 * 0.1) = 1.5 and T_D = 4 * 0.1 + 1.6 = 2.0 s
+    from archquake.site.spectra import ntc2018_spectrum
+
+    action = SiteAction.of("SLV", ntc2018_spectrum(0.25, 2.4, 0.3, "C"))
+    assert action.ag == 0.25 and action.spectrum.pga == pytest.approx(0.25 * 1.34, rel=1e-12)
+    low = action.spectrum_at(0.1)
+    assert low.s == pytest.approx(1.5) and low.t_d == pytest.approx(2.0)
+
+
+def test_oppenheim_at_an_italian_site_pga_capacity_is_where_the_check_just_holds():
+    from archquake.site.spectra import ntc2018_spectrum
+
+    action = SiteAction.of("SLC", ntc2018_spectrum(0.25, 2.4, 0.3, "C"))
+    check = check_local_mechanism(oppenheim(), action, confidence_factor=1.35)
+    for c in check.nonlinear:
+        at_capacity = action.spectrum_at(c.pga_capacity)
+        assert float(at_capacity.displacement(c.secant_period)) == pytest.approx(
+            c.ultimate_displacement, rel=1e-4)
+
+
+def test_floor_demand_of_a_mechanism_in_a_building():
+    # Circolare 2009 C8A.4.9-10 by hand: Z = 6 m of H = 12 m, N = 4 storeys, T1 = 0.4 s:
+    # psi gamma = 0.5 * 12 / 9 = 2/3; with the stand-in spectrum at a_g = 0.2 (PGA 0.24 g,
+    # plateau 0.6 g at T1): linear demand 0.6 * 2/3 / 2 = 0.2 g > the ground's 0.12 g
+    from archquake.site.local_mechanism import Elevation
+
+    floor = Elevation(6.0, 12.0, 0.4, 4)
+    assert floor.amplification == pytest.approx(2.0 / 3.0, rel=1e-14)
+    check = check_local_mechanism(oppenheim(), SiteAction("SLV", 0.2, LinearSpectrum),
+                                  elevation=floor)
+    for c in check.linear:
+        assert c.demand == pytest.approx(0.2, rel=1e-12)
+    spectrum = LinearSpectrum(0.2)
+    for c in check.nonlinear:
+        r = c.secant_period / 0.4
+        floor_demand = (float(spectrum.displacement(0.4)) * 2 / 3 * r ** 2
+                        / math.sqrt((1 - r) ** 2 + 0.02 * r)) if r < 1.5 else 0.0
+        assert c.demand == pytest.approx(
+            max(float(spectrum.displacement(c.secant_period)), floor_demand), rel=1e-12)
+    with pytest.raises(ValueError, match="height must be <= building_height"):
+        Elevation(13.0, 12.0, 0.4, 4)
+    with pytest.raises(ValueError, match="storeys"):
+        Elevation(6.0, 12.0, 0.4, 0)

@@ -509,7 +509,8 @@ class SiteAction:
     limit_state : {"SLV", "SLC"}
         The limit state.
     ag : float
-        The site's :math:`a_g` for the limit state's return period [g].
+        The site's :math:`a_g` for the limit state's return period [g] (the PGA of a user's
+        spectrum).
     spectrum_at : callable
         ``spectrum_at(ag)``: the site's elastic spectrum
         (:class:`~archquake.site.spectra.ElasticSpectrum`: ``acceleration(T)`` [g],
@@ -529,6 +530,38 @@ class SiteAction:
             raise ValueError(f"ag must be > 0 [g], got {self.ag}")
         object.__setattr__(self, "spectrum", self.spectrum_at(self.ag))
 
+    @classmethod
+    def of(cls, limit_state: str, spectrum) -> SiteAction:
+        """The action of a limit state given by its spectrum
+        (:class:`~archquake.site.spectra.ElasticSpectrum`).
+
+        The same site at another :math:`a_g` keeps the other inputs: for NTC 2018, F0, Tc*,
+        the soil, topography and damping (so S_S and T_D follow :math:`a_g`); for EN 1998-1 the
+        spectrum type, soil, importance and damping; a user's table is scaled in proportion.
+        """
+        from .spectra import ec8_spectrum, ntc2018_spectrum
+
+        details = dict(spectrum.details)
+        if spectrum.code == "NTC 2018":
+            def spectrum_at(ag):
+                return ntc2018_spectrum(ag, spectrum.f0, details["tc_star"], spectrum.soil,
+                                        details["topography"], spectrum.damping,
+                                        topography_ratio=details.get("topography_ratio"))
+            ag = spectrum.ag
+        elif spectrum.code == "EN 1998-1:2004":
+            importance = details["importance"]
+
+            def spectrum_at(ag):
+                return ec8_spectrum(ag / importance, details["spectrum_type"], spectrum.soil,
+                                    importance, spectrum.damping)
+            ag = spectrum.ag
+        else:
+            ag = spectrum.pga
+
+            def spectrum_at(value):
+                return _Scaled(spectrum, value / ag)
+        return cls(limit_state, ag, spectrum_at)
+
     def capacity_ag(self, demand: Callable[[Any], float], capacity: float) -> float | None:
         """The :math:`a_g` [g] at which ``demand(spectrum_at(ag)) == capacity`` (demand
         increasing with :math:`a_g`); None when the check holds up to
@@ -542,6 +575,101 @@ class SiteAction:
         if gap(_LARGEST_AG) <= 0.0:
             return None
         return float(brentq(gap, low, _LARGEST_AG, xtol=1e-6))
+
+
+@dataclass(frozen=True)
+class Elevation:
+    r"""Where a mechanism stands in a building: the floor demand of Circolare 2009 §C8A.4.
+
+    A mechanism at height :math:`Z` of a building of height :math:`H`, first-mode period
+    :math:`T_1` and :math:`N` storeys is shaken by the floor's motion, amplified from the
+    ground's. The Circolare 2009 (§C8A.4.9, linear; §C8A.4.10, nonlinear) takes the first
+    mode's floor demand, with :math:`\psi(Z) = Z/H` and :math:`\gamma = 3N/(2N+1)`:
+
+    .. math::
+
+        a_0^* \ge \frac{S_e(T_1)\,\psi(Z)\,\gamma}{q}, \qquad
+        d_u^* \ge S_{De}(T_1)\,\psi(Z)\,\gamma\,
+        \frac{(T_s/T_1)^2}{\sqrt{(1 - T_s/T_1)^2 + 0.02\,T_s/T_1}} \quad (T_s < 1.5\,T_1),
+
+        d_u^* \ge S_{De}(T_s) \quad (T_s \ge 1.5\,T_1),
+
+    each beside the check at ground level (the larger demand governs). The Circolare 2019
+    replaced these by the floor spectra of §C7.2.3, not implemented here: this is the older
+    edition's demand, stated as such in every output.
+
+    Parameters
+    ----------
+    height : float
+        :math:`Z`, the height of the mechanism's base above the foundation [m], > 0.
+    building_height : float
+        :math:`H` [m], >= ``height``.
+    building_period : float
+        :math:`T_1` [s], > 0.
+    storeys : int
+        :math:`N`, >= 1.
+    """
+
+    height: float
+    building_height: float
+    building_period: float
+    storeys: int
+
+    def __post_init__(self):
+        for name in ("height", "building_height", "building_period"):
+            value = getattr(self, name)
+            if not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
+                raise ValueError(f"{name} must be > 0, got {value!r}")
+        if self.height > self.building_height:
+            raise ValueError(f"height must be <= building_height = {self.building_height:g} m "
+                             f"(the mechanism stands in the building), got {self.height:g}")
+        if int(self.storeys) != self.storeys or self.storeys < 1:
+            raise ValueError(f"storeys must be an integer >= 1, got {self.storeys!r}")
+
+    @property
+    def amplification(self) -> float:
+        r""":math:`\psi(Z)\,\gamma` [-]."""
+        return self.height / self.building_height * 3 * self.storeys / (2 * self.storeys + 1)
+
+    def linear_demand(self, spectrum, behaviour_factor: float) -> float:
+        """The floor's acceleration demand of the linear check [g]."""
+        return (float(spectrum.acceleration(self.building_period)) * self.amplification
+                / behaviour_factor)
+
+    def displacement_demand(self, spectrum, secant_period: float) -> float:
+        """The floor's displacement demand of the nonlinear check [m]."""
+        ratio = secant_period / self.building_period
+        if ratio >= 1.5:
+            return float(spectrum.displacement(secant_period))
+        return (float(spectrum.displacement(self.building_period)) * self.amplification
+                * ratio ** 2 / math.sqrt((1.0 - ratio) ** 2 + 0.02 * ratio))
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"height_m": self.height, "building_height_m": self.building_height,
+                "building_period_s": self.building_period, "storeys": self.storeys,
+                "psi_gamma": self.amplification,
+                "demand": "Circolare 2009 C8A.4.9-10 (first-mode floor demand)"}
+
+
+@dataclass(frozen=True)
+class _Scaled:
+    """A user's spectrum scaled by a factor (its PGA capacity: the factor times its PGA)."""
+
+    spectrum: Any
+    factor: float
+
+    @property
+    def pga(self) -> float:
+        return self.factor * self.spectrum.pga
+
+    def acceleration(self, period):
+        return self.factor * self.spectrum.acceleration(period)
+
+    def displacement(self, period):
+        return self.factor * self.spectrum.displacement(period)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {**self.spectrum.to_dict(), "scaled_by": self.factor}
 
 
 @dataclass(frozen=True)
@@ -649,6 +777,7 @@ class LocalMechanismCheck:
     nonlinear: tuple[NonlinearCheck, ...]
     actions: Mapping[str, SiteAction]
     notes: tuple[str, ...] = ()
+    elevation: Elevation | None = None
 
     def routes(self, limit_state: str) -> dict[str, tuple]:
         """The checks of a limit state by route: ``{"linear": ..., "nonlinear": ...}``, each
@@ -699,6 +828,7 @@ class LocalMechanismCheck:
             "pga_capacity_g": {s: self.pga_capacity(s) for s in LIMIT_STATES},
             "actions": {s: {"ag_g": a.ag, "spectrum": _spectrum_dict(a.spectrum)}
                         for s, a in self.actions.items()},
+            "elevation": None if self.elevation is None else self.elevation.to_dict(),
             "notes": list(self.notes),
         }
 
@@ -710,7 +840,8 @@ def _spectrum_dict(spectrum) -> Any:
 
 def check_local_mechanism(structure: BlockArch, actions, *, confidence_factor: float = 1.0,
                           behaviour_factor: float = BEHAVIOUR_FACTOR, limit=None,
-                          points: int = 201) -> LocalMechanismCheck:
+                          points: int = 201, elevation: Elevation | None = None
+                          ) -> LocalMechanismCheck:
     r"""The code check of a structure's collapse mechanisms at a site (Circolare 2019
     §C8.7.1).
 
@@ -728,6 +859,9 @@ def check_local_mechanism(structure: BlockArch, actions, *, confidence_factor: f
         :func:`archquake.limit_analysis.both_directions` of the structure, if at hand.
     points : int
         Points of each capacity curve.
+    elevation : Elevation, optional
+        Where the structure stands in a building (default: on the ground); the larger of the
+        ground's and the floor's demand governs.
 
     Returns
     -------
@@ -760,10 +894,14 @@ def check_local_mechanism(structure: BlockArch, actions, *, confidence_factor: f
         action = actions["SLV"]
         for p in parts:
             capacity = p.spectral_acceleration_g
-            linear.append(LinearCheck(
-                "SLV", p.direction, capacity, action.spectrum.pga / behaviour_factor,
-                behaviour_factor,
-                action.capacity_ag(lambda s: s.pga / behaviour_factor, capacity)))
+            def demand(s):
+                ground = s.pga / behaviour_factor
+                if elevation is None:
+                    return ground
+                return max(ground, elevation.linear_demand(s, behaviour_factor))
+
+            linear.append(LinearCheck("SLV", p.direction, capacity, demand(action.spectrum),
+                                      behaviour_factor, action.capacity_ag(demand, capacity)))
     else:
         notes.append("the linear check (SLV only) was not made: no SLV action given")
     curves: tuple[CapacityCurve, ...] = ()
@@ -778,9 +916,15 @@ def check_local_mechanism(structure: BlockArch, actions, *, confidence_factor: f
             for curve in curves:
                 d_u = curve.ultimate_displacement(state)
                 d_s, a_s, t_s = curve.secant(state)
+
+                def demand(s, t=t_s):
+                    ground = float(s.displacement(t))
+                    if elevation is None:
+                        return ground
+                    return max(ground, elevation.displacement_demand(s, t))
+
                 nonlinear.append(NonlinearCheck(
-                    state, curve.direction, d_u, d_s, a_s, t_s,
-                    float(action.spectrum.displacement(t_s)),
-                    action.capacity_ag(lambda s, t=t_s: float(s.displacement(t)), d_u)))
+                    state, curve.direction, d_u, d_s, a_s, t_s, demand(action.spectrum),
+                    action.capacity_ag(demand, d_u)))
     return LocalMechanismCheck(parts, curves, tuple(linear), tuple(nonlinear), actions,
-                               tuple(notes))
+                               tuple(notes), elevation)
