@@ -874,8 +874,9 @@ def plot_disagreement(disagreement, ax=None):
 def plot_capacity_curve(check, ax=None):
     r"""The capacity curves of a local-mechanism check (Circolare 2019 §C8.7.1.2.2): spectral
     acceleration :math:`a^*` [g] against spectral displacement :math:`d^*` [m] in each
-    direction, with every limit state's displacement capacity :math:`d_u^*` (marker on the
-    curve) and demand :math:`S_{De}(T_s)` (cross on the axis), and the linear check's
+    direction (one curve when they coincide), with every limit state's displacement capacity
+    :math:`d_u^*` (open marker on the curve) and demand :math:`S_{De}(T_s)` (filled marker on
+    the axis), and the linear check's
     :math:`a_0^*` against its demand.
 
     Parameters
@@ -892,26 +893,37 @@ def plot_capacity_curve(check, ax=None):
     g = 9.81
     colours = {"l": "C0", "r": "C1"}
     styles = {"SLV": "o", "SLC": "s"}
-    for curve in check.curves:
+    curves = list(check.curves)
+    same = (len(curves) == 2 and curves[0].spectral_displacement.shape
+            == curves[1].spectral_displacement.shape
+            and np.allclose(curves[0].spectral_displacement, curves[1].spectral_displacement)
+            and np.allclose(curves[0].spectral_acceleration, curves[1].spectral_acceleration))
+    if same:  # a symmetric structure: one curve for both
+        curves = curves[:1]
+    for curve in curves:
         colour = colours[curve.direction]
+        name = "Mech-l = Mech-r" if same else _MECHANISM_NAMES[curve.direction]
         ax.plot(curve.spectral_displacement, curve.spectral_acceleration / g, color=colour,
-                label=f"{_MECHANISM_NAMES[curve.direction]} capacity")
+                label=f"{name}: capacity, $d_0^*$ = {curve.d0:.3f} m")
         for c in check.nonlinear:
             if c.direction != curve.direction:
                 continue
             a_u = float(curve.acceleration_at(c.ultimate_displacement)) / g
             ax.plot(c.ultimate_displacement, a_u, styles[c.limit_state], color=colour,
                     markerfacecolor="white",
-                    label=f"{c.limit_state} $d_u^*$ = {c.ultimate_displacement:.3f} m, "
-                          f"demand {c.demand:.3f} m ({_MECHANISM_NAMES[c.direction]})")
-            ax.plot(c.demand, 0.0, "x", color=colour, clip_on=False)
+                    label=f"{c.limit_state}: capacity $d_u^*$ = {c.ultimate_displacement:.3f} m")
+            ax.plot(c.demand, 0.0, styles[c.limit_state], color=colour, clip_on=False,
+                    label=f"{c.limit_state}: demand $S_{{De}}(T_s)$ = {c.demand:.3f} m "
+                          f"($T_s$ = {c.secant_period:.2f} s)")
     for c in check.linear:
         if c.direction == "l" or not check.curves:
             ax.axhline(c.demand, color="0.4", ls="--", lw=1,
-                       label=f"linear {c.limit_state} demand $a_g S/q$ = {c.demand:.3f} g")
+                       label=f"linear {c.limit_state} demand $a_g S/q$ = {c.demand:.3f} g "
+                             f"(capacity $a_0^*$ = {c.capacity:.3f} g)")
     ax.set_xlabel("spectral displacement $d^*$ [m]")
     ax.set_ylabel("spectral acceleration $a^*$ [g]")
     ax.set_xlim(left=0.0)
     ax.set_ylim(bottom=0.0)
+    ax.set_title("Capacity curve of the mechanism (Circolare 2019 §C8.7.1.2.2)", fontsize=10)
     ax.legend(fontsize=7)
     return ax

@@ -84,6 +84,11 @@ COMMANDS = {
         "main_spectrum",
         "elastic response spectrum of a site: NTC 2018, EN 1998-1, a user's table, or the NTC "
         "2018 hazard of a site at a limit state"),
+    "check": Command(
+        "main_check",
+        "the seismic code's check of the collapse mechanism at a site (NTC 2018 §8.7.1, "
+        "Circolare 2019 §C8.7.1): a0*, the capacity curve, linear and nonlinear checks, the "
+        "PGA capacity"),
     "app": Command(
         "main_app",
         "interactive page in the browser: shape the structure, see its thrust line and k, "

@@ -696,3 +696,185 @@ def motion_from_args(args: argparse.Namespace):
     spec = motion_spec(args)
     with naming_options():
         return spec.build()
+
+
+# ---------------------------------------------------------------------------------------------
+# the site: its elastic spectrum (archquake.site.spectra)
+# ---------------------------------------------------------------------------------------------
+
+CODE_OPTIONS = {
+    "ntc2018": ("ag", "f0", "tc_star", "topography", "topography_ratio", "soil", "damping"),
+    "ec8": ("agr", "type", "importance", "soil", "damping"),
+    "user": ("file",),
+    "site": ("site", "limit_state", "nominal_life", "use_class", "topography",
+             "topography_ratio", "soil", "damping"),
+}
+"""The options each way of giving a site's spectrum takes (the others are refused by name)."""
+
+PARAMETER_OPTIONS = {
+    "ag": "--ag", "f0": "--f0", "tc_star": "--tc-star", "soil": "--soil",
+    "topography": "--topography", "topography_ratio": "--topography-ratio",
+    "damping": "--damping", "agr": "--agr", "spectrum_type": "--type",
+    "importance": "--importance", "limit_state": "--limit-state",
+    "nominal_life": "--nominal-life", "use_class": "--use-class",
+}
+"""The option of each parameter of :mod:`archquake.site.spectra`, for its messages."""
+
+
+
+def add_site_options(parser: argparse.ArgumentParser) -> None:
+    """The site's elastic spectrum: ``--code ntc2018|ec8|user`` with its parameters, or
+    ``--site FILE`` (the NTC 2018 national grid) at ``--limit-state``
+    (:mod:`archquake.site.spectra`)."""
+    parser.add_argument("--code", default=None, metavar="ntc2018|ec8|user",
+                        help="the code of the spectrum (default: ntc2018 with --site)")
+    ntc = parser.add_argument_group("NTC 2018 (--code ntc2018, or --site)")
+    ntc.add_argument("--ag", type=number, default=None, metavar="G",
+                     help="ground acceleration on rock a_g [g]")
+    ntc.add_argument("--f0", type=number, default=None, metavar="F",
+                     help="maximum spectral amplification F0 [-]")
+    ntc.add_argument("--tc-star", type=number, default=None, metavar="T",
+                     help="Tc* [s]")
+    ntc.add_argument("--topography", default=None, metavar="T1|T2|T3|T4",
+                     help="topographic category, Table 3.2.V (default: T1)")
+    ntc.add_argument("--topography-ratio", type=number, default=None, metavar="R",
+                     help="height of the site over that of the slope, in [0, 1]: S_T falls "
+                          "linearly from the top (1, the default) to 1 at the base (0)")
+    ec8 = parser.add_argument_group("EN 1998-1 (--code ec8)")
+    ec8.add_argument("--agr", type=number, default=None, metavar="G",
+                     help="reference peak ground acceleration on ground A a_gR [g]")
+    ec8.add_argument("--type", default=None, metavar="1|2",
+                     help="spectrum type: 1 (Table 3.2) or 2 (Table 3.3) (default: 1)")
+    ec8.add_argument("--importance", type=number, default=None, metavar="GAMMA",
+                     help="importance factor gamma_I [-] (default: 1.0)")
+    both = parser.add_argument_group("both codes")
+    both.add_argument("--soil", default=None, metavar="A|B|C|D|E",
+                      help="soil (ground) category (default: A)")
+    both.add_argument("--damping", type=number, default=None, metavar="XI",
+                      help="viscous damping [%%], in (0, 30] (default: 5)")
+    user = parser.add_argument_group("a user's spectrum (--code user)")
+    user.add_argument("--file", default=None, metavar="PATH",
+                      help="two columns: period [s], Se [g]")
+    site = parser.add_argument_group("the NTC 2018 hazard of a site (--site)")
+    site.add_argument("--site", default=None, metavar="FILE",
+                      help="CSV with columns TR [years], ag [g], F0, Tc* [s] (header names "
+                           "tr, ag, f0, tc_star or tc*)")
+    site.add_argument("--limit-state", default=None, metavar="SLO|SLD|SLV|SLC",
+                      help="limit state (P_VR 81, 63, 10, 5 %%)")
+    site.add_argument("--nominal-life", type=number, default=None, metavar="YEARS",
+                      help="nominal life V_N [years] (default: 50)")
+    site.add_argument("--use-class", default=None, metavar="I|II|III|IV",
+                      help="use class, C_U = 0.7, 1.0, 1.5, 2.0 (default: II)")
+
+
+def site_way(args: argparse.Namespace, *, limit_state: bool = False) -> str:
+    """Which spectrum the options ask for: a code's, a user's, or a site's (``limit_state``:
+    ``--limit-state`` names the limit state of a code's spectrum too, as for the check)."""
+    code = None if args.code is None else args.code.strip().lower()
+    if args.site is not None:
+        if code not in (None, "ntc2018"):
+            raise ValueError(f"--site gives an NTC 2018 spectrum, not --code {args.code}")
+        way = "site"
+    elif code is None:
+        raise ValueError("give --code ntc2018, ec8 or user, or --site FILE")
+    elif code not in ("ntc2018", "ec8", "user"):
+        raise ValueError(f"--code must be ntc2018, ec8 or user, got {args.code!r}")
+    else:
+        way = code
+    names = {n for ns in CODE_OPTIONS.values() for n in ns}
+    foreign = given(args, *sorted(names - set(CODE_OPTIONS[way])
+                                  - ({"limit_state"} if limit_state else set())))
+    if foreign:
+        what = "--site" if way == "site" else f"--code {way}"
+        verb = "does" if len(foreign) == 1 else "do"
+        raise ValueError(f"{', '.join(foreign)} {verb} not apply to {what}")
+    return way
+
+
+def site_option_message(exc: ValueError) -> ValueError:
+    """The library's message naming a parameter, naming its option instead."""
+    text = str(exc)
+    if text.startswith("ag = importance * agr "):
+        return ValueError("a_g = --importance x --agr" + text[len("ag = importance * agr"):])
+    if text.startswith("period "):
+        return ValueError(f"--periods: {text}")
+    for name, option in sorted(PARAMETER_OPTIONS.items(), key=lambda kv: -len(kv[0])):
+        if text.startswith(name + " "):
+            return ValueError(option + text[len(name):])
+    return exc
+
+
+def _site_required(args: argparse.Namespace, *names: str) -> None:
+    missing = [f"--{n.replace('_', '-')}" for n in names if getattr(args, n) is None]
+    if missing:
+        raise ValueError(f"{', '.join(missing)} must be given")
+
+
+def site_spectrum(args: argparse.Namespace, way: str, limit_state: str | None = None):
+    """The spectrum of the options (of ``limit_state`` for ``--site``, default
+    ``--limit-state``), and what the site gave (or None)."""
+    from ..site import spectra
+
+    soil = "A" if args.soil is None else args.soil
+    damping = 5.0 if args.damping is None else args.damping
+    topography = "T1" if args.topography is None else args.topography
+    if way == "ntc2018":
+        _site_required(args, "ag", "f0", "tc_star")
+        return spectra.ntc2018_spectrum(args.ag, args.f0, args.tc_star, soil, topography,
+                                        damping, topography_ratio=args.topography_ratio), None
+    if way == "ec8":
+        _site_required(args, "agr")
+        kind = 1 if args.type is None else args.type.strip()
+        if kind not in (1, "1", "2"):
+            raise ValueError(f"--type must be 1 or 2, got {args.type!r}")
+        return spectra.ec8_spectrum(args.agr, int(kind), soil,
+                                    1.0 if args.importance is None else args.importance,
+                                    damping), None
+    if way == "user":
+        _site_required(args, "file")
+        try:
+            return spectra.read_spectrum(args.file), None
+        except ValueError as exc:
+            raise ValueError(f"--file: {exc}") from None
+    limit_state = args.limit_state if limit_state is None else limit_state
+    if limit_state is None:
+        _site_required(args, "limit_state")
+    try:
+        hazard = spectra.read_ntc_site(args.site)
+    except ValueError as exc:
+        raise ValueError(f"--site: {exc}") from None
+    life = 50.0 if args.nominal_life is None else args.nominal_life
+    use = "II" if args.use_class is None else args.use_class
+    tr = spectra.return_period(limit_state, life, use)
+    try:
+        ag, f0, tc_star = hazard.parameters(tr)
+    except ValueError as exc:
+        raise ValueError(f"--limit-state {limit_state} with --nominal-life {life:g} and "
+                         f"--use-class {use} gives T_R = {tr:.1f} years, outside the table of "
+                         f"--site {hazard.name} ({hazard.return_periods[0]:g} to "
+                         f"{hazard.return_periods[-1]:g} years): {exc}") from None
+    spectrum = spectra.ntc2018_spectrum(ag, f0, tc_star, soil, topography, damping,
+                                        topography_ratio=args.topography_ratio)
+    site = {"file": hazard.name, "limit_state": limit_state.strip().upper(),
+            "nominal_life": life, "use_class": use.strip().upper(), "return_period": tr,
+            "ag": ag, "f0": f0, "tc_star": tc_star}
+    return spectrum, site
+
+
+def site_actions(args: argparse.Namespace) -> list:
+    """The site's actions of the code check (:class:`~archquake.site.local_mechanism.
+    SiteAction`): with ``--site``, SLV and SLC (or the ``--limit-state`` given); with a
+    spectrum (``--code``), that spectrum as the action of ``--limit-state`` (default SLV)."""
+    from ..site.local_mechanism import LIMIT_STATES, SiteAction
+
+    way = site_way(args, limit_state=True)
+    given_state = None if args.limit_state is None else args.limit_state.strip().upper()
+    if given_state is not None and given_state not in LIMIT_STATES:
+        raise ValueError(f"--limit-state must be one of {', '.join(LIMIT_STATES)} for the "
+                         f"check of a mechanism, got {args.limit_state!r}")
+    states = ((given_state,) if given_state else LIMIT_STATES) if way == "site" \
+        else (given_state or "SLV",)
+    try:
+        return [SiteAction.of(state, site_spectrum(args, way, state)[0]) for state in states]
+    except ValueError as exc:
+        raise site_option_message(exc) from None
