@@ -361,3 +361,34 @@ def test_to_dict_is_json(soil_c, site):
     assert table["pga"] is None and table["periods"] == [0.1, 0.2]
     assert isinstance(NtcSiteHazard((30, 50), (0.1, 0.2), (2.5, 2.5), (0.3, 0.3)),
                       NtcSiteHazard)
+
+
+def test_headers_with_units(tmp_path):
+    path = tmp_path / "sp.csv"
+    path.write_text("T [s], Sa [g]\n0.0, 0.2\n1.0, 0.4\n")
+    assert read_spectrum(path).acceleration(0.5) == pytest.approx(0.3)   # (0.2 + 0.4) / 2
+    path.write_text("period [s]   Se [g]\n0.0   0.2\n1.0   0.4\n")
+    assert read_spectrum(path).acceleration(0.25) == pytest.approx(0.25)  # 0.2 + 0.2 / 4
+    site = tmp_path / "site.csv"
+    site.write_text("TR [years], ag [g], F0, Tc* [s]\n30, 0.06, 2.48, 0.27\n"
+                    "50, 0.078, 2.47, 0.28\n")
+    assert read_ntc_site(site).f0 == (2.48, 2.47)
+
+
+def test_a_row_with_an_empty_field_is_not_a_header(tmp_path):
+    path = tmp_path / "sp.csv"
+    path.write_text("0.1,,0.3\n0.2,0.4\n0.3,0.5\n")
+    with pytest.raises(ValueError, match="line 1"):
+        read_spectrum(path)
+
+
+def test_a_spectrum_made_by_hand_is_checked():
+    with pytest.raises(ValueError, match="ntc2018_spectrum, ec8_spectrum or user_spectrum"):
+        ElasticSpectrum("my code", ag=0.2)
+    with pytest.raises(ValueError, match="ordered"):
+        ElasticSpectrum("my code", ag=0.2, f0=2.5, s=1.0, eta=1.0, t_b=0.5, t_c=0.4, t_d=2.0,
+                        t_e=4.5, t_f=10.0)
+    with pytest.raises(ValueError, match="strictly increasing"):
+        ElasticSpectrum("mine", periods=(0.0, 0.0), accelerations=(0.1, 0.2))
+    with pytest.raises(ValueError, match="period"):
+        ntc2018_spectrum(0.2, 2.5, 0.3).acceleration(None)

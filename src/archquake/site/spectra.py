@@ -207,8 +207,11 @@ def damping_correction(damping: float) -> float:
 
 
 def _periods(period) -> np.ndarray:
-    t = np.asarray(period, dtype=float) if not isinstance(period, str) else None
-    if t is None or t.dtype.kind not in "fiu":
+    try:
+        t = None if isinstance(period, str) else np.asarray(period, dtype=float)
+    except (TypeError, ValueError):
+        t = None
+    if t is None:
         raise ValueError(f"period must be a number or an array of numbers [s], got {period!r}")
     if not np.all(np.isfinite(t)) or np.any(t < 0.0):
         bad = t[~(np.isfinite(t) & (t >= 0.0))].ravel()[0]
@@ -269,6 +272,24 @@ class ElasticSpectrum:
     details: tuple = ()
     periods: tuple | None = None
     accelerations: tuple | None = None
+
+    def __post_init__(self):
+        if self.is_table:
+            t, sa = _check_table(self.periods, self.accelerations)
+            object.__setattr__(self, "periods", t)
+            object.__setattr__(self, "accelerations", sa)
+            return
+        corners = (self.t_b, self.t_c, self.t_d, self.t_e, self.t_f)
+        factors = (self.ag, self.f0, self.s, self.eta)
+        if any(v is None for v in corners + factors):
+            raise ValueError("an ElasticSpectrum needs ag, f0, s, eta and the corner periods "
+                             "t_b, t_c, t_d, t_e, t_f, or periods and accelerations; make one "
+                             "with ntc2018_spectrum, ec8_spectrum or user_spectrum")
+        if not all(math.isfinite(v) and v > 0 for v in corners + factors):
+            raise ValueError("ag, f0, s, eta and the corner periods must be finite and > 0")
+        if not (self.t_b < self.t_c <= self.t_d and self.t_e < self.t_f):
+            raise ValueError(f"the corner periods must be ordered t_b < t_c <= t_d and "
+                             f"t_e < t_f [s], got {corners}")
 
     @property
     def is_table(self) -> bool:
@@ -525,6 +546,30 @@ def ec8_spectrum(agr: float, spectrum_type: int = 1, soil: str = "A", importance
                            t_f=t_f, soil=soil, details=details)
 
 
+def _check_table(periods, accelerations) -> tuple[tuple, tuple]:
+    """The table of a user spectrum as two tuples of floats, or a ValueError saying what is
+    wrong with it."""
+    try:
+        t = np.asarray(periods, dtype=float)
+        sa = np.asarray(accelerations, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError("periods and accelerations must be numbers") from None
+    if t.ndim != 1 or sa.shape != t.shape:
+        raise ValueError(f"periods and accelerations must be two lists of the same length, got "
+                         f"shapes {t.shape} and {sa.shape}")
+    if len(t) < 2:
+        raise ValueError(f"a spectrum needs at least two rows (periods), got {len(t)}")
+    if not np.all(np.isfinite(t)) or np.any(t < 0.0):
+        raise ValueError("periods must be finite and >= 0 [s]")
+    if np.any(np.diff(t) <= 0.0):
+        i = int(np.nonzero(np.diff(t) <= 0.0)[0][0])
+        raise ValueError(f"periods must be strictly increasing [s], got {t[i]:g} then "
+                         f"{t[i + 1]:g}")
+    if not np.all(np.isfinite(sa)) or np.any(sa < 0.0):
+        raise ValueError("accelerations must be finite and >= 0 [g]")
+    return tuple(t.tolist()), tuple(sa.tolist())
+
+
 def user_spectrum(periods, accelerations, name: str = "spectrum") -> ElasticSpectrum:
     """A spectrum given as a table: periods [s] and Se [g], interpolated linearly.
 
@@ -548,31 +593,23 @@ def user_spectrum(periods, accelerations, name: str = "spectrum") -> ElasticSpec
     >>> sp.code, round(sp.acceleration(0.25), 6)  # (0.3 + 0.7) / 2
     ('user file site.csv', 0.5)
     """
+    t, sa = _check_table(periods, accelerations)
+    return ElasticSpectrum(code=f"user file {name}", periods=t, accelerations=sa)
+
+
+def _is_number(text: str) -> bool:
     try:
-        t = np.asarray(periods, dtype=float)
-        sa = np.asarray(accelerations, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError("periods and accelerations must be numbers") from None
-    if t.ndim != 1 or sa.shape != t.shape:
-        raise ValueError(f"periods and accelerations must be two lists of the same length, got "
-                         f"shapes {t.shape} and {sa.shape}")
-    if len(t) < 2:
-        raise ValueError(f"a spectrum needs at least two rows (periods), got {len(t)}")
-    if not np.all(np.isfinite(t)) or np.any(t < 0.0):
-        raise ValueError("periods must be finite and >= 0 [s]")
-    if np.any(np.diff(t) <= 0.0):
-        i = int(np.nonzero(np.diff(t) <= 0.0)[0][0])
-        raise ValueError(f"periods must be strictly increasing [s], got {t[i]:g} then "
-                         f"{t[i + 1]:g}")
-    if not np.all(np.isfinite(sa)) or np.any(sa < 0.0):
-        raise ValueError("accelerations must be finite and >= 0 [g]")
-    return ElasticSpectrum(code=f"user file {name}", periods=tuple(t.tolist()),
-                           accelerations=tuple(sa.tolist()))
+        number(text)
+    except ValueError:
+        return False
+    return True
 
 
-def _read_table(path, columns: int, what: str) -> tuple[list[str] | None, list[list[float]]]:
+def _read_table(path, columns: int, what: str, *, named_header: bool = False
+                ) -> tuple[list[str] | None, list[list[float]]]:
     """The rows of a CSV or whitespace table: '#' starts a comment, the first line may be a
-    header. Returns ``(header or None, rows)``."""
+    header (with ``named_header``, one name per column). Fields are separated by commas or
+    semicolons where a line has them, else by whitespace. Returns ``(header or None, rows)``."""
     path = Path(path)
     header, rows = None, []
     text = path.read_text(encoding="utf-8-sig")
@@ -580,13 +617,16 @@ def _read_table(path, columns: int, what: str) -> tuple[list[str] | None, list[l
         line = raw.split("#", 1)[0].strip()
         if not line:
             continue
-        fields = [f.strip() for f in re.split(r"[,;\s]+", line.strip(",; \t")) if f.strip()]
+        separator = r"[,;]" if ("," in line or ";" in line) else r"\s+"
+        fields = [f.strip() for f in re.split(separator, line)]
+        if fields and not fields[-1]:
+            fields.pop()  # a trailing separator
         try:
             values = [number(f) for f in fields]
         except ValueError:
-            if header is None and not rows:
+            if header is None and not rows and not any(_is_number(f) for f in fields):
                 header = fields
-                if len(header) != columns:
+                if named_header and len(header) != columns:
                     raise ValueError(f"{what} {path.name}: the header names {len(header)} "
                                      f"columns, expected {columns}") from None
                 continue
@@ -769,10 +809,10 @@ def read_ntc_site(path) -> NtcSiteHazard:
         Naming the file, the line or the column.
     """
     path = Path(path)
-    header, rows = _read_table(path, 4, "site file")
+    header, rows = _read_table(path, 4, "site file", named_header=True)
     order = [0, 1, 2, 3]
     if header is not None:
-        names = [_SITE_COLUMNS.get(h.lower()) for h in header]
+        names = [_SITE_COLUMNS.get((h.split() or [""])[0].lower()) for h in header]
         missing = [c for c in ("tr", "ag", "f0", "tc_star") if c not in names]
         if missing or len(names) != 4:
             raise ValueError(f"site file {path.name}: the header must name the columns tr, ag, "
