@@ -61,6 +61,24 @@ COMMAND_LINES = st.one_of(
                                   numbers(0.0, 3.0)),
         "--resolution": numbers(0.001, 0.05), "--direction": words(("l", "r")),
         "--thickness": SHAPE["--thickness"], "--json": None})),
+    st.tuples(st.just(["check"]), options({
+        **{k: SHAPE[k] for k in ("--thickness", "--voussoirs", "--span", "--rise", "--shape")},
+        **STRUCTURE,
+        "--code": words(("ntc2018", "ec8", "user", "nz")), "--ag": numbers(-0.1, 2.0),
+        "--f0": numbers(1.5, 4.0), "--tc-star": numbers(0.0, 1.2),
+        "--soil": words(("A", "B", "C", "D", "E", "F")),
+        "--topography": words(("T1", "T4", "T5")), "--damping": numbers(0.0, 40.0),
+        "--agr": numbers(0.0, 1.0), "--knowledge-level": words(("LC1", "LC3", "LC9")),
+        "--limit-state": words(("SLV", "SLC", "SLO")),
+        "--elevation": numbers(0.0, 30.0), "--building-height": numbers(1.0, 30.0),
+        "--building-period": numbers(0.0, 2.0), "--storeys": integers_text(0, 10),
+        "--json": None})),
+    st.tuples(st.just(["spectrum"]), options({
+        "--code": words(("ntc2018", "ec8", "user")), "--ag": numbers(-0.1, 2.0),
+        "--f0": numbers(1.5, 4.0), "--tc-star": numbers(0.0, 1.2),
+        "--soil": words(("A", "C", "E", "F")), "--agr": numbers(0.0, 1.0),
+        "--type": words(("1", "2", "3")), "--periods": st.sampled_from(
+            ["0:4:0.1", "0.5", "-1", "4:0:0.1", "nan", "0,1,2"]), "--json": None})),
 )
 
 

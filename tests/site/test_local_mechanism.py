@@ -238,3 +238,15 @@ def test_floor_demand_of_a_mechanism_in_a_building():
         Elevation(13.0, 12.0, 0.4, 4)
     with pytest.raises(ValueError, match="storeys"):
         Elevation(6.0, 12.0, 0.4, 0)
+
+
+def test_passive_fill_leaves_the_nonlinear_check_out_and_says_why():
+    # the fill's passive reaction raises alpha0 in the limit analysis; the capacity curve of
+    # the blocks' weights does not carry it, so a nonlinear check would start elsewhere
+    from archquake.geometry import StructureSpec
+
+    structure = StructureSpec(fill_cover=1.0, fill_passive=(30.0, 0.5)).arches()[1]
+    check = check_local_mechanism(structure, SiteAction("SLV", 0.25, LinearSpectrum))
+    assert check.nonlinear == () and check.curves == ()
+    assert any("passive" in note for note in check.notes)
+    assert check.linear and check.holds("SLV") == all(c.passes for c in check.linear)

@@ -113,7 +113,7 @@ def _elevation(args: argparse.Namespace):
 
 
 def _capacity(value) -> str:
-    return "> 1.5 g" if value is None else f"{value:.3f} g"
+    return "holds beyond a_g = 1.5 g" if value is None else f"holds up to a_g = {value:.3f} g"
 
 
 def _print(check, arch, fc: float, args) -> None:
@@ -141,7 +141,7 @@ def _print(check, arch, fc: float, args) -> None:
         for c in check.linear:
             print(f"  {names[c.direction]:<7} a0* = {c.capacity:.4f} g, demand {c.demand:.4f} g,"
                   f" ratio {c.ratio:.2f}: {'holds' if c.passes else 'FAILS'} "
-                  f"(holds up to a_g = {_capacity(c.pga_capacity)})")
+                  f"({_capacity(c.pga_capacity)})")
     if check.nonlinear:
         demand = "SDe(T_s)" if check.elevation is None else "the floor's demand"
         print(f"Nonlinear check (§C8.7.1.2.2): d_u* >= {demand}; d_u* = 0.24 d0* (SLV), "
@@ -152,7 +152,7 @@ def _print(check, arch, fc: float, args) -> None:
                   f"d_u* = {c.ultimate_displacement:.4f} m, T_s = {c.secant_period:.3f} s, "
                   f"demand {c.demand:.4f} m, ratio {c.ratio:.2f}: "
                   f"{'holds' if c.passes else 'FAILS'} "
-                  f"(holds up to a_g = {_capacity(c.pga_capacity)})")
+                  f"({_capacity(c.pga_capacity)})")
     for note in check.notes:
         print(f"  note: {note}")
     for state in check.actions:
@@ -160,6 +160,6 @@ def _print(check, arch, fc: float, args) -> None:
         routes = check.routes(state)
         passing = [name for name, cs in routes.items() if all(c.passes for c in cs)]
         why = f" ({' and '.join(passing)} check)" if verdict else ""
-        print(f"Verdict {state}: {'HOLDS' if verdict else 'FAILS'}{why}; PGA capacity "
-              f"a_g = {_capacity(check.pga_capacity(state))} against the site's "
+        print(f"Verdict {state}: {'HOLDS' if verdict else 'FAILS'}{why}: "
+              f"{_capacity(check.pga_capacity(state))}, against the site's a_g = "
               f"{check.actions[state].ag:.4f} g")

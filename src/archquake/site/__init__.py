@@ -4,6 +4,9 @@ against it.
 :mod:`archquake.site.spectra`
     elastic response spectra of NTC 2018, EN 1998-1 and a user's table; the NTC 2018 hazard of
     a site on the national grid and the return period of a limit state.
+:mod:`archquake.site.local_mechanism`
+    the code check of the structure's collapse mechanism (NTC 2018 §8.7.1, Circolare 2019
+    §C8.7.1): participating mass, capacity curve, linear and nonlinear checks, PGA capacity.
 """
 
 from .spectra import (

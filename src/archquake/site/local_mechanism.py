@@ -912,7 +912,16 @@ def check_local_mechanism(structure: BlockArch, actions, *, confidence_factor: f
         notes.append(f"the nonlinear check was not made: {exc}")
     else:
         curves = tuple(capacity_curve(m, confidence_factor, points) for m in mechs)
-        for state, action in actions.items():
+        for curve, part in zip(curves, parts, strict=True):
+            if abs(curve.participation.alpha0 - part.alpha0) > 1e-6 * part.alpha0:
+                notes.append(
+                    f"the nonlinear check was not made: the capacity curve of the blocks' "
+                    f"weights and inertia starts at alpha = {curve.participation.alpha0:.4f}, "
+                    f"not at the limit analysis's alpha0 = {part.alpha0:.4f} (the fill's "
+                    f"passive reaction is in the limit analysis, not in the curve)")
+                curves = ()
+                break
+        for state, action in (actions.items() if curves else ()):
             for curve in curves:
                 d_u = curve.ultimate_displacement(state)
                 d_s, a_s, t_s = curve.secant(state)
