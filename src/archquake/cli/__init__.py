@@ -66,6 +66,10 @@ COMMANDS = {
     "record-fragility": Command(
         "main_record_fragility",
         "fragility of irregular arches under a suite of records: multiple-stripe analysis"),
+    "risk": Command(
+        "main_risk",
+        "annual frequency and probability of collapse at a site: a fragility convolved with "
+        "the site's hazard curve"),
     "simulate": Command(
         "main_simulate",
         "time history of the rocking arch under a pulse, a record or a stochastic motion"),
