@@ -101,3 +101,18 @@ def test_non_monotone_and_negative_hazard_are_refused(capsys, tmp_path):
     bad.write_text("PGA,f\n-0.1,0.01\n0.2,0.002\n")
     assert main(["risk", "--fragility", QA_CONTINUOUS, "--hazard", str(bad)]) == 2
     assert "row 0: the level must be a finite number > 0 [g]" in capsys.readouterr().err
+
+
+def test_ntc_site_takes_the_fragilitys_measure(capsys, tmp_path):
+    site = tmp_path / "site.csv"
+    site.write_text("TR,ag,F0,Tc*\n30,0.06,2.48,0.27\n475,0.212,2.40,0.34\n"
+                    "2475,0.36,2.44,0.37\n")
+    assert main(["risk", "--median", "0.5", "--dispersion", "0.4", "--im", "SA(0.2)",
+                 "--hazard", str(site), "--soil", "B", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["hazard"]["im"] == "SA(0.2)" and "soil B" in out["hazard"]["source"]
+    # 1/TR at the ordinates
+    assert out["hazard"]["frequencies"] == pytest.approx([1 / 30, 1 / 475, 1 / 2475])
+    assert main(["risk", "--median", "0.5", "--dispersion", "0.4", "--im", "PGA", "--hazard",
+                 str(site), "--site-index", "0"]) == 2
+    assert "site_index (--site-index) is for OpenQuake files" in capsys.readouterr().err

@@ -130,3 +130,56 @@ def test_interpolation_log_log_held_below_power_law_beyond():
     assert curve.tail_slope == pytest.approx(math.log(100) / math.log(4))
     assert curve.frequency(3.2) == pytest.approx(1e-6, rel=1e-12)
     assert np.all(np.diff(curve.frequency(np.geomspace(0.01, 10, 50))) <= 0)
+
+
+# --- NTC 2018 national grid -------------------------------------------------------------------
+
+NTC_SITE = """# a site of the national grid (the format of archquake.site.spectra.read_ntc_site)
+TR, ag, F0, Tc*
+30, 0.060, 2.48, 0.27
+50, 0.078, 2.47, 0.28
+72, 0.094, 2.46, 0.29
+101, 0.110, 2.44, 0.30
+140, 0.127, 2.43, 0.31
+201, 0.148, 2.42, 0.32
+475, 0.212, 2.40, 0.34
+975, 0.270, 2.41, 0.35
+2475, 0.360, 2.44, 0.37
+"""
+
+
+@pytest.fixture
+def ntc_site(tmp_path):
+    path = tmp_path / "ntc_site.csv"
+    path.write_text(NTC_SITE)
+    return path
+
+
+def test_ntc_site_on_rock_is_one_over_tr_at_ag(ntc_site):
+    curve = read_hazard_curve(ntc_site)  # recognised from its header
+    assert curve.im == "PGA"
+    assert curve.levels.tolist() == pytest.approx([0.060, 0.078, 0.094, 0.110, 0.127, 0.148,
+                                                   0.212, 0.270, 0.360])
+    assert curve.frequencies[6] == pytest.approx(1 / 475)
+    assert "on rock" in curve.source
+    # tail: slope ln(2475/975) / ln(0.360/0.270) = 0.93156 / 0.28768 = 3.2382
+    assert curve.tail_slope == pytest.approx(3.2382, rel=1e-4)
+
+
+def test_ntc_site_on_soil_c_is_ag_times_s(ntc_site):
+    curve = read_hazard_curve(ntc_site, soil="C")
+    # NTC 2018 Table 3.2.IV, soil C: S_S = 1.70 - 0.60 F0 ag in [1, 1.5]; at 475 years
+    # 1.70 - 0.60 * 2.40 * 0.212 = 1.70 - 0.30528 = 1.39472, PGA = 0.212 * 1.39472 = 0.29568064 g
+    assert curve.levels[6] == pytest.approx(0.29568064, rel=1e-9)
+    # at 30 years the bound 1.5: 1.70 - 0.60 * 2.48 * 0.06 = 1.6107 -> 1.5, PGA = 0.09 g
+    assert curve.levels[0] == pytest.approx(0.09, rel=1e-12)
+    assert "soil C" in curve.source
+
+
+def test_ntc_site_spectral_ordinate(ntc_site):
+    curve = read_hazard_curve(ntc_site, im="SA(0.2)")
+    # on rock at 475 years: T_C = Tc* = 0.34 s, T_B = 0.1133 s: 0.2 s is on the plateau,
+    # Se = ag F0 = 0.212 * 2.40 = 0.5088 g
+    assert curve.levels[6] == pytest.approx(0.5088, rel=1e-9)
+    with pytest.raises(ValueError, match="soil and topography"):
+        read_hazard_curve(ntc_site, format="csv", soil="C")

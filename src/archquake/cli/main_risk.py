@@ -16,10 +16,12 @@ DESCRIPTION = (
     "(archquake record-fragility --out DIR, or the NRML files of archquake assess --out DIR), "
     "an OpenQuake NRML fragility model, or --median and --dispersion of a lognormal; the "
     "hazard curve from an OpenQuake export (probabilities of exceedance in its investigation "
-    "time, converted to annual frequencies as -ln(1 - poe) / T) or a two-column CSV (IM [g], "
-    "annual frequency of exceedance [1/yr]). The curve is interpolated log-log between its "
-    "levels, held below its first level and continued beyond its last with the power law of "
-    "its last two levels; the tail's share of lambda_c is reported. Intensities in g: PGA or "
+    "time, converted to annual frequencies as -ln(1 - poe) / T), a two-column CSV (IM [g], "
+    "annual frequency of exceedance [1/yr]) or the NTC 2018 national-grid parameters of a site "
+    "(TR, ag, F0, Tc*: annual frequency 1/TR at the spectrum's ordinate, ag S for PGA). The "
+    "curve is interpolated log-log between its levels, held below its first level and "
+    "continued beyond its last with the power law of its last two levels; the tail's share of "
+    "lambda_c is reported. Intensities in g: PGA or "
     "SA(T).")
 
 
@@ -49,9 +51,16 @@ def configure(parser: argparse.ArgumentParser) -> None:
     hazard = parser.add_argument_group("hazard")
     hazard.add_argument("--hazard", required=True, metavar="FILE",
                         help="the site's hazard curve")
-    hazard.add_argument("--hazard-format", choices=("openquake", "csv"),
+    hazard.add_argument("--hazard-format", choices=("openquake", "csv", "ntc"),
                         help="default: recognised from the content (an OpenQuake export starts "
-                             "with a comment naming investigation_time, or lon,lat)")
+                             "with a comment naming investigation_time, or lon,lat; a "
+                             "national-grid site's header names TR, ag, F0, Tc*)")
+    hazard.add_argument("--soil", choices=tuple("ABCDE"),
+                        help="of a national-grid site (ntc): the soil category of NTC 2018 "
+                             "Table 3.2.IV, PGA = ag S (default: rock, the grid's ag)")
+    hazard.add_argument("--topography", choices=("T1", "T2", "T3", "T4"), default="T1",
+                        help="of a national-grid site with --soil: NTC 2018 Table 3.2.V "
+                             "(default: %(default)s)")
     hazard.add_argument("--site-index", type=int, metavar="N",
                         help="the site (row, from 0) of an OpenQuake file of several sites")
     parser.add_argument("--im", metavar="NAME",
@@ -89,7 +98,7 @@ def _fragility(args: argparse.Namespace):
 
 def run(args: argparse.Namespace) -> int:
     """The risk of collapse of the fragility at the site of the hazard curve."""
-    from ..site.hazard import read_hazard_curve
+    from ..site.hazard import hazard_format, read_hazard_curve
     from ..site.risk import risk
 
     if not args.years > 0:
@@ -97,8 +106,11 @@ def run(args: argparse.Namespace) -> int:
     if args.site_index is not None and args.site_index < 0:
         raise ValueError(f"--site-index must be >= 0, got {args.site_index}")
     study = _fragility(args)
-    hazard = read_hazard_curve(args.hazard, format=args.hazard_format, im=args.im,
-                               site_index=args.site_index)
+    fmt = args.hazard_format or hazard_format(args.hazard)
+    # a national-grid site gives the hazard of any ordinate of its spectrum: the fragility's
+    im = args.im if fmt != "ntc" or args.im is not None else study.fragility.im
+    hazard = read_hazard_curve(args.hazard, format=fmt, im=im, site_index=args.site_index,
+                               soil=args.soil, topography=args.topography)
     result = risk(study.fragility, hazard, years=args.years, upper=study.upper)
     if args.json:
         print_json({**result.to_dict(), "hazard": hazard.to_dict(),

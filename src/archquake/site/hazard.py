@@ -12,8 +12,11 @@ Readers
     :func:`read_openquake_hazard_curve` (the engine's ``hazard_curve-<kind>-<IMT>_<id>.csv``:
     probabilities of exceedance in the investigation time, converted to annual frequencies
     under Poisson occurrence, :func:`annual_frequency`), :func:`read_hazard_csv` (two columns,
-    IM [g] and annual frequency [1/yr]), and :func:`read_hazard_curve`, which recognises either
-    from the content.
+    IM [g] and annual frequency [1/yr]), :func:`ntc_hazard_curve` (the NTC 2018 national-grid
+    parameters of a site at its nine return periods: :math:`\lambda = 1/T_R` at the
+    spectrum's ordinate, :func:`read_ntc_hazard_curve` from the file of
+    :func:`archquake.site.spectra.read_ntc_site`), and :func:`read_hazard_curve`, which
+    recognises each from the content.
 
 References
 ----------
@@ -22,6 +25,9 @@ References
    ``imt``, then ``lon,lat,depth,poe-<iml>...``, one row per site).
 .. [2] GEM Foundation. ``openquake.risklib.scientific.annual_frequency_of_exceedence``:
    :math:`\lambda = -\ln(1 - \mathrm{poe}) / T`.
+.. [3] Ministero delle Infrastrutture e dei Trasporti (2018). NTC 2018, D.M. 17 gennaio 2018:
+   §3.2.3.2.1 (the spectrum, :math:`a_{max} = S\,a_g` at T = 0) and Allegato A (the national
+   grid's :math:`a_g, F_0, T_C^*` at return periods 30 to 2475 years).
 """
 
 from __future__ import annotations
@@ -37,11 +43,12 @@ import numpy as np
 from ..ranges import number
 
 __all__ = ["HAZARD_FORMATS", "HazardCurve", "annual_frequency", "canonical_im",
-           "read_hazard_csv", "read_hazard_curve", "read_openquake_hazard_curve"]
+           "hazard_format", "ntc_hazard_curve", "read_hazard_csv", "read_hazard_curve",
+           "read_ntc_hazard_curve", "read_openquake_hazard_curve"]
 
-HAZARD_FORMATS = ("openquake", "csv")
-"""Formats of a hazard-curve file :func:`read_hazard_curve` reads (``ntc`` is the national grid
-of NTC 2018, read apart)."""
+HAZARD_FORMATS = ("openquake", "csv", "ntc")
+"""Formats of a hazard-curve file :func:`read_hazard_curve` reads: an OpenQuake export, a
+two-column CSV, the NTC 2018 national-grid parameters of a site."""
 
 
 def canonical_im(name: str) -> str:
@@ -259,6 +266,78 @@ def _read_text(path) -> str:
         raise ValueError(f"cannot read the hazard curve {str(path)!r}: {exc.strerror}") from None
 
 
+def _is_ntc(text: str) -> bool:
+    """A national-grid site file: its header names ag and F0."""
+    header = next((line for line in text.splitlines()
+                   if line.strip() and not line.lstrip().startswith("#")), "")
+    cells = {c.strip().lower() for c in re.split(r"[,;\s]+", header)}
+    return {"ag", "f0"} <= cells
+
+
+def ntc_hazard_curve(site, *, im: str = "PGA", soil: str | None = None,
+                     topography: str = "T1") -> HazardCurve:
+    r"""The hazard curve of a site of the NTC 2018 national grid: at each of its return periods
+    :math:`T_R`, the annual frequency :math:`1/T_R` of exceeding the elastic spectrum's
+    ordinate [3]_.
+
+    For ``PGA`` the ordinate is :math:`S_e(0) = a_g S` with :math:`S = S_S S_T`
+    (NTC 2018 §3.2.3.2.1): :math:`a_g` on rock (soil A, :math:`S = 1`) when no soil is given;
+    for ``SA(T)`` it is :math:`S_e(T)` at 5 % damping (:func:`archquake.site.spectra
+    .ntc2018_spectrum`, with the site's :math:`F_0` and :math:`T_C^*` of each return period).
+    The grid's return periods are those of uniform-hazard spectra, so the curve is
+    :math:`\lambda(S_e(T; T_R)) = 1/T_R` (a Poisson rate of exceedance); the tail beyond
+    2475 years continues the power law of the last two return periods.
+
+    Parameters
+    ----------
+    site : NtcSiteHazard
+        (:func:`archquake.site.spectra.read_ntc_site`).
+    im : str
+        ``PGA`` or ``SA(T)``.
+    soil : str, optional
+        Soil category A-E (NTC 2018 Table 3.2.IV); None: rock, the grid's :math:`a_g`.
+    topography : str
+        Topographic category T1-T4 (Table 3.2.V), with a soil.
+
+    Returns
+    -------
+    HazardCurve
+
+    Raises
+    ------
+    ValueError
+        For an unknown soil or topography, or ordinates that do not increase with the return
+        period (naming the row).
+    """
+    from .spectra import ntc2018_spectrum
+
+    im = canonical_im(im)
+    period = 0.0 if im == "PGA" else float(im[3:-1])
+    ground = "A" if soil is None else soil
+    levels = [float(ntc2018_spectrum(ag, f0, tc, ground, topography if soil else "T1")
+                    .acceleration(period))
+              for ag, f0, tc in zip(site.ag, site.f0, site.tc_star, strict=True)]
+    where = ("on rock (the grid's ag)" if soil is None
+             else f"on soil {soil}, topography {topography}")
+    ordinate = "ag S" if im == "PGA" else f"Se({period:g} s) at 5 % damping"
+    source = (f"NTC 2018 national grid {site.name}: annual frequency 1/TR at {ordinate} "
+              f"{where}, TR {site.return_periods[0]:g} to {site.return_periods[-1]:g} yr")
+    return HazardCurve(levels, [1.0 / tr for tr in site.return_periods], im=im, source=source)
+
+
+def read_ntc_hazard_curve(path: str | os.PathLike, *, im: str = "PGA", soil: str | None = None,
+                          topography: str = "T1") -> HazardCurve:
+    """:func:`ntc_hazard_curve` of the site file ``path``
+    (:func:`archquake.site.spectra.read_ntc_site`: columns TR, ag, F0, Tc*)."""
+    from .spectra import read_ntc_site
+
+    site = read_ntc_site(path)
+    try:
+        return ntc_hazard_curve(site, im=im, soil=soil, topography=topography)
+    except ValueError as exc:
+        raise ValueError(f"{Path(path).name}: {exc}") from None
+
+
 def _is_openquake(text: str) -> bool:
     """An OpenQuake export: its comment line names the investigation time, or its header
     starts ``lon,lat``."""
@@ -454,22 +533,34 @@ def read_hazard_csv(path: str | os.PathLike, *, im: str | None = None) -> Hazard
         raise ValueError(f"{name}: {exc}") from None
 
 
+def hazard_format(path: str | os.PathLike) -> str:
+    """The format of a hazard file, recognised from its content: ``openquake`` if its first
+    line is a comment naming ``investigation_time`` or its header starts ``lon,lat``; ``ntc``
+    if its header names ``ag`` and ``F0``; else ``csv``."""
+    text = _read_text(path)
+    return "openquake" if _is_openquake(text) else "ntc" if _is_ntc(text) else "csv"
+
+
 def read_hazard_curve(path: str | os.PathLike, *, format: str | None = None,
-                      im: str | None = None, site_index: int | None = None) -> HazardCurve:
+                      im: str | None = None, site_index: int | None = None,
+                      soil: str | None = None, topography: str = "T1") -> HazardCurve:
     """Read a hazard curve, its format given or recognised from the content.
 
     Parameters
     ----------
     path : str or os.PathLike
         The file.
-    format : {"openquake", "csv"}, optional
+    format : {"openquake", "csv", "ntc"}, optional
         Default: ``openquake`` if the first line is a comment naming ``investigation_time``
-        or the header starts ``lon,lat``, else ``csv``.
+        or the header starts ``lon,lat``; ``ntc`` if the header names ``ag`` and ``F0``; else
+        ``csv``.
     im : str, optional
         The intensity measure of a plain CSV (:func:`read_hazard_csv`); for an OpenQuake file,
         if given, it must be the file's.
     site_index : int, optional
         The site of an OpenQuake file of several (:func:`read_openquake_hazard_curve`).
+    soil, topography : str, optional
+        Of a national-grid site (:func:`ntc_hazard_curve`; ``im`` defaults to PGA there).
 
     Returns
     -------
@@ -481,7 +572,16 @@ def read_hazard_curve(path: str | os.PathLike, *, format: str | None = None,
         For an unknown format or what the readers refuse.
     """
     if format is None:
-        format = "openquake" if _is_openquake(_read_text(path)) else "csv"
+        format = hazard_format(path)
+    if format != "ntc" and (soil is not None or topography != "T1"):
+        raise ValueError("soil and topography (--soil, --topography) are for a national-grid "
+                         "site (ntc format)")
+    if format == "ntc":
+        if site_index is not None:
+            raise ValueError("site_index (--site-index) is for OpenQuake files of several "
+                             "sites, not a national-grid site")
+        return read_ntc_hazard_curve(path, im="PGA" if im is None else im, soil=soil,
+                                     topography=topography)
     if format == "openquake":
         curve = read_openquake_hazard_curve(path, site_index=site_index)
         if im is not None and canonical_im(im) != curve.im:
