@@ -9,6 +9,9 @@ from ..ranges import number
 from . import options
 from .output import print_json
 
+TAIL_WARNING_SHARE = 0.10
+"""Share of lambda_c from the extrapolated tail [-] above which the text output warns."""
+
 DESCRIPTION = (
     "Mean annual frequency of collapse lambda_c = integral of P(collapse | IM = x) |d lambda(x)| "
     "[1/yr] of a structure at a site, its probability in --years years, 1 - exp(-lambda_c T) "
@@ -137,6 +140,11 @@ def run(args: argparse.Namespace) -> int:
               f"{result.years:g} years <= {result.probability_upper:.4g}")
     print(f"share of lambda_c from the tail beyond {hazard.levels[-1]:g} g: "
           f"{100 * result.tail_share:.3g} %")
+    if result.tail_share > TAIL_WARNING_SHARE:
+        print(f"WARNING: {100 * result.tail_share:.0f} % of lambda_c comes from beyond the "
+              f"hazard curve's last level, where it is the power law of its last two levels: "
+              f"the result rests on that extrapolation (a curve to higher intensities would "
+              f"settle it)")
     if result.fragility_at_first_level > 0:
         print(f"P(collapse) at the first level {hazard.levels[0]:g} g is "
               f"{result.fragility_at_first_level:.3g}: below it the hazard is held at its "
