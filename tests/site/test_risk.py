@@ -288,3 +288,24 @@ def test_bad_fragility_values_are_refused():
         DiscreteCollapseFragility([-0.1, 0.2], [0.0, 1.0])
     with pytest.raises(ValueError, match="years must be > 0"):
         risk(LognormalCollapseFragility(0.5, 0.4), power_law(1e-3, 2.0), years=0)
+
+
+def test_assessment_folder_is_read_through_its_nrml_files(tmp_path):
+    # archquake assess writes fragility_<im>.xml beside its report
+    write_fragility_nrml(tmp_path / "fragility_pga.xml", [("masonry-arch", 0.8, 0.3)],
+                         im="pga", min_iml=0.1, max_iml=2.0)
+    write_fragility_nrml(tmp_path / "fragility_sa_0.5.xml", [("masonry-arch", 1.1, 0.4)],
+                         im="sa(0.5)", min_iml=0.1, max_iml=3.0)
+    read = read_fragility(tmp_path, im="SA(0.5)")
+    assert read.fragility.im == "SA(0.5)"
+    assert read.fragility.median == pytest.approx(1.1, rel=1e-12)
+    assert read_fragility(tmp_path, im="PGA").fragility.median == pytest.approx(0.8, rel=1e-12)
+    with pytest.raises(ValueError, match="hold lognormal fits only"):
+        read_fragility(tmp_path, fit="empirical")
+
+
+def test_pulse_fragility_study_is_refused_with_the_reason(tmp_path):
+    save_study(tmp_path, pd.DataFrame({"arch": [0]}), summary={"durations": []})
+    with pytest.raises(ValueError, match="pulse fragility study: its intensity is the amplitude "
+                                         "of a pulse"):
+        read_fragility(tmp_path)

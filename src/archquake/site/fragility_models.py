@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import math
 import os
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -194,7 +194,6 @@ class StudyFragility:
     fragility: object
     upper: object | None = None
     undecided: int = 0
-    notes: tuple[str, ...] = field(default=())
 
 
 def lognormal_from_moments(mean: float, stddev: float) -> tuple[float, float]:

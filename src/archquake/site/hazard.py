@@ -426,7 +426,7 @@ def read_openquake_hazard_curve(path: str | os.PathLike, *,
                          f"{len(header)}")
     try:
         poes = np.array([number(cells[j]) for j in columns])
-        where = {h: number(cells[j]) for j, h in enumerate(header[:3]) if h in ("lon", "lat")}
+        where = {h: number(cells[j]) for j, h in enumerate(header) if h in ("lon", "lat")}
     except ValueError as exc:
         raise ValueError(f"{name}: site row {site_index}: {exc}") from None
     bad = np.flatnonzero(~((poes >= 0) & (poes <= 1)))
