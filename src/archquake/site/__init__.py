@@ -7,6 +7,12 @@ against it.
 :mod:`archquake.site.local_mechanism`
     the code check of the structure's collapse mechanism (NTC 2018 §8.7.1, Circolare 2019
     §C8.7.1): participating mass, capacity curve, linear and nonlinear checks, PGA capacity.
+:mod:`archquake.site.hazard`
+    hazard curves: OpenQuake's exports, a plain table, the NTC 2018 national grid.
+:mod:`archquake.site.fragility_models`
+    fragilities: lognormal, discrete, OpenQuake NRML, archquake's own studies.
+:mod:`archquake.site.risk`
+    the mean annual frequency of collapse and the probability of collapse in a span of years.
 """
 
 from .spectra import (
