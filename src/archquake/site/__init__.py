@@ -13,6 +13,12 @@ against it.
     fragilities: lognormal, discrete, OpenQuake NRML, archquake's own studies.
 :mod:`archquake.site.risk`
     the mean annual frequency of collapse and the probability of collapse in a span of years.
+:mod:`archquake.site.compatible_records`
+    records selected from a suite and scaled so that their mean spectrum matches a site's
+    (NTC 2018 §3.2.3.6, EN 1998-1 §3.2.3.1.2).
+:mod:`archquake.site.dynamic_check`
+    the structure under those records by both dynamic models, and the code's verdict (NTC 2018
+    §7.3.5).
 """
 
 from .spectra import (
