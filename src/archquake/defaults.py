@@ -290,3 +290,22 @@ through each column's centroid, or on the extrados below it."""
 DEFAULT_FILL_INERTIA = "centroid"
 """The fill moves with its voussoir: the one model the dynamic models share
 (:mod:`archquake.geometry.fill`)."""
+
+# --- records compatible with a site's spectrum (archquake.site.compatible_records)
+
+COMPATIBILITY_RULES = ("ntc2018", "ec8")
+"""Rules of spectrum compatibility: NTC 2018 §3.2.3.6 (the mean within -10 %/+30 % of the
+target) and EN 1998-1 §3.2.3.1.2(4) (not below 90 %, the mean PGA not below the site's)."""
+
+DEFAULT_RECORD_COUNT = 7
+"""Records of a selection unless told [-]: seven, so that the effects are their mean (NTC 2018
+§7.3.5; with three to six, the most unfavourable one)."""
+
+DEFAULT_PERIOD_RANGE = (0.15, 2.0)
+"""Period range of the compatibility check unless told [s]: the code's 0.15-2.0 s (a rocking
+arch has no elastic period T to widen it to 2T; the user may)."""
+
+DEFAULT_FACTOR_RANGE = (0.5, 4.0)
+"""Range of the scale factor of any record unless told [-]: a record scaled by more than about
+four, or shrunk by more than half, is a different earthquake; the code sets no limit, and the
+user may widen it."""

@@ -76,6 +76,10 @@ COMMANDS = {
     "records": Command(
         "main_records",
         "intensity measures (PGA, PGV, PGD, Arias, D5-95, Sa(T)) of recorded accelerograms"),
+    "records-for-site": Command(
+        "main_records_for_site",
+        "records selected and scaled to match a site's elastic spectrum (NTC 2018 §3.2.3.6); "
+        "with --run the structure under them by both models and the code's verdict"),
     "rigid-blocks": Command(
         "main_rigid_blocks",
         "rigid-block model of the arch (every voussoir a block, contacts with friction) under "

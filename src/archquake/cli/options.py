@@ -28,14 +28,18 @@ import re
 from ..constants import DEFAULT_DENSITY, DEFAULT_FILL_DENSITY
 from ..defaults import (
     ANALYTIC_GROUND_MOTIONS,
+    COMPATIBILITY_RULES,
     DEFAULT_COARSE_FACTOR,
     DEFAULT_EPSILON,
+    DEFAULT_FACTOR_RANGE,
     DEFAULT_FILL_INERTIA,
     DEFAULT_FRICTION,
     DEFAULT_LEVEL_STRIDE,
     DEFAULT_MODEL,
     DEFAULT_MOTION,
+    DEFAULT_PERIOD_RANGE,
     DEFAULT_PULSE,
+    DEFAULT_RECORD_COUNT,
     DEFAULT_RESTITUTION,
     DEFAULT_SEED,
     DEFAULT_STRIDE,
@@ -90,6 +94,15 @@ OPTION_NAMES = {
     "voussoirs": "--voussoirs",
     "faces": "--faces",
     "sa_period": "--sa-period",
+    "count": "--records-count",
+    "period_range": "--period-range",
+    "factor_range": "--factor-range",
+    "rule": "--compatibility",
+    "ag": "--ag",
+    "f0": "--f0",
+    "tc_star": "--tc-star",
+    "soil": "--soil",
+    "topography": "--topography",
 }
 """The option of each parameter of the library that an option sets, for the messages of
 :func:`option_message` (``sample_size`` of :class:`~archquake.studies.fragility.FragilitySettings`
@@ -613,6 +626,109 @@ def suite_from_args(args: argparse.Namespace, paths: str = "records"):
     if files:
         return RecordSuite.from_paths(files)
     return None
+
+
+# ---------------------------------------------------------------------------------------------
+# the site's spectrum, and records compatible with it
+# ---------------------------------------------------------------------------------------------
+
+SITE_CODES = ("ntc2018",)
+"""The codes whose elastic spectrum ``--code`` builds (:mod:`archquake.site.spectra`)."""
+
+
+def add_site_spectrum_options(parser: argparse.ArgumentParser) -> None:
+    """``--code``, ``--ag``, ``--f0``, ``--tc-star``, ``--soil``, ``--topography`` and
+    ``--damping``: the site's elastic spectrum (read by :func:`site_spectrum_from_args`)."""
+    group = parser.add_argument_group("the site's elastic spectrum")
+    group.add_argument("--code", choices=SITE_CODES, default=SITE_CODES[0],
+                       help="the code of the spectrum (default: %(default)s, NTC 2018 "
+                            "§3.2.3.2.1)")
+    group.add_argument("--ag", type=number, metavar="G",
+                       help="ground acceleration on horizontal rock a_g [g] (required)")
+    group.add_argument("--f0", type=number, metavar="F0",
+                       help="maximum spectral amplification F0 [-] (required)")
+    group.add_argument("--tc-star", type=number, metavar="S",
+                       help="Tc*, the start of the velocity branch on rock [s] (required)")
+    group.add_argument("--soil", default="A", metavar="A-E",
+                       help="soil category A-E (default: %(default)s)")
+    group.add_argument("--topography", default="T1", metavar="T1-T4",
+                       help="topographic category T1-T4 (default: %(default)s)")
+    group.add_argument("--damping", type=number, default=5.0, metavar="PERCENT",
+                       help="viscous damping of the spectrum [%%] (default: %(default)s; the "
+                            "records are compared with the 5%% spectrum)")
+
+
+def site_spectrum_from_args(args: argparse.Namespace):
+    """The site's elastic spectrum of :func:`add_site_spectrum_options`
+    (:func:`archquake.site.spectra.ntc2018_spectrum`)."""
+    missing = [f"--{name.replace('_', '-')}" for name in ("ag", "f0", "tc_star")
+               if getattr(args, name) is None]
+    if missing:
+        raise ValueError(f"the site's spectrum needs {', '.join(missing)} (with --code "
+                         f"{args.code})")
+    from ..site.spectra import ntc2018_spectrum
+
+    return ntc2018_spectrum(args.ag, args.f0, args.tc_star, args.soil, args.topography,
+                            args.damping)
+
+
+def _pair(option: str):
+    """The type of an option ``LOW,HIGH``: two numbers."""
+    def parse(text: str) -> tuple[float, float]:
+        parts = text.split(",")
+        try:
+            values = tuple(number(p) for p in parts)
+        except ValueError:
+            values = ()
+        if len(values) != 2:
+            raise argparse.ArgumentTypeError(f"{option} takes two numbers LOW,HIGH, got "
+                                             f"{text!r}")
+        return values
+
+    return parse
+
+
+def add_dynamic_route_options(parser: argparse.ArgumentParser) -> None:
+    """``--records`` or ``--suite``, ``--records-count``, ``--period-range``,
+    ``--factor-range`` and ``--compatibility``: records selected from a suite and scaled to be
+    compatible with the site's spectrum (read by :func:`compatible_selection_from_args`)."""
+    group = parser.add_argument_group("records compatible with the site's spectrum")
+    group.add_argument("--records", nargs="+", metavar="PATH",
+                       help="the candidate records: files and folders of record files")
+    add_suite_option(group, "as the candidate records")
+    group.add_argument("--records-count", type=int, default=DEFAULT_RECORD_COUNT, metavar="N",
+                       help="records to select, >= 3: with 7 or more the effects are their "
+                            "mean, with 3 to 6 the most unfavourable one (NTC 2018 §7.3.5) "
+                            "(default: %(default)s)")
+    group.add_argument("--period-range", type=_pair("--period-range"),
+                       default=DEFAULT_PERIOD_RANGE, metavar="TMIN,TMAX",
+                       help="periods over which the records' mean spectrum must match the "
+                            "site's [s]; a rocking arch has no elastic period, so the code's "
+                            "range is kept unless widened (default: "
+                            f"{DEFAULT_PERIOD_RANGE[0]:g},{DEFAULT_PERIOD_RANGE[1]:g})")
+    group.add_argument("--factor-range", type=_pair("--factor-range"),
+                       default=DEFAULT_FACTOR_RANGE, metavar="LOW,HIGH",
+                       help="range of every record's scale factor [-] (default: "
+                            f"{DEFAULT_FACTOR_RANGE[0]:g},{DEFAULT_FACTOR_RANGE[1]:g})")
+    group.add_argument("--compatibility", choices=COMPATIBILITY_RULES,
+                       default=COMPATIBILITY_RULES[0],
+                       help="the rule: ntc2018, the mean within -10%% and +30%% of the "
+                            "site's spectrum (§3.2.3.6); ec8, not below 90%% and its mean PGA "
+                            "not below the site's (EN 1998-1 §3.2.3.1.2) (default: "
+                            "%(default)s)")
+
+
+def compatible_selection_from_args(args: argparse.Namespace, target):
+    """The records of :func:`add_dynamic_route_options` selected and scaled for ``target``
+    (:func:`archquake.site.compatible_records.select_compatible_records`)."""
+    from ..site.compatible_records import select_compatible_records
+
+    suite = suite_from_args(args)
+    if suite is None:
+        raise ValueError("give the candidate records: --records PATH... or --suite NAME")
+    return select_compatible_records(
+        suite, target, count=args.records_count, period_range=args.period_range,
+        rule=args.compatibility, factor_range=args.factor_range)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -63,6 +63,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..checks import check_integer, json_float
+from ..defaults import COMPATIBILITY_RULES as COMPATIBILITY_RULE_NAMES
+from ..defaults import DEFAULT_FACTOR_RANGE, DEFAULT_PERIOD_RANGE, DEFAULT_RECORD_COUNT
 from ..constants import GRAVITY
 from ..ground_motion.core import GroundMotion
 from ..ground_motion.intensity import SA_DAMPING, pseudo_spectral_acceleration
@@ -103,27 +105,19 @@ class CompatibilityRule:
         return 1.0 + self.upper_tolerance
 
 
-COMPATIBILITY_RULES = {
-    "ntc2018": CompatibilityRule("ntc2018", 0.10, 0.30, False, "NTC 2018 §3.2.3.6"),
-    "ec8": CompatibilityRule("ec8", 0.10, math.inf, True, "EN 1998-1 §3.2.3.1.2(4)"),
-}
+COMPATIBILITY_RULES = {rule.name: rule for rule in (
+    CompatibilityRule("ntc2018", 0.10, 0.30, False, "NTC 2018 §3.2.3.6"),
+    CompatibilityRule("ec8", 0.10, math.inf, True, "EN 1998-1 §3.2.3.1.2(4)"),
+)}
 """The compatibility rules by name: NTC 2018 (the mean within -10 %/+30 % of the target) and
 Eurocode 8 (the mean not below 90 % of the target, its mean PGA not below the site's)."""
 
-DEFAULT_RULE = "ntc2018"
+DEFAULT_RULE = COMPATIBILITY_RULE_NAMES[0]
 """The rule of a selection unless told (:data:`COMPATIBILITY_RULES`)."""
-DEFAULT_COUNT = 7
-"""Records of a selection unless told: seven, so that the effects are their mean (NTC 2018
-§7.3.5; with three to six, the most unfavourable one)."""
+DEFAULT_COUNT = DEFAULT_RECORD_COUNT
+"""Records of a selection unless told (:data:`archquake.defaults.DEFAULT_RECORD_COUNT`)."""
 MIN_COUNT = 3
 """Fewest records the code accepts for a time-history analysis (NTC 2018 §7.3.5)."""
-DEFAULT_PERIOD_RANGE = (0.15, 2.0)
-"""Period range of the compatibility check unless told [s]: the code's 0.15-2.0 s (a rocking
-arch has no elastic period T to widen it to 2T; the user may)."""
-DEFAULT_FACTOR_RANGE = (0.5, 4.0)
-"""Range of the scale factor of any record unless told [-]: a record scaled by more than about
-four, or shrunk by more than half, is a different earthquake; the code sets no limit, and the
-user may widen it."""
 DEFAULT_PERIODS = 100
 """Periods of the grid on which the spectra are compared unless told [-] (log-spaced over the
 range: neighbours 3 % apart over 0.15-2.0 s)."""
@@ -233,6 +227,10 @@ def _candidates(records) -> tuple[list[GroundMotion], list[dict]]:
 
 
 def _target_values(target, periods: np.ndarray) -> np.ndarray:
+    damping = getattr(target, "damping", None)
+    if damping is not None and not (math.isclose(damping, 5.0) or math.isclose(damping, 0.05)):
+        raise ValueError(f"target must be the 5 %-damped elastic spectrum (the records' spectra "
+                         f"are 5 %-damped, NTC 2018 §3.2.3.6), got damping {damping!r}")
     try:
         values = np.asarray(target.acceleration(periods), dtype=float)
     except AttributeError:
@@ -584,10 +582,13 @@ def select_compatible_records(records, target, *, count: int = DEFAULT_COUNT,
     motions, metadata = _candidates(records)
     grid = np.geomspace(t_min, t_max, n_periods)
     target_values = _target_values(target, grid)
-    target_pga = float(getattr(target, "pga", math.nan))
+    try:
+        target_pga = float(getattr(target, "pga", math.nan))
+    except ValueError:  # a table that does not reach T = 0 has no PGA
+        target_pga = math.nan
     if rule_.mean_pga and not (math.isfinite(target_pga) and target_pga > 0.0):
-        raise ValueError(f"target.pga must be a number > 0 [g] for rule {rule_.name!r}, got "
-                         f"{getattr(target, 'pga', None)!r}")
+        raise ValueError(f"target.pga must be a number > 0 [g] for rule {rule_.name!r} (the "
+                         f"mean PGA is compared with it), got {target_pga!r}")
 
     usable, excluded, limits = [], [], []
     for i, (motion, meta) in enumerate(zip(motions, metadata, strict=True)):
