@@ -134,6 +134,15 @@ def check_rule(rule: str) -> CompatibilityRule:
     return COMPATIBILITY_RULES[rule]
 
 
+def check_count(count) -> int:
+    """A number of records, checked: an integer >= :data:`MIN_COUNT` (NTC 2018 §7.3.5)."""
+    try:
+        return check_integer("count", count, minimum=MIN_COUNT)
+    except ValueError as exc:
+        raise ValueError(f"{exc} (NTC 2018 §7.3.5: a time-history analysis takes at least "
+                         f"{MIN_COUNT} records)") from None
+
+
 def _check_pair(name: str, value, unit: str) -> tuple[float, float]:
     try:
         low, high = (float(v) for v in value)
@@ -523,7 +532,7 @@ def effect_rule(count: int) -> str:
     ValueError
         For fewer than :data:`MIN_COUNT` records.
     """
-    count = check_integer("count", count, minimum=MIN_COUNT)
+    count = check_count(count)
     return "mean" if count >= 7 else "most unfavourable"
 
 
@@ -572,7 +581,7 @@ def select_compatible_records(records, target, *, count: int = DEFAULT_COUNT,
         spectrum.
     """
     rule_ = check_rule(rule)
-    count = check_integer("count", count, minimum=MIN_COUNT)
+    count = check_count(count)
     t_min, t_max = _check_pair("period_range", period_range, "s")
     factor_range = _check_pair("factor_range", factor_range, "-")
     if not factor_range[0] <= 1.0 <= factor_range[1]:
