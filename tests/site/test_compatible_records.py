@@ -21,6 +21,7 @@ from archquake.ground_motion.intensity import pseudo_spectral_acceleration
 from archquake.models import ModelSpec
 from archquake.site.compatible_records import (
     CompatibleSelection,
+    comparison_periods,
     effect_rule,
     response_spectra,
     select_compatible_records,
@@ -212,6 +213,14 @@ def test_no_compatible_subset_is_reported_with_where_it_fails():
         found.ratio[-1], rel=1e-9)
     with pytest.raises(ValueError, match="not compatible"):
         run_dynamic_check(oppenheim(), found, progress=False)
+
+
+def test_the_corners_of_a_code_spectrum_are_among_the_periods_compared():
+    # T_B = 0.15625 s and T_C = 0.46875 s lie in 0.15-2 s, T_D = 2.6 s beyond it
+    periods = comparison_periods(NtcStandIn(), 0.15, 2.0, 10)
+    assert periods.size == 12 and np.all(np.diff(periods) > 0)
+    assert np.min(np.abs(periods - 0.15625)) < 2e-4 and np.min(np.abs(periods - 0.46875)) < 2e-4
+    assert periods[0] == pytest.approx(0.15) and periods[-1] == pytest.approx(2.0)
 
 
 # --- bad input --------------------------------------------------------------------------------

@@ -666,8 +666,11 @@ def site_spectrum_from_args(args: argparse.Namespace):
     if missing:
         raise ValueError(f"the site's spectrum needs {', '.join(missing)} (with --code "
                          f"{args.code})")
-    from ..site.spectra import ntc2018_spectrum
-
+    try:
+        from ..site.spectra import ntc2018_spectrum
+    except ImportError:
+        raise ValueError("--code ntc2018: this installation has no site spectra "
+                         "(archquake.site.spectra)") from None
     return ntc2018_spectrum(args.ag, args.f0, args.tc_star, args.soil, args.topography,
                             args.damping)
 

@@ -14,7 +14,8 @@ user's (0.2 T_1-2 T_1 in the code).
 
 With the target spectrum :math:`S_e(T)` [g] and the 5 %-damped pseudo-spectral accelerations
 :math:`S_{a,i}(T)` [g] of the candidate records on a grid of periods :math:`T_k` (log-spaced
-over the range, the ends included), the selection is
+over the range, the ends included, and the target's corner periods inside it, where the ratio
+of a smooth mean to a code spectrum has its extremes), the selection is
 
 1. *each record alone*: the factor that matches the target in the least-squares sense of the
    logarithms over the grid, clipped to ``factor_range``,
@@ -208,6 +209,29 @@ def usable_periods(motion: GroundMotion, metadata: dict | None = None) -> tuple[
     if frequency is not None and float(frequency) > 0.0:
         longest = min(longest, 1.0 / float(frequency))
     return shortest, longest
+
+
+CORNER_PERIODS = ("t_b", "t_c", "t_d")
+"""Attributes of a code spectrum that hold its corner periods [s] (where its branches meet:
+:class:`archquake.site.spectra.ElasticSpectrum`)."""
+
+
+def comparison_periods(target, t_min: float, t_max: float, periods: int) -> np.ndarray:
+    """The periods at which the spectra are compared [s]: ``periods`` log-spaced over
+    ``[t_min, t_max]``, ends included, and the target's corner periods inside the range
+    (:data:`CORNER_PERIODS`, where a code spectrum has a kink and the ratio of a smooth mean to
+    it an extreme).
+
+    Returns
+    -------
+    ndarray
+        Increasing periods [s].
+    """
+    grid = np.geomspace(t_min, t_max, periods)
+    corners = [float(c) for name in CORNER_PERIODS
+               if isinstance(c := getattr(target, name, None), int | float)
+               and t_min < c < t_max]
+    return np.unique(np.concatenate([grid, corners]))
 
 
 def _candidates(records) -> tuple[list[GroundMotion], list[dict]]:
@@ -562,7 +586,8 @@ def select_compatible_records(records, target, *, count: int = DEFAULT_COUNT,
     factor_range : (float, float)
         Range of every record's scale factor [-] (default 0.5-4).
     periods : int
-        Periods of the log-spaced comparison grid, ends included [-], >= 2.
+        Periods of the log-spaced comparison grid, ends included [-], >= 2; the target's
+        corner periods inside the range are added (:func:`comparison_periods`).
     one_per_event : bool
         At most one component of a recorded event (``record_number`` of a built-in suite's
         metadata); records without it are each their own event.
@@ -589,7 +614,7 @@ def select_compatible_records(records, target, *, count: int = DEFAULT_COUNT,
                          f"{factor_range}")
     n_periods = check_integer("periods", periods, minimum=2)
     motions, metadata = _candidates(records)
-    grid = np.geomspace(t_min, t_max, n_periods)
+    grid = comparison_periods(target, t_min, t_max, n_periods)
     target_values = _target_values(target, grid)
     try:
         target_pga = float(getattr(target, "pga", math.nan))
@@ -655,5 +680,5 @@ def select_compatible_records(records, target, *, count: int = DEFAULT_COUNT,
 
 __all__ = ["COMPATIBILITY_RULES", "DEFAULT_COUNT", "DEFAULT_FACTOR_RANGE", "DEFAULT_PERIODS",
            "DEFAULT_PERIOD_RANGE", "DEFAULT_RULE", "MIN_COUNT", "CompatibilityRule",
-           "CompatibleSelection", "check_rule", "effect_rule", "response_spectra",
+           "CompatibleSelection", "check_count", "check_rule", "comparison_periods", "effect_rule", "response_spectra",
            "select_compatible_records", "usable_periods"]
