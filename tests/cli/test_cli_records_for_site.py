@@ -11,9 +11,7 @@ from archquake.cli import main
 from archquake.ground_motion import harmonic
 from archquake.ground_motion.intensity import pseudo_spectral_acceleration
 
-pytest.importorskip("archquake.site.spectra", reason="the site spectra are not installed")
-
-SITE = ["--ag", "0.25", "--f0", "2.4", "--tc-star", "0.3", "--soil", "C"]
+SITE = ["--code", "ntc2018", "--ag", "0.25", "--f0", "2.4", "--tc-star", "0.3", "--soil", "C"]
 
 
 @pytest.fixture(scope="module")
@@ -73,7 +71,13 @@ def test_bad_input_names_its_option(sine_records, capsys, options, message):
 
 def test_the_site_needs_its_spectrum(sine_records, capsys):
     assert main(["records-for-site", "--records", str(sine_records), "--ag", "0.25"]) == 2
-    assert "needs --f0, --tc-star" in capsys.readouterr().err
+    assert "give --code ntc2018, ec8 or user, or --site FILE" in capsys.readouterr().err
+    assert main(["records-for-site", "--records", str(sine_records), "--code", "ntc2018",
+                 "--ag", "0.25"]) == 2
+    assert "--f0, --tc-star must be given" in capsys.readouterr().err
+    assert main(["records-for-site", "--records", str(sine_records), *SITE,
+                 "--damping", "10"]) == 2
+    assert "5 %-damped" in capsys.readouterr().err
 
 
 @pytest.mark.slow

@@ -127,6 +127,19 @@ def test_stand_in_is_the_ntc_spectrum_of_the_example_site():
     assert spectrum.pga == pytest.approx(0.335)
 
 
+def test_the_code_spectrum_of_the_site_is_a_target_like_the_stand_in():
+    from archquake.site.spectra import ntc2018_spectrum
+
+    sines = [harmonic(2.0, period, 8) for period in (0.36, 0.40, 0.45, 0.50, 0.55)]
+    code = ntc2018_spectrum(0.25, 2.4, 0.3, "C")
+    by_code = select_compatible_records(sines, code, count=3, periods=30)
+    by_hand = select_compatible_records(sines, NtcStandIn(), count=3, periods=30)
+    assert by_code.records == by_hand.records
+    assert by_code.periods == pytest.approx(by_hand.periods, rel=1e-12)
+    assert by_code.factors == pytest.approx(by_hand.factors, rel=1e-9)
+    assert by_code.target_pga == pytest.approx(0.335)
+
+
 # --- scaling and the band ---------------------------------------------------------------------
 
 def test_scaled_spectrum_is_the_factor_times_the_record_spectrum(selection):

@@ -26,7 +26,7 @@ DESCRIPTION = (
 def configure(parser: argparse.ArgumentParser) -> None:
     """The options of ``archquake records-for-site``."""
     parser.description = DESCRIPTION
-    options.add_site_spectrum_options(parser)
+    options.add_site_options(parser)
     options.add_dynamic_route_options(parser)
     group = parser.add_argument_group("the dynamic check")
     group.add_argument("--run", action="store_true",
@@ -45,12 +45,16 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """The selection of the options, and with ``--run`` the dynamic check."""
-    target = options.site_spectrum_from_args(args)
+    way = options.site_way(args)
+    try:
+        target, _ = options.site_spectrum(args, way)
+    except ValueError as exc:
+        raise options.site_option_message(exc) from None
     if args.run:  # refuse a bad structure or model setting before the selection
         arch = options.arch_from_args(args)
         specs = (options.model_spec_from_args(args, "rigid-blocks"),
                  options.model_spec_from_args(args, "four-link"))
-    selection = options.compatible_selection_from_args(args, target)
+    selection = options.compatible_selection_from_args(args, target, way)
     check = None
     if args.run:
         from ..site.dynamic_check import run_dynamic_check

@@ -98,11 +98,6 @@ OPTION_NAMES = {
     "period_range": "--period-range",
     "factor_range": "--factor-range",
     "rule": "--compatibility",
-    "ag": "--ag",
-    "f0": "--f0",
-    "tc_star": "--tc-star",
-    "soil": "--soil",
-    "topography": "--topography",
 }
 """The option of each parameter of the library that an option sets, for the messages of
 :func:`option_message` (``sample_size`` of :class:`~archquake.studies.fragility.FragilitySettings`
@@ -632,49 +627,6 @@ def suite_from_args(args: argparse.Namespace, paths: str = "records"):
 # the site's spectrum, and records compatible with it
 # ---------------------------------------------------------------------------------------------
 
-SITE_CODES = ("ntc2018",)
-"""The codes whose elastic spectrum ``--code`` builds (:mod:`archquake.site.spectra`)."""
-
-
-def add_site_spectrum_options(parser: argparse.ArgumentParser) -> None:
-    """``--code``, ``--ag``, ``--f0``, ``--tc-star``, ``--soil``, ``--topography`` and
-    ``--damping``: the site's elastic spectrum (read by :func:`site_spectrum_from_args`)."""
-    group = parser.add_argument_group("the site's elastic spectrum")
-    group.add_argument("--code", choices=SITE_CODES, default=SITE_CODES[0],
-                       help="the code of the spectrum (default: %(default)s, NTC 2018 "
-                            "§3.2.3.2.1)")
-    group.add_argument("--ag", type=number, metavar="G",
-                       help="ground acceleration on horizontal rock a_g [g] (required)")
-    group.add_argument("--f0", type=number, metavar="F0",
-                       help="maximum spectral amplification F0 [-] (required)")
-    group.add_argument("--tc-star", type=number, metavar="S",
-                       help="Tc*, the start of the velocity branch on rock [s] (required)")
-    group.add_argument("--soil", default="A", metavar="A-E",
-                       help="soil category A-E (default: %(default)s)")
-    group.add_argument("--topography", default="T1", metavar="T1-T4",
-                       help="topographic category T1-T4 (default: %(default)s)")
-    group.add_argument("--damping", type=number, default=5.0, metavar="PERCENT",
-                       help="viscous damping of the spectrum [%%] (default: %(default)s; the "
-                            "records are compared with the 5%% spectrum)")
-
-
-def site_spectrum_from_args(args: argparse.Namespace):
-    """The site's elastic spectrum of :func:`add_site_spectrum_options`
-    (:func:`archquake.site.spectra.ntc2018_spectrum`)."""
-    missing = [f"--{name.replace('_', '-')}" for name in ("ag", "f0", "tc_star")
-               if getattr(args, name) is None]
-    if missing:
-        raise ValueError(f"the site's spectrum needs {', '.join(missing)} (with --code "
-                         f"{args.code})")
-    try:
-        from ..site.spectra import ntc2018_spectrum
-    except ImportError:
-        raise ValueError("--code ntc2018: this installation has no site spectra "
-                         "(archquake.site.spectra)") from None
-    return ntc2018_spectrum(args.ag, args.f0, args.tc_star, args.soil, args.topography,
-                            args.damping)
-
-
 def _pair(option: str):
     """The type of an option ``LOW,HIGH``: two numbers."""
     def parse(text: str) -> tuple[float, float]:
@@ -713,25 +665,27 @@ def add_dynamic_route_options(parser: argparse.ArgumentParser) -> None:
                        default=DEFAULT_FACTOR_RANGE, metavar="LOW,HIGH",
                        help="range of every record's scale factor [-] (default: "
                             f"{DEFAULT_FACTOR_RANGE[0]:g},{DEFAULT_FACTOR_RANGE[1]:g})")
-    group.add_argument("--compatibility", choices=COMPATIBILITY_RULES,
-                       default=COMPATIBILITY_RULES[0],
+    group.add_argument("--compatibility", choices=COMPATIBILITY_RULES, default=None,
                        help="the rule: ntc2018, the mean within -10%% and +30%% of the "
                             "site's spectrum (§3.2.3.6); ec8, not below 90%% and its mean PGA "
-                            "not below the site's (EN 1998-1 §3.2.3.1.2) (default: "
-                            "%(default)s)")
+                            "not below the site's (EN 1998-1 §3.2.3.1.2) (default: ec8 for "
+                            "--code ec8, else ntc2018)")
 
 
-def compatible_selection_from_args(args: argparse.Namespace, target):
-    """The records of :func:`add_dynamic_route_options` selected and scaled for ``target``
-    (:func:`archquake.site.compatible_records.select_compatible_records`)."""
+def compatible_selection_from_args(args: argparse.Namespace, target, way: str = "ntc2018"):
+    """The records of :func:`add_dynamic_route_options` selected and scaled for ``target``, the
+    spectrum given the :func:`site_way` ``way`` (whose code's rule applies unless
+    ``--compatibility`` says otherwise;
+    :func:`archquake.site.compatible_records.select_compatible_records`)."""
     from ..site.compatible_records import select_compatible_records
 
     suite = suite_from_args(args)
     if suite is None:
         raise ValueError("give the candidate records: --records PATH... or --suite NAME")
+    rule = args.compatibility or ("ec8" if way == "ec8" else COMPATIBILITY_RULES[0])
     return select_compatible_records(
         suite, target, count=args.records_count, period_range=args.period_range,
-        rule=args.compatibility, factor_range=args.factor_range)
+        rule=rule, factor_range=args.factor_range)
 
 
 # ---------------------------------------------------------------------------------------------
