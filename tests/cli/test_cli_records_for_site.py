@@ -1,5 +1,5 @@
-"""``archquake records-for-site``: the selection printed, an incompatible suite said so (exit
-status 1), bad input named by its option (exit status 2), and with ``--run`` the verdicts."""
+"""``archquake records-for-site``: the selection printed, an incompatible suite shown and then
+refused (exit status 2), bad input named by its option, and with ``--run`` the verdicts."""
 
 import json
 
@@ -27,11 +27,14 @@ def sine_records(tmp_path_factory):
     return folder
 
 
-def test_an_incompatible_suite_is_said_so_with_exit_status_1(sine_records, capsys):
+def test_an_incompatible_suite_is_shown_then_refused(sine_records, capsys):
     assert main(["records-for-site", "--records", str(sine_records), *SITE,
-                 "--records-count", "3"]) == 1
-    out = capsys.readouterr().out
-    assert "NOT compatible" in out and "below the 0.90 allowed" in out
+                 "--records-count", "3"]) == 2
+    captured = capsys.readouterr()
+    assert "NOT compatible" in captured.out and "below the 0.90 allowed" in captured.out
+    (line,) = captured.err.splitlines()
+    assert line.startswith("archquake: error: records: no subset of the candidates found is "
+                           "compatible")
 
 
 def test_an_incompatible_suite_is_not_run(sine_records, capsys):
@@ -41,8 +44,8 @@ def test_an_incompatible_suite_is_not_run(sine_records, capsys):
 
 
 def test_json_selection_reports_the_ratio_computed_again(sine_records, capsys):
-    main(["records-for-site", "--records", str(sine_records), *SITE, "--records-count", "3",
-          "--json"])
+    assert main(["records-for-site", "--records", str(sine_records), *SITE,
+                 "--records-count", "3", "--json"]) == 2
     data = json.loads(capsys.readouterr().out)
     selection = data["selection"]
     assert selection["compatible"] is False and data["target_spectrum"]
@@ -61,7 +64,8 @@ def test_json_selection_reports_the_ratio_computed_again(sine_records, capsys):
     (["--records-count", "2"], "--records-count must be an integer >= 3"),
     (["--records-count", "8"], "--records-count must be at most the 7 records"),
     (["--period-range", "2,0.15"], "--period-range must be two finite numbers"),
-    (["--period-range", "0.15,20"], "usable periods cover the period_range 0.15-20 s"),
+    (["--period-range", "0.15,20"], "--period-range: 0.15-20 s, no record's usable periods"),
+    (["--period-range", "0.15,1e300"], "--period-range: 0.15-1e+300 s, no record's usable"),
 ])
 def test_bad_input_names_its_option(sine_records, capsys, options, message):
     assert main(["records-for-site", "--records", str(sine_records), *SITE, *options]) == 2

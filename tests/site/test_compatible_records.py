@@ -247,8 +247,9 @@ def test_usable_periods_of_a_record():
 
 
 @pytest.mark.parametrize("kwargs, message", [
-    ({"period_range": (0.15, 10.0)}, r"count must be at most the 0 records whose usable "
-                                     r"periods cover the period_range 0.15-10 s"),
+    ({"period_range": (0.15, 10.0)}, r"period_range: 0.15-10 s, no record's usable periods "
+                                     r"cover it \(they reach from 0.02 s up to 8 s"),
+    ({"period_range": (0.01, 2.0)}, r"period_range: 0.01-2 s, no record's usable periods"),
     ({"count": 2}, r"count must be an integer >= 3, got 2 \(NTC 2018 §7.3.5"),
     ({"count": 13}, r"count must be at most the 12 records"),
     ({"period_range": (2.0, 0.15)}, r"period_range must be two finite numbers 0 < low < high"),
@@ -258,6 +259,18 @@ def test_usable_periods_of_a_record():
 def test_bad_input_is_refused_by_name(candidates, target, kwargs, message):
     with pytest.raises(ValueError, match=message):
         select_compatible_records(candidates, target, **kwargs)
+
+
+def test_a_factor_range_that_holds_the_common_factor_is_said_so(candidates, target):
+    # a target a thousand times weaker needs factors near 1.5e-3: the range stops them at 0.5
+    weak = TableTarget(target.periods, target.values / 1000.0, pga=target.pga / 1000.0)
+    found = select_compatible_records(candidates, weak, periods=40)
+    assert not found.compatible and found.factor_limited
+    assert found.min_ratio > 100  # at least 0.5 / (1.5 * 1.5e-3) / 2 ...: far above the band
+    assert np.min(found.factors) == pytest.approx(0.5)
+    assert any("held by the factor range [0.5, 4]" in p for p in found.problems)
+    with pytest.raises(ValueError, match="at least one ground motion"):
+        select_compatible_records([], target)
 
 
 def test_a_target_that_is_no_spectrum_is_refused(candidates):

@@ -20,7 +20,8 @@ DESCRIPTION = (
     "structure by the rigid-block model (its verdict is stated) and the four-link model beside "
     "it: the check fails if any record collapses the structure (the mean of the effects, with "
     "7 records or more, or the most unfavourable one, is unbounded, NTC 2018 §7.3.5), is "
-    "undecided if a run is, and passes otherwise.")
+    "undecided if a run is, and passes otherwise. A suite of which no subset is found "
+    "compatible is shown, then refused (exit status 2).")
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
@@ -55,15 +56,18 @@ def run(args: argparse.Namespace) -> int:
         specs = (options.model_spec_from_args(args, "rigid-blocks"),
                  options.model_spec_from_args(args, "four-link"))
     selection = options.compatible_selection_from_args(args, target, way)
+    if not selection.compatible:  # the selection shown, then why it cannot serve
+        if args.json:
+            print_json({"selection": selection.to_dict(), "target_spectrum": target.to_dict()})
+        else:
+            _print_selection(selection, target)
+        raise ValueError("records: no subset of the candidates found is compatible with the "
+                         "site's spectrum" + (", so the dynamic check is not run" if args.run
+                                              else "") + ": " + "; ".join(selection.problems))
     check = None
     if args.run:
         from ..site.dynamic_check import run_dynamic_check
 
-        if not selection.compatible:
-            _print_selection(selection, target, args.json)
-            raise ValueError("records: no subset of the candidates is compatible with the "
-                             "site's spectrum, so the dynamic check is not run: "
-                             + "; ".join(selection.problems))
         with options.analysing(args):
             check = run_dynamic_check(arch, selection, specs,
                                       polarities=(1, -1) if args.both_polarities else (1,),
@@ -72,17 +76,15 @@ def run(args: argparse.Namespace) -> int:
         out = check.to_dict() if check is not None else {"selection": selection.to_dict()}
         out["target_spectrum"] = target.to_dict()
         print_json(out)
-        return 0 if selection.compatible else 1
-    _print_selection(selection, target, False)
+        return 0
+    _print_selection(selection, target)
     if check is not None:
         _print_check(check)
-    return 0 if selection.compatible else 1
+    return 0
 
 
-def _print_selection(selection, target, json_output: bool) -> None:
+def _print_selection(selection, target) -> None:
     """The selection as a table and its verdict of compatibility."""
-    if json_output:
-        return
     print(f"Target: {getattr(target, 'code', 'spectrum')}, PGA {selection.target_pga:.4g} g")
     width = max(len("record"), *(len(r) for r in selection.records))
     print(f"{'record'.ljust(width)}  factor")

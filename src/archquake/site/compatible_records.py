@@ -289,8 +289,8 @@ class _Problem:
 
     def common(self, mean: np.ndarray, pga: np.ndarray, f_min: np.ndarray, f_max: np.ndarray):
         """For subsets with mean spectra ``mean`` (B, K), mean PGA ``pga`` (B,) and factors in
-        ``[f_min, f_max]`` (B,): the common factor (B,), the ratios (B, K) after it, the
-        violation (B,) [log units] and the misfit (B,)."""
+        ``[f_min, f_max]`` (B,): the common factor (B,), the violation (B,) [log units], the
+        misfit (B,) and whether the factor range held the common factor (B,)."""
         log_ratio = np.log(mean / self.target)
         lo, hi = np.min(log_ratio, axis=1), np.max(log_ratio, axis=1)
         rule = self.rule
@@ -310,12 +310,12 @@ class _Problem:
                                                - (np.log(pga) + log_c))
         misfit = np.sqrt(np.mean((log_ratio - np.mean(log_ratio, axis=1, keepdims=True)) ** 2,
                                  axis=1))
-        return np.exp(log_c), violation, misfit
+        return np.exp(log_c), violation, misfit, log_c != wanted
 
     def rank(self, mean, pga, f_min, f_max) -> np.ndarray:
         """Rank of subsets (smaller is better): every compatible subset before any other; among
         compatible ones by misfit, among the others by violation."""
-        _, violation, misfit = self.common(mean, pga, f_min, f_max)
+        _, violation, misfit, _ = self.common(mean, pga, f_min, f_max)
         return np.where(violation > 0.0, 1e3 * (1.0 + violation), 0.0) + misfit
 
 
@@ -407,6 +407,8 @@ class CompatibleSelection:
         Records left out, and why (their usable periods do not cover the range).
     metadata : tuple of dict
         What is known of each selected record.
+    factor_limited : bool
+        Whether the factor range held the common factor short of the one wanted.
     """
 
     records: tuple[str, ...]
@@ -429,6 +431,7 @@ class CompatibleSelection:
     candidates: int
     excluded: tuple[tuple[str, str], ...]
     metadata: tuple[dict, ...]
+    factor_limited: bool = False
 
     @property
     def count(self) -> int:
@@ -481,9 +484,10 @@ class CompatibleSelection:
             out.append(f"no common factor can fix it: the mean's ratio to the target spans "
                        f"{self.max_ratio / self.min_ratio:.3f}, more than the "
                        f"{rule.upper / rule.lower:.3f} of the band")
-        elif out:
+        if out and self.factor_limited:
             out.append(f"the common factor is held by the factor range "
-                       f"[{self.factor_range[0]:g}, {self.factor_range[1]:g}]")
+                       f"[{self.factor_range[0]:g}, {self.factor_range[1]:g}] (a record's "
+                       f"factor is at its end)")
         return tuple(out)
 
     @property
@@ -614,16 +618,9 @@ def select_compatible_records(records, target, *, count: int = DEFAULT_COUNT,
                          f"{factor_range}")
     n_periods = check_integer("periods", periods, minimum=2)
     motions, metadata = _candidates(records)
+    if not motions:
+        raise ValueError("records must hold at least one ground motion, got none")
     grid = comparison_periods(target, t_min, t_max, n_periods)
-    target_values = _target_values(target, grid)
-    try:
-        target_pga = float(getattr(target, "pga", math.nan))
-    except ValueError:  # a table that does not reach T = 0 has no PGA
-        target_pga = math.nan
-    if rule_.mean_pga and not (math.isfinite(target_pga) and target_pga > 0.0):
-        raise ValueError(f"target.pga must be a number > 0 [g] for rule {rule_.name!r} (the "
-                         f"mean PGA is compared with it), got {target_pga!r}")
-
     usable, excluded, limits = [], [], []
     for i, (motion, meta) in enumerate(zip(motions, metadata, strict=True)):
         shortest, longest = usable_periods(motion, meta)
@@ -636,6 +633,14 @@ def select_compatible_records(records, target, *, count: int = DEFAULT_COUNT,
     events = [meta.get("record_number", f"#{i}") if one_per_event else f"#{i}"
               for i, meta in enumerate(metadata)]
     available = len({events[i] for i in usable})
+    if not usable:
+        longest = max(lim[1] for lim in limits)
+        shortest = min(lim[0] for lim in limits)
+        raise ValueError(
+            f"period_range: {t_min:g}-{t_max:g} s, no record's usable periods cover it (they "
+            f"reach from {shortest:.3g} s up to {longest:.3g} s at most; the shortest usable "
+            f"period is twice the sample spacing, the longest the record's duration or the "
+            f"inverse of its lowest usable frequency)")
     if available < count:
         what = "events" if one_per_event and any("record_number" in m for m in metadata) \
             else "records"
@@ -645,6 +650,15 @@ def select_compatible_records(records, target, *, count: int = DEFAULT_COUNT,
             f"count must be at most the {available} {what} whose usable periods cover the "
             f"period_range {t_min:g}-{t_max:g} s, got {count} (of {len(motions)} records; "
             f"their usable periods reach from {shortest:.3g} s up to {longest:.3g} s at most)")
+
+    target_values = _target_values(target, grid)
+    try:
+        target_pga = float(getattr(target, "pga", math.nan))
+    except ValueError:  # a table that does not reach T = 0 has no PGA
+        target_pga = math.nan
+    if rule_.mean_pga and not (math.isfinite(target_pga) and target_pga > 0.0):
+        raise ValueError(f"target.pga must be a number > 0 [g] for rule {rule_.name!r} (the "
+                         f"mean PGA is compared with it), got {target_pga!r}")
 
     spectra = response_spectra([motions[i] for i in usable], grid)
     if not np.all(spectra > 0.0):
@@ -659,7 +673,7 @@ def select_compatible_records(records, target, *, count: int = DEFAULT_COUNT,
     chosen = _search(problem, count, np.array([str(events[i]) for i in usable]))
 
     mean = problem.spectra[chosen].mean(axis=0)
-    common, _, misfit = problem.common(mean[None], np.array([pga[chosen].mean()]),
+    common, _, misfit, limited = problem.common(mean[None], np.array([pga[chosen].mean()]),
                                        own[chosen].min(keepdims=True),
                                        own[chosen].max(keepdims=True))
     c = float(common[0])
@@ -675,7 +689,7 @@ def select_compatible_records(records, target, *, count: int = DEFAULT_COUNT,
         rule=rule_, period_range=(t_min, t_max), factor_range=factor_range,
         target_pga=target_pga, mean_pga=float(np.mean(pga[chosen]) * c),
         misfit=float(misfit[0]), candidates=len(usable), excluded=tuple(excluded),
-        metadata=tuple(metadata[i] for i in picked))
+        metadata=tuple(metadata[i] for i in picked), factor_limited=bool(limited[0]))
 
 
 __all__ = ["COMPATIBILITY_RULES", "DEFAULT_COUNT", "DEFAULT_FACTOR_RANGE", "DEFAULT_PERIODS",
