@@ -20,7 +20,6 @@ from archquake.ground_motion import harmonic, stochastic_motion
 from archquake.ground_motion.intensity import pseudo_spectral_acceleration
 from archquake.models import ModelSpec
 from archquake.site.compatible_records import (
-    CompatibleSelection,
     comparison_periods,
     effect_rule,
     response_spectra,

@@ -64,9 +64,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..checks import check_integer, json_float
+from ..constants import GRAVITY
 from ..defaults import COMPATIBILITY_RULES as COMPATIBILITY_RULE_NAMES
 from ..defaults import DEFAULT_FACTOR_RANGE, DEFAULT_PERIOD_RANGE, DEFAULT_RECORD_COUNT
-from ..constants import GRAVITY
 from ..ground_motion.core import GroundMotion
 from ..ground_motion.intensity import SA_DAMPING, pseudo_spectral_acceleration
 
@@ -692,7 +692,8 @@ def select_compatible_records(records, target, *, count: int = DEFAULT_COUNT,
         metadata=tuple(metadata[i] for i in picked), factor_limited=bool(limited[0]))
 
 
-__all__ = ["COMPATIBILITY_RULES", "DEFAULT_COUNT", "DEFAULT_FACTOR_RANGE", "DEFAULT_PERIODS",
-           "DEFAULT_PERIOD_RANGE", "DEFAULT_RULE", "MIN_COUNT", "CompatibilityRule",
-           "CompatibleSelection", "check_count", "check_rule", "comparison_periods", "effect_rule", "response_spectra",
-           "select_compatible_records", "usable_periods"]
+__all__ = ["COMPATIBILITY_RULES", "CORNER_PERIODS", "DEFAULT_COUNT", "DEFAULT_FACTOR_RANGE",
+           "DEFAULT_PERIODS", "DEFAULT_PERIOD_RANGE", "DEFAULT_RULE", "MIN_COUNT",
+           "CompatibilityRule", "CompatibleSelection", "check_count", "check_rule",
+           "comparison_periods", "effect_rule", "response_spectra", "select_compatible_records",
+           "usable_periods"]
