@@ -934,20 +934,51 @@ def site_spectrum(args: argparse.Namespace, way: str, limit_state: str | None = 
     return spectrum, site
 
 
-def site_actions(args: argparse.Namespace) -> list:
-    """The site's actions of the code check (:class:`~archquake.site.local_mechanism.
-    SiteAction`): with ``--site``, SLV and SLC (or the ``--limit-state`` given); with a
-    spectrum (``--code``), that spectrum as the action of ``--limit-state`` (default SLV)."""
-    from ..site.local_mechanism import LIMIT_STATES, SiteAction
+SITE_FIELD_OPTIONS = {"grid": "--site", "spectrum_type": "--type", "file": "--file"}
+"""The option of each field of :class:`~archquake.site.spec.SiteSpec` not named ``--field``."""
 
-    way = site_way(args, limit_state=True)
-    given_state = None if args.limit_state is None else args.limit_state.strip().upper()
-    if given_state is not None and given_state not in LIMIT_STATES:
-        raise ValueError(f"--limit-state must be one of {', '.join(LIMIT_STATES)} for the "
-                         f"check of a mechanism, got {args.limit_state!r}")
-    states = ((given_state,) if given_state else LIMIT_STATES) if way == "site" \
-        else (given_state or "SLV",)
+
+def site_spec(args: argparse.Namespace):
+    """The :class:`~archquake.site.spec.SiteSpec` of the site options (and the knowledge
+    options, where the command has them); a refusal names the option."""
+    from ..site.spec import SiteSpec
+
+    site_way(args, limit_state=True)
+    code = None if args.code is None else args.code.strip().lower()
+    kind = None if args.type is None else args.type.strip()
+    if kind is not None and kind not in ("1", "2"):
+        raise ValueError(f"--type must be 1 or 2, got {args.type!r}")
+    fields = {
+        "code": "ntc2018" if code is None and args.site is None else code,
+        "grid": args.site, "ag": args.ag, "f0": args.f0, "tc_star": args.tc_star,
+        "soil": args.soil, "topography": args.topography,
+        "topography_ratio": args.topography_ratio, "damping": args.damping, "agr": args.agr,
+        "spectrum_type": None if kind is None else int(kind), "importance": args.importance,
+        "file": args.file, "limit_state": args.limit_state,
+        "nominal_life": args.nominal_life, "use_class": args.use_class,
+        "knowledge_level": getattr(args, "knowledge_level", None),
+        "confidence_factor": getattr(args, "confidence_factor", None)}
     try:
-        return [SiteAction.of(state, site_spectrum(args, way, state)[0]) for state in states]
+        return SiteSpec(**fields)
     except ValueError as exc:
-        raise site_option_message(exc) from None
+        raise _site_field_message(exc) from None
+
+
+def _site_field_message(exc: ValueError) -> ValueError:
+    text = str(exc)
+    name = text.split(" ", 1)[0].rstrip(":")
+    option = SITE_FIELD_OPTIONS.get(name, f"--{name.replace('_', '-')}")
+    if name.isidentifier() and name.islower():
+        text = option + text[len(name):]
+    return site_option_message(ValueError(text))
+
+
+def site_actions(args: argparse.Namespace) -> list:
+    """The site's actions of the code check (:meth:`~archquake.site.spec.SiteSpec.actions`):
+    with ``--site``, SLV and SLC (or the ``--limit-state`` given); with a spectrum
+    (``--code``), that spectrum as the action of ``--limit-state`` (default SLV)."""
+    spec = site_spec(args)
+    try:
+        return spec.actions()
+    except ValueError as exc:
+        raise _site_field_message(exc) from None
