@@ -153,6 +153,80 @@ def motion_from_spec(spec: dict):
     return motion
 
 
+SITE_FIELDS = ("ag", "f0", "tc_star", "soil", "topography", "knowledge_level", "slc_ag",
+               "slc_f0", "slc_tc_star")
+"""The fields of a site on the page: the NTC 2018 spectrum of the SLV action (``ag`` [g], ``f0``
+[-], ``tc_star`` [s], ``soil`` A-E, ``topography`` T1-T4), the structure's knowledge level
+(LC1-LC3), and, optionally, the SLC action's ``slc_ag``, ``slc_f0``, ``slc_tc_star`` on the
+same soil and topography."""
+
+_SLC = ("slc_ag", "slc_f0", "slc_tc_star")
+
+
+def site_from_spec(spec: dict):
+    """The site's actions and the confidence factor of a description of the site.
+
+    The spectra are NTC 2018's (§3.2.3.2, 5 % damping) and the check is Circolare 2019
+    §C8.7.1's, as ``archquake check --code ntc2018`` makes it: the SLV action always, the SLC
+    action when its three parameters are given.
+
+    Parameters
+    ----------
+    spec : dict
+        The fields of :data:`SITE_FIELDS` (numbers, or the text of numbers).
+
+    Returns
+    -------
+    (list of SiteAction, float)
+        The actions (:class:`~archquake.site.local_mechanism.SiteAction`, SLV first) and the
+        confidence factor :math:`F_C` [-] of the knowledge level (default LC1).
+
+    Raises
+    ------
+    ValueError
+        The library's message, naming the field (``ag``, ``f0``, ``tc_star``, ``soil``,
+        ``topography``, ``knowledge_level``; ``slc_ag`` ... for the SLC action's); for an
+        unknown field, a missing one, or the SLC action given in part.
+    """
+    from ..site.local_mechanism import SiteAction, confidence_factor
+    from ..site.spectra import ntc2018_spectrum
+
+    if not isinstance(spec, dict):
+        raise ValueError(f"the site must be a JSON object of {', '.join(SITE_FIELDS)}")
+    unknown = sorted(set(spec) - set(SITE_FIELDS))
+    if unknown:
+        raise ValueError(f"unknown site field(s) {unknown}; the site's fields are "
+                         f"{', '.join(SITE_FIELDS)}")
+    for name, what in (("ag", "a_g [g]"), ("f0", "F0 [-]"), ("tc_star", "Tc* [s]")):
+        if _blank(spec.get(name)):
+            raise ValueError(f"{name} must be given: the site's {what} at SLV")
+    soil = "A" if _blank(spec.get("soil")) else spec["soil"]
+    topography = "T1" if _blank(spec.get("topography")) else spec["topography"]
+    level = None if _blank(spec.get("knowledge_level")) else spec["knowledge_level"]
+    fc = confidence_factor(level)
+    actions = [SiteAction.of("SLV", ntc2018_spectrum(spec["ag"], spec["f0"], spec["tc_star"],
+                                                     soil, topography))]
+    given = [name for name in _SLC if not _blank(spec.get(name))]
+    if given and len(given) < len(_SLC):
+        missing = [name for name in _SLC if name not in given]
+        raise ValueError(f"{', '.join(given)} needs {', '.join(missing)} too (the SLC action "
+                         "is a spectrum of its own: a_g, F0 and Tc*)")
+    if given:
+        try:
+            slc = ntc2018_spectrum(spec["slc_ag"], spec["slc_f0"], spec["slc_tc_star"], soil,
+                                   topography)
+        except ValueError as exc:  # the library names ag, f0 or tc_star first
+            text = str(exc)
+            name = text.split(" ", 1)[0]
+            raise ValueError(f"slc_{text}" if f"slc_{name}" in _SLC else text) from None
+        actions.append(SiteAction.of("SLC", slc))
+    return actions, fc
+
+
+def _blank(value) -> bool:
+    return value is None or (isinstance(value, str) and not value.strip())
+
+
 def suites() -> list[dict]:
     """The built-in record suites and their records, if the ``records`` extra is installed.
 
@@ -310,5 +384,5 @@ def check_record_file(entry: dict) -> dict:
             "pga_g": float(abs(motion.values).max() / GRAVITY)}
 
 
-__all__ = ["LIMITS", "Uploads", "check_geometry_file",
-           "check_record_file", "motion_from_spec", "structure_from_spec", "suites"]
+__all__ = ["LIMITS", "SITE_FIELDS", "Uploads", "check_geometry_file", "check_record_file",
+           "motion_from_spec", "site_from_spec", "structure_from_spec", "suites"]

@@ -14,6 +14,10 @@ the command line names the option):
   (a limit analysis takes milliseconds);
 - ``POST /api/figure``: the same structure -> a PNG of both mechanisms
   (:func:`archquake.plotting.plot_limit_analysis`);
+- ``POST /api/check``: ``{"structure": {...}, "site": {...}}`` -> the seismic code check of the
+  structure's collapse mechanism at the site (NTC 2018 §8.7.1, Circolare 2019 §C8.7.1), or why
+  the structure cannot stand; answered in the server's threads (a tenth of a second for an
+  arch of a few voussoirs);
 - ``POST /api/upload/geometry``, ``POST /api/upload/record``: the file as the request body, its
   name in the header ``X-File-Name`` -> a token, once the file has been read as the command line
   reads it;
@@ -153,6 +157,53 @@ def structure_answer(spec: dict) -> dict:
     return json_ready(out)
 
 
+def check_answer(spec: dict, site: dict) -> dict:
+    """What the page shows of the code check of a structure at a site ("Is it safe here?").
+
+    Parameters
+    ----------
+    spec : dict
+        The structure's description (as :func:`structure_answer` takes it).
+    site : dict
+        The site's description (:func:`archquake.app.inputs.site_from_spec`).
+
+    Returns
+    -------
+    dict
+        ``description`` of the structure, ``confidence_factor`` [-], and ``check``
+        (:func:`~archquake.app.views.check_view`) or, when the structure cannot stand, never
+        collapses or has no mechanism the check can take, ``verdict`` (``"cannot stand"``,
+        ``"never collapses"`` or ``"not checked"``) and ``message`` (the library's).
+
+    Raises
+    ------
+    ValueError
+        For a bad site or structure, naming the field (the site is read first).
+    """
+    from ..errors import CannotStandError, NeverCollapsesError
+    from ..geometry.structure import describe_arch
+    from ..limit_analysis import both_directions
+    from ..site.local_mechanism import check_local_mechanism
+    from .inputs import site_from_spec, structure_from_spec
+    from .views import check_view, json_ready
+
+    actions, fc = site_from_spec(site)
+    _, structure = structure_from_spec(spec)
+    out = {"description": describe_arch(structure), "confidence_factor": fc, "check": None}
+    try:
+        limit = both_directions(structure)
+        check = check_local_mechanism(structure, actions, confidence_factor=fc, limit=limit)
+    except CannotStandError as exc:
+        out.update(verdict="cannot stand", message=str(exc))
+    except NeverCollapsesError as exc:
+        out.update(verdict="never collapses", message=str(exc))
+    except ValueError as exc:  # the site was read above: this is the structure's mechanism
+        out.update(verdict="not checked", message=str(exc))
+    else:
+        out["check"] = check_view(check)
+    return json_ready(out)
+
+
 def limit_figure(spec: dict) -> bytes:
     """PNG of both mechanisms of the structure (:func:`archquake.plotting.plot_limit_analysis`,
     as ``archquake limit --plot`` draws them)."""
@@ -271,6 +322,11 @@ def create_app(workdir: str | Path | None = None, *, hosts=LOOPBACK_NAMES,
         png = await run_in_threadpool(limit_figure, spec)
         return Response(png, media_type="image/png")
 
+    async def check(request: Request):
+        body = await _json(request)
+        spec = uploads.resolve(body.get("structure") or {}, "geometry", "geometry")
+        return JSONResponse(await run_in_threadpool(check_answer, spec, body.get("site")))
+
     async def upload(request: Request):
         kind = request.path_params["kind"]
         if kind not in uploads.KINDS:
@@ -349,6 +405,7 @@ def create_app(workdir: str | Path | None = None, *, hosts=LOOPBACK_NAMES,
         Route("/api/suites", _handler(suite_names)),
         Route("/api/structure", _handler(structure), methods=["POST"]),
         Route("/api/figure", _handler(figure), methods=["POST"]),
+        Route("/api/check", _handler(check), methods=["POST"]),
         Route("/api/upload/{kind}", _handler(upload), methods=["POST"]),
         Route("/api/jobs/{kind}", _handler(start_job), methods=["POST"]),
         Route("/api/jobs/{job}", _handler(job_status), methods=["GET"]),
@@ -447,5 +504,5 @@ def serve(host: str = "127.0.0.1", port: int = 8050, *, open_browser: bool = Tru
     return 0
 
 
-__all__ = ["LOOPBACK_NAMES", "RequestError", "create_app", "limit_figure", "options_answer",
+__all__ = ["LOOPBACK_NAMES", "RequestError", "check_answer", "create_app", "limit_figure", "options_answer",
            "serve", "structure_answer"]

@@ -150,6 +150,91 @@ def limit_view(results) -> dict:
     return {"k_l": k_l, "k_r": k_r, "k": min(k_l, k_r), **out}
 
 
+# ------------------------------------------------------------------------------ the code check
+def _ag_text(value) -> str:
+    """A PGA capacity as the page writes it: None is beyond the largest a_g searched."""
+    return "a_g > 1.5 g" if value is None else f"a_g = {value:.3f} g"
+
+
+def limit_state_verdict(check, limit_state: str) -> dict | None:
+    """The verdict of one limit state of a code check, with the sentence an engineer signs.
+
+    The limit state holds when one of the Circolare's routes (the linear check, the nonlinear
+    check) holds in both directions (:meth:`LocalMechanismCheck.holds
+    <archquake.site.local_mechanism.LocalMechanismCheck.holds>`); each route's ratio is its
+    lesser direction's capacity/demand.
+
+    Parameters
+    ----------
+    check : LocalMechanismCheck
+        :func:`archquake.site.local_mechanism.check_local_mechanism`.
+    limit_state : {"SLV", "SLC"}
+
+    Returns
+    -------
+    dict or None
+        ``limit_state``, ``holds``, ``ag_g`` (the site's a_g [g]), ``pga_capacity_g`` (the
+        a_g up to which it holds [g]; None beyond 1.5 g), ``ratios`` ``{route: ratio}`` [-]
+        and ``sentence``, e.g. ``"SLV holds: capacity/demand 2.11 (linear), 1.84
+        (nonlinear); PGA capacity a_g = 0.707 g against the site's 0.25 g"``; None when the
+        limit state was not checked.
+    """
+    holds = check.holds(limit_state)
+    if holds is None:
+        return None
+    ratios = {route: min(c.ratio for c in checks)
+              for route, checks in check.routes(limit_state).items()}
+    capacity = check.pga_capacity(limit_state)
+    ag = check.actions[limit_state].ag
+    routes = ", ".join(f"{r:.2f} ({route})" for route, r in ratios.items())
+    sentence = (f"{limit_state} {'holds' if holds else 'FAILS'}: capacity/demand {routes}; "
+                f"PGA capacity {_ag_text(capacity)} against the site's {ag:g} g")
+    return {"limit_state": limit_state, "holds": holds, "ag_g": ag,
+            "pga_capacity_g": capacity, "ratios": ratios, "sentence": sentence}
+
+
+def check_view(check) -> dict:
+    """A code check of the collapse mechanism as the page shows it.
+
+    Parameters
+    ----------
+    check : LocalMechanismCheck
+        :func:`archquake.site.local_mechanism.check_local_mechanism`.
+
+    Returns
+    -------
+    dict
+        ``code`` (edition and clauses), ``verdicts`` (:func:`limit_state_verdict` of each limit
+        state checked), ``participation``, ``linear`` and ``nonlinear`` (the library's
+        ``to_dict``; each nonlinear check also with ``au_star_g``, :math:`a^*(d_u^*)` [g], and
+        ``d0_star_m``), ``curves`` (per direction: ``direction``, ``d0_star_m``, the capacity
+        curve's ``d_star_m`` [m] and ``a_star_g`` [g]), ``actions`` (per limit state: ``ag_g``
+        and the spectrum's ``to_dict``), ``passes`` and ``notes``.
+    """
+    from ..constants import GRAVITY
+    from ..site.local_mechanism import LIMIT_STATES
+
+    whole = check.to_dict()
+    curves = {c.direction: c for c in check.curves}
+    nonlinear = []
+    for c in check.nonlinear:
+        curve = curves[c.direction]
+        nonlinear.append({**c.to_dict(), "d0_star_m": curve.d0,
+                          "au_star_g": float(curve.acceleration_at(c.ultimate_displacement))
+                          / GRAVITY})
+    verdicts = [v for v in (limit_state_verdict(check, s) for s in LIMIT_STATES)
+                if v is not None]
+    return json_ready({
+        "code": whole["code"], "verdicts": verdicts, "passes": whole["passes"],
+        "participation": whole["participation"], "linear": whole["linear"],
+        "nonlinear": nonlinear,
+        "curves": [{"direction": c.direction, "d0_star_m": c.d0,
+                    "d_star_m": rounded(c.spectral_displacement, 7),
+                    "a_star_g": rounded(c.spectral_acceleration / GRAVITY, 7)}
+                   for c in check.curves],
+        "actions": whole["actions"], "notes": whole["notes"]})
+
+
 # ------------------------------------------------------------------------------ the motion
 def animation_end(*ends: float) -> float:
     """The end of an animation [s]: the latest of ``ends`` (at most
@@ -332,7 +417,7 @@ def rigid_block_view(history, times) -> dict:
 
 
 __all__ = ["FRAME_RATE", "MAX_ANIMATION_TIME", "MAX_BLOCK_FRAMES", "animation_end",
-           "block_motion", "block_outcome", "finite", "frame_rate",
+           "block_motion", "block_outcome", "check_view", "finite", "frame_rate",
            "four_link_motion", "four_link_outcome", "four_link_view", "frame_times", "json_ready",
-           "limit_view", "mechanism_motion", "motion_view", "rigid_block_view", "rounded",
-           "structure_view"]
+           "limit_state_verdict", "limit_view", "mechanism_motion", "motion_view",
+           "rigid_block_view", "rounded", "structure_view"]
