@@ -504,5 +504,5 @@ def serve(host: str = "127.0.0.1", port: int = 8050, *, open_browser: bool = Tru
     return 0
 
 
-__all__ = ["LOOPBACK_NAMES", "RequestError", "check_answer", "create_app", "limit_figure", "options_answer",
-           "serve", "structure_answer"]
+__all__ = ["LOOPBACK_NAMES", "RequestError", "check_answer", "create_app", "limit_figure",
+           "options_answer", "serve", "structure_answer"]
