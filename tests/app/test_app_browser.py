@@ -191,3 +191,33 @@ def test_failure_domain_shows_progress_can_be_cancelled_and_appears(page):
     page.wait_for_selector("#domain-figure:not([hidden])", timeout=120_000)
     assert page.evaluate("document.getElementById('domain-figure').naturalWidth") > 500
     assert text(page, "#domain-status").startswith("done: ")
+
+
+def site_verdict(ag: float) -> tuple[bool, float]:
+    """Whether SLV holds for the page's default structure at the page's default site with
+    ``ag``, and its PGA capacity [g], from the library directly."""
+    from archquake.app.inputs import structure_from_spec
+    from archquake.site.local_mechanism import SiteAction, check_local_mechanism
+    from archquake.site.spectra import ntc2018_spectrum
+
+    _, arch = structure_from_spec({})
+    check = check_local_mechanism(arch, SiteAction.of("SLV", ntc2018_spectrum(ag, 2.4, 0.3, "C")),
+                                  confidence_factor=1.35)
+    return check.holds("SLV"), check.pga_capacity("SLV")
+
+
+def test_code_check_shows_the_verdict_and_follows_the_site(page):
+    for ag in (0.25, 0.8):
+        holds, capacity = site_verdict(ag)
+        expected = (f"SLV {'holds' if holds else 'FAILS'}: capacity/demand ",
+                    f"; PGA capacity a_g = {capacity:.3f} g against the site's {ag:g} g")
+        if ag != 0.25:
+            page.fill("#site-ag", str(ag))
+        page.wait_for_function("end => { const e = document.getElementById('check-verdict-SLV');"
+                               " return e !== null && e.textContent.endsWith(end); }",
+                               arg=expected[1], timeout=30_000)
+        assert text(page, "#check-verdict-SLV").startswith(expected[0])
+    assert not holds  # a_g = 0.8 g is beyond the capacity, about 0.7 g
+    assert page.locator("#check-verdict-SLV.fails").count() == 1
+    assert page.locator("#check-curve polyline").count() == 1  # Mech-l = Mech-r
+    assert page.locator("#check-nonlinear td.fails").count() == 2

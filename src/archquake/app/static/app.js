@@ -6,7 +6,7 @@ const $ = (id) => document.getElementById(id);
 const SVG = "http://www.w3.org/2000/svg";
 const state = {
   options: null, geometry: null, record: null, structure: null, structureRequest: null,
-  shake: null, domain: null, assess: null, anim: null,
+  shake: null, domain: null, assess: null, anim: null, checkRequest: null,
 };
 
 // ---------------------------------------------------------------------------- the API
@@ -36,7 +36,7 @@ function status(text) { $("status").textContent = text; }
 
 function showMessage(text) {
   const box = $("message");
-  document.querySelectorAll(".invalid").forEach((el) => el.classList.remove("invalid"));
+  document.querySelectorAll("[data-option].invalid").forEach((el) => el.classList.remove("invalid"));
   if (!text) { box.hidden = true; box.textContent = ""; return; }
   box.hidden = false;
   box.textContent = text;
@@ -209,6 +209,7 @@ let structureTimer = null;
 function structureChanged() {
   clearTimeout(structureTimer);
   structureTimer = setTimeout(updateStructure, 120);
+  checkChanged();
 }
 
 function clearStructure(note) {
@@ -246,6 +247,229 @@ async function updateStructure() {
   }
 }
 
+// ---------------------------------------------------------------------------- the code check
+const MECH = { l: "Mech-l", r: "Mech-r" };
+const COLOURS = { l: "#1f77b4", r: "#ff7f0e" };
+let checkTimer = null;
+function checkChanged() {
+  clearTimeout(checkTimer);
+  checkTimer = setTimeout(updateCheck, 250);
+}
+
+function siteSpec() {
+  const spec = {};
+  document.querySelectorAll("#site-section [data-site]").forEach((input) => {
+    if (input.closest("#slc-fields") && !$("slc-on").checked) return;
+    const v = input.value.trim();
+    if (v !== "") spec[input.dataset.site] = input.type === "number" ? Number(v) : v;
+  });
+  return spec;
+}
+
+function showCheckMessage(text) {
+  const box = $("check-message");
+  document.querySelectorAll("[data-site].invalid").forEach((e) => e.classList.remove("invalid"));
+  box.hidden = !text;
+  box.textContent = text || "";
+  const word = text ? (text.match(/^[a-z][a-z0-9_]*/) || [""])[0] : "";
+  document.querySelectorAll(`[data-site="${word}"]`).forEach((e) => e.classList.add("invalid"));
+}
+
+function clearCheck(note) {
+  $("check-verdicts").replaceChildren();
+  $("check-site").textContent = note || "";
+  $("check-linear").replaceChildren();
+  $("check-nonlinear").replaceChildren();
+  $("check-curve").replaceChildren();
+  $("check-legend").replaceChildren();
+  $("check-figure").hidden = true;
+  $("check-notes").textContent = "";
+}
+
+async function updateCheck() {
+  if (state.checkRequest) state.checkRequest.abort();
+  if (fromFile() && !state.geometry) {
+    showCheckMessage("");
+    clearCheck("choose a geometry file: its code check appears here");
+    return;
+  }
+  const controller = new AbortController();
+  state.checkRequest = controller;
+  $("check-panel").classList.add("stale");
+  $("check-progress").textContent = "checking…";
+  try {
+    const answer = await api("/api/check", { structure: structureSpec(), site: siteSpec() },
+                             { signal: controller.signal });
+    showCheckMessage("");
+    showCheck(answer);
+  } catch (error) {
+    if (error.name === "AbortError") return;
+    clearCheck("");
+    showCheckMessage(error.message);
+  }
+  $("check-panel").classList.remove("stale");
+  $("check-progress").textContent = "";
+}
+
+const fixed = (x, digits) => (x === null || x === undefined ? "–" : x.toFixed(digits));
+const upTo = (ag) => (ag === null || ag === undefined ? "> 1.5" : ag.toFixed(3));
+
+function tableOf(table, caption, head, rows) {
+  table.replaceChildren();
+  const cap = document.createElement("caption");
+  cap.textContent = caption;
+  table.appendChild(cap);
+  const tr = document.createElement("tr");
+  for (const h of head) {
+    const th = document.createElement("th");
+    th.innerHTML = h;  // the page's own headings, with sub/superscripts
+    tr.appendChild(th);
+  }
+  table.appendChild(tr);
+  for (const row of rows) {
+    const line = document.createElement("tr");
+    for (const cell of row) {
+      const td = document.createElement("td");
+      if (typeof cell === "boolean") {
+        td.textContent = cell ? "holds" : "FAILS";
+        td.className = cell ? "holds" : "fails";
+      } else {
+        td.textContent = cell;
+      }
+      line.appendChild(td);
+    }
+    table.appendChild(line);
+  }
+}
+
+function showCheck(answer) {
+  if (!answer.check) {
+    clearCheck("");
+    const p = document.createElement("p");
+    p.className = "verdict";
+    p.textContent = `${answer.verdict[0].toUpperCase()}${answer.verdict.slice(1)}: ${answer.message}`;
+    $("check-verdicts").replaceChildren(p);
+    return;
+  }
+  const c = answer.check;
+  $("check-verdicts").replaceChildren(...c.verdicts.map((v) => {
+    const p = document.createElement("p");
+    p.className = `check-verdict ${v.holds ? "holds" : "fails"}`;
+    p.id = `check-verdict-${v.limit_state}`;
+    p.textContent = v.sentence;
+    return p;
+  }));
+  const fc = answer.confidence_factor;
+  const level = { "1.35": "LC1", "1.20": "LC2", "1.00": "LC3" }[fc.toFixed(2)];
+  $("check-site").textContent = Object.entries(c.actions).map(([stateName, a]) => {
+    const s = a.spectrum;
+    return `${stateName}: ${s.code} spectrum, soil ${s.soil}, topography ${s.topography}: ` +
+      `a_g = ${s.ag} g, F0 = ${s.f0}, Tc* = ${s.tc_star} s; S = S_S S_T = ${s.s.toFixed(3)}, ` +
+      `PGA = a_g S = ${s.pga.toFixed(3)} g, T_B = ${s.t_b.toFixed(3)} s, ` +
+      `T_C = ${s.t_c.toFixed(3)} s, T_D = ${s.t_d.toFixed(2)} s, damping ${s.damping} %`;
+  }).join("\n") + `\nKnowledge level ${level}: confidence factor F_C = ${fc.toFixed(2)} (§C8.5.4).`;
+  const linear = Object.fromEntries(c.linear.map((x) => [x.direction, x]));
+  const q = c.linear.length ? c.linear[0].behaviour_factor : null;
+  tableOf($("check-linear"),
+    "Equivalent oscillator (eqs. C8.7.1.2-4) and linear check at SLV (§C8.7.1.2.1): " +
+    `a0* ≥ a_g S / q${q === null ? "" : `, q = ${q}`}`,
+    ["", "α<sub>0</sub> [-]", "M* [t/m]", "e* [-]", "a<sub>0</sub>* [g]",
+     "a<sub>g</sub> S / q [g]", "capacity / demand [-]", "holds up to a<sub>g</sub> [g]", ""],
+    c.participation.map((p) => {
+      const l = linear[p.direction];
+      return [MECH[p.direction], fixed(p.alpha0, 4), fixed(p.participating_mass_kg_per_m / 1000, 2),
+              fixed(p.mass_fraction, 4), fixed(p.a0_star_g, 4),
+              l ? fixed(l.demand_g, 4) : "–", l ? fixed(l.ratio, 2) : "–",
+              l ? upTo(l.pga_capacity_ag_g) : "–", l ? l.passes : "not made"];
+    }));
+  tableOf($("check-nonlinear"),
+    "Nonlinear check (§C8.7.1.2.2): d_u* ≥ S_De(T_s); d_u* = 0.24 d0* at SLV, 0.40 d0* at SLC; " +
+    "T_s at d_s* = 0.4 d_u*",
+    ["", "", "d<sub>0</sub>* [m]", "d<sub>u</sub>* [m]", "T<sub>s</sub> [s]",
+     "S<sub>De</sub>(T<sub>s</sub>) [m]", "capacity / demand [-]", "holds up to a<sub>g</sub> [g]", ""],
+    c.nonlinear.map((n) => [n.limit_state, MECH[n.direction], fixed(n.d0_star_m, 4),
+                            fixed(n.du_star_m, 4), fixed(n.Ts_s, 3), fixed(n.demand_SDe_m, 4),
+                            fixed(n.ratio, 2), upTo(n.pga_capacity_ag_g), n.passes]));
+  $("check-figure").hidden = c.curves.length === 0;
+  capacityChart($("check-curve"), $("check-legend"), c);
+  $("check-notes").textContent = c.notes.length ? `Not checked: ${c.notes.join("; ")}` : "";
+}
+
+// Ticks at 1, 2 or 5 times a power of ten, about n of them up to top.
+function ticks(top, n = 5) {
+  const raw = top / n;
+  const power = 10 ** Math.floor(Math.log10(raw));
+  const step = [1, 2, 5, 10].map((m) => m * power).find((s) => s >= raw);
+  const out = [];
+  for (let k = 0; k === 0 || out[k - 1] < top - 1e-9 * step; k += 1) {
+    out.push(Number((k * step).toPrecision(12)));
+  }
+  return out;  // the last one at or past top
+}
+
+function capacityChart(svg, legend, c) {
+  svg.replaceChildren();
+  const W = 520, H = 300, L = 52, B = 38, T = 10, R = 14;
+  svg.setAttribute("viewBox", `0 0 ${W} ${H}`);
+  let curves = c.curves;
+  const same = curves.length === 2 && curves[0].d_star_m.length === curves[1].d_star_m.length &&
+    curves[0].d_star_m.every((d, i) => Math.abs(d - curves[1].d_star_m[i]) < 1e-6 &&
+                                       Math.abs(curves[0].a_star_g[i] - curves[1].a_star_g[i]) < 1e-6);
+  if (same) curves = curves.slice(0, 1);
+  const linear = c.linear.length ? c.linear[0] : null;
+  let xmax = 0, ymax = 0;
+  for (const k of curves) { xmax = Math.max(xmax, ...k.d_star_m); ymax = Math.max(ymax, ...k.a_star_g); }
+  for (const n of c.nonlinear) xmax = Math.max(xmax, n.demand_SDe_m);
+  if (linear) ymax = Math.max(ymax, linear.demand_g);
+  if (!(xmax > 0)) xmax = 1;
+  if (!(ymax > 0)) ymax = 1;
+  const xt = ticks(xmax * 1.02), yt = ticks(ymax * 1.05);
+  xmax = xt[xt.length - 1]; ymax = yt[yt.length - 1];
+  const X = (d) => L + (W - L - R) * (d / xmax);
+  const Y = (a) => T + (H - T - B) * (1 - a / ymax);
+  for (const x of xt) {
+    el("line", { x1: X(x), y1: T, x2: X(x), y2: H - B, class: "grid" }, svg);
+    const t = el("text", { x: X(x), y: H - B + 14, class: "tick", "text-anchor": "middle" }, svg);
+    t.textContent = x;
+  }
+  for (const y of yt) {
+    el("line", { x1: L, y1: Y(y), x2: W - R, y2: Y(y), class: "grid" }, svg);
+    const t = el("text", { x: L - 5, y: Y(y) + 3, class: "tick", "text-anchor": "end" }, svg);
+    t.textContent = y;
+  }
+  el("line", { x1: L, y1: H - B, x2: W - R, y2: H - B, class: "axis" }, svg);
+  el("line", { x1: L, y1: T, x2: L, y2: H - B, class: "axis" }, svg);
+  const xl = el("text", { x: (L + W - R) / 2, y: H - 6, class: "axis-label", "text-anchor": "middle" }, svg);
+  xl.textContent = "spectral displacement d* [m]";
+  const yl = el("text", { x: 13, y: (T + H - B) / 2, class: "axis-label", "text-anchor": "middle",
+                          transform: `rotate(-90 13 ${(T + H - B) / 2})` }, svg);
+  yl.textContent = "spectral acceleration a* [g]";
+  const items = [];
+  const swatch = (html, colour, shape) => items.push(
+    `<span class="key" style="color:${colour}">${shape}</span> ${html}`);
+  if (linear) {
+    el("line", { x1: L, y1: Y(linear.demand_g), x2: W - R, y2: Y(linear.demand_g), class: "demand-line" }, svg);
+    swatch(`linear check's demand a<sub>g</sub> S / q = ${linear.demand_g.toFixed(3)} g`, "#555", "╌");
+  }
+  for (const k of curves) {
+    const colour = COLOURS[k.direction];
+    const pts = k.d_star_m.map((d, i) => `${X(d).toFixed(1)},${Y(k.a_star_g[i]).toFixed(1)}`).join(" ");
+    el("polyline", { points: pts, class: "curve", stroke: colour, "stroke-width": 2 }, svg);
+    swatch(`${same ? "Mech-l = Mech-r" : MECH[k.direction]}: capacity curve, d<sub>0</sub>* = ${k.d0_star_m.toFixed(3)} m`, colour, "━");
+    for (const n of c.nonlinear.filter((x) => x.direction === k.direction)) {
+      const square = n.limit_state === "SLC";
+      const mark = (x, y, filled) => (square
+        ? el("rect", { x: x - 4.5, y: y - 4.5, width: 9, height: 9, class: "marker", stroke: colour, fill: filled ? colour : "#fff" }, svg)
+        : el("circle", { cx: x, cy: y, r: 5, class: "marker", stroke: colour, fill: filled ? colour : "#fff" }, svg));
+      mark(X(n.du_star_m), Y(n.au_star_g), false);
+      mark(X(n.demand_SDe_m), Y(0), true);
+      swatch(`${n.limit_state}: capacity d<sub>u</sub>* = ${n.du_star_m.toFixed(3)} m`, colour, square ? "□" : "○");
+      swatch(`${n.limit_state}: demand S<sub>De</sub>(T<sub>s</sub>) = ${n.demand_SDe_m.toFixed(3)} m (T<sub>s</sub> = ${n.Ts_s.toFixed(2)} s)`, colour, square ? "■" : "●");
+    }
+  }
+  legend.innerHTML = items.join("<br>");  // built from the page's text and numbers only
+}
+
 // ---------------------------------------------------------------------------- uploads
 async function upload(kind, file) {
   const headers = { "X-File-Name": file.name };
@@ -263,6 +487,7 @@ async function geometryChosen() {
     $("geometry-name").textContent = `${answer.name} read`;
     showMessage("");
     updateStructure();
+    checkChanged();
   } catch (error) {
     showMessage(error.message);
     $("geometry-name").textContent = `${file.name} refused`;
@@ -682,6 +907,11 @@ async function init() {
   document.querySelectorAll("input[name=source]").forEach((r) => r.addEventListener("change", () => {
     showSource(); structureChanged();
   }));
+  document.querySelectorAll("#site-section input, #site-section select")
+    .forEach((input) => input.addEventListener("input", checkChanged));
+  $("slc-on").addEventListener("change", () => {
+    $("slc-fields").hidden = !$("slc-on").checked; checkChanged();
+  });
   $("geometry-file").addEventListener("change", geometryChosen);
   $("record-file").addEventListener("change", recordChosen);
   $("pulse").addEventListener("change", showPulseParams);
@@ -702,6 +932,7 @@ async function init() {
     } catch (error) { showMessage(error.message); }
   });
   loadSuites();
+  updateCheck();
   await updateStructure();
 }
 
