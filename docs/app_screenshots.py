@@ -2,8 +2,8 @@
 Chromium (``make app-screenshots``).
 
 Starts ``archquake app`` on a free port, drives the page as a user would (the default arch, a
-pointed arch on piers under fill, a pulse that collapses it, a failure domain, a refused file)
-and writes ``app-*.png`` into the folder given (default ``docs/user_guide/images``).
+pointed arch on piers under fill, the code check of a thinner arch, a pulse that collapses it, a
+failure domain, a refused file) and writes ``app-*.png`` into the folder given (default ``docs/user_guide/images``).
 """
 
 from __future__ import annotations
@@ -80,6 +80,16 @@ def take(out: Path) -> list[Path]:
                            ".includes('pointed')")
             page.wait_for_timeout(500)
             shot("structure", "#structure-panel")
+            # the code check of Oppenheim's arch 1.0 m thick, at SLV and SLC
+            page.reload()
+            wait_for(page, "document.getElementById('k-value').textContent !== '–'")
+            page.fill("#thickness", "1.0")
+            page.check("#slc-on")
+            wait_for(page, "document.getElementById('check-verdict-SLC') !== null && "
+                           "document.getElementById('check-verdict-SLV').textContent"
+                           ".includes('1.05')")
+            page.wait_for_timeout(300)
+            shot("check", "#check-panel")
             # back to Oppenheim's arch, shaken by the paper's pulse of Fig. 15b
             page.reload()
             wait_for(page, "document.getElementById('k-value').textContent !== '–'")

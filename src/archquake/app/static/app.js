@@ -253,7 +253,7 @@ const COLOURS = { l: "#1f77b4", r: "#ff7f0e" };
 let checkTimer = null;
 function checkChanged() {
   clearTimeout(checkTimer);
-  checkTimer = setTimeout(updateCheck, 250);
+  checkTimer = setTimeout(updateCheck, 150);
 }
 
 function siteSpec() {
