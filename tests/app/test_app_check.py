@@ -146,3 +146,21 @@ def test_refusal_is_archquake_checks_message(client, field, option, value):
                                       *[x for pair in argv.items() for x in pair]))
     site = {**SITE, field: float(value) if field == "f0" else value}
     assert post(client, {}, site).json()["error"] == expected
+
+
+def test_limit_state_no_check_applies_to_is_said_not_checked(client):
+    # fill inertia 'none' is a limit-analysis model: the library makes no nonlinear check, so
+    # SLC (which has only the nonlinear route) is not checked, and SLV only by the linear one
+    structure = {"fill_cover": 0.5, "fill_inertia": "none"}
+    shown = post(client, structure, {**SITE, **SLC}).json()["check"]
+    _, arch = structure_from_spec(structure)
+    direct = check_local_mechanism(
+        arch, [SiteAction.of("SLV", ntc2018_spectrum(0.25, 2.4, 0.3, "C")),
+               SiteAction.of("SLC", ntc2018_spectrum(0.32, 2.5, 0.32, "C"))],
+        confidence_factor=1.35)
+    assert direct.holds("SLC") is None and shown["notes"] == list(direct.notes)
+    verdicts = {v["limit_state"]: v for v in shown["verdicts"]}
+    assert verdicts["SLC"]["holds"] is None
+    assert verdicts["SLC"]["sentence"].startswith("SLC not checked: ")
+    assert list(verdicts["SLV"]["ratios"]) == ["linear"]
+    assert shown["nonlinear"] == [] and shown["curves"] == []

@@ -205,11 +205,12 @@ def check_view(check) -> dict:
     -------
     dict
         ``code`` (edition and clauses), ``verdicts`` (:func:`limit_state_verdict` of each limit
-        state checked), ``participation``, ``linear`` and ``nonlinear`` (the library's
-        ``to_dict``; each nonlinear check also with ``au_star_g``, :math:`a^*(d_u^*)` [g], and
-        ``d0_star_m``), ``curves`` (per direction: ``direction``, ``d0_star_m``, the capacity
-        curve's ``d_star_m`` [m] and ``a_star_g`` [g]), ``actions`` (per limit state: ``ag_g``
-        and the spectrum's ``to_dict``), ``passes`` and ``notes``.
+        state of the actions; ``holds`` None and a sentence saying so for one that no check could be
+        made of, as SLC when the nonlinear check does not apply), ``participation``, ``linear`` and
+        ``nonlinear`` (the library's ``to_dict``; each nonlinear check also with ``au_star_g``,
+        :math:`a^*(d_u^*)` [g], and ``d0_star_m``), ``curves`` (per direction: ``direction``,
+        ``d0_star_m``, the capacity curve's ``d_star_m`` [m] and ``a_star_g`` [g]), ``actions`` (per
+        limit state: ``ag_g`` and the spectrum's ``to_dict``), ``passes`` and ``notes``.
     """
     from ..constants import GRAVITY
     from ..site.local_mechanism import LIMIT_STATES
@@ -222,8 +223,16 @@ def check_view(check) -> dict:
         nonlinear.append({**c.to_dict(), "d0_star_m": curve.d0,
                           "au_star_g": float(curve.acceleration_at(c.ultimate_displacement))
                           / GRAVITY})
-    verdicts = [v for v in (limit_state_verdict(check, s) for s in LIMIT_STATES)
-                if v is not None]
+    verdicts = []
+    for state in LIMIT_STATES:
+        verdict = limit_state_verdict(check, state)
+        if verdict is None and state in check.actions:  # asked for, but no check applied
+            verdict = {"limit_state": state, "holds": None, "ag_g": check.actions[state].ag,
+                       "pga_capacity_g": None, "ratios": {},
+                       "sentence": f"{state} not checked: no check of {state} could be made "
+                                   "for this structure (see the note below)"}
+        if verdict is not None:
+            verdicts.append(verdict)
     return json_ready({
         "code": whole["code"], "verdicts": verdicts, "passes": whole["passes"],
         "participation": whole["participation"], "linear": whole["linear"],

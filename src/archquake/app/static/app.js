@@ -316,6 +316,7 @@ const upTo = (ag) => (ag === null || ag === undefined ? "> 1.5" : ag.toFixed(3))
 
 function tableOf(table, caption, head, rows) {
   table.replaceChildren();
+  table.hidden = rows.length === 0;  // a check not made: the note says why
   const cap = document.createElement("caption");
   cap.textContent = caption;
   table.appendChild(cap);
@@ -354,7 +355,7 @@ function showCheck(answer) {
   const c = answer.check;
   $("check-verdicts").replaceChildren(...c.verdicts.map((v) => {
     const p = document.createElement("p");
-    p.className = `check-verdict ${v.holds ? "holds" : "fails"}`;
+    p.className = `check-verdict ${v.holds === null ? "unchecked" : v.holds ? "holds" : "fails"}`;
     p.id = `check-verdict-${v.limit_state}`;
     p.textContent = v.sentence;
     return p;
@@ -392,7 +393,7 @@ function showCheck(answer) {
                             fixed(n.ratio, 2), upTo(n.pga_capacity_ag_g), n.passes]));
   $("check-figure").hidden = c.curves.length === 0;
   capacityChart($("check-curve"), $("check-legend"), c);
-  $("check-notes").textContent = c.notes.length ? `Not checked: ${c.notes.join("; ")}` : "";
+  $("check-notes").textContent = c.notes.length ? `Note: ${c.notes.join("; ")}.` : "";
 }
 
 // Ticks at 1, 2 or 5 times a power of ten, about n of them up to top.
