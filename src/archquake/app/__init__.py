@@ -1,5 +1,6 @@
-"""The interactive page: shape a structure, see its thrust line and collapse load at once, shake
-it with both models and find its failure domain, in the browser (``archquake app``).
+"""The interactive page: shape a structure, see its thrust line and collapse load at once, check
+it against the seismic code at a site, shake it with both models and find its failure domain, in
+the browser (``archquake app``).
 
 A leaf over the library (nothing in archquake imports it), beside the command line, of which it
 imports nothing. The page is plain HTML, CSS and a
@@ -10,10 +11,12 @@ Starlette application served by uvicorn on loopback (:mod:`.server`). Its module
   library's description of one (:class:`archquake.geometry.StructureSpec`, which the command
   line's options map onto too, so that the page and ``archquake limit`` build the same structure
   and say the same things about bad input), the ground motion likewise
-  (:class:`archquake.ground_motion.MotionSpec`), uploaded files kept in the server's temporary
-  folder, and the page's limits on sizes;
+  (:class:`archquake.ground_motion.MotionSpec`), the site of the code check (its NTC 2018
+  actions and knowledge level), uploaded files kept in the server's temporary folder, and the
+  page's limits on sizes;
 - :mod:`.views`: the library's results as the data the page draws (blocks, thrust lines,
-  hinges, the motion of every block over time for both models);
+  hinges, the code check's verdicts, tables and capacity curves, the motion of every block over
+  time for both models);
 - :mod:`.tasks`: the long computations (time histories of both models, failure domains, the
   assessment report), each run in a worker process of its own;
 - :mod:`.jobs`: those worker processes -- started from a warm fork server, polled for progress,

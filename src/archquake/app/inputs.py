@@ -1,5 +1,5 @@
 """What the page sends, turned into the library's values: the structure, the ground motion, the
-uploaded files, and the page's limits on their sizes.
+site of the code check, the uploaded files, and the page's limits on their sizes.
 
 The page describes a structure and a ground motion by named values (``{"thickness": 1.2,
 "voussoirs": 9, "piers": "1.5,4,3", ...}``), the fields of the library's descriptions
