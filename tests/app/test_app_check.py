@@ -163,4 +163,7 @@ def test_limit_state_no_check_applies_to_is_said_not_checked(client):
     assert verdicts["SLC"]["holds"] is None
     assert verdicts["SLC"]["sentence"].startswith("SLC not checked: ")
     assert list(verdicts["SLV"]["ratios"]) == ["linear"]
+    assert direct.pga_capacity("SLV") is None  # holds beyond the largest a_g searched
+    assert verdicts["SLV"]["sentence"].endswith("PGA capacity a_g > 1.5 g against the site's "
+                                                "0.25 g")
     assert shown["nonlinear"] == [] and shown["curves"] == []
