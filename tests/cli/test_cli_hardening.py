@@ -236,3 +236,24 @@ def test_description_field_with_an_underscore_is_refused():
         StructureSpec.from_dict({"thickness": "1_5"}).build()
     with pytest.raises(DescriptionError, match="amplitude"):
         MotionSpec.from_dict({"motion": "oppenheim", "amplitude": "0_4"}).build()
+
+
+@pytest.mark.parametrize("command", [["simulate"], ["rigid-blocks"],
+                                     ["domain", "--durations", "0.6", "--extend-to", "0"]])
+@pytest.mark.parametrize("passive", ["25,0.4", "35,1"])
+def test_fill_passive_is_refused_by_the_dynamic_models(command, passive, capsys):
+    # the limit analysis mobilises the fill's passive reaction; neither dynamic model carries
+    # it, so their activation would not be the limit analysis' k: refused, naming the option
+    assert main([*command, "--fill-cover", "0.8", "--fill-passive", passive]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("archquake: error: --fill-passive") and "k" in err
+
+
+def test_fill_passive_still_raises_k_in_the_limit_analysis(capsys):
+    from archquake.geometry import StructureSpec
+    from archquake.limit_analysis import both_directions
+
+    with_passive = StructureSpec(fill_cover=0.8, fill_passive=(28.0, 0.6)).arches()[1]
+    without = StructureSpec(fill_cover=0.8).arches()[1]
+    assert (both_directions(with_passive)[0].load_multiplier
+            > both_directions(without)[0].load_multiplier)

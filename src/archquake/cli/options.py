@@ -61,6 +61,7 @@ from ..ranges import number
 # ---------------------------------------------------------------------------------------------
 
 OPTION_NAMES = {
+    "fill_passive": "--fill-passive",
     "sample_size": "--samples",
     "limit_sample_size": "--limit-samples",
     "limit_method": "--limit-method",

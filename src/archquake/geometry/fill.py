@@ -377,12 +377,23 @@ def check_dynamic_fill(structure) -> None:
     """Refuse a structure whose fill is not carried as mass (inertia other than
     :data:`DYNAMIC_FILL_INERTIA`) in a dynamic model.
 
+    A fill's passive reaction is refused too: it is a bound on a horizontal force that the
+    limit analysis mobilises at collapse, which neither dynamic model carries (the rigid blocks
+    would start to move below the limit analysis' k, the four-link model would take the
+    reaction's hinges without its force).
+
     Raises
     ------
     ValueError
-        Naming the fill's inertia model.
+        Naming the fill's inertia model, or its passive reaction.
     """
     fill = getattr(structure, "fill", None)
+    if fill is not None and fill.has_passive:
+        raise ValueError(
+            "fill_passive: the fill's passive reaction is a limit-analysis model that "
+            "neither dynamic model carries, so their activation would not equal the limit "
+            "analysis' k; analyse the structure without it in the dynamic models (the limit "
+            "analysis and the code check of the mechanism take it)")
     if fill is not None and fill.inertia != DYNAMIC_FILL_INERTIA:
         raise ValueError(
             f"fill inertia {fill.inertia!r} is a limit-analysis model: the dynamic models carry "
