@@ -257,7 +257,8 @@ def _floats(text: str | None, what: str) -> np.ndarray:
 
 def read_fragility_nrml(path: str | os.PathLike, *, limit_state: str | None = None,
                         function_id: str | None = None, im: str | None = None):
-    r"""Read one fragility function of an OpenQuake NRML fragility model (0.5) [1]_.
+    r"""Read one fragility function of an OpenQuake NRML fragility model (0.5; the module's
+    references).
 
     Parameters
     ----------

@@ -13,8 +13,8 @@ Two ways to give the action:
 
 - **the national grid** (``grid``): the file of the site's a_g, F0, Tc* at the return periods
   of NTC 2018 Annex A (:func:`~archquake.site.spectra.read_ntc_site`); the actions of SLV and
-  SLC follow from the nominal life and use class (:func:`~archquake.site.spectra.
-  return_period`), and the file is also a hazard curve (1/T_R at a_g S);
+  SLC follow from the nominal life and use class (
+  :func:`~archquake.site.spectra.return_period`), and the file is also a hazard curve (1/T_R at a_g S);
 - **one spectrum** (``code``: ``"ntc2018"`` with ``ag``, ``f0``, ``tc_star``; ``"ec8"`` with
   ``agr``, ``spectrum_type``, ``importance``; ``"user"`` with ``file``), the action of
   ``limit_state`` (default SLV).
@@ -134,8 +134,8 @@ class SiteSpec:
 
     @property
     def fc(self) -> float:
-        """The confidence factor F_C (:func:`~archquake.site.local_mechanism.
-        confidence_factor`)."""
+        """The confidence factor F_C
+        (:func:`~archquake.site.local_mechanism.confidence_factor`)."""
         from .local_mechanism import confidence_factor
 
         return confidence_factor(self.knowledge_level, self.confidence_factor)

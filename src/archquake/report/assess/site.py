@@ -2,9 +2,10 @@
 mechanism, the code's dynamic route with the trusted model, and the annual risk of collapse,
 as values for the report, then its words.
 
-The science is the library's (:mod:`archquake.site`): :func:`~archquake.site.local_mechanism.
-check_local_mechanism`, :func:`~archquake.site.compatible_records.select_compatible_records`
-and :func:`~archquake.site.dynamic_check.run_dynamic_check`, :func:`~archquake.site.risk.risk`.
+The science is the library's (:mod:`archquake.site`):
+:func:`~archquake.site.local_mechanism.check_local_mechanism`,
+:func:`~archquake.site.compatible_records.select_compatible_records` and
+:func:`~archquake.site.dynamic_check.run_dynamic_check`, :func:`~archquake.site.risk.risk`.
 This module calls them with the assessment's structure, site, records and record fragility,
 and keeps what they say, including why a part was not made.
 """
