@@ -282,8 +282,9 @@ def ntc_hazard_curve(site, *, im: str = "PGA", soil: str | None = None,
 
     For ``PGA`` the ordinate is :math:`S_e(0) = a_g S` with :math:`S = S_S S_T`
     (NTC 2018 §3.2.3.2.1): :math:`a_g` on rock (soil A, :math:`S = 1`) when no soil is given;
-    for ``SA(T)`` it is :math:`S_e(T)` at 5 % damping (
-    :func:`archquake.site.spectra.ntc2018_spectrum`, with the site's :math:`F_0` and :math:`T_C^*` of each return period).
+    for ``SA(T)`` it is :math:`S_e(T)` at 5 % damping
+    (:func:`archquake.site.spectra.ntc2018_spectrum`, with the site's :math:`F_0` and
+    :math:`T_C^*` of each return period).
     The grid's return periods are those of uniform-hazard spectra, so the curve is
     :math:`\lambda(S_e(T; T_R)) = 1/T_R` (a Poisson rate of exceedance); the tail beyond
     2475 years continues the power law of the last two return periods.
@@ -354,8 +355,8 @@ def read_openquake_hazard_curve(path: str | os.PathLike, *,
                                 site_index: int | None = None) -> HazardCurve:
     r"""Read a hazard curve exported by the OpenQuake engine (``hazard_curve-mean-PGA_*.csv``).
 
-    The file (the OpenQuake user manual, the module's references) starts with a comment line holding the investigation time T and the
-    intensity measure type, e.g.
+    The file (the OpenQuake user manual, the module's references) starts with a comment line
+    holding the investigation time T and the intensity measure type, e.g.
     ``#,,,,,"generated_by='OpenQuake engine 3.18.0', ..., kind='mean',
     investigation_time=50.0, imt='PGA'"``, then the header ``lon,lat,depth,poe-<iml>,...``
     and one row per site of probabilities of exceedance in T. They become annual frequencies

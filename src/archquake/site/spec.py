@@ -13,8 +13,9 @@ Two ways to give the action:
 
 - **the national grid** (``grid``): the file of the site's a_g, F0, Tc* at the return periods
   of NTC 2018 Annex A (:func:`~archquake.site.spectra.read_ntc_site`); the actions of SLV and
-  SLC follow from the nominal life and use class (
-  :func:`~archquake.site.spectra.return_period`), and the file is also a hazard curve (1/T_R at a_g S);
+  SLC follow from the nominal life and use class
+  (:func:`~archquake.site.spectra.return_period`), and the file is also a hazard curve (1/T_R
+  at a_g S);
 - **one spectrum** (``code``: ``"ntc2018"`` with ``ag``, ``f0``, ``tc_star``; ``"ec8"`` with
   ``agr``, ``spectrum_type``, ``importance``; ``"user"`` with ``file``), the action of
   ``limit_state`` (default SLV).
