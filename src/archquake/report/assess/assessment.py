@@ -17,13 +17,19 @@ Oppenheim's arch by default):
    pulse-like near-field set when the ``records`` extra is installed, else a synthetic suite, with
    a note), in PGA, PGV and Sa(T), with lognormal medians and dispersions and an OpenQuake NRML
    file per intensity measure;
+6. where the two models' failure accelerations under pulses disagree beyond the agreement band
+   (:func:`~archquake.report.assess.parts.trusted_model`), the studies of 4 and 5 again with the
+   rigid-block model (the same draws, pulses, records and stripes; fewer arches), on every
+   processor: the first screen then gives the rigid-block numbers, and the four-link ones
+   beside them marked "not used";
 
 and writes ``report.html`` (self-contained: figures embedded, opens offline), ``report.md`` with
 the figures beside it, ``results.json`` (every number, the settings, versions and run times) and
 the NRML files into ``out_dir``, whose first screen is the summary: the verdict, the capacities
-in words and numbers, which model each comes from and how far the two agree, and the
-assumptions. Each study runs in its own subdirectory of ``out_dir`` and finished parts are kept,
-so an interrupted assessment continues with ``resume=True``.
+in words and numbers, which model each comes from (``model`` beside every result of
+``results.json``) and how far the two agree, and the assumptions. Each study runs in its own
+subdirectory of ``out_dir`` and finished parts are kept, so an interrupted assessment continues
+with ``resume=True``.
 
 This module only orchestrates: the parts compute (:mod:`archquake.report.assess.parts`,
 :mod:`archquake.report.assess.records`, with the library's own calls), the figures are drawn from
@@ -74,6 +80,10 @@ FRAGILITY_DIR = "fragility_pulses"
 
 RECORDS_DIR = "records_{im}"
 """Subdirectory of each record-based fragility study (``{im}``: the intensity measure)."""
+
+RIGID_BLOCKS_SUFFIX = "_rigid_blocks"
+"""Added to :data:`FRAGILITY_DIR` and :data:`RECORDS_DIR` for the rigid-block model's studies,
+run where the two models disagree (:func:`~archquake.report.assess.parts.trusted_model`)."""
 
 TITLE = "archquake: seismic assessment"
 """The title of the report's page."""
@@ -380,7 +390,7 @@ def assess(structure=None, *, records=None, suite: str | None = None,
         "settings": settings.to_dict(),
         "command": {"given": command, "regenerate": regenerate, "note": note},
     }
-    steps = Steps(8 + len(settings.intensity_measures()), progress=progress, desc="assess")
+    steps = Steps(9 + 2 * len(settings.intensity_measures()), progress=progress, desc="assess")
     try:
         computed = _compute(structure, settings, record_suite, suite_note, out, resume,
                             results, steps)
@@ -452,6 +462,7 @@ class _Computed:
     pulses: object = None
     irregularity: object = None
     records: dict | None = None
+    rigid_block_irregularity: object = None
 
 
 def _compute(structure, settings: AssessmentSettings, suite, suite_note: str, out: Path,
@@ -528,9 +539,61 @@ def _compute(structure, settings: AssessmentSettings, suite, suite_note: str, ou
     pulses = parts.pulse_part(fl_domains, rigid, governing, grid)
     results["pulses"] = pulses.summary
     computed.pulses = pulses
+    results["trusted"] = parts.trusted_model(pulses.summary, model is not None)
+    results["rigid_block_studies"] = {}
+    if results["trusted"]["model"] == "rigid-blocks" and model is not None:
+        results["rigid_block_studies"] = _rigid_block_studies(
+            structure, settings, suite, out, resume, steps, results, computed)
     results["sizes"].update(_sizes(settings, results, suite))
     results["summary"] = _summary(results)
     return computed
+
+
+def _rigid_block_studies(structure, settings, suite, out: Path, resume: bool, steps,
+                         results: dict, computed: _Computed) -> dict:
+    """The studies of irregular arches and records again with the rigid-block model, where it
+    is the one the first screen trusts: the same durations, amplitudes, records and stripes as
+    the four-link studies, on every processor (the second process is done by now)."""
+    import contextlib
+    import os
+
+    from ...execution import process_pool
+
+    out_studies: dict = {}
+    workers = min(2, os.cpu_count() or 1)
+    with contextlib.ExitStack() as stack:
+        pool = stack.enter_context(process_pool(workers)) if workers > 1 else None
+        if computed.irregularity is not None:
+            study = computed.irregularity.result.settings
+            with steps("irregularity under pulses, rigid-block model"):
+                part = parts.irregularity_part(
+                    structure, settings, study.durations, study.amplitudes_g,
+                    out / (FRAGILITY_DIR + RIGID_BLOCKS_SUFFIX), resume, model="rigid-blocks",
+                    pool=pool)
+            computed.rigid_block_irregularity = part
+            out_studies["irregularity"] = part.summary
+        ims = (results.get("records") or {}).get("ims") or {}
+        entries = {}
+        for im, entry in ims.items():
+            with steps(f"records: {text.im_label(im)}, rigid-block model"):
+                if entry.get("structure_only"):
+                    model = settings.model_spec("rigid-blocks").build(structure)
+                    stripes = record_parts.structure_stripes(
+                        model, suite, im, entry["levels"], bootstrap=settings.bootstrap,
+                        seed=settings.seed)
+                    entries[im] = record_parts.structure_stripes_summary(
+                        stripes, None, "the NRML file is the four-link model's")
+                else:
+                    directory = out / (RECORDS_DIR.format(im=record_parts.file_stem(im))
+                                       + RIGID_BLOCKS_SUFFIX)
+                    result = record_parts.record_study(
+                        structure, suite, im, entry["levels"], settings, directory, resume,
+                        model="rigid-blocks", pool=pool)
+                    entries[im] = record_parts.record_summary(
+                        result, None, "the NRML file is the four-link model's")
+        if entries:
+            out_studies["records"] = {"ims": entries}
+    return out_studies
 
 
 def _irregularity(structure, settings, model, out: Path, resume: bool, results: dict):
@@ -630,35 +693,83 @@ def _sizes(settings: AssessmentSettings, results: dict, suite) -> dict:
                  "builtin" else len(suite))
         out.update(record_arches=first["sample_size"], records=first["records"],
                    suite_records=whole, levels=len(first["levels"]))
+    rigid = results.get("rigid_block_studies") or {}
+    if "irregularity" in rigid:
+        out["rigid_block_fragility_arches"] = rigid["irregularity"]["settings"]["sample_size"]
+    if "records" in rigid:
+        out["rigid_block_record_arches"] = next(iter(rigid["records"]["ims"].values()))[
+            "sample_size"]
     return out
 
 
+def _off_by(four_link, used):
+    """The four-link number over the one used, minus 1 (None where either is missing)."""
+    if four_link is None or used is None or used == 0:
+        return None
+    return float(four_link) / float(used) - 1.0
+
+
+def _record_entry(entry: dict) -> dict:
+    keys = ("unit", "lognormal", "nominal_lognormal", "total", "model", "undecided",
+            "sample_size",
+            "lognormal_undecided_as_collapse", "nominal_lognormal_undecided_as_collapse")
+    return {k: entry[k] for k in keys if k in entry}
+
+
 def _summary(results: dict) -> dict:
-    """The numbers of the first screen (also in ``results.json``)."""
+    """The numbers of the first screen (also in ``results.json``): each capacity with the
+    ``model`` it comes from (``trusted``: :func:`~archquake.report.assess.parts.trusted_model`)
+    and, where that is the rigid-block model, the four-link model's beside it (``four_link``,
+    with ``off_by``, its number over the one used minus 1, and ``used`` False)."""
+    trusted = results.get("trusted") or {"model": "four-link", "agree": True}
+    name = trusted["model"]
+    rigid = results.get("rigid_block_studies") or {}
     out = {"stands": True, "k": results["limit"]["k"],
-           "safety_factor": results["safety"].get("factor")}
+           "safety_factor": results["safety"].get("factor"), "model": name,
+           "agree": trusted["agree"], "k_from": "limit analysis"}
     rows = results["pulses"]["rows"]
     applies = bool((results.get("four_link") or {}).get("applies"))
     both = [r for r in rows if (r["difference"] if applies else r["rigid_blocks"]) is not None]
     if rows:
-        out["pulse_long"] = rows[-1]
+        out["pulse_long"] = {**rows[-1], "model": name}
         shorter = [r for r in both if r["duration"] < rows[-1]["duration"]]
-        out["pulse_short"] = shorter[0] if shorter else None
+        out["pulse_short"] = {**shorter[0], "model": name} if shorter else None
     irr = results.get("irregularity") or {}
     if "durations" in irr:
         q = irr["limit_sample"].get("quantiles") or {}
-        out["irregular"] = {"arches": irr["analysed"], "k_5": q.get("0.05"),
-                            "curve": irr["durations"][-1]}
+        curve = irr["durations"][-1]
+        entry = {"arches": irr["analysed"], "k_5": q.get("0.05"), "k_5_from": "limit analysis",
+                 "curve": curve, "model": irr.get("model", "four-link")}
+        if "irregularity" in rigid:
+            used = rigid["irregularity"]["durations"][-1]
+            entry.update(curve=used, model="rigid-blocks",
+                         arches=rigid["irregularity"]["analysed"],
+                         undecided=rigid["irregularity"]["undecided"],
+                         four_link={"curve": curve, "arches": irr["analysed"], "used": False,
+                                    "off_by": _off_by(curve["lognormal_median"],
+                                                      used["lognormal_median"])})
+        out["irregular"] = entry
     rec = results.get("records") or {}
     if "ims" in rec:
-        out["records"] = {im: {"unit": e["unit"], "lognormal": e["lognormal"],
-                               "nominal_lognormal": e["nominal_lognormal"],
-                               "total": e["total"]} for im, e in rec["ims"].items()}
+        used_ims = (rigid.get("records") or {}).get("ims") or {}
+        out["records"] = {}
+        for im, e in rec["ims"].items():
+            entry = {**_record_entry(e), "model": e.get("model", "four-link")}
+            if im in used_ims:
+                r = used_ims[im]
+                median = "lognormal" if r["lognormal"]["median"] is not None else (
+                    "nominal_lognormal")
+                entry = {**_record_entry(r), "four_link": {
+                    **_record_entry(e), "used": False,
+                    "off_by": _off_by(e[median]["median"], r[median]["median"]),
+                    "off_by_of": median}}
+            out["records"][im] = entry
         check = rec.get("check")
         if check is not None:
             out["record_check"] = {k: check[k] for k in ("level_pga", "pairs", "agree", "both",
                                                          "neither", "four_link_only",
                                                          "rigid_blocks_only")}
+            out["record_check"]["rigid_blocks_undecided"] = check.get("rigid_blocks_undecided")
     return out
 
 
@@ -728,8 +839,9 @@ def sections(results: dict, figures: dict) -> list[Section]:
         summary.insert(0, Paragraph(warning, "note"))
     rows = text.summary_rows(results)
     if rows:
-        summary.append(Table(["capacity", "value", "from", "how far the two models agree"],
-                             rows))
+        summary.append(Table(["capacity", "value", "from", "the other model, beside"], rows))
+        if results.get("trusted"):
+            summary.append(Paragraph(text.model_text(results)))
         summary.append(Paragraph(text.agreement_text(results)))
     note = (results.get("records") or {}).get("note")
     if note:
@@ -765,6 +877,13 @@ def sections(results: dict, figures: dict) -> list[Section]:
                        "lognormal median [g]", "lognormal dispersion",
                        "P_F just below the structure's failure acceleration"],
                       text.irregularity_rows(results)), figures["irregularity"]]
+    rigid = results.get("rigid_block_studies") or {}
+    if "irregularity" in rigid:
+        irr += [Paragraph(text.rigid_irregularity_text(results)),
+                Table(["t_p [s]", "structure's failure acceleration [g]",
+                       "lognormal median [g]", "lognormal dispersion",
+                       "P_F just below the structure's failure acceleration",
+                       "undecided analyses"], text.irregularity_rows(results, rigid=True))]
     out.append(Section("4. Irregular masonry", irr))
     rec = [Paragraph(text.record_text(results))]
     if "ims" in results["records"]:
@@ -774,6 +893,11 @@ def sections(results: dict, figures: dict) -> list[Section]:
                 Paragraph("The records, and the level at which each first collapses the "
                           "structure itself (either polarity; '-': not within the stripes):"),
                 Table(text.record_list_header(results), text.record_list_rows(results))]
+    if "records" in rigid:
+        rec += [Paragraph(text.rigid_record_text(results)),
+                Table(["IM [unit]", "levels", "median, irregular arches", "total beta",
+                       "median, the structure", "record-to-record beta", "geometric beta",
+                       "undecided analyses"], text.record_rows(results, rigid=True))]
     out.append(Section("5. Record-based fragility", rec))
     out.append(Section("Run, versions and settings", _run_blocks(results)))
     return out
@@ -836,6 +960,7 @@ def write_report(directory, results: dict, figures: dict) -> tuple[str, ...]:
     return tuple(results["files"])
 
 
-__all__ = ["ASSESSMENT_JSON", "FRAGILITY_DIR", "PARTS_DIR", "RECORDS_DIR", "STRUCTURE_JSON",
+__all__ = ["ASSESSMENT_JSON", "FRAGILITY_DIR", "PARTS_DIR", "RECORDS_DIR", "RIGID_BLOCKS_SUFFIX",
+           "STRUCTURE_JSON",
            "STYLE", "TITLE", "Assessment", "assess", "choose_suite", "prepare_directory",
            "regenerate_command", "sections", "structure_name", "write_report"]

@@ -13,6 +13,8 @@ by the library's own calls, so that a test can recompute any of them with the si
 - :func:`four_link_part`: the four-link model, its mechanisms and the restitution of every rule;
 - :func:`pulse_grid`, :func:`four_link_domains`, :func:`rigid_block_domain`,
   :func:`pulse_part`: the failure domains under pulses of both models, and where they disagree;
+- :func:`trusted_model`: which model the first screen's numbers come from (the rigid-block
+  model where the two disagree);
 - :func:`irregularity_part`: the k~ sample and the fragility under pulses of the irregular
   arches (:func:`fragility_amplitudes` chooses the amplitudes).
 
@@ -396,6 +398,55 @@ def agreement(rows: list[dict]) -> dict:
     }
 
 
+def trusted_model(pulses: dict, four_link_applies: bool) -> dict:
+    """Which model the first screen's capacities, fragilities and checks come from: the
+    four-link model where the two models' failure accelerations under Oppenheim's pulse agree
+    within :data:`~archquake.defaults.AGREEMENT_BAND` at every duration of the scan, else the
+    rigid-block model.
+
+    The two agree at a duration where both collapse in the scan and ``|difference| <= band``
+    (:func:`agreement`), or where neither does. A duration where only one collapses, or where
+    the rigid blocks left an undecided band below their lowest decided collapse (no difference
+    is then known, :mod:`archquake.studies.undecided`), is no agreement. Where they disagree
+    the rigid-block model is used: every block rigid, any mechanism, sliding with Coulomb
+    friction, within 1 % of the discrete-element code LMGC90 on fixed supports (0.4 % on
+    piers), where the four-link model keeps the four hinges of the limit analysis.
+
+    Parameters
+    ----------
+    pulses : dict
+        :attr:`PulsePart.summary`.
+    four_link_applies : bool
+        Whether the four-link model describes the structure (else only the rigid-block model
+        does).
+
+    Returns
+    -------
+    dict
+        ``model`` (``"four-link"`` or ``"rigid-blocks"``), ``agree`` (bool), ``disagreeing``
+        (the durations where they do not agree [s]) and ``reason`` (in words).
+    """
+    if not four_link_applies or "agreement" not in pulses:
+        return {"model": "rigid-blocks", "agree": False, "disagreeing": [],
+                "reason": "the four-link model does not apply to this structure"}
+    band = pulses["agreement"]["band"]
+    disagreeing = []
+    for row in pulses["rows"]:
+        neither = (row["four_link"] is None and row["rigid_blocks"] is None
+                   and row.get("rigid_blocks_undecided_from") is None)
+        within = row["difference"] is not None and abs(row["difference"]) <= band
+        if not (neither or within):
+            disagreeing.append(row["duration"])
+    if not disagreeing:
+        return {"model": "four-link", "agree": True, "disagreeing": [],
+                "reason": (f"the two models' failure accelerations under Oppenheim's pulse "
+                           f"agree within {100 * band:g} % at every duration")}
+    return {"model": "rigid-blocks", "agree": False, "disagreeing": disagreeing,
+            "reason": (f"the two models' failure accelerations under Oppenheim's pulse do not "
+                       f"agree within {100 * band:g} % at {len(disagreeing)} of the "
+                       f"{len(pulses['rows'])} durations")}
+
+
 def pulse_part(four_link: dict | None, rigid_blocks, governing: str,
                amplitudes_g) -> PulsePart:
     """Both models' failure domains side by side, per duration, with their disagreement.
@@ -529,9 +580,10 @@ class IrregularityPart:
 
 
 def irregularity_part(structure, settings: AssessmentSettings, durations, amplitudes_g,
-                      directory=None, resume: bool = False) -> IrregularityPart:
+                      directory=None, resume: bool = False, model: str = "four-link",
+                      pool=None) -> IrregularityPart:
     """The fragility of irregular arches drawn around the structure under Oppenheim's pulse
-    [paper, Sect. 5.3.3, eq. (9)] and the limit-analysis sample of k~, with the four-link model.
+    [paper, Sect. 5.3.3, eq. (9)] and the limit-analysis sample of k~, with the model ``model``.
 
     Parameters
     ----------
@@ -548,22 +600,34 @@ def irregularity_part(structure, settings: AssessmentSettings, durations, amplit
     resume : bool
         Continue the study saved in ``directory``, if one was started there
         (:func:`archquake.execution.resumable_study`).
+    model : {"four-link", "rigid-blocks"}
+        The model of every arch (:meth:`AssessmentSettings.model_spec`): h is
+        ``fragility_sample_size`` with the four-link model, ``rigid_block_fragility_sample_size``
+        with the rigid blocks.
+    pool : WorkerPool, optional
+        Worker processes to run the study on (:func:`archquake.execution.process_pool`);
+        None: in this process. The results do not depend on it.
 
     Returns
     -------
     IrregularityPart
+        Its summary with ``model``: the name of the model.
     """
     from ...execution import resumable_study
     from ...studies.fragility import FragilitySettings, run_fragility
 
+    spec = settings.model_spec(model)
     study = FragilitySettings(
-        nominal=structure, sample_size=settings.fragility_sample_size,
+        nominal=structure, sample_size=(settings.fragility_sample_size if spec.grid_in_one_call
+                                        else settings.rigid_block_fragility_sample_size),
         epsilon=settings.epsilon, durations=tuple(durations), amplitudes_g=tuple(amplitudes_g),
-        seed=settings.seed, model=settings.model_spec("four-link"),
+        seed=settings.seed, model=spec,
         limit_sample_size=settings.limit_sample_size)
     resume = resume and resumable_study(directory) is not None  # only where it was started
-    result = run_fragility(study, directory, resume=resume, progress=False, backend="serial")
+    result = run_fragility(study, directory, resume=resume, progress=False,
+                           **({"backend": "serial"} if pool is None else {"pool": pool}))
     summary = result.summary()
+    summary["model"] = study.model.name
     k = result.limit_load_multipliers
     finite = k[np.isfinite(k)]
     summary["limit_sample"]["quantiles"] = (
@@ -577,4 +641,4 @@ __all__ = ["DIRECTIONS", "RESTITUTION_RULES", "FourLinkPart", "IrregularityPart"
            "PulsePart", "agreement", "four_link_domains", "four_link_part", "fragility_amplitudes",
            "has_centreline", "hinges_in_own_frame", "irregularity_part", "joint_name",
            "limit_part", "pulse_grid", "pulse_part", "rigid_block_domain",
-           "significant_disagreement"]
+           "significant_disagreement", "trusted_model"]

@@ -57,10 +57,11 @@ def select_records(suite, count: int | None):
 
 
 def record_study(structure, suite, im: str, levels, settings: AssessmentSettings,
-                 directory=None, resume: bool = False):
+                 directory=None, resume: bool = False, model: str = "four-link", pool=None):
     """One record-based fragility (multiple-stripe analysis) of the structure and its irregular
-    arches, with the four-link model
-    (:func:`archquake.studies.record_fragility.run_record_fragility`).
+    arches, with the model ``model``
+    (:func:`archquake.studies.record_fragility.run_record_fragility`): ``record_sample_size``
+    arches with the four-link model, ``rigid_block_record_sample_size`` with the rigid blocks.
 
     Parameters
     ----------
@@ -77,6 +78,11 @@ def record_study(structure, suite, im: str, levels, settings: AssessmentSettings
     resume : bool
         Continue the study saved in ``directory``, if one was started there
         (:func:`archquake.execution.resumable_study`).
+    model : {"four-link", "rigid-blocks"}
+        The model of every arch (:meth:`AssessmentSettings.model_spec`).
+    pool : WorkerPool, optional
+        Worker processes to run the study on (:func:`archquake.execution.process_pool`);
+        None: in this process. The results do not depend on it.
 
     Returns
     -------
@@ -85,13 +91,15 @@ def record_study(structure, suite, im: str, levels, settings: AssessmentSettings
     from ...execution import resumable_study
     from ...studies.record_fragility import RecordFragilitySettings, run_record_fragility
 
+    spec = settings.model_spec(model)
+    size = (settings.record_sample_size if spec.grid_in_one_call
+            else settings.rigid_block_record_sample_size)
     study = RecordFragilitySettings(
-        suite=suite, levels=tuple(levels), im=im, nominal=structure,
-        sample_size=settings.record_sample_size, epsilon=settings.epsilon, seed=settings.seed,
-        model=settings.model_spec("four-link"), bootstrap=settings.bootstrap)
+        suite=suite, levels=tuple(levels), im=im, nominal=structure, sample_size=size,
+        epsilon=settings.epsilon, seed=settings.seed, model=spec, bootstrap=settings.bootstrap)
     resume = resume and resumable_study(directory) is not None  # only where it was started
     return run_record_fragility(study, directory, resume=resume, progress=False,
-                                backend="serial")
+                                **({"backend": "serial"} if pool is None else {"pool": pool}))
 
 
 CHECK_RECORDS = 14
@@ -205,9 +213,15 @@ def record_summary(result, nrml: str | None, nrml_note: str) -> dict:
         ``unit``, ``levels``, ``probability``, ``nominal_probability``, ``lognormal`` and
         ``nominal_lognormal`` (``median`` [unit], ``dispersion`` [-]), the dispersions
         (``record_to_record``, ``geometric``, ``total``, ``srss``), ``analyses``, ``arches``,
-        the nominal structure's lowest collapsing level by record (``first_collapse``), and
-        ``nrml``.
+        the nominal structure's lowest collapsing level by record (``first_collapse``),
+        ``nrml``, ``model`` (the name of the model), ``undecided`` (the count of undecided
+        analyses, :mod:`archquake.studies.undecided`) and, where some are, the fits with every
+        undecided pair counted as a failure (``lognormal_undecided_as_collapse``,
+        ``nominal_lognormal_undecided_as_collapse``: the other end of the range the median
+        lies in).
     """
+    from ...studies.fits import fit_lognormal_or_none
+
     summary = result.summary()
     variability = summary["variability"]
     incremental = result.incremental()
@@ -226,7 +240,26 @@ def record_summary(result, nrml: str | None, nrml_note: str) -> dict:
         **{k: variability[k] for k in ("record_to_record", "geometric", "total", "srss")},
         "analyses": summary["analyses"], "first_collapse": first,
         "nrml": nrml, "nrml_note": nrml_note,
+        "model": result.settings.model.name, "undecided": summary["undecided"],
+        **_undecided_fits(result, fit_lognormal_or_none),
     }
+
+
+def _undecided_fits(result, fit) -> dict:
+    """The lognormal fits with the undecided pairs counted as failures (none: {})."""
+    if not (result.undecided.any() or result.nominal_undecided.any()):
+        return {}
+    levels = np.asarray(result.levels, dtype=float)
+
+    def as_dict(f):
+        return {"median": None if f is None else float(f.median),
+                "dispersion": None if f is None else float(f.dispersion)}
+
+    upper = np.round(result.probability_upper * result.trials)
+    nominal = np.round(result.nominal_probability_upper * len(result.records))
+    return {"lognormal_undecided_as_collapse": as_dict(fit(levels, result.trials, upper)),
+            "nominal_lognormal_undecided_as_collapse": as_dict(
+                fit(levels, len(result.records), nominal))}
 
 
 @dataclass(frozen=True, eq=False)
@@ -254,6 +287,11 @@ class StructureStripes:
         The maximum-likelihood fit (:func:`archquake.studies.fits.fit_lognormal_or_none`).
     band : BootstrapBand or None
         Its bootstrap band over the records.
+    model : str
+        The name of the model that gave the outcomes.
+    undecided : int
+        Analyses the model left undecided (the rigid blocks'; none of them is a collapse in
+        ``collapsed``, :mod:`archquake.studies.undecided`).
     """
 
     im: str
@@ -264,6 +302,8 @@ class StructureStripes:
     integrated: int
     lognormal: object
     band: object
+    model: str = "four-link"
+    undecided: int = 0
 
     @property
     def failed(self) -> np.ndarray:
@@ -286,8 +326,9 @@ def structure_stripes(model, suite, im: str, levels, *, bootstrap: int, seed: in
 
     Parameters
     ----------
-    model : FourLinkModel
-        The structure's model.
+    model : StructuralModel
+        The structure's model (either; an undecided analysis of the rigid blocks counts as no
+        collapse here, as in the record-based study's point estimate).
     suite : RecordSuite
     im : str
         The intensity measure of the stripes.
@@ -305,16 +346,18 @@ def structure_stripes(model, suite, im: str, levels, *, bootstrap: int, seed: in
     from ...ground_motion.suites import stripe_measure
     from ...studies.fits import bootstrap_lognormal, fit_lognormal_or_none
     from ...studies.record_fragility import BOOTSTRAP_KEY, DEFAULT_CONFIDENCE, record_outcomes
+    from ...studies.undecided import undecided_count
 
     measure = stripe_measure(im)
     x = np.asarray(levels, dtype=float)
     factors = suite.scale_factors(measure.name, x)
     collapsed = np.zeros((len(suite), x.size, 2), dtype=bool)
-    integrated = 0
+    integrated = undecided = 0
     for r, motion in enumerate(suite.motions(cached=True)):
         out = record_outcomes(model, motion, np.concatenate([factors[r], -factors[r]]))
         collapsed[r] = (out["status"].reshape(2, -1) == 2).T
         integrated += int(out["integrated"].sum())
+        undecided += undecided_count(out["status"])
     failed = collapsed.any(axis=-1)
     fit = fit_lognormal_or_none(x, failed.shape[0], failed.sum(axis=0))
     band = None
@@ -324,7 +367,7 @@ def structure_stripes(model, suite, im: str, levels, *, bootstrap: int, seed: in
         band = bootstrap_lognormal(x, failed, fit, resamples=bootstrap,
                                    confidence=DEFAULT_CONFIDENCE, rng=stream)
     return StructureStripes(measure.name, measure.unit, x, tuple(suite.names), collapsed,
-                            integrated, fit, band)
+                            integrated, fit, band, model.name, undecided)
 
 
 def structure_stripes_summary(stripes: StructureStripes, nrml: str | None,
@@ -364,6 +407,8 @@ def structure_stripes_summary(stripes: StructureStripes, nrml: str | None,
                      "at_rest_without_integration": int(stripes.collapsed.size)
                      - stripes.integrated},
         "first_collapse": first, "nrml": nrml, "nrml_note": nrml_note,
+        "model": stripes.model,
+        "undecided": {"analyses": stripes.undecided, "of": int(stripes.collapsed.size)},
     }
 
 

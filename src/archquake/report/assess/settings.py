@@ -46,7 +46,9 @@ FALLBACK_RECORDS = 20
 QUICK = {"duration_count": 4, "amplitude_points": 30, "domain_resolution_g": 2e-2,
          "fragility_sample_size": 8, "limit_sample_size": 100,
          "fragility_amplitude_points": 21, "record_sample_size": 4, "record_levels": 6,
-         "record_count": 6, "bootstrap": 50, "quick": True}
+         "record_count": 6, "rigid_block_fragility_sample_size": 2,
+         "rigid_block_record_sample_size": 1, "bootstrap": 50,
+         "quick": True}
 """The reduced sizes of a quick assessment (:meth:`AssessmentSettings.quick_settings`)."""
 
 def arch_extent(structure) -> float:
@@ -132,6 +134,15 @@ class AssessmentSettings:
         >= 8.
     record_sample_size : int
         h, irregular arches of the record-based fragility (beside the structure itself).
+    rigid_block_fragility_sample_size : int
+        h of the rigid-block model's fragility under pulses, run where the two models disagree
+        (:func:`archquake.report.assess.parts.trusted_model`): the first arches of the same
+        draws (about 1.5 s an arch for Oppenheim's arch on piers, 4 durations x 41 amplitudes
+        x 2 directions, on one processor).
+    rigid_block_record_sample_size : int
+        h of the rigid-block model's record-based fragility, run where the two models
+        disagree; fewer than ``record_sample_size``: a rigid-block analysis of a record costs
+        about 60 ms (Oppenheim's arch on piers), thousands of four-link ones.
     record_levels : int
         Stripes of each record-based fragility, >= 4.
     record_count : int or None
@@ -161,6 +172,8 @@ class AssessmentSettings:
     limit_sample_size: int = 1000
     fragility_amplitude_points: int = 41
     record_sample_size: int = 10
+    rigid_block_fragility_sample_size: int = 40
+    rigid_block_record_sample_size: int = 4
     record_levels: int = 10
     record_count: int | None = None
     bootstrap: int = 200
@@ -187,6 +200,8 @@ class AssessmentSettings:
         for name, least in (("duration_count", 2), ("amplitude_points", 10),
                             ("fragility_sample_size", 2), ("limit_sample_size", 2),
                             ("fragility_amplitude_points", 8), ("record_sample_size", 1),
+                            ("rigid_block_fragility_sample_size", 2),
+                            ("rigid_block_record_sample_size", 1),
                             ("record_levels", 4), ("bootstrap", 10)):
             object.__setattr__(self, name, check_integer(name, getattr(self, name),
                                                          minimum=least))

@@ -88,30 +88,70 @@ def verdict_text(results: dict) -> str:
     return text
 
 
-def _pulse_cells(row: dict, scanned: float, four_link: bool = True) -> list[str]:
-    fl, rb = row["four_link"], row["rigid_blocks"]
+def _rigid_cell(row: dict, beyond: str) -> str:
+    """The rigid blocks' failure acceleration, as the range it lies in where an undecided band
+    lies below it."""
+    rb, low = row["rigid_blocks"], row.get("rigid_blocks_undecided_from")
+    if low is not None:
+        return f"{low:.3f}-" + ("" if rb is None else f"{rb:.3f}") + " g (undecided between)"
+    return beyond if rb is None else _g(rb)
+
+
+def not_used_words(value: str, off_by) -> str:
+    """A four-link number shown beside the rigid-block one it is not used for:
+    ``"four-link: 0.202 g (off by +25.0 %, not used)"``.
+
+    Parameters
+    ----------
+    value : str
+        The four-link number, in words.
+    off_by : float or None
+        Four-link over the number used, minus 1 [-] (None: not comparable).
+
+    Returns
+    -------
+    str
+    """
+    off = "" if off_by is None else f"off by {percent(off_by)}, "
+    return f"four-link: {value} ({off}not used)"
+
+
+def _pulse_cells(row: dict, scanned: float, four_link: bool = True,
+                 model: str = "four-link") -> list[str]:
+    fl = row["four_link"]
     beyond = f"> {scanned:g} g"
+    rigid = _rigid_cell(row, beyond)
     if not four_link:
-        return [f"{beyond if rb is None else _g(rb)} (rigid blocks)", "rigid-block model",
-                "the four-link model does not apply"]
-    value = (f"{beyond if fl is None else _g(fl)} (four-link), "
-             f"{beyond if rb is None else _g(rb)} (rigid blocks)")
-    return [value, "both models", difference_words(row["difference"])]
+        return [rigid, MODEL_NAMES["rigid-blocks"], "the four-link model does not apply"]
+    flv = beyond if fl is None else _g(fl)
+    if model == "rigid-blocks":
+        return [rigid, MODEL_NAMES["rigid-blocks"], not_used_words(flv, row["difference"])
+                + ("" if row["difference"] is not None
+                   else ": " + difference_words(None, row))]
+    return [flv, f"{MODEL_NAMES['four-link']} (the two agree)",
+            f"rigid blocks: {rigid} ({difference_words(row['difference'], row)})"]
 
 
-def difference_words(difference) -> str:
+def difference_words(difference, row: dict | None = None) -> str:
     """The four-link model's failure acceleration against the rigid blocks', in words.
 
     Parameters
     ----------
     difference : float or None
-        Four-link over rigid blocks, minus 1 [-] (None: one does not collapse in the scan).
+        Four-link over rigid blocks, minus 1 [-] (None: one does not collapse in the scan, or
+        the rigid blocks' is undecided).
+    row : dict, optional
+        The row of the duration (says why there is no difference).
 
     Returns
     -------
     str
     """
     if difference is None:
+        if row is not None and row.get("rigid_blocks_undecided_from") is not None:
+            return "no difference: the rigid blocks' failure acceleration is undecided"
+        if row is not None and row["four_link"] is None and row["rigid_blocks"] is None:
+            return "neither collapses in the scan"
         return "one model does not collapse in the scan"
     if abs(difference) <= AGREEMENT_BAND:
         return f"{percent(difference)}: agree within {100 * AGREEMENT_BAND:g} %"
@@ -120,9 +160,48 @@ def difference_words(difference) -> str:
             f"collapse {'lower' if difference > 0 else 'higher'})")
 
 
+def _model_words(entry: dict, agree: bool) -> str:
+    name = MODEL_NAMES[entry.get("model", "four-link")]
+    if entry.get("model", "four-link") == "four-link" and agree:
+        return f"{name} (the two agree)"
+    return name
+
+
+def _record_value(entry: dict) -> str:
+    fit, nominal = entry["lognormal"], entry["nominal_lognormal"]
+    unit = entry["unit"]
+    if fit["median"] is None and nominal["median"] is None:
+        return "no lognormal fit (see Section 5)"
+    if fit["median"] is None:
+        why = ("no irregular arches" if not entry.get("sample_size") else
+               f"no lognormal fit of the {entry['sample_size']} irregular arches")
+        return (f"median {number(nominal['median'], 3)} {unit}, beta "
+                f"{number(nominal['dispersion'], 2)} (the structure; {why})")
+    return (f"median {number(fit['median'], 3)} {unit}, beta {number(fit['dispersion'], 2)} "
+            f"(irregular arches); {number(nominal['median'], 3)} {unit} (the structure)")
+
+
+def undecided_words(entry: dict) -> str:
+    """What a result's undecided analyses leave open, or ``""`` without any
+    (:mod:`archquake.studies.undecided`)."""
+    count = (entry.get("undecided") or {}).get("analyses", 0)
+    if not count:
+        return ""
+    text = (f"; {count} of {entry['undecided']['of']} rigid-block analyses undecided, counted "
+            f"as neither")
+    upper = entry.get("lognormal_undecided_as_collapse") or {}
+    nominal = entry.get("nominal_lognormal_undecided_as_collapse") or {}
+    which = upper if (entry.get("lognormal") or {}).get("median") is not None else nominal
+    if which.get("median") is not None:
+        text += (f": the median lies between {number(which['median'], 3)} {entry['unit']} "
+                 f"(undecided as collapses) and the value given (as survivals)")
+    return text
+
+
 def summary_rows(results: dict) -> list[list[str]]:
-    """The capacities of the first screen: quantity, value, the model it comes from, and how
-    far the two models agree.
+    """The capacities of the first screen: quantity, value, the model it comes from, and the
+    other model beside it (the four-link model's number marked "not used" where the two
+    disagree and the rigid-block model's is used).
 
     Parameters
     ----------
@@ -138,6 +217,8 @@ def summary_rows(results: dict) -> list[list[str]]:
     limit = results["limit"]
     if limit is None:
         return rows
+    agree = bool(s.get("agree", True))
+    used = s.get("model", "four-link")
     rows.append(["start of motion (activation)",
                  f"{limit['k']:.3f} g (k_l = {limit['k_l']:.3f}, k_r = {limit['k_r']:.3f})",
                  "limit analysis (both models start to move there)", "-"])
@@ -147,41 +228,63 @@ def summary_rows(results: dict) -> list[list[str]]:
         row = s.get(key)
         if row is not None:
             rows.append([f"collapse under a {what} pulse (Oppenheim's, t_p = "
-                         f"{row['duration']:.2f} s)", *_pulse_cells(row, scanned, applies)])
+                         f"{row['duration']:.2f} s)",
+                         *_pulse_cells(row, scanned, applies, row.get("model", used))])
     irregular = s.get("irregular")
     if irregular is not None:
         q = irregular.get("k_5")
         text = []
         if q is not None:
-            text.append(f"5 % of the arches start to move below {q:.3f} g (the structure: "
-                        f"{limit['k']:.3f} g)")
+            text.append(f"5 % of the arches start to move below {q:.3f} g (limit analysis; "
+                        f"the structure: {limit['k']:.3f} g)")
         c = irregular.get("curve")
         if c is not None and c.get("lognormal_median") is not None:
             text.append(f"at t_p = {c['duration']:.2f} s, median collapse "
                         f"{c['lognormal_median']:.3f} g (the structure: "
                         f"{number(c['nominal_failure_acceleration'], 3)} g)")
+        other = "-"
+        fl = irregular.get("four_link")
+        if fl is not None:
+            curve = fl["curve"]
+            other = not_used_words(f"median collapse {number(curve['lognormal_median'], 3)} g "
+                                   f"({fl['arches']} arches; the structure: "
+                                   f"{number(curve['nominal_failure_acceleration'], 3)} g)",
+                                   fl["off_by"])
+        value = ("; ".join(text) or "-") + undecided_words(irregular)
         rows.append([f"irregular masonry (epsilon = {results['settings']['epsilon']:g}, "
-                     f"{irregular['arches']} arches)", "; ".join(text) or "-", "four-link model",
-                     "-"])
+                     f"{irregular['arches']} arches)", value, _model_words(irregular, agree),
+                     other])
     check = s.get("record_check")
     for im, entry in (s.get("records") or {}).items():
-        fit, nominal = entry["lognormal"], entry["nominal_lognormal"]
-        if fit["median"] is None and nominal["median"] is None:
-            value = "no lognormal fit (see Section 5)"
-        elif fit["median"] is None:
-            value = (f"median {number(nominal['median'], 3)} {entry['unit']}, beta "
-                     f"{number(nominal['dispersion'], 2)} (the structure; no irregular "
-                     f"arches)")
-        else:
-            value = (f"median {number(fit['median'], 3)} {entry['unit']}, beta "
-                     f"{number(fit['dispersion'], 2)} (irregular arches); "
-                     f"{number(nominal['median'], 3)} {entry['unit']} (the structure)")
-        agree = "-"
+        other = []
+        fl = entry.get("four_link")
+        if fl is not None:
+            other.append(not_used_words(_record_value(fl), fl["off_by"]))
         if check is not None and im == "pga":
-            agree = check_words(check)
-        rows.append([f"collapse under the records, {im_label(im)}", value,
-                     "four-link model", agree])
+            other.append(check_words(check))
+        rows.append([f"collapse under the records, {im_label(im)}",
+                     _record_value(entry) + undecided_words(entry),
+                     _model_words(entry, agree), "; ".join(other) or "-"])
     return rows
+
+
+def model_text(results: dict) -> str:
+    """Which model the first screen's numbers come from, and why, in one paragraph."""
+    trusted = results.get("trusted")
+    if trusted is None:
+        return ""
+    if trusted["model"] == "four-link":
+        return (f"Model used: the four-link model (the paper's). Its numbers are given because "
+                f"{trusted['reason']}; the rigid-block model's failure accelerations are beside "
+                f"them, and the activation and the 5 % quantile of k~ are of the limit "
+                f"analysis.")
+    text = (f"Model used: the rigid-block model (every block rigid, any mechanism, sliding "
+            f"with Coulomb friction; within 1 % of the discrete-element code LMGC90), because "
+            f"{trusted['reason']}. Every collapse capacity and fragility on this screen is "
+            f"the rigid-block model's; the four-link model's is shown beside it, marked "
+            f"\"not used\", with how far it is off. The activation and the 5 % quantile of k~ "
+            f"are of the limit analysis.")
+    return text
 
 
 def check_words(check: dict) -> str:
@@ -211,6 +314,13 @@ def undecided_warning_text(results: dict) -> str | None:
     if check.get("rigid_blocks_undecided") is not None:
         count += check["rigid_blocks_undecided"]
         total += check["pairs"]
+    rigid = results.get("rigid_block_studies") or {}
+    studies = [rigid["irregularity"]] if "irregularity" in rigid else []
+    studies += list(((rigid.get("records") or {}).get("ims") or {}).values())
+    for study in studies:
+        undecided = study.get("undecided") or {}
+        count += undecided.get("analyses", 0) + undecided.get("nominal_analyses", 0)
+        total += undecided.get("of", 0) + undecided.get("nominal_of", 0)
     return undecided_warning(count, total, "rigid-block analyses")
 
 
@@ -255,9 +365,17 @@ def agreement_text(results: dict) -> str:
         text += (f" Where they differ the four-link model overestimates the capacity at "
                  f"{len(above)} durations: the rigid-block model, which takes any mechanism "
                  f"and lets the blocks slide, is the more complete of the two.")
-    text += (" The fragility of irregular arches and against the records is of the four-link "
-             "model (the rigid-block model costs a thousand times more per analysis); the rigid "
-             "blocks check it under the records on the structure itself, at one PGA.")
+    trusted = results.get("trusted") or {}
+    if trusted.get("model") == "rigid-blocks":
+        text += (" So the fragility of irregular arches and against the records is computed "
+                 "with the rigid-block model too, on the same arches' draws, pulses, records "
+                 "and stripes, and that is the one used above; the four-link model's is beside "
+                 "it (Sections 4 and 5). The rigid blocks also check the four-link model under "
+                 "the records on the structure itself, at one PGA.")
+    else:
+        text += (" The fragility of irregular arches and against the records is of the "
+                 "four-link model, which the rigid blocks confirm under pulses; they check it "
+                 "under the records on the structure itself, at one PGA.")
     return text
 
 
@@ -495,12 +613,38 @@ def irregularity_text(results: dict) -> str:
     return text
 
 
-def irregularity_rows(results: dict) -> list[list[str]]:
-    """Rows of the irregularity table, per duration."""
-    return [[f"{c['duration']:.2f}", number(c["nominal_failure_acceleration"], 3),
-             number(c["lognormal_median"], 3), number(c["lognormal_dispersion"], 3),
-             number(c["probability_below_nominal"], 3)]
-            for c in results["irregularity"]["durations"]]
+def irregularity_rows(results: dict, rigid: bool = False) -> list[list[str]]:
+    """Rows of the irregularity table, per duration (``rigid``: of the rigid-block model's
+    study, with its undecided analyses)."""
+    if not rigid:
+        return [[f"{c['duration']:.2f}", number(c["nominal_failure_acceleration"], 3),
+                 number(c["lognormal_median"], 3), number(c["lognormal_dispersion"], 3),
+                 number(c["probability_below_nominal"], 3)]
+                for c in results["irregularity"]["durations"]]
+    rows = []
+    for c in results["rigid_block_studies"]["irregularity"]["durations"]:
+        below = number(c["probability_below_nominal"], 3)
+        if c.get("probability_below_nominal_upper") is not None:
+            below += f"-{c['probability_below_nominal_upper']:.3f}"
+        rows.append([f"{c['duration']:.2f}", number(c["nominal_failure_acceleration"], 3),
+                     number(c["lognormal_median"], 3), number(c["lognormal_dispersion"], 3),
+                     below, str(c["undecided"])])
+    return rows
+
+
+def rigid_irregularity_text(results: dict) -> str:
+    """The paragraph of the rigid-block model's study of irregular arches."""
+    study = results["rigid_block_studies"]["irregularity"]
+    undecided = study["undecided"]
+    return (f"With the rigid-block model (used on the first screen: the two models disagree "
+            f"under pulses): the same h = {study['analysed']} irregular arches (the same "
+            f"draws, seed {study['seed']}), durations and amplitudes, friction "
+            f"{study['settings']['friction']:g}, time step {study['settings']['time_step']:g} s"
+            f" (coarse factor {study['settings']['coarse_factor']}). Of its "
+            f"{undecided['of']} analyses {undecided['analyses']} were left undecided (and "
+            f"{undecided['nominal_analyses']} of the structure's own): counted neither way; "
+            f"where P_F has bounds the table gives both (undecided as survivals - as "
+            f"collapses). The figure above is the four-link model's.")
 
 
 def irregularity_caption(results: dict, durations) -> str:
@@ -568,16 +712,36 @@ def record_text(results: dict) -> str:
     return text
 
 
-def record_rows(results: dict) -> list[list[str]]:
-    """Rows of the record-based fragility's table, per intensity measure."""
+def record_rows(results: dict, rigid: bool = False) -> list[list[str]]:
+    """Rows of the record-based fragility's table, per intensity measure (``rigid``: of the
+    rigid-block model's study, with its undecided analyses in the last column)."""
     rows = []
-    for im, e in results["records"]["ims"].items():
+    ims = (results["rigid_block_studies"]["records"] if rigid else results["records"])["ims"]
+    for im, e in ims.items():
+        last = (e["nrml"] or "-") if not rigid else (
+            f"{e['undecided']['analyses']} of {e['undecided']['of']}"
+            + ("" if "nominal_analyses" not in e["undecided"] else
+               f" (the structure: {e['undecided']['nominal_analyses']})"))
         rows.append([f"{im_label(im)} [{e['unit']}]", f"{e['levels'][0]:.3g}-"
                      f"{e['levels'][-1]:.3g}", number(e["lognormal"]["median"], 3),
                      number(e["total"], 3), number(e["nominal_lognormal"]["median"], 3),
-                     number(e["record_to_record"], 3), number(e["geometric"], 3),
-                     e["nrml"] or "-"])
+                     number(e["record_to_record"], 3), number(e["geometric"], 3), last])
     return rows
+
+
+def rigid_record_text(results: dict) -> str:
+    """The paragraph of the rigid-block model's record-based fragility."""
+    ims = results["rigid_block_studies"]["records"]["ims"]
+    first = next(iter(ims.values()))
+    who = ("the structure alone" if first.get("structure_only") else
+           f"the structure and h = {first['sample_size']} irregular arches (the first of the "
+           f"same draws)")
+    return (f"With the rigid-block model (used on the first screen: the two models disagree "
+            f"under pulses): {who} under the same records at the same stripes, both "
+            f"polarities. An undecided pair is counted neither way: the fits above are made "
+            f"with it as a survival, and the first screen gives the median with it as a "
+            f"collapse too where there is one. The NRML files and the figure are the "
+            f"four-link model's.")
 
 
 def record_list_rows(results: dict) -> list[list[str]]:
@@ -642,8 +806,19 @@ def reduced_text(results: dict) -> str:
                      f"suite's {z['suite_records']} ground motions at {z['levels']} levels "
                      f"(a full study: 40 arches, 20 levels), {s['bootstrap']} bootstrap "
                      f"resamples")
-    text = ("Study sizes, chosen to fit the time budget: " + "; ".join(parts)
-            + ". The rigid-block model runs only on the structure itself, under pulses.")
+    if z.get("rigid_block_fragility_arches") is not None:
+        parts.append(f"with the rigid-block model (used on the first screen), h = "
+                     f"{z['rigid_block_fragility_arches']} irregular arches under the same "
+                     f"pulses")
+    if z.get("rigid_block_record_arches") is not None:
+        parts.append(f"h = {z['rigid_block_record_arches']} irregular arches under the same "
+                     f"records and stripes (a rigid-block analysis of a record costs about "
+                     f"four thousand four-link ones)")
+    text = "Study sizes, chosen to fit the time budget: " + "; ".join(parts) + "."
+    if not (z.get("rigid_block_fragility_arches") or z.get("rigid_block_record_arches")):
+        text += (" The rigid-block model runs on the structure itself (under pulses, and under "
+                 "the records at one PGA): the two models agree, and the studies of irregular "
+                 "arches and records are the four-link model's.")
     if s["quick"]:
         text = ("QUICK RUN: reduced sizes for a smoke test, not an assessment. " + text)
     return text
@@ -663,9 +838,10 @@ def command_text(results: dict) -> list[str]:
 
 __all__ = ["ASSUMPTIONS", "MECHANISM_QUANTITIES", "MODEL_NAMES", "RESTITUTION_WORDS",
            "agreement_text", "check_words", "command_text", "difference_words", "domain_caption",
-           "domain_header", "domain_rows",
-           "domain_text", "heading", "hinge_rows", "im_label", "irregularity_caption",
-           "irregularity_rows", "irregularity_text", "mechanism_rows", "mechanisms_caption",
-           "mechanisms_text", "record_caption", "record_list_header", "record_list_rows",
-           "record_rows", "record_text", "reduced_text", "restitution_rows", "structure_caption",
-           "structure_text", "summary_rows", "verdict_text"]
+           "domain_header", "domain_rows", "domain_text", "heading", "hinge_rows", "im_label",
+           "irregularity_caption", "irregularity_rows", "irregularity_text", "mechanism_rows",
+           "mechanisms_caption", "mechanisms_text", "model_text", "not_used_words",
+           "record_caption", "record_list_header", "record_list_rows", "record_rows",
+           "record_text", "reduced_text", "restitution_rows", "rigid_irregularity_text",
+           "rigid_record_text", "structure_caption", "structure_text", "summary_rows",
+           "undecided_words", "verdict_text"]
