@@ -5,8 +5,11 @@ fixed choices of its report.
 seed), the four-link model's restitution, the rigid blocks' friction, the period of Sa(T), and the
 sizes of its studies. The defaults keep an assessment of a ten-voussoir arch against a built-in
 suite of real records within three minutes on two processors (measured: about one, two with
-Sa(T)); :meth:`AssessmentSettings.quick_settings` within thirty seconds (a smoke test, not an
-assessment). The pulse durations are the paper's, scaled to the size of the structure
+Sa(T)) where the two models agree; where they disagree, the studies of irregular arches and
+records run again with the rigid-block model (``rigid_block_*_sample_size``), and the budget is
+ten minutes on two processors for Oppenheim's arch on piers 3 m x 6 m (``archquake assess
+--piers 3,6``; measured 8.5 min on a shared machine, 6.1 of them the rigid-block records).
+:meth:`AssessmentSettings.quick_settings` within a minute (a smoke test, not an assessment). The pulse durations are the paper's, scaled to the size of the structure
 (:func:`time_scale`): rocking is slower, by the square root of the size, in a larger structure.
 """
 
@@ -215,8 +218,8 @@ class AssessmentSettings:
 
     @classmethod
     def quick_settings(cls, **changes) -> AssessmentSettings:
-        """The reduced sizes of a quick assessment (:data:`QUICK`): a smoke test within thirty
-        seconds, not an assessment.
+        """The reduced sizes of a quick assessment (:data:`QUICK`): a smoke test within a minute
+        (thirty seconds where the two models agree), not an assessment.
 
         Parameters
         ----------
