@@ -55,11 +55,16 @@ def disagreeing(tmp_path_factory):
     result = assess(on_piers(), records=tiny_suite(), settings=settings, out_dir=out,
                     progress=False)
     return {"results": result.results, "out": out, "settings": settings,
-            "md": (out / "report.md").read_text()}
+            "md": (out / "report.md").read_text(), "verdict": result.verdict}
 
 
 def first_screen(md: str) -> str:
     return md.split("## Summary")[1].split("\n## ")[0]
+
+
+def table_row(screen: str, words: str) -> str:
+    """The row of the first screen's table that holds ``words``."""
+    return next(line for line in screen.splitlines() if line.startswith("|") and words in line)
 
 
 def test_the_rigid_block_model_is_trusted_where_the_models_disagree(disagreeing):
@@ -79,12 +84,14 @@ def test_the_rigid_block_model_is_trusted_where_the_models_disagree(disagreeing)
     long = r["summary"]["pulse_long"]
     assert long["model"] == "rigid-blocks" and long["rigid_blocks"] == rigid
     screen = first_screen(disagreeing["md"])
-    row = next(line for line in screen.splitlines() if "long pulse" in line)
+    row = table_row(screen, "long pulse")
     cells = [c.strip() for c in row.strip("|").split("|")]
     assert cells[1] == f"{rigid:.3f} g" and cells[2] == "rigid-block model"
     off = 100.0 * (four / rigid - 1.0)
     assert cells[3] == f"four-link: {four:.3f} g (off by {off:+.1f} %, not used)"
     assert "Model used: the rigid-block model" in screen
+    assert (f"under a long pulse (t_p = 1.00 s) of {rigid:.3f} g" in disagreeing["verdict"]
+            and "by the rigid-block model" in disagreeing["verdict"])
 
 
 def test_the_irregular_arches_on_the_first_screen_are_the_rigid_block_study(disagreeing):
@@ -112,8 +119,7 @@ def test_the_irregular_arches_on_the_first_screen_are_the_rigid_block_study(disa
     assert shown["used"] is False and shown["curve"] == fl["durations"][-1]
     assert shown["off_by"] == pytest.approx(fl["durations"][-1]["lognormal_median"]
                                             / theirs["lognormal_median"] - 1.0, rel=1e-12)
-    row = next(line for line in first_screen(disagreeing["md"]).splitlines()
-               if "irregular masonry" in line)
+    row = table_row(first_screen(disagreeing["md"]), "irregular masonry")
     assert "| rigid-block model |" in row and "not used)" in row
     assert f"{theirs['lognormal_median']:.3f} g" in row
 
@@ -141,8 +147,7 @@ def test_the_record_capacities_on_the_first_screen_are_the_rigid_block_study(dis
         assert entry["undecided"]["analyses"] == int(again.undecided.sum())
         assert entry["four_link"]["used"] is False
         assert entry["four_link"]["nominal_lognormal"] == fl["nominal_lognormal"]
-        row = next(line for line in screen.splitlines()
-                   if f"collapse under the records, {im.upper()}" in line)
+        row = table_row(screen, f"collapse under the records, {im.upper()}")
         assert "| rigid-block model |" in row and "four-link: median" in row
         assert "not used)" in row
     # results.json names the model of every result
@@ -174,8 +179,10 @@ def test_the_four_link_model_is_used_and_named_where_the_models_agree(tmp_path):
     assert {e["model"] for e in r["summary"]["records"].values()} == {"four-link"}
     screen = first_screen((tmp_path / "opp" / "report.md").read_text())
     assert "Model used: the four-link model" in screen and "not used" not in screen
-    row = next(line for line in screen.splitlines() if "long pulse" in line)
+    row = table_row(screen, "long pulse")
     assert f"| {here['four-link'][-1]:.3f} g | four-link model (the two agree) |" in row
+    assert (f"of {here['four-link'][-1]:.3f} g" in result.verdict
+            and "by the four-link model (the two models agree)" in result.verdict)
 
 
 def test_the_trusted_model_by_hand():
@@ -223,8 +230,7 @@ def test_undecided_rigid_block_analyses_stay_visible_on_the_first_screen(tmp_pat
     screen = first_screen((tmp_path / "forced" / "report.md").read_text())
     for im, entry in r["summary"]["records"].items():
         if entry["undecided"]["analyses"]:
-            row = next(line for line in screen.splitlines()
-                       if f"collapse under the records, {im.upper()}" in line)
+            row = table_row(screen, f"collapse under the records, {im.upper()}")
             assert (f"{entry['undecided']['analyses']} of {entry['undecided']['of']} "
                     f"rigid-block analyses undecided") in row
     assert screen.lstrip().startswith("WARNING")

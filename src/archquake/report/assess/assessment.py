@@ -39,6 +39,8 @@ their values (:mod:`archquake.report.assess.figures`), the words written from th
 
 from __future__ import annotations
 
+import contextlib
+import os
 import shlex
 import time
 from dataclasses import dataclass
@@ -554,9 +556,6 @@ def _rigid_block_studies(structure, settings, suite, out: Path, resume: bool, st
     """The studies of irregular arches and records again with the rigid-block model, where it
     is the one the first screen trusts: the same durations, amplitudes, records and stripes as
     the four-link studies, on every processor (the second process is done by now)."""
-    import contextlib
-    import os
-
     from ...execution import process_pool
 
     out_studies: dict = {}
@@ -711,8 +710,8 @@ def _off_by(four_link, used):
 
 def _record_entry(entry: dict) -> dict:
     keys = ("unit", "lognormal", "nominal_lognormal", "total", "model", "undecided",
-            "sample_size",
-            "lognormal_undecided_as_collapse", "nominal_lognormal_undecided_as_collapse")
+            "sample_size", "lognormal_undecided_as_collapse",
+            "nominal_lognormal_undecided_as_collapse")
     return {k: entry[k] for k in keys if k in entry}
 
 

@@ -7,9 +7,11 @@ sizes of its studies. The defaults keep an assessment of a ten-voussoir arch aga
 suite of real records within three minutes on two processors (measured: about one, two with
 Sa(T)) where the two models agree; where they disagree, the studies of irregular arches and
 records run again with the rigid-block model (``rigid_block_*_sample_size``), and the budget is
-ten minutes on two processors for Oppenheim's arch on piers 3 m x 6 m (``archquake assess
---piers 3,6``; measured 8.5 min on a shared machine, 6.1 of them the rigid-block records).
-:meth:`AssessmentSettings.quick_settings` within a minute (a smoke test, not an assessment). The pulse durations are the paper's, scaled to the size of the structure
+ten minutes on two processors for Oppenheim's arch on piers 3 m x 6 m
+(``archquake assess --piers 3,6``; measured 162 s on two nearly idle processors, 33 s before
+the rigid-block studies; 8.5 min with 4 arches under the records on a machine shared with other
+work). :meth:`AssessmentSettings.quick_settings` within a minute (a smoke test,
+not an assessment). The pulse durations are the paper's, scaled to the size of the structure
 (:func:`time_scale`): rocking is slower, by the square root of the size, in a larger structure.
 """
 
@@ -145,7 +147,9 @@ class AssessmentSettings:
     rigid_block_record_sample_size : int
         h of the rigid-block model's record-based fragility, run where the two models
         disagree; fewer than ``record_sample_size``: a rigid-block analysis of a record costs
-        about 60 ms (Oppenheim's arch on piers), thousands of four-link ones.
+        about 60 ms (Oppenheim's arch on piers; 160 ms the pointed arch of the user guide),
+        thousands of four-link ones. Three arches and the structure are two rounds of one arch
+        per process on two processors (four arches would take three).
     record_levels : int
         Stripes of each record-based fragility, >= 4.
     record_count : int or None
@@ -176,7 +180,7 @@ class AssessmentSettings:
     fragility_amplitude_points: int = 41
     record_sample_size: int = 10
     rigid_block_fragility_sample_size: int = 40
-    rigid_block_record_sample_size: int = 4
+    rigid_block_record_sample_size: int = 3
     record_levels: int = 10
     record_count: int | None = None
     bootstrap: int = 200

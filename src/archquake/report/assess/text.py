@@ -85,7 +85,34 @@ def verdict_text(results: dict) -> str:
             f"below it the structure moves with the ground.")
     if factor:
         text += f" Its {factor}."
-    return text
+    return text + collapse_text(results)
+
+
+def collapse_text(results: dict) -> str:
+    """The collapse capacities of the verdict, from the model the first screen uses, in one
+    sentence (``""`` without them)."""
+    s = results.get("summary") or {}
+    long = s.get("pulse_long")
+    if long is None or "model" not in s:
+        return ""
+    used = s["model"]
+    value = long["rigid_blocks"] if used == "rigid-blocks" else long["four_link"]
+    undecided = long.get("rigid_blocks_undecided_from") is not None
+    if value is None or (undecided and used == "rigid-blocks"):
+        return ""
+    text = (f" It collapses under a long pulse (t_p = {long['duration']:.2f} s) of "
+            f"{value:.3f} g")
+    pga = (s.get("records") or {}).get("pga")
+    if pga is not None:
+        fit = pga["lognormal"] if pga["lognormal"]["median"] is not None else (
+            pga["nominal_lognormal"])
+        if fit["median"] is not None:
+            who = "irregular arches" if fit is pga["lognormal"] else "the structure"
+            text += f" and under the records at a median PGA of {fit['median']:.3f} g ({who})"
+    if used == "rigid-blocks":
+        return text + (" by the rigid-block model, used because the two models disagree (the "
+                       "four-link model's numbers, beside them below, are not used).")
+    return text + " by the four-link model (the two models agree)."
 
 
 def _rigid_cell(row: dict, beyond: str) -> str:
@@ -642,9 +669,9 @@ def rigid_irregularity_text(results: dict) -> str:
             f"{study['settings']['friction']:g}, time step {study['settings']['time_step']:g} s"
             f" (coarse factor {study['settings']['coarse_factor']}). Of its "
             f"{undecided['of']} analyses {undecided['analyses']} were left undecided (and "
-            f"{undecided['nominal_analyses']} of the structure's own): counted neither way; "
-            f"where P_F has bounds the table gives both (undecided as survivals - as "
-            f"collapses). The figure above is the four-link model's.")
+            f"{undecided['nominal_analyses']} of the structure's own): neither collapses nor "
+            f"survivals; where P_F has bounds the table gives both (undecided as survivals - "
+            f"as collapses). The figure above is the four-link model's.")
 
 
 def irregularity_caption(results: dict, durations) -> str:
@@ -738,9 +765,10 @@ def rigid_record_text(results: dict) -> str:
            f"same draws)")
     return (f"With the rigid-block model (used on the first screen: the two models disagree "
             f"under pulses): {who} under the same records at the same stripes, both "
-            f"polarities. An undecided pair is counted neither way: the fits above are made "
-            f"with it as a survival, and the first screen gives the median with it as a "
-            f"collapse too where there is one. The NRML files and the figure are the "
+            f"polarities. An undecided pair is neither a collapse nor a survival: the fits "
+            f"(as every study's point estimate) count it as a survival, a lower bound of "
+            f"P_F, and where there is one the first screen also gives the median with it "
+            f"counted as a collapse, and the count. The NRML files and the figure are the "
             f"four-link model's.")
 
 
@@ -837,11 +865,11 @@ def command_text(results: dict) -> list[str]:
 
 
 __all__ = ["ASSUMPTIONS", "MECHANISM_QUANTITIES", "MODEL_NAMES", "RESTITUTION_WORDS",
-           "agreement_text", "check_words", "command_text", "difference_words", "domain_caption",
-           "domain_header", "domain_rows", "domain_text", "heading", "hinge_rows", "im_label",
-           "irregularity_caption", "irregularity_rows", "irregularity_text", "mechanism_rows",
-           "mechanisms_caption", "mechanisms_text", "model_text", "not_used_words",
-           "record_caption", "record_list_header", "record_list_rows", "record_rows",
-           "record_text", "reduced_text", "restitution_rows", "rigid_irregularity_text",
-           "rigid_record_text", "structure_caption", "structure_text", "summary_rows",
-           "undecided_words", "verdict_text"]
+           "agreement_text", "check_words", "collapse_text", "command_text", "difference_words",
+           "domain_caption", "domain_header", "domain_rows", "domain_text", "heading",
+           "hinge_rows", "im_label", "irregularity_caption", "irregularity_rows",
+           "irregularity_text", "mechanism_rows", "mechanisms_caption", "mechanisms_text",
+           "model_text", "not_used_words", "record_caption", "record_list_header",
+           "record_list_rows", "record_rows", "record_text", "reduced_text", "restitution_rows",
+           "rigid_irregularity_text", "rigid_record_text", "structure_caption", "structure_text",
+           "summary_rows", "undecided_words", "verdict_text"]
