@@ -674,6 +674,15 @@ def rigid_irregularity_text(results: dict) -> str:
             f"as collapses). The figure above is the four-link model's.")
 
 
+def _figure_model_text(results: dict, study: str) -> str:
+    """Which model a figure of the four-link studies draws, and where the rigid-block model's
+    numbers are when they are the ones used."""
+    if study not in (results.get("rigid_block_studies") or {}):
+        return f" {MODEL_NAMES['four-link'][:1].upper()}{MODEL_NAMES['four-link'][1:]}."
+    return (" Four-link model (not used on the first screen); the rigid-block model's study, "
+            "used there, is in the table below.")
+
+
 def irregularity_caption(results: dict, durations) -> str:
     """Caption of the fragility curves of the irregular arches."""
     irr = results["irregularity"]
@@ -684,7 +693,8 @@ def irregularity_caption(results: dict, durations) -> str:
               "fit (dashed) and a lognormal fit (grey); in blue the CDF of k~ by limit analysis "
               "and the structure's k; the black dash-dot line is the structure's own failure "
               "acceleration, where its step fragility (the paper's eq. 10) jumps from 0 to 1. "
-              "P_F > 0 left of it: irregular arches fail where the regular one would not.")
+              "P_F > 0 left of it: irregular arches fail where the regular one would not."
+            + _figure_model_text(results, "irregularity"))
 
 
 # ------------------------------------------------------------------------------ records
@@ -809,13 +819,15 @@ def record_caption(results: dict) -> str:
                 f"each stripe; dashed, the lognormal fit and its 90 % bootstrap band. "
                 + "; ".join(f"{im_label(im)}: median {number(e['nominal_lognormal']['median'], 3)}"
                             f" {e['unit']}, beta {number(e['record_to_record'], 3)}"
-                            for im, e in rec["ims"].items()) + ".")
+                            for im, e in rec["ims"].items()) + "."
+                + _figure_model_text(results, "records"))
     return (f"P(collapse | IM) against {first['records']} ground motions in both polarities: "
             f"black dots, the {first['analysed']} irregular arches; line, the lognormal fit and "
             f"(grey) its 90 % bootstrap band; blue squares and dashed line, the structure "
             f"itself. " + "; ".join(
                 f"{im_label(im)}: median {number(e['lognormal']['median'], 3)} {e['unit']}, "
-                f"beta {number(e['total'], 3)}" for im, e in rec["ims"].items()) + ".")
+                f"beta {number(e['total'], 3)}" for im, e in rec["ims"].items()) + "."
+            + _figure_model_text(results, "records"))
 
 
 # ------------------------------------------------------------------------------ the run
