@@ -42,6 +42,14 @@ def configure(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--sa-period", type=number, default=None, metavar="T",
                        help="also the fragility in Sa(T), the 5%%-damped spectral "
                             "acceleration at period T [s]")
+    options.add_site_options(parser)
+    code = parser.add_argument_group("the code check at the site (with --site or --code)")
+    code.add_argument("--knowledge-level", default=None, metavar="LC1|LC2|LC3",
+                      help="knowledge level of the structure: its confidence factor FC "
+                           "(Circolare 2019 §C8.5.4: LC1 1.35, LC2 1.20, LC3 1.00; default "
+                           "LC1)")
+    code.add_argument("--confidence-factor", type=number, default=None, metavar="FC",
+                      help="the confidence factor FC itself, in [1, 2]")
     parser.add_argument("--quick", action="store_true",
                         help="reduced sizes for a smoke test (under a minute), not an assessment")
     parser.add_argument("--resume", action="store_true",
@@ -62,16 +70,27 @@ def run(args: argparse.Namespace) -> int:
     settings = (AssessmentSettings.quick_settings(**changes) if args.quick
                 else AssessmentSettings(**changes))
     records = options.suite_from_args(args)
+    site = None
+    if args.site is not None or args.code is not None:
+        site = options.site_spec(args)
+    elif options.given(args, "knowledge_level", "confidence_factor", *sorted(
+            {n for names in options.CODE_OPTIONS.values() for n in names})):
+        raise ValueError("the site's options need --site FILE or --code (a site to check the "
+                         "structure at)")
     command = None
     if getattr(args, "argv", None) is not None:
         command = shlex.join(["archquake", *args.argv])
     result = assess(structure, records=records, out_dir=args.out,
                     progress=not args.no_progress, resume=args.resume, settings=settings,
-                    command=command)
+                    command=command, site=site)
     total = result.results["timings"]["total"]
     figures = sum(f.endswith(".png") for f in result.files)
     nrml = sum(f.endswith(".xml") for f in result.files)
     print(result.verdict)
+    if result.results.get("site"):
+        from ..report.assess.site import verdict_text
+
+        print(verdict_text(result.results["site"]))
     print(f"report written to {result.directory / 'report.html'} (also report.md, "
           f"results.json, {figures} figure{'s' if figures != 1 else ''}"
           + (f", {nrml} NRML file{'s' if nrml != 1 else ''}" if nrml else "")

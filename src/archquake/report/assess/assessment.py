@@ -292,6 +292,10 @@ def regenerate_command(out: Path, record: dict, settings: AssessmentSettings) ->
                       else str(value)]
     if settings.quick:
         words.append("--quick")
+    if "site" in record:
+        from .site import site_words
+
+        words += site_words(record["site"])
     words += ["--out", str(out.resolve()), "--resume"]
     base = (AssessmentSettings.quick_settings if settings.quick else AssessmentSettings)(
         epsilon=settings.epsilon, seed=settings.seed, restitution=settings.restitution,
@@ -308,8 +312,8 @@ def regenerate_command(out: Path, record: dict, settings: AssessmentSettings) ->
 def assess(structure=None, *, records=None, suite: str | None = None,
            epsilon: float | None = None, sa_period: float | None = None, quick: bool = False,
            out_dir, progress: bool = True, resume: bool = False,
-           settings: AssessmentSettings | None = None, command: str | None = None
-           ) -> Assessment:
+           settings: AssessmentSettings | None = None, command: str | None = None,
+           site=None) -> Assessment:
     """Assess a structure: the paper's method and both models applied to it, against real
     records, in a report (module docstring).
 
@@ -341,6 +345,12 @@ def assess(structure=None, *, records=None, suite: str | None = None,
         Every setting (instead of ``epsilon``, ``sa_period`` and ``quick``).
     command : str, optional
         The command line that ran the assessment (recorded in the report).
+    site : SiteSpec, optional
+        A site (:class:`archquake.site.spec.SiteSpec`): the report then adds the code check
+        of the collapse mechanism there (NTC 2018 §8.7.1, Circolare 2019 §C8.7.1), the code's
+        dynamic route on the assessment's records with the trusted model, and the annual risk
+        of collapse from the site's hazard curve (:mod:`archquake.report.assess.site`); the
+        first screen gains the verdict.
 
     Returns
     -------
@@ -383,8 +393,15 @@ def assess(structure=None, *, records=None, suite: str | None = None,
     t0 = time.perf_counter()
     record_suite, suite_note = choose_suite(records, suite, settings)
     timings["records read"] = time.perf_counter() - t0
+    from ...site.spec import SiteSpec
+
+    if site is not None and not isinstance(site, SiteSpec):
+        raise ValueError(f"site must be a SiteSpec (archquake.site.spec), got "
+                         f"{type(site).__name__}")
     record = {"archquake": __version__, "structure": structure.to_dict(),
               "settings": settings.to_dict(), "suite": record_suite.to_dict()}
+    if site is not None:
+        record["site"] = site.to_dict()
     prepare_directory(out, record, resume)
     regenerate, note = regenerate_command(out, record, settings)
     results = {
@@ -392,10 +409,17 @@ def assess(structure=None, *, records=None, suite: str | None = None,
         "settings": settings.to_dict(),
         "command": {"given": command, "regenerate": regenerate, "note": note},
     }
-    steps = Steps(9 + 2 * len(settings.intensity_measures()), progress=progress, desc="assess")
+    steps = Steps(9 + 2 * len(settings.intensity_measures()) + (site is not None),
+                  progress=progress, desc="assess")
     try:
         computed = _compute(structure, settings, record_suite, suite_note, out, resume,
                             results, steps)
+        if site is not None and results["limit"] is not None:
+            from .site import site_part
+
+            with steps("code check at the site"):
+                results["site"], computed.site_check = site_part(
+                    structure, site, record_suite, results, progress=False)
         with steps("figures"):
             figures = _figures(out, structure, results, computed)
         timings.update(steps.timings)
@@ -465,6 +489,7 @@ class _Computed:
     irregularity: object = None
     records: dict | None = None
     rigid_block_irregularity: object = None
+    site_check: object = None
 
 
 def _compute(structure, settings: AssessmentSettings, suite, suite_note: str, out: Path,
@@ -811,6 +836,12 @@ def _figures(out: Path, structure, results: dict, computed: _Computed) -> dict:
         figures["records"] = _figure(out, "fig5_record_fragility.png",
                                      draw.record_figure(computed.records), "Fig. 5",
                                      text.record_caption(results))
+    if computed.site_check is not None:
+        from .site import caption
+
+        figures["site"] = _figure(out, "fig6_capacity_curve.png",
+                                  draw.site_figure(computed.site_check), "Fig. 6",
+                                  caption(results["site"]))
     return figures
 
 
@@ -845,6 +876,10 @@ def sections(results: dict, figures: dict) -> list[Section]:
     note = (results.get("records") or {}).get("note")
     if note:
         summary.append(Paragraph(note, "note"))
+    if results.get("site"):
+        from .site import verdict_text as site_verdict
+
+        summary.insert(2 if warning else 1, Paragraph(site_verdict(results["site"]), "verdict"))
     if results["settings"]["quick"]:
         summary.append(Paragraph("QUICK RUN: reduced sizes for a smoke test, not an "
                                  "assessment.", "note"))
@@ -898,8 +933,30 @@ def sections(results: dict, figures: dict) -> list[Section]:
                        "median, the structure", "record-to-record beta", "geometric beta",
                        "undecided analyses"], text.record_rows(results, rigid=True))]
     out.append(Section("5. Record-based fragility", rec))
+    if results.get("site"):
+        out.append(Section("6. Is it safe here? The code check at the site",
+                           _site_blocks(results, figures)))
     out.append(Section("Run, versions and settings", _run_blocks(results)))
     return out
+
+
+def _site_blocks(results: dict, figures: dict) -> list:
+    from . import site as words
+
+    site = results["site"]
+    blocks = [Paragraph(words.check_text(site)),
+              Table(["limit state", "route", "mechanism", "capacity", "demand",
+                     "capacity / demand", "verdict", "holds up to a_g"],
+                    words.check_rows(site))]
+    if "site" in figures:
+        blocks.append(figures["site"])
+    blocks.append(Paragraph(words.dynamic_text(site)))
+    rows = words.dynamic_rows(site)
+    if rows:
+        blocks.append(Table(["model", "record", "factor", "outcome", "peak rotation [rad]"],
+                            rows))
+    blocks.append(Paragraph(words.risk_text(site)))
+    return blocks
 
 
 def _run_blocks(results: dict) -> list:

@@ -290,3 +290,24 @@ def records_figure(names, pga_g, first_pga_g, k: float):
 
 __all__ = ["domain_figure", "irregularity_figure", "mechanisms_figure", "record_figure",
            "records_figure", "structure_figure", "structure_stripes_axes"]
+
+
+def site_figure(check):
+    """The code check at the site: the capacity curve of the mechanism with the displacement
+    capacities and demands (:func:`archquake.plotting.plot_capacity_curve`).
+
+    Parameters
+    ----------
+    check : LocalMechanismCheck
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib.pyplot as plt
+
+    from ...plotting import plot_capacity_curve
+
+    fig, ax = plt.subplots(figsize=(8.0, 5.0), constrained_layout=True)
+    plot_capacity_curve(check, ax)
+    return fig

@@ -15,6 +15,11 @@ from __future__ import annotations
 import math
 from typing import Any
 
+DYNAMIC_COUNTS = (7, 6, 5, 4, 3)
+"""Records of the dynamic route, in the order tried: seven (the mean effect, NTC 2018
+§7.3.5), else as many as the assessment's suite holds, down to three (the most unfavourable
+effect)."""
+
 RISK_YEARS = 50.0
 """The span of the probability of collapse [yr]: the nominal life of ordinary structures, NTC
 2018 §2.4.1."""
@@ -63,10 +68,18 @@ def _dynamic(structure, site, actions, suite, progress: bool) -> dict:
 
     action = next((a for a in actions if a.limit_state == "SLV"), actions[0])
     rule = "ec8" if site.code == "ec8" else "ntc2018"
-    try:
-        selection = select_compatible_records(suite, action.spectrum, rule=rule)
-    except ValueError as exc:
-        return {"skipped": f"no selection of the assessment's records: {exc}"}
+    selection, error = None, ""
+    for count in DYNAMIC_COUNTS:  # seven records, else as many as the suite has (>= 3)
+        try:
+            selection = select_compatible_records(suite, action.spectrum, rule=rule,
+                                                  count=count)
+            break
+        except ValueError as exc:
+            error = str(exc)
+            if "count must be at most" not in error:
+                break
+    if selection is None:
+        return {"skipped": f"no selection of the assessment's records: {error}"}
     if not selection.compatible:
         return {"skipped": "the assessment's records hold no subset compatible with the "
                            f"site's {action.limit_state} spectrum: {selection.summary()}",
@@ -142,7 +155,13 @@ def verdict_text(site: dict) -> str:
     risk = site["risk"]
     if "annual_frequency" in risk:
         out += (f" Annual frequency of collapse {_sci(risk['annual_frequency'])} 1/yr, "
-                f"probability {100 * risk['probability']:.2f} % in {risk['years']:g} years.")
+                f"probability {100 * risk['probability']:.2f} % in {risk['years']:g} years "
+                f"(the {risk['model']} model's record fragility in PGA")
+        tail = risk.get("tail_share")
+        if tail is not None and math.isfinite(tail) and tail > 0.1:
+            out += (f"; {100 * tail:.0f} % of it from beyond the hazard curve's last level, "
+                    "extrapolated")
+        out += ")."
     return out
 
 
@@ -230,3 +249,26 @@ def risk_text(site: dict) -> str:
                  "level (2,475 years on the national grid), where the curve is extrapolated "
                  "as a power law: the figure rests on that extrapolation.")
     return text
+
+
+_FIELD_OPTIONS = {"grid": "--site", "spectrum_type": "--type"}
+
+
+def site_words(site: dict) -> list[str]:
+    """The command line's options of a site (:meth:`archquake.site.spec.SiteSpec.to_dict`),
+    for the command that regenerates the report."""
+    words = []
+    for name, value in site.items():
+        words += [_FIELD_OPTIONS.get(name, f"--{name.replace('_', '-')}"),
+                  f"{value:g}" if isinstance(value, float) else str(value)]
+    return words
+
+
+def caption(site: dict) -> str:
+    """The caption of the capacity-curve figure."""
+    return ("The capacity curve of the collapse mechanism at the site (Circolare 2019 "
+            "§C8.7.1.2.2): spectral acceleration a* against spectral displacement d* of the "
+            "equivalent oscillator, by virtual work on the mechanism's exact kinematics, to "
+            "d0* where gravity stops resisting; open markers: the displacement capacities d_u* "
+            "of SLV and SLC, filled markers on the axis: the demands SDe(T_s); dashed: the "
+            "linear check's demand a_g S / q beside a0*, where the curve starts.")
