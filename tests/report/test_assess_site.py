@@ -7,6 +7,7 @@ import math
 import shlex
 
 import pytest
+from test_assess import write_records  # noqa: E402  (tests/report is on the path)
 
 from archquake.cli import main
 from archquake.limit_analysis import both_directions
@@ -16,8 +17,6 @@ from archquake.site.fragility_models import LognormalCollapseFragility
 from archquake.site.local_mechanism import check_local_mechanism
 from archquake.site.risk import risk
 from archquake.site.spec import SiteSpec
-
-from test_assess import write_records  # noqa: E402  (tests/report is on the path)
 
 GRID = """TR,ag,F0,Tc*
 30,0.079,2.39,0.27
