@@ -118,3 +118,12 @@ def test_site_options_without_a_site_are_refused(argv, option, capsys, tmp_path,
     monkeypatch.chdir(tmp_path)
     assert main(argv) == 2
     assert option in capsys.readouterr().err
+
+
+def test_assess_refuses_a_passive_fill_before_writing_anything(tmp_path, capsys):
+    # both dynamic models run in an assessment, and neither carries the passive reaction
+    out = tmp_path / "report"
+    assert main(["assess", "--quick", "--fill-cover", "0.7", "--fill-passive", "32,0.3",
+                 "--out", str(out), "--no-progress"]) == 2
+    assert "--fill-passive" in capsys.readouterr().err
+    assert not out.exists() or not any(out.iterdir())

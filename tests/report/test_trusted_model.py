@@ -234,3 +234,30 @@ def test_undecided_rigid_block_analyses_stay_visible_on_the_first_screen(tmp_pat
             assert (f"{entry['undecided']['analyses']} of {entry['undecided']['of']} "
                     f"rigid-block analyses undecided") in row
     assert screen.lstrip().startswith("WARNING")
+
+
+def test_the_nrml_files_are_the_trusted_models(disagreeing):
+    # fragility_<im>.xml is the rigid blocks' fit (what a risk study reads), the four-link
+    # model's fit kept beside it as fragility_<im>_four_link.xml; where the rigid blocks'
+    # stripes admit no fit there is no fragility_<im>.xml and the risk's reader refuses the
+    # folder rather than read the four-link model's file in its place
+    from archquake.site.fragility_models import read_fragility_nrml, read_fragility_study
+
+    r = disagreeing["results"]
+    out = disagreeing["out"]
+    rigid = r["rigid_block_studies"]["records"]["ims"]["pga"]
+    four = r["records"]["ims"]["pga"]
+    assert four["nrml"] == "fragility_pga_four_link.xml"
+    aside = read_fragility_nrml(out / four["nrml"], function_id="masonry-arch")
+    assert aside.median == pytest.approx(four["lognormal"]["median"], rel=1e-4)
+    if rigid["lognormal"]["median"] is None:
+        assert rigid["nrml"] is None and not (out / "fragility_pga.xml").exists()
+        with pytest.raises(ValueError, match="four-link model's"):
+            read_fragility_study(out, im="PGA")
+        return
+    assert rigid["nrml"] == "fragility_pga.xml"
+    read = read_fragility_nrml(out / rigid["nrml"], function_id="masonry-arch")
+    assert read.median == pytest.approx(rigid["lognormal"]["median"], rel=1e-4)
+    study = read_fragility_study(out, im="PGA", function_id="masonry-arch").fragility
+    assert study.median == pytest.approx(read.median, rel=1e-12)
+    assert {"fragility_pga.xml", "fragility_pga_four_link.xml"} <= set(r["files"])

@@ -450,7 +450,8 @@ def read_fragility_study(directory: str | os.PathLike, *, fit: str = "lognormal"
         ``archquake record-fragility --out DIR`` (its ``summary.json``: the lognormal fit of
         the irregular arches, the stripes' counts and their upper bounds with undecided
         analyses), or an ``archquake assess --out DIR`` folder (its NRML files
-        ``fragility_<im>.xml``, :func:`read_fragility_nrml`).
+        ``fragility_<im>.xml``, :func:`read_fragility_nrml`: the model the report trusts; the
+        four-link model's ``fragility_<im>_four_link.xml`` beside them are not read).
     fit : {"lognormal", "empirical"}
         For a record fragility study: its lognormal fit, or the stripes' probabilities
         (:class:`DiscreteCollapseFragility`). With undecided analyses the upper bound is the
@@ -488,6 +489,14 @@ def read_fragility_study(directory: str | os.PathLike, *, fit: str = "lognormal"
                              f"amplitude of a pulse of each duration, which a site's hazard "
                              f"curve does not describe; run archquake record-fragility")
     files = sorted(directory.glob("fragility_*.xml"))
+    # an assessment that trusts the rigid blocks keeps the four-link model's files aside
+    aside = [f.name for f in files if f.stem.endswith("_four_link")]
+    files = [f for f in files if not f.stem.endswith("_four_link")]
+    if aside and not files:
+        raise ValueError(f"{directory}: the assessment trusts the rigid-block model, whose "
+                         f"record study admits no lognormal fit, so it wrote no NRML file; "
+                         f"{', '.join(aside)} is the four-link model's, which the assessment "
+                         f"does not trust there (give that file itself to use it anyway)")
     if files:
         if fit != "lognormal":
             raise ValueError(f"{directory}: the NRML files of an assessment hold lognormal "

@@ -393,8 +393,12 @@ def assess(structure=None, *, records=None, suite: str | None = None,
     t0 = time.perf_counter()
     record_suite, suite_note = choose_suite(records, suite, settings)
     timings["records read"] = time.perf_counter() - t0
+    from ...geometry.fill import check_dynamic_fill
     from ...site.spec import SiteSpec
 
+    fill = getattr(structure, "fill", None)
+    if fill is not None and fill.has_passive:  # before anything is written: both models run
+        check_dynamic_fill(structure)
     if site is not None and not isinstance(site, SiteSpec):
         raise ValueError(f"site must be a SiteSpec (archquake.site.spec), got "
                          f"{type(site).__name__}")
@@ -605,19 +609,38 @@ def _rigid_block_studies(structure, settings, suite, out: Path, resume: bool, st
                     stripes = record_parts.structure_stripes(
                         model, suite, im, entry["levels"], bootstrap=settings.bootstrap,
                         seed=settings.seed)
-                    entries[im] = record_parts.structure_stripes_summary(
-                        stripes, None, "the NRML file is the four-link model's")
+                    _four_link_nrml_aside(out, results["records"]["ims"][im])
+                    nrml, why = record_parts.export_structure_nrml(stripes, out)
+                    entries[im] = record_parts.structure_stripes_summary(stripes, nrml, why)
                 else:
                     directory = out / (RECORDS_DIR.format(im=record_parts.file_stem(im))
                                        + RIGID_BLOCKS_SUFFIX)
                     result = record_parts.record_study(
                         structure, suite, im, entry["levels"], settings, directory, resume,
                         model="rigid-blocks", pool=pool)
-                    entries[im] = record_parts.record_summary(
-                        result, None, "the NRML file is the four-link model's")
+                    _four_link_nrml_aside(out, results["records"]["ims"][im])
+                    nrml, why = record_parts.export_nrml(result, out, im)
+                    entries[im] = record_parts.record_summary(result, nrml, why)
         if entries:
             out_studies["records"] = {"ims": entries}
     return out_studies
+
+
+FOUR_LINK_NRML_SUFFIX = "_four_link"
+"""Added to the stem of the four-link model's NRML file where the rigid blocks are the model
+the report trusts: ``fragility_<im>.xml`` is then the rigid blocks' (the file a risk study
+reads), ``fragility_<im>_four_link.xml`` the four-link model's, kept beside it."""
+
+
+def _four_link_nrml_aside(out: Path, entry: dict) -> None:
+    """Move the four-link model's NRML file of a record study aside (renamed with
+    :data:`FOUR_LINK_NRML_SUFFIX`), so that the trusted model's takes its name."""
+    name = entry.get("nrml")
+    if not name:
+        return
+    aside = f"{Path(name).stem}{FOUR_LINK_NRML_SUFFIX}.xml"
+    (out / name).replace(out / aside)
+    entry["nrml"] = aside
 
 
 def _irregularity(structure, settings, model, out: Path, resume: bool, results: dict):
@@ -1004,8 +1027,9 @@ def write_report(directory, results: dict, figures: dict) -> tuple[str, ...]:
     out = Path(directory)
     results["figures"] = {key: {"file": f.file, "label": f.label, "caption": f.caption}
                           for key, f in figures.items()}
-    nrml = [e["nrml"] for e in (results.get("records") or {}).get("ims", {}).values()
-            if e.get("nrml")]
+    rigid = ((results.get("rigid_block_studies") or {}).get("records") or {}).get("ims", {})
+    nrml = [e["nrml"] for e in [*(results.get("records") or {}).get("ims", {}).values(),
+                                *rigid.values()] if e.get("nrml")]
     results["files"] = ["report.html", "report.md", "results.json",
                         *(f.file for f in figures.values()), *nrml]
     write_json(out / "results.json", jsonable(results))

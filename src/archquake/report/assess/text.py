@@ -778,7 +778,9 @@ def rigid_record_text(results: dict) -> str:
             f"polarities. An undecided pair is neither a collapse nor a survival: the fits "
             f"(as every study's point estimate) count it as a survival, a lower bound of "
             f"P_F, and where there is one the first screen also gives the median with it "
-            f"counted as a collapse, and the count. The NRML files and the figure are the "
+            f"counted as a collapse, and the count. The NRML files fragility_<im>.xml are "
+            f"the rigid-block model's (the fragility a risk study reads), the four-link "
+            f"model's beside them as fragility_<im>_four_link.xml; the figure is the "
             f"four-link model's.")
 
 
