@@ -9,12 +9,12 @@ The curve
     held (the curve says nothing there); beyond the last level a power-law tail continues the
     slope of the last two levels (:meth:`HazardCurve.frequency`).
 Readers
-    :func:`read_openquake_hazard_curve` (the engine's ``hazard_curve-<kind>-<IMT>_<id>.csv``:
-    probabilities of exceedance in the investigation time, converted to annual frequencies
-    under Poisson occurrence, :func:`annual_frequency`), :func:`read_hazard_csv` (two columns,
-    IM [g] and annual frequency [1/yr]), :func:`ntc_hazard_curve` (the NTC 2018 national-grid
-    parameters of a site at its nine return periods: :math:`\lambda = 1/T_R` at the
-    spectrum's ordinate, :func:`read_ntc_hazard_curve` from the file of
+    :func:`read_openquake_hazard_curve` (the engine's ``hazard_curve-<kind>-<IMT>_<id>.csv``
+    [1]_: probabilities of exceedance in the investigation time, converted to annual
+    frequencies under Poisson occurrence, :func:`annual_frequency`, as OpenQuake does [2]_),
+    :func:`read_hazard_csv` (two columns, IM [g] and annual frequency [1/yr]),
+    :func:`ntc_hazard_curve` (the NTC 2018 national-grid parameters of a site at its nine
+    return periods [3]_: :math:`\lambda = 1/T_R` at the spectrum's ordinate, :func:`read_ntc_hazard_curve` from the file of
     :func:`archquake.site.spectra.read_ntc_site`), and :func:`read_hazard_curve`, which
     recognises each from the content.
 
