@@ -14,7 +14,8 @@ Readers
     frequencies under Poisson occurrence, :func:`annual_frequency`, as OpenQuake does [2]_),
     :func:`read_hazard_csv` (two columns, IM [g] and annual frequency [1/yr]),
     :func:`ntc_hazard_curve` (the NTC 2018 national-grid parameters of a site at its nine
-    return periods [3]_: :math:`\lambda = 1/T_R` at the spectrum's ordinate, :func:`read_ntc_hazard_curve` from the file of
+    return periods [3]_: :math:`\lambda = 1/T_R` at the spectrum's ordinate,
+    :func:`read_ntc_hazard_curve` from the file of
     :func:`archquake.site.spectra.read_ntc_site`), and :func:`read_hazard_curve`, which
     recognises each from the content.
 
