@@ -8,7 +8,8 @@ The functions
 Readers
     :func:`read_fragility_nrml`: an OpenQuake NRML 0.5 fragility model [1]_
     (``format="discrete"``, ``imls`` and ``poes`` per limit state; or
-    ``format="continuous" shape="logncdf"``, whose ``mean`` and ``stddev`` are those of the intensity in linear space, converted to
+    ``format="continuous" shape="logncdf"``, whose ``mean`` and ``stddev`` are those of the
+    intensity in linear space, converted to
     :math:`\theta = m/\sqrt{1 + s^2/m^2}` and :math:`\beta = \sqrt{\ln(1 + s^2/m^2)}`, the
     inverse of :func:`archquake.results_io.lognormal_moments`).
     :func:`read_fragility_study`: a study folder of ``archquake record-fragility --out DIR``
