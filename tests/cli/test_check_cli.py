@@ -8,18 +8,9 @@ import math
 import pytest
 
 from archquake.cli import main
+from site_reference import GRID_TABLE
 
-SITE = """TR,ag,F0,Tc*
-30,0.060,2.48,0.27
-50,0.078,2.47,0.28
-72,0.094,2.46,0.29
-101,0.110,2.44,0.30
-140,0.127,2.43,0.31
-201,0.148,2.42,0.32
-475,0.212,2.40,0.34
-975,0.270,2.41,0.35
-2475,0.360,2.44,0.37
-"""
+SITE = GRID_TABLE
 
 NTC_C = ["check", "--code", "ntc2018", "--ag", "0.25", "--f0", "2.4", "--tc-star", "0.3",
          "--soil", "C"]

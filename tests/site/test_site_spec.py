@@ -6,18 +6,9 @@ import pytest
 from archquake.site.local_mechanism import SiteAction
 from archquake.site.spec import SiteSpec
 from archquake.site.spectra import ntc2018_spectrum, read_ntc_site
+from site_reference import GRID_TABLE
 
-GRID = """TR,ag,F0,Tc*
-30,0.060,2.48,0.27
-50,0.078,2.47,0.28
-72,0.094,2.46,0.29
-101,0.110,2.44,0.30
-140,0.127,2.43,0.31
-201,0.148,2.42,0.32
-475,0.212,2.40,0.34
-975,0.270,2.41,0.35
-2475,0.360,2.44,0.37
-"""
+GRID = GRID_TABLE
 
 
 def test_one_spectrum_is_the_slv_action():
