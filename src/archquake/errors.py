@@ -16,6 +16,33 @@ class StudyError(RuntimeError):
     """
 
 
+def interrupt_in(exc: BaseException) -> KeyboardInterrupt | None:
+    """The Ctrl-C (or SIGTERM, :mod:`archquake.cli._signals`) behind ``exc``, if any.
+
+    A :class:`KeyboardInterrupt` raised while a numba-compiled function runs surfaces as a
+    ``SystemError`` ("CPUDispatcher(...) returned a result with an exception set") whose cause
+    is the interrupt, and a study wraps what an arch raised in a :class:`StudyError`: the
+    interrupt is found along the chain of causes and contexts.
+
+    Parameters
+    ----------
+    exc : BaseException
+        What was raised.
+
+    Returns
+    -------
+    KeyboardInterrupt or None
+        The first interrupt of the chain (``exc`` itself if it is one).
+    """
+    seen = set()
+    while exc is not None and id(exc) not in seen:
+        if isinstance(exc, KeyboardInterrupt):
+            return exc
+        seen.add(id(exc))
+        exc = exc.__cause__ or exc.__context__
+    return None
+
+
 class CannotStandError(ValueError):
     """The arch cannot stand under its own weight: no line of thrust fits inside it without a
     horizontal force (its largest load multiplier is negative, or none exists)."""

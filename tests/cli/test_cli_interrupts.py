@@ -112,3 +112,60 @@ def test_sigterm_is_turned_into_an_interrupt_only_around_worker_processes(monkey
     # long compiled loop to return); a study on workers stops them cleanly
     assert seen == [default, _signals.raise_terminated, default]
     assert signal.getsignal(signal.SIGTERM) == default
+
+
+def _interrupt_from_compiled_code():
+    """What Ctrl-C during a numba-compiled call raises: CPython's ``SystemError`` ("returned a
+    result with an exception set") whose cause is the KeyboardInterrupt."""
+    try:
+        raise KeyboardInterrupt
+    except KeyboardInterrupt as interrupt:
+        raise SystemError("CPUDispatcher(<function outcomes>) returned a result with an "
+                          "exception set") from interrupt
+
+
+@pytest.mark.parametrize("stop_at", [1, 3])
+def test_ctrl_c_inside_compiled_code_of_a_record_study_is_an_interrupt(tmp_path, capsys,
+                                                                      monkeypatch, stop_at):
+    """Ctrl-C while an arch of a record study runs in compiled code is "interrupted", exit 130
+    (128 + SIGINT = 128 + 2), not "irregular arch N stopped the study: SystemError"; the
+    study then resumes to the table of an uninterrupted run."""
+    from archquake.studies import record_fragility
+
+    data = Path(__file__).parents[1] / "data" / "decaying_sine.csv"
+    argv = ["record-fragility", "--records", str(data), "--levels", "0.3:0.9:0.3",
+            "--samples", "3", "--seed", "5", "--no-progress", "--json"]
+    real, calls = record_fragility.record_outcomes, []
+
+    def interrupted_at(*args, **kwargs):
+        calls.append(1)
+        if len(calls) == stop_at + 1:  # the nominal arch is call 1
+            _interrupt_from_compiled_code()
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(record_fragility, "record_outcomes", interrupted_at)
+    out = tmp_path / "study"
+    assert main([*argv, "--out", str(out)]) == 130
+    err = capsys.readouterr().err
+    assert err.startswith("archquake: interrupted (SIGINT)") and "--resume" in err
+    assert "stopped the study" not in err and "SystemError" not in err
+    monkeypatch.setattr(record_fragility, "record_outcomes", real)
+    assert main([*argv, "--out", str(out), "--resume"]) == 0
+    assert main([*argv, "--out", str(tmp_path / "whole")]) == 0
+    capsys.readouterr()
+    pd.testing.assert_frame_equal(load_study(out).table, load_study(tmp_path / "whole").table)
+
+
+def test_ctrl_c_inside_compiled_code_of_a_pulse_study_is_an_interrupt(tmp_path, capsys,
+                                                                     monkeypatch):
+    from archquake.studies import fragility
+
+    def interrupted(*args, **kwargs):
+        _interrupt_from_compiled_code()
+
+    monkeypatch.setattr(fragility, "model_outcomes", interrupted)
+    assert main(["fragility", "--samples", "2", "--durations", "0.4", "--amplitudes",
+                 "0.3:0.5:0.1", "--limit-samples", "2", "--no-progress",
+                 "--out", str(tmp_path / "s")]) == 130
+    err = capsys.readouterr().err
+    assert err.startswith("archquake: interrupted (SIGINT)") and "stopped the study" not in err

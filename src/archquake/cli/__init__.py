@@ -25,7 +25,7 @@ import warnings
 from typing import NamedTuple
 
 from .._version import __version__
-from ..errors import StudyError
+from ..errors import StudyError, interrupt_in
 from . import options
 
 
@@ -206,7 +206,13 @@ def run_command(module, args: argparse.Namespace) -> int:
             return int(module.run(args) or 0)
     except KeyboardInterrupt as exc:  # Ctrl-C or SIGTERM: stop without a traceback
         return interrupted(exc, args)
-    except (ValueError, StudyError) as exc:
+    except (ValueError, StudyError, SystemError) as exc:
+        # Ctrl-C inside a compiled call surfaces as a SystemError caused by the interrupt
+        interrupt = interrupt_in(exc)
+        if interrupt is not None:
+            return interrupted(interrupt, args)
+        if isinstance(exc, SystemError):
+            raise
         print(f"archquake: error: {options.option_message(str(exc))}", file=sys.stderr)
         return 2
     except OSError as exc:  # a file or directory given on the command line cannot be used

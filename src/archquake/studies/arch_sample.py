@@ -482,11 +482,17 @@ def study_error(label: str, exc: BaseException):
 
     Returns
     -------
-    archquake.errors.StudyError
-        ``"<label> stopped the study: <type>: <message>"`` (raise it ``from exc``).
+    archquake.errors.StudyError or KeyboardInterrupt
+        ``"<label> stopped the study: <type>: <message>"`` (raise it ``from exc``); the
+        interrupt itself when ``exc`` is Ctrl-C surfacing from compiled code as a
+        ``SystemError`` (:func:`archquake.errors.interrupt_in`): the study is interrupted,
+        not stopped by the arch.
     """
-    from ..errors import StudyError
+    from ..errors import StudyError, interrupt_in
 
+    interrupt = interrupt_in(exc)
+    if interrupt is not None:
+        return interrupt
     return StudyError(f"{label} stopped the study: {type(exc).__name__}: {exc}")
 
 
