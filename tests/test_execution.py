@@ -300,10 +300,11 @@ def test_existing_directory_needs_resume_and_the_same_study(tmp_path):
     with pytest.raises(ValueError, match="seed differs"):
         run_study(toy_tasks.random_task, StudyPlan(plan.settings, 2, 4, 2), tmp_path,
                   backend="serial", resume=True)
-    with pytest.raises(ValueError, match="chunk_size differs"):
+    with pytest.raises(ValueError, match=r"items per chunk \(chunk_size: .*\) differs: the "
+                                         r"directory has 2, this study has 1"):
         run_study(toy_tasks.random_task, StudyPlan(plan.settings, 1, 4, 1), tmp_path,
                   backend="serial", resume=True)
-    with pytest.raises(ValueError, match="task differs"):
+    with pytest.raises(ValueError, match=r"kind of study \(task\) differs"):
         run_study(toy_tasks.busy_task, plan, tmp_path, backend="serial", resume=True)
     other = tmp_path / "other"
     other.mkdir()

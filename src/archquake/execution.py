@@ -797,13 +797,33 @@ def _load_chunk(out_dir: Path, chunk: Chunk) -> tuple[dict[str, np.ndarray], flo
     return columns, seconds
 
 
+PLAN_WORDS = {"task": "the kind of study (task)", "seed": "the seed",
+              "n_items": "the number of items the study analyses (n_items: its arches)",
+              "chunk_size": "the items per chunk (chunk_size: the model's default, or the one "
+                            "given to the study)",
+              "archquake_version": "the version of archquake"}
+"""What a study's record holds beside its settings, in words (:func:`_difference`)."""
+
+
 def _difference(stored: Mapping, expected: Mapping) -> str | None:
-    """Description of the first recorded setting that differs, or None."""
-    for key in ("task", "seed", "n_items", "chunk_size", "archquake_version"):
+    """Description of the first recorded setting that differs, or None: the kind of study,
+    its settings by name (``setting 'sample_size' differs``, which the command line says as
+    its option), then what the study derives from them (:data:`PLAN_WORDS`), in words."""
+    if stored.get("task") != expected["task"]:
+        return (f"{PLAN_WORDS['task']} differs: the directory has {stored.get('task')!r}, this "
+                f"study is {expected['task']!r}")
+    difference = _settings_difference(stored.get("settings", {}), expected["settings"])
+    if difference is not None:
+        return difference
+    for key in ("seed", "n_items", "chunk_size", "archquake_version"):
         if stored.get(key) != expected[key]:
-            return (f"{key} differs: the directory has {stored.get(key)!r}, this study has "
-                    f"{expected[key]!r}")
-    old, new = stored.get("settings", {}), expected["settings"]
+            return (f"{PLAN_WORDS[key]} differs: the directory has {stored.get(key)!r}, this "
+                    f"study has {expected[key]!r}")
+    return None
+
+
+def _settings_difference(old: Mapping, new: Mapping) -> str | None:
+    """The first setting by name that ``new`` lacks, adds or changes, or None."""
     for key in sorted(set(old) | set(new)):
         if key not in old:
             return f"setting {key!r} is new (the directory has no such setting)"

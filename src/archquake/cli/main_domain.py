@@ -34,8 +34,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.description = DESCRIPTION
     options.add_arch_options(parser)
     options.add_model_options(parser)
-    options.add_restitution_option(parser)
-    options.add_rigid_block_options(parser)
+    options.add_restitution_option(parser, of_a_model=True)
+    options.add_rigid_block_options(parser, of_a_model=True)
     options.add_workers_option(parser, help="local worker processes of the rigid-block model, "
                                             "one duration at a time (default: this process)")
     parser.add_argument("--durations", default=range_text(DOMAIN_DURATIONS),

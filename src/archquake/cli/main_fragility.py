@@ -46,8 +46,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
                              f"{MAX_GRID_POINTS}, and 2 x samples x durations x amplitudes at "
                              f"most {MAX_STUDY_ANALYSES} analyses (default: %(default)s)")
     options.add_model_options(parser)
-    options.add_restitution_option(parser)
-    options.add_rigid_block_options(parser)
+    options.add_restitution_option(parser, of_a_model=True)
+    options.add_rigid_block_options(parser, of_a_model=True)
     parser.add_argument("--limit-samples", type=int, default=LIMIT_SAMPLE_SIZE, metavar="S",
                         help=f"number s of arches of the limit-analysis CDF of k~, at most "
                              f"{MAX_LIMIT_SAMPLES} (default: %(default)s)")

@@ -47,8 +47,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     options.add_nominal_arch_options(parser)
     options.add_samples_option(parser)
     options.add_model_options(parser)
-    options.add_restitution_option(parser)
-    options.add_rigid_block_options(parser)
+    options.add_restitution_option(parser, of_a_model=True)
+    options.add_rigid_block_options(parser, of_a_model=True)
     add_record_options(parser)
     options.add_study_output_options(parser)
 

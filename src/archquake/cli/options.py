@@ -130,11 +130,33 @@ def option_message(message: str) -> str:
     '--samples must be an integer in [1, 100000], got 0'
     >>> option_message("durations x amplitudes = 2 x 3 = 6 analyses")
     'durations x amplitudes = 2 x 3 = 6 analyses'
+    >>> option_message("cannot resume: setting 'sample_size' differs")
+    "cannot resume: --samples (setting 'sample_size') differs"
     """
+    message = _SETTING.sub(_setting_option, message)
     match = _NAMED.match(message)
     if match is None or match.group(1) not in OPTION_NAMES:
         return message
     return OPTION_NAMES[match.group(1)] + message[match.end(1):]
+
+
+SETTING_OPTIONS = {
+    **OPTION_NAMES,
+    "model": "--model", "search": "--search", "stride": "--stride",
+    "nominal": "the arch (its geometry options)",
+    "suite": "the records (--records or --suite)",
+    "im_unit": "the unit of --im",
+    "motion": "the pulse shape",
+}
+"""The option (or the words) of each setting a study records, for a refused resume
+(``setting 'sample_size' differs`` is said ``--samples differs``)."""
+
+_SETTING = re.compile(r"\bsetting '([a-z][a-z0-9_]*)'")
+
+
+def _setting_option(match: re.Match) -> str:
+    name = SETTING_OPTIONS.get(match.group(1))
+    return match.group(0) if name is None else f"{name} (setting {match.group(1)!r})"
 
 
 def given(args: argparse.Namespace, *names: str) -> list[str]:
@@ -376,12 +398,17 @@ RESTITUTION_HELP = (
 """The restitution models, as the help of every ``--restitution`` option lists them."""
 
 
-def add_restitution_option(parser: argparse.ArgumentParser) -> None:
-    """``--restitution``: the restitution model of the four-link model."""
+def add_restitution_option(parser: argparse.ArgumentParser, *, of_a_model: bool = False
+                           ) -> None:
+    """``--restitution``: the restitution model of the four-link model. ``of_a_model``: the
+    command chooses its model (``--model``), so the option's default is None and
+    :func:`model_spec_from_args` tells a value given from none (:data:`MODEL_OPTIONS`)."""
     parser.add_argument(
-        "--restitution", default=DEFAULT_RESTITUTION, metavar=RESTITUTION_METAVAR,
-        help=f"coefficient of restitution c_v at impacts: {RESTITUTION_HELP} "
-             f"(default: %(default)s)")
+        "--restitution", default=None if of_a_model else DEFAULT_RESTITUTION,
+        metavar=RESTITUTION_METAVAR,
+        help=f"coefficient of restitution c_v at impacts: {RESTITUTION_HELP}"
+             + (" (four-link model only)" if of_a_model else "")
+             + f" (default: {DEFAULT_RESTITUTION})")
 
 
 # ---------------------------------------------------------------------------------------------
@@ -389,24 +416,29 @@ def add_restitution_option(parser: argparse.ArgumentParser) -> None:
 # ---------------------------------------------------------------------------------------------
 
 
-def add_rigid_block_options(parser: argparse.ArgumentParser, *, time_step: bool = True) -> None:
-    """``--friction`` and (unless ``time_step=False``) ``--time-step`` of the rigid-block
-    model."""
-    parser.add_argument("--friction", type=number, default=DEFAULT_FRICTION, metavar="MU",
+def add_rigid_block_options(parser: argparse.ArgumentParser, *, time_step: bool = True,
+                            of_a_model: bool = False) -> None:
+    """``--friction`` and (unless ``time_step=False``) ``--time-step`` and ``--coarse-factor``
+    of the rigid-block model. ``of_a_model``: the command chooses its model (``--model``), so
+    the options' defaults are None and :func:`model_spec_from_args` tells a value given from
+    none (:data:`MODEL_OPTIONS`)."""
+    parser.add_argument("--friction", type=number,
+                        default=None if of_a_model else DEFAULT_FRICTION, metavar="MU",
                         help="Coulomb friction coefficient of the joints of the rigid-block "
-                             "model, >= 0 (default: %(default)s)")
+                             f"model, >= 0 (default: {DEFAULT_FRICTION})")
     if time_step:
         parser.add_argument("--time-step", type=number, default=None, metavar="H",
                             help="time step of the rigid-block model [s] (default: chosen from "
                                  "the structure, 1 ms x sqrt(t / 1.5 m) for a thickness t: "
                                  "1 ms for Oppenheim's arch)")
-        parser.add_argument("--coarse-factor", type=int, default=DEFAULT_COARSE_FACTOR,
-                            metavar="K",
+        parser.add_argument("--coarse-factor", type=int,
+                            default=None if of_a_model else DEFAULT_COARSE_FACTOR, metavar="K",
                             help="take steps of K time steps while no contact starts or stops "
                                  "carrying an impulse, and every step where one does at the "
                                  "time step: 2 halves the time of a study at the accuracy of "
                                  "the time step (user guide, 'What a rigid-block study costs'); "
-                                 "1 takes every step at the time step (default: %(default)s)")
+                                 f"1 takes every step at the time step (default: "
+                                 f"{DEFAULT_COARSE_FACTOR})")
 
 
 # ---------------------------------------------------------------------------------------------
@@ -469,7 +501,21 @@ def model_spec_from_args(args: argparse.Namespace, name: str | None = None):
             values[spec_field.name] = getattr(args, dest)
     if name is not None:
         values["name"] = name
+    chosen = values.get("name", ModelSpec.name)
+    for dest, model in MODEL_OPTIONS.items():
+        if dest in values and model != chosen:
+            option = f"--{dest.replace('_', '-')}"
+            raise ValueError(f"{option} is a setting of the {model} model, and this study runs "
+                             f"the {chosen} model, which has none: leave {option} out, or "
+                             f"choose --model {model}")
     return ModelSpec(**values)
+
+
+MODEL_OPTIONS = {"restitution": "four-link", "friction": "rigid-blocks",
+                 "time_step": "rigid-blocks", "coarse_factor": "rigid-blocks"}
+"""The model each model option sets. A command that chooses its model (``--model``) refuses the
+options of the other one (:func:`model_spec_from_args`): accepted, they would be recorded in the
+study without effect, and a resume without them refused."""
 
 
 def structure_model(args: argparse.Namespace, spec):
