@@ -249,8 +249,9 @@ AGREEMENT_BAND = 0.05
 reports)."""
 
 MAX_BLOCK_GRID_POINTS = 10_000
-"""Most (duration, amplitude) points of a rigid-block failure curve's scan: some tens of minutes
-of analyses on two cores (a point costs 10-100 ms)."""
+"""Most (duration, amplitude) points of a rigid-block failure curve's scan that its search
+analyses whatever the outcomes (the coarse scan of a coarse search, and its extension): some
+tens of minutes of analyses on two cores (a point costs 10-100 ms)."""
 
 # --- the two models, and how a study searches a grid (archquake.studies.strategies)
 

@@ -82,3 +82,53 @@ def test_the_model_options_of_the_model_run_are_taken(capsys):
     assert main([*COMMANDS["domain"], "--model", "rigid-blocks", "--friction", "0.7",
                  "--coarse-factor", "1", "--extend-to", "0"]) == 0
     assert "friction 0.7," in capsys.readouterr().out
+
+
+class _Reached(Exception):
+    """Raised in place of the analyses: the command got past its checks."""
+
+
+def _stop_before_the_analyses(monkeypatch):
+    from archquake.studies import failure_domain
+
+    def reached(*args, **kwargs):
+        raise _Reached
+
+    monkeypatch.setattr(failure_domain, "_run_slices", reached)
+
+
+@pytest.mark.parametrize("argv", [
+    [],  # the defaults: 37 durations x (20 coarse points + 232 beyond) = 9324 <= 10000
+    ["--durations", "0.2:1.0:0.1", "--search", "bisection", "--workers", "2"],  # the README's
+    ["--durations", "0.1:1.0:0.02", "--extend-to", "5"],  # 46 x (20 + 44) = 2944
+    ["--search", "exhaustive", "--extend-to", "0"],  # 37 x 146 = 5402
+])
+def test_the_scan_cap_of_a_rigid_block_domain_counts_what_its_search_analyses(monkeypatch,
+                                                                             argv):
+    """The cap (10000 rigid-block analyses) counts the coarse scan of a coarse search and its
+    extension at its own step (the grid's 0.01 g times the stride 8), not every 0.01 g up to
+    20 g: the default domain and the README's bisection example run. Hand count of the
+    default: amplitudes 0.05:1.5:0.01 are 146 points, coarse indices 0, 8, ..., 144 (19) and
+    the last, 145: 20; beyond 1.5 g up to 20 g every 0.08 g: ceil(18.5 / 0.08) = 232."""
+    _stop_before_the_analyses(monkeypatch)
+    with pytest.raises(_Reached):
+        main(["domain", "--model", "rigid-blocks", *argv])
+
+
+@pytest.mark.parametrize("argv, points", [
+    (["--durations", "0.1:1.0:0.02"], 46 * (20 + 232)),  # 11592
+    (["--durations", "0.1:1.0:0.02", "--stride", "16"], 46 * (11 + 116)),  # 5842: accepted
+    (["--search", "exhaustive"], 37 * (146 + 1850)),  # 73852
+    (["--search", "exhaustive", "--extend-to", "2.9"], 37 * (146 + 140)),  # 10582
+])
+def test_a_rigid_block_domain_too_large_is_refused_naming_extend_to(monkeypatch, capsys, argv,
+                                                                   points):
+    _stop_before_the_analyses(monkeypatch)
+    if points <= 10000:
+        with pytest.raises(_Reached):
+            main(["domain", "--model", "rigid-blocks", *argv])
+        return
+    assert main(["domain", "--model", "rigid-blocks", *argv]) == 2
+    err = capsys.readouterr().err
+    assert f"= {points} analyses is too large: at most 10000" in err
+    assert "--extend-to" in err

@@ -12,6 +12,7 @@ from ..defaults import (
     DEFAULT_STRIDE,
     DOMAIN_AMPLITUDES_G,
     DOMAIN_DURATIONS,
+    MAX_BLOCK_GRID_POINTS,
     MAX_GRID_POINTS,
     MIN_RESOLUTION_G,
 )
@@ -45,7 +46,10 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--amplitudes", default=range_text(DOMAIN_AMPLITUDES_G),
                         metavar="LIST",
                         help=f"scan grid of amplitudes a [g], increasing; durations x "
-                             f"amplitudes (with the extension) at most {MAX_GRID_POINTS} "
+                             f"the amplitudes the search analyses whatever the outcomes (all "
+                             f"of them, or the coarse scan of bisection and screened), with "
+                             f"the extension up to --extend-to, at most {MAX_GRID_POINTS} "
+                             f"({MAX_BLOCK_GRID_POINTS} with the rigid blocks) "
                              f"(default: %(default)s)")
     parser.add_argument("--extend-to", type=number, default=DEFAULT_EXTEND_TO_G, metavar="G",
                         help="where the grid holds no collapse in the first half cycle (the "

@@ -608,7 +608,10 @@ def domain_of(model, durations=None, amplitudes_g=None, *, direction: str = "l",
         For an invalid direction, durations, amplitudes (increasing, >= 0, at most
         :data:`~archquake.defaults.MAX_ACCELERATION_G`), ``resolution_g``, search, ``extend_to_g``
         or ``workers``, or a scan of more than :data:`~archquake.defaults.MAX_GRID_POINTS`
-        analyses (:data:`~archquake.defaults.MAX_BLOCK_GRID_POINTS` for the rigid blocks).
+        analyses (:data:`~archquake.defaults.MAX_BLOCK_GRID_POINTS` for the rigid blocks),
+        counting those the search makes whatever the outcomes: every grid point, or the coarse
+        scan of ``bisection`` and ``screened``, and the extension up to ``extend_to_g`` at the
+        search's step.
     archquake.errors.CannotStandError
         For a rigid-block structure that cannot stand under its own weight with its friction
         (:func:`archquake.limit_analysis.standing_with_friction`), before any dynamics.
@@ -644,7 +647,7 @@ def domain_of(model, durations=None, amplitudes_g=None, *, direction: str = "l",
         raise ValueError(f"workers must be an integer >= 1, got {workers!r}")
     single = not model.grid_in_one_call
     _check_scan_size(d.size, a, extend_to_g, MAX_BLOCK_GRID_POINTS if single else
-                     MAX_GRID_POINTS)
+                     MAX_GRID_POINTS, search=search, stride=stride)
     model.check_stands()
     screen_model = screen
     if search == "screened" and screen is None:
@@ -798,19 +801,36 @@ def _target(model) -> Callable[[np.ndarray], bool]:
 
 
 def _check_scan_size(durations: int, amplitudes: np.ndarray, extend_to_g: float | None,
-                     largest: int = MAX_GRID_POINTS) -> None:
-    """Refuse a scan of more than ``largest`` analyses (counting the largest possible
-    extension)."""
+                     largest: int = MAX_GRID_POINTS, *, search: str = "exhaustive",
+                     stride: int = 1) -> None:
+    """Refuse a scan of more than ``largest`` analyses, counting those the search makes
+    whatever the outcomes: every grid point (``exhaustive``) or the coarse scan
+    (:func:`~archquake.studies.strategies.coarse_indices`; ``bisection`` and ``screened``), and
+    the largest possible extension up to ``extend_to_g`` [g] at the search's step (the grid's
+    last spacing, times ``stride`` for the coarse searches). The bisection of each change of
+    outcome, and the stretches ``screened`` analyses point by point, come on top."""
+    from .strategies import coarse_indices
+
+    coarse = search != "exhaustive"
+    step = stride if coarse else 1
+    scanned = coarse_indices(amplitudes.size, stride).size if coarse else amplitudes.size
     extension = 0
     if extend_to_g is not None:
-        extension = math.ceil((extend_to_g - amplitudes[-1]) / (amplitudes[-1] - amplitudes[-2]))
-    points = durations * (amplitudes.size + extension)
+        spacing = (amplitudes[-1] - amplitudes[-2]) * step
+        extension = math.ceil(round((extend_to_g - amplitudes[-1]) / spacing, 9))
+    points = durations * (scanned + extension)
     if points > largest:
-        more = "" if not extension else f" + up to {extension} beyond it up to {extend_to_g:g} g"
+        what = (f"{amplitudes.size} amplitudes" if not coarse else
+                f"{scanned} coarse points of {amplitudes.size} amplitudes, every {stride}")
+        more = ("" if not extension else
+                f" + up to {extension} beyond it up to {extend_to_g:g} g (extend_to_g, "
+                f"--extend-to)")
         name = "MAX_GRID_POINTS" if largest == MAX_GRID_POINTS else "MAX_BLOCK_GRID_POINTS"
-        raise ValueError(f"the scan of {durations} durations x ({amplitudes.size} amplitudes"
-                         f"{more}) = {points} analyses is too large: at most {largest} "
-                         f"({name}); use fewer durations or a coarser grid")
+        raise ValueError(f"the scan of {durations} durations x ({what}{more}) = {points} "
+                         f"analyses is too large: at most {largest} ({name}); use fewer "
+                         f"durations, a coarser grid"
+                         + (", or a lower --extend-to (the cap of the scan beyond the grid)"
+                            if extension else ""))
 
 
 def _extend(run, grid, keys, cap, stride, found):
