@@ -1,6 +1,7 @@
 """Studies that say what they did and refuse what they cannot do in the user's words: a resume
 refused names the option that differs, an option of the other model is refused naming it."""
 
+import json
 from pathlib import Path
 
 import pytest
@@ -132,3 +133,91 @@ def test_a_rigid_block_domain_too_large_is_refused_naming_extend_to(monkeypatch,
     err = capsys.readouterr().err
     assert f"= {points} analyses is too large: at most 10000" in err
     assert "--extend-to" in err
+
+
+# --search bisection says on every output that it can miss bands, and how many points it
+# inferred. Oppenheim's arch at t_p = 0.5 s (four-link model), exhaustively: recovery up to
+# 0.485 g, collapse in the second half cycle 0.485-0.724 g, recovery 0.724-0.820 g. A grid
+# whose coarse points (its two ends) both recover holds the collapse band wholly between them.
+@pytest.mark.parametrize("amplitudes, points", [("0.45:0.78:0.01", 34),
+                                                ("0.46:0.80:0.01", 35),
+                                                ("0.40:0.76:0.02", 19)])
+def test_bisection_that_misses_a_band_of_collapse_says_so_on_every_domain_output(
+        capsys, amplitudes, points):
+    argv = ["domain", "--durations", "0.5", "--amplitudes", amplitudes, "--extend-to", "0",
+            "--resolution", "0.001"]
+    assert main([*argv, "--json"]) == 0
+    exhaustive = json.loads(capsys.readouterr().out)[0]
+    assert exhaustive["failure_acceleration"] == pytest.approx(0.4847, abs=1e-3)
+    assert main([*argv, "--json", "--search", "bisection", "--stride", str(points - 1)]) == 0
+    row = json.loads(capsys.readouterr().out)[0]
+    assert row["failure_acceleration"] is None  # the band is missed ...
+    # ... and the output says so: two coarse points analysed (the ends), points - 2 inferred
+    assert row["search"] == "bisection" and row["scan_points"] == points
+    assert row["not_analysed"] == points - 2
+    assert row["caveat"].startswith(f"search 'bisection' did not analyse {points - 2} of the "
+                                    f"{points} grid points")
+    assert "misses any band of collapse" in row["caveat"]
+    assert main([*argv, "--search", "bisection", "--stride", str(points - 1)]) == 0
+    text = capsys.readouterr().out
+    assert "boundaries to 0.001 g where the search found them" in text
+    assert f"warning: search 'bisection' did not analyse {points - 2} of the {points}" in text
+
+
+def test_bisection_counts_the_extension_points_it_steps_over(capsys):
+    """Beyond 0.78 g the scan goes on every 33 x 0.01 g: one point, 1.11 g, which collapses
+    in the first half cycle (exhaustively from 0.820 g); the 33 points at 0.01 g up to it are
+    scan points, 32 of them not analysed: 34 + 33 = 67 points, 32 + 32 = 64 not analysed."""
+    assert main(["domain", "--durations", "0.5", "--amplitudes", "0.45:0.78:0.01", "--stride",
+                 "33", "--search", "bisection", "--json"]) == 0
+    row = json.loads(capsys.readouterr().out)[0]
+    assert (row["scan_points"], row["not_analysed"], row["scanned_to"]) == (67, 64, 1.11)
+
+
+@pytest.mark.parametrize("stride", [33, 10])
+def test_bisection_says_so_in_a_pulse_study_and_its_files(tmp_path, capsys, monkeypatch,
+                                                          stride):
+    """Text, JSON and summary.json say it; the count is that of the points of the exhaustive
+    grid (1 arch x 2 directions x 34 amplitudes = 68, and as many of the nominal arch's two
+    domains) less those the search analysed (counted where it runs)."""
+    from archquake.results_io import read_json
+    from archquake.studies import strategies
+
+    argv = ["fragility", "--samples", "1", "--durations", "0.5", "--amplitudes",
+            "0.45:0.78:0.01", "--limit-samples", "2", "--no-progress"]
+    assert main([*argv, "--json", "--out", str(tmp_path / "e")]) == 0
+    exhaustive = json.loads(capsys.readouterr().out)["search"]
+    assert (exhaustive["grid_points"], exhaustive["not_analysed"]) == (68, 0)
+    assert exhaustive["caveat"] is None
+    real, seen = strategies.search_grid, []
+
+    def counting(*args, **kwargs):
+        keys, analysed = real(*args, **kwargs)
+        seen.append((analysed.size, int(analysed.sum())))
+        return keys, analysed
+
+    monkeypatch.setattr(strategies, "search_grid", counting)
+    bisection = [*argv, "--search", "bisection", "--stride", str(stride)]
+    assert main([*bisection, "--json", "--out", str(tmp_path / "b")]) == 0
+    search = json.loads(capsys.readouterr().out)["search"]
+    assert search["grid_points"] == 68 and search["nominal_grid_points"] == 68
+    inferred = sum(n - done for n, done in seen)
+    assert search["not_analysed"] + search["nominal_not_analysed"] == inferred > 0
+    assert search["caveat"].startswith(f"search 'bisection' did not analyse {inferred} of the "
+                                       f"136 grid points")
+    assert read_json(tmp_path / "b" / "summary.json")["summary"]["search"] == search
+    assert main([*bisection, "--out", str(tmp_path / "c")]) == 0
+    assert f"warning: {search['caveat']}" in capsys.readouterr().out
+
+
+def test_bisection_says_so_in_a_record_study(tmp_path, capsys):
+    argv = ["record-fragility", "--records", str(DATA / "decaying_sine.csv"), "--levels",
+            "0.1:1.0:0.1", "--samples", "1", "--seed", "3", "--no-progress", "--search",
+            "bisection", "--stride", "9"]
+    assert main([*argv, "--json", "--out", str(tmp_path / "r")]) == 0
+    search = json.loads(capsys.readouterr().out)["search"]
+    # 2 arches (1 irregular, the nominal) x 1 record x 10 levels x 2 polarities = 40 points
+    assert search["grid_points"] == 40 and 0 < search["not_analysed"] <= 40 - 2 * 2 * 2
+    assert f"did not analyse {search['not_analysed']} of the 40 grid points" in search["caveat"]
+    assert main([*argv, "--out", str(tmp_path / "t")]) == 0
+    assert f"warning: {search['caveat']}" in capsys.readouterr().out

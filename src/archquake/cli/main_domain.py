@@ -77,13 +77,15 @@ def run(args: argparse.Namespace) -> int:
                          f"accurate to about 1e-11: finer boundaries mean nothing), got "
                          f"{args.resolution}")
     from ..studies.failure_domain import domain_of
+    from ..studies.strategies import search_caveat
 
+    domain_stride = DEFAULT_STRIDE if args.stride is None else args.stride
     model = options.structure_model(args, options.model_spec_from_args(args))
     with options.analysing(args):
         domain = domain_of(model, durations, amplitudes, direction=args.direction,
                            resolution_g=args.resolution, extend_to_g=args.extend_to,
                            search=args.search,
-                           stride=DEFAULT_STRIDE if args.stride is None else args.stride,
+                           stride=domain_stride,
                            workers=args.workers,
                            progress=not model.grid_in_one_call)
     if args.plot:
@@ -94,8 +96,17 @@ def run(args: argparse.Namespace) -> int:
 
         ax = plot_failure_domain(domain)
         save_figure(ax.figure, args.plot)
+    caveat = search_caveat(domain.search, sum(domain.not_analysed), sum(domain.scan_points),
+                           domain_stride)
     if args.json:
         rows = domain.to_list()
+        if domain.search != "exhaustive":  # what the search inferred without analysing it
+            for row, skipped, points in zip(rows, domain.not_analysed, domain.scan_points,
+                                            strict=True):
+                row.update(search=domain.search, not_analysed=skipped, scan_points=points)
+                if caveat:
+                    row["caveat"] = search_caveat(domain.search, skipped, points,
+                                                  domain_stride)
         if not model.counts_half_cycles:  # the model is said where the output is as before
             for row, sl, undecided in zip(rows, domain.slices, domain.undecided, strict=True):
                 row["model"] = model.name
@@ -121,7 +132,9 @@ def run(args: argparse.Namespace) -> int:
                 f"search {domain.search}")
     print(f"Failure domain, first pulse {'-' if args.direction == 'l' else '+'}a g "
           f"(Mech-{args.direction}); k = {domain.limit_multiplier:.4f}; {what}; boundaries to "
-          f"{args.resolution:g} g")
+          f"{args.resolution:g} g" + (" where the search found them" if caveat else ""))
+    if caveat:
+        print(f"warning: {caveat}")
     if not four_link:
         return _print_rigid_block_domain(domain, args)
     print(f"{'t_p [s]':>8} {'failure [g]':>12} {'1st half [g]':>13}  intervals [g]")

@@ -99,6 +99,8 @@ def run(args: argparse.Namespace) -> int:
           f"{settings.epsilon:g}, seed {settings.seed}), {len(settings.durations)} durations x "
           f"{len(settings.amplitudes_g)} amplitudes x 2 directions = {n_analyses} analyses; "
           f"{model}")
+    if summary["search"]["caveat"]:
+        print(f"warning: {summary['search']['caveat']}")
     print(f"nominal arch: k = {result.nominal_load_multiplier:.4f}")
     arches = summary["arches"]
     if arches["excluded"]:

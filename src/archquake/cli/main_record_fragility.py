@@ -107,6 +107,9 @@ def _print(result, summary: dict) -> None:
     undecided = summary["undecided"]
     warning = undecided_warning(undecided["analyses"] + undecided["nominal_analyses"],
                                 undecided["of"] + undecided["nominal_of"])
+    caveat = summary["search"]["caveat"]
+    if caveat:
+        print(f"warning: {caveat}")
     if warning:
         print(warning)
     print(f"Record-based fragility: h = {s.sample_size} irregular arches (epsilon = "

@@ -372,6 +372,13 @@ class FailureDomain:
     undecided : tuple of int
         Of these, the analyses the model left undecided, per duration [-] (empty for a domain
         made before they were counted; :mod:`archquake.studies.undecided`).
+    not_analysed : tuple of int
+        Points of the scan (the grid, and its extension at the grid's last spacing) whose
+        outcome the search inferred from their neighbours without analysing them, per duration
+        [-] (empty for a domain made before they were counted;
+        :func:`archquake.studies.strategies.search_caveat`).
+    scan_points : tuple of int
+        Points of that scan per duration [-] (analysed or not; empty as ``not_analysed``).
     """
 
     slices: tuple[DomainSlice, ...]
@@ -385,6 +392,8 @@ class FailureDomain:
     search: str = "exhaustive"
     analyses: tuple[int, ...] = ()
     undecided: tuple[int, ...] = ()
+    not_analysed: tuple[int, ...] = ()
+    scan_points: tuple[int, ...] = ()
 
     @property
     def undecided_analyses(self) -> int:
@@ -449,7 +458,7 @@ class FailureDomain:
         dict
             ``slices``, ``direction``, ``limit_multiplier``, ``load_multipliers`` [-],
             ``restitution`` [-] (None for nan), ``motion``, ``extend_to_g`` [g], ``model``,
-            ``search``, ``analyses`` and ``undecided``.
+            ``search``, ``analyses``, ``undecided``, ``not_analysed`` and ``scan_points``.
 
         Examples
         --------
@@ -465,7 +474,8 @@ class FailureDomain:
             "load_multipliers": list(self.load_multipliers),
             "restitution": [json_float(c) for c in self.restitution], "motion": self.motion,
             "extend_to_g": self.extend_to_g, "model": self.model, "search": self.search,
-            "analyses": list(self.analyses), "undecided": list(self.undecided)}
+            "analyses": list(self.analyses), "undecided": list(self.undecided),
+            "not_analysed": list(self.not_analysed), "scan_points": list(self.scan_points)}
 
     @classmethod
     def from_dict(cls, data: dict) -> FailureDomain:
@@ -491,7 +501,8 @@ class FailureDomain:
         return cls(slices, data["direction"], data["limit_multiplier"],
                    tuple(data["load_multipliers"]), restitution, data["motion"],
                    data["extend_to_g"], data["model"], data["search"], tuple(data["analyses"]),
-                   tuple(data.get("undecided", ())))
+                   tuple(data.get("undecided", ())), tuple(data.get("not_analysed", ())),
+                   tuple(data.get("scan_points", ())))
 
 
 def check_durations(durations) -> np.ndarray:
@@ -663,10 +674,11 @@ def domain_of(model, durations=None, amplitudes_g=None, *, direction: str = "l",
         k = (math.nan, math.nan)
     limit_k = k[0] if direction == "l" else k[1]
     restitution = tuple(getattr(model, "restitution", (math.nan, math.nan)))
-    return FailureDomain(tuple(s for s, _, _ in slices), direction, limit_k, k, restitution,
+    return FailureDomain(tuple(s[0] for s in slices), direction, limit_k, k, restitution,
                          motion, None if extend_to_g is None else float(extend_to_g),
-                         model.describe(), search, tuple(n for _, n, _ in slices),
-                         tuple(u for _, _, u in slices))
+                         model.describe(), search, tuple(s[1] for s in slices),
+                         tuple(s[2] for s in slices), tuple(s[3] for s in slices),
+                         tuple(s[4] for s in slices))
 
 
 def _encode(status, half_cycle) -> np.ndarray:
@@ -712,9 +724,9 @@ class _SliceJob:
         return keys, smooth_outcomes(out, excitation_end(self.motion, duration))
 
 
-def _slice_task(args) -> tuple[DomainSlice, int, int]:
-    """One duration of a domain: ``(slice, number of analyses, of them undecided)`` (a
-    worker's job)."""
+def _slice_task(args) -> tuple[DomainSlice, int, int, int, int]:
+    """One duration of a domain: ``(slice, number of analyses, of them undecided, points of
+    the scan not analysed, points of the scan)`` (a worker's job)."""
     job, index, duration = args
     return _domain_slice_of(job, index, duration)
 
@@ -723,10 +735,11 @@ UNDECIDED_KEY = int(Status.UNDECIDED) * 1000
 """The outcome key (:func:`_encode`) of an undecided analysis."""
 
 
-def _domain_slice_of(job: _SliceJob, index: int, tp: float) -> tuple[DomainSlice, int, int]:
+def _domain_slice_of(job: _SliceJob, index: int, tp: float
+                     ) -> tuple[DomainSlice, int, int, int, int]:
     from .strategies import search_grid
 
-    count = undecided = 0
+    count = undecided = skipped = points = 0
     if job.scan is not None:  # the whole grid, analysed in one call
         keys = _encode(job.scan["status"][index], job.scan["half_cycle"][index])
         count += keys.size
@@ -743,6 +756,7 @@ def _domain_slice_of(job: _SliceJob, index: int, tp: float) -> tuple[DomainSlice
         keys, analysed = search_grid(classify_indices, job.grid.size, search=job.search,
                                      stride=job.stride, screen=screen)
         count += int(analysed.sum())
+        skipped += int(analysed.size - analysed.sum())
         undecided += int(np.count_nonzero(keys[analysed] == UNDECIDED_KEY))
     grid = job.grid
     if job.extend_to_g is not None:
@@ -752,6 +766,12 @@ def _domain_slice_of(job: _SliceJob, index: int, tp: float) -> tuple[DomainSlice
                                     job.extend_to_g, step, _target(job.model))
         count += extra
         undecided += int(np.count_nonzero(keys[size:] == UNDECIDED_KEY))
+        if extra and step > 1:  # the points at the grid's spacing between extension points
+            spacing = float(job.grid[-1] - job.grid[-2])
+            between = round((float(grid[-1]) - float(job.grid[-1])) / spacing) - extra
+            skipped += between
+            points += between
+    points += grid.size
     known = {float(x): int(key) for x, key in zip(grid, keys, strict=True)}
     analyses = [0, 0]  # bisection steps, of them undecided
 
@@ -764,11 +784,11 @@ def _domain_slice_of(job: _SliceJob, index: int, tp: float) -> tuple[DomainSlice
         return _decode(key)
 
     piece = domain_slice(classify, grid, duration=float(tp), resolution_g=job.resolution_g)
-    return piece, count + analyses[0], undecided + analyses[1]
+    return piece, count + analyses[0], undecided + analyses[1], skipped, points
 
 
 def _run_slices(job: _SliceJob, durations: np.ndarray, workers: int | None,
-                progress: bool) -> list[tuple[DomainSlice, int, int]]:
+                progress: bool) -> list[tuple[DomainSlice, int, int, int, int]]:
     """Every duration's slice, here or on local worker processes."""
     import sys
 

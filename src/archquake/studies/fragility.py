@@ -833,7 +833,37 @@ class FragilityResult:
                 "below_nominal_rtol": BELOW_NOMINAL_RTOL,
             },
             "durations": per_duration,
+            "search": self.search_summary(),
         }
+
+    def search_summary(self) -> dict:
+        """How the study searched its grid: ``strategy`` and ``stride``, the ``grid_points``
+        of the irregular arches analysed dynamically (the arches excluded, and those that
+        never collapse, have no search) and of the nominal arch's failure domains
+        (``nominal_grid_points``), the points of each whose outcome was inferred without an
+        analysis (``not_analysed``, ``nominal_not_analysed``) and, for ``bisection``, the
+        ``caveat`` every output of the study says
+        (:func:`archquake.studies.strategies.search_caveat`; None otherwise).
+
+        Returns
+        -------
+        dict
+        """
+        from .strategies import search_caveat
+
+        table = self.table
+        searched = ((table["excluded"].to_numpy() == "")
+                    & np.isfinite(table["k_l"].to_numpy(dtype=float)))
+        points = int(searched.sum())
+        skipped = int(np.count_nonzero(~table["analysed"].to_numpy(dtype=bool)[searched]))
+        nominal_points = sum(sum(d.scan_points) for d in self.nominal_domains)
+        nominal_skipped = sum(sum(d.not_analysed) for d in self.nominal_domains)
+        s = self.settings
+        return {"strategy": s.search, "stride": s.stride, "grid_points": points,
+                "not_analysed": skipped, "nominal_grid_points": int(nominal_points),
+                "nominal_not_analysed": int(nominal_skipped),
+                "caveat": search_caveat(s.search, skipped + nominal_skipped,
+                                        points + nominal_points, s.stride)}
 
 
     def _undecided_bounds(self, i: int, below: float, below_upper: float) -> dict:

@@ -804,6 +804,9 @@ class RecordFragilityResult:
                        f"{self.analysed} irregular arches (epsilon {s.epsilon:g}, seed "
                        f"{s.seed}); "
                        f"'{taxonomy}-nominal': the nominal arch")
+        caveat = self.search_summary()["caveat"]
+        if caveat:  # the curves may miss collapses the search did not analyse
+            description += f"; {caveat}"
         return write_fragility_nrml(path, functions, im=s.im, min_iml=float(self.levels[0]),
                                     max_iml=float(self.levels[-1]), description=description)
 
@@ -857,9 +860,36 @@ class RecordFragilityResult:
             },
             "analyses": {"total": int(integrated.size), "integrated": int(integrated.sum()),
                          "at_rest_without_integration": int((~integrated).sum())},
+            "search": self.search_summary(),
             "settings": self.settings.to_dict(),
             "seed": self.settings.seed,
         }
+
+    def search_summary(self) -> dict:
+        """How the study searched its lines of levels: ``strategy`` and ``stride``, the
+        ``grid_points`` (arch, record, level, polarity) of the arches analysed dynamically
+        (the nominal one included; the arches excluded, and those that never collapse, have
+        no search), of them ``not_analysed``: those whose outcome a search inferred without
+        integrating (0 for a study that integrates every level), and, for ``bisection``, the
+        ``caveat`` every output of the study says
+        (:func:`archquake.studies.strategies.search_caveat`; None otherwise).
+
+        Returns
+        -------
+        dict
+        """
+        from .strategies import search_caveat
+
+        s, table = self.settings, self.table
+        searched = ((table["excluded"].to_numpy() == "")
+                    & np.isfinite(table["k_l"].to_numpy(dtype=float)))
+        points = int(searched.sum())
+        skipped = 0
+        if not (s.model.grid_in_one_call and s.search == "exhaustive"):
+            skipped = int(np.count_nonzero(~table["integrated"].to_numpy(dtype=bool)[searched]))
+        return {"strategy": s.search, "stride": s.stride, "grid_points": points,
+                "not_analysed": skipped,
+                "caveat": search_caveat(s.search, skipped, points, s.stride)}
 
 
 def _study_arrays(table: pd.DataFrame, settings: RecordFragilitySettings):

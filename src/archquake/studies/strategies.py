@@ -215,6 +215,48 @@ def search_grid(classify: Callable[[np.ndarray], np.ndarray], n: int, *,
     return keys, analysed
 
 
+def search_caveat(search: str, not_analysed: int, points: int, stride: int) -> str | None:
+    """What a study searched by ``bisection`` must say with its results: that it can miss
+    bands of another outcome, and how many points of its grid it did not analyse.
+
+    ``bisection`` infers the outcome of every point between two coarse points of equal outcome
+    (module docstring): a band of collapse among survivals (or of survival among collapses)
+    that lies wholly between them is missed, and its boundaries are bisected only where a
+    change was found. The other strategies say nothing more: ``exhaustive`` analyses every
+    point, ``screened`` every stretch whose outcome is not smooth.
+
+    Parameters
+    ----------
+    search : {"exhaustive", "bisection", "screened"}
+        The strategy of the study.
+    not_analysed : int
+        Points of the grid whose outcome was inferred, not analysed [-].
+    points : int
+        Points of the grid [-].
+    stride : int
+        Grid steps between the coarse points [-].
+
+    Returns
+    -------
+    str or None
+        One sentence for ``bisection``, None otherwise.
+
+    Examples
+    --------
+    >>> search_caveat("bisection", 32, 34, 33)[:60]
+    "search 'bisection' did not analyse 32 of the 34 grid points:"
+    >>> search_caveat("screened", 3, 34, 8) is None
+    True
+    """
+    if check_search(search) != "bisection":
+        return None
+    return (f"search 'bisection' did not analyse {not_analysed} of the {points} grid points: "
+            f"it takes their outcome from the coarse points every {stride} steps around them, "
+            f"so it misses any band of collapse (or of survival) narrower than that lying "
+            f"between two coarse points of the same outcome, and its boundaries are exact only "
+            f"where it found a change; --search screened or exhaustive analyse those points")
+
+
 def pulse_grid_outcomes(model, durations, amplitudes_g, *, motion: str = "oppenheim",
                         search: str = "exhaustive", stride: int = DEFAULT_STRIDE,
                         screen=None) -> dict[str, np.ndarray]:
@@ -320,5 +362,5 @@ def _keys(out: dict) -> np.ndarray:
 
 
 __all__ = ["DEFAULT_STRIDE", "SEARCHES", "change_hints", "check_search", "check_stride",
-           "coarse_indices", "excitation_end", "pulse_grid_outcomes", "search_grid",
-           "smooth_outcomes"]
+           "coarse_indices", "excitation_end", "pulse_grid_outcomes", "search_caveat",
+           "search_grid", "smooth_outcomes"]
