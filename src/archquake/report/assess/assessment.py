@@ -49,6 +49,7 @@ from pathlib import Path
 import numpy as np
 
 from ..._version import __version__
+from ...errors import StudyError
 from ..render import (
     Bullets,
     Document,
@@ -185,8 +186,55 @@ def choose_suite(records=None, suite: str | None = None, settings: AssessmentSet
     return record_parts.select_records(chosen, settings.record_count), note
 
 
+def check_before_writing(structure, settings: AssessmentSettings) -> None:
+    """What an assessment can refuse before it writes anything: a friction with which the
+    rigid-block model cannot hold the structure up (its failure domain would stop the
+    assessment after minutes). The settings check their own ranges.
+
+    Raises
+    ------
+    ValueError
+        Naming ``friction`` and why.
+    """
+    from ...geometry import BlockArch
+    from ...limit_analysis import standing_with_friction
+
+    if isinstance(structure, BlockArch):
+        verdict = standing_with_friction(structure, settings.friction)
+        if verdict.part == "joints":  # it stands, but not with this friction
+            raise ValueError(f"friction must let the rigid-block model of the assessment "
+                             f"hold the structure up, got {settings.friction:g}: "
+                             f"{verdict.reason}; give a larger one")
+
+
+def how_to_restart(out: Path) -> str:
+    """What an assessment stopped by an error after it wrote parts says to do next."""
+    return (f"the assessment in {out} stopped there: the parts it finished are kept, so once "
+            f"the cause is fixed with the same settings, run it again with --resume "
+            f"(resume=True); with other settings, choose a new --out (or delete {out})")
+
+
+def _suite_words(suite: dict | None) -> str:
+    """A stored suite in words."""
+    kind = (suite or {}).get("kind")
+    if kind == "builtin":
+        return f"the built-in suite {suite.get('name')!r}"
+    if kind == "stochastic":
+        return ("synthetic records (the built-in ones were not installed: the 'records' extra "
+                "was missing)")
+    if kind == "files":
+        return f"{len(suite.get('records', []))} record files of --records"
+    return "other records"
+
+
 # ------------------------------------------------------------------------------ directory
 def _difference(stored: dict, record: dict) -> str | None:
+    if stored.get("suite") != record["suite"] and stored.get("structure") == record["structure"]:
+        return (f"its records differ: it was started with {_suite_words(stored.get('suite'))}, "
+                f"this run has {_suite_words(record['suite'])} (installing or removing the "
+                f"'records' extra changes the default suite); continue it with the records it "
+                f"started with (the same --suite or --records), or assess with these records "
+                f"in a new --out")
     for key in ("archquake", "structure", "suite"):
         if stored.get(key) != record[key]:
             return f"{key} differs"
@@ -388,6 +436,7 @@ def assess(structure=None, *, records=None, suite: str | None = None,
                     else AssessmentSettings(**options))
     elif epsilon is not None or sa_period is not None or quick:
         raise ValueError("give epsilon, sa_period and quick in settings, or settings not at all")
+    check_before_writing(structure, settings)
     out = Path(out_dir)
     timings: dict[str, float] = {}
     t0 = time.perf_counter()
@@ -416,14 +465,18 @@ def assess(structure=None, *, records=None, suite: str | None = None,
     steps = Steps(9 + 2 * len(settings.intensity_measures()) + (site is not None),
                   progress=progress, desc="assess")
     try:
-        computed = _compute(structure, settings, record_suite, suite_note, out, resume,
-                            results, steps)
-        if site is not None and results["limit"] is not None:
-            from .site import site_part
+        try:
+            computed = _compute(structure, settings, record_suite, suite_note, out, resume,
+                                results, steps)
+            if site is not None and results["limit"] is not None:
+                from .site import site_part
 
-            with steps("code check at the site"):
-                results["site"], computed.site_check = site_part(
-                    structure, site, record_suite, results, progress=False)
+                with steps("code check at the site"):
+                    results["site"], computed.site_check = site_part(
+                        structure, site, record_suite, results, progress=False)
+        except (ValueError, StudyError) as exc:  # after parts were written: how to go on
+            stopped = StudyError if isinstance(exc, StudyError) else ValueError
+            raise stopped(f"{exc}; {how_to_restart(out)}") from exc
         with steps("figures"):
             figures = _figures(out, structure, results, computed)
         timings.update(steps.timings)

@@ -29,6 +29,9 @@ from ...defaults import (
     DEFAULT_FRICTION,
     DEFAULT_RESTITUTION,
     DEFAULT_SEED,
+    MAX_GRID_POINTS,
+    MAX_LIMIT_SAMPLES,
+    MAX_SAMPLES,
     STUDY_DURATIONS,
 )
 from ...geometry import check_epsilon
@@ -131,14 +134,17 @@ class AssessmentSettings:
     domain_resolution_g : float
         Bisection width of every boundary of both models' failure domains [g].
     fragility_sample_size : int
-        h, irregular arches of the fragility under pulses (the paper: 40).
+        h, irregular arches of the fragility under pulses (the paper: 40), at most
+        :data:`~archquake.defaults.MAX_SAMPLES`.
     limit_sample_size : int
-        s, irregular arches of the limit-analysis CDF of k~ (the paper: 1000).
+        s, irregular arches of the limit-analysis CDF of k~ (the paper: 1000), at most
+        :data:`~archquake.defaults.MAX_LIMIT_SAMPLES`.
     fragility_amplitude_points : int
         Amplitudes of the fragility under pulses, around the structure's failure accelerations,
         >= 8.
     record_sample_size : int
-        h, irregular arches of the record-based fragility (beside the structure itself).
+        h, irregular arches of the record-based fragility (beside the structure itself), at
+        most :data:`~archquake.defaults.MAX_SAMPLES`.
     rigid_block_fragility_sample_size : int
         h of the rigid-block model's fragility under pulses, run where the two models disagree
         (:func:`archquake.report.assess.parts.trusted_model`): the first arches of the same
@@ -204,14 +210,18 @@ class AssessmentSettings:
                 raise ValueError(f"durations must be at least two increasing pulse durations "
                                  f"> 0 [s], got {self.durations!r}")
             object.__setattr__(self, "durations", d)
-        for name, least in (("duration_count", 2), ("amplitude_points", 10),
-                            ("fragility_sample_size", 2), ("limit_sample_size", 2),
-                            ("fragility_amplitude_points", 8), ("record_sample_size", 1),
-                            ("rigid_block_fragility_sample_size", 2),
-                            ("rigid_block_record_sample_size", 1),
-                            ("record_levels", 4), ("bootstrap", 10)):
+        # the studies' own bounds, checked here so that an assessment refuses them before it
+        # writes anything rather than after minutes of its first parts
+        for name, least, most in (("duration_count", 2, None), ("amplitude_points", 10, None),
+                                  ("fragility_sample_size", 2, MAX_SAMPLES),
+                                  ("limit_sample_size", 2, MAX_LIMIT_SAMPLES),
+                                  ("fragility_amplitude_points", 8, MAX_GRID_POINTS),
+                                  ("record_sample_size", 1, MAX_SAMPLES),
+                                  ("rigid_block_fragility_sample_size", 2, MAX_SAMPLES),
+                                  ("rigid_block_record_sample_size", 1, MAX_SAMPLES),
+                                  ("record_levels", 4, MAX_GRID_POINTS), ("bootstrap", 10, None)):
             object.__setattr__(self, name, check_integer(name, getattr(self, name),
-                                                         minimum=least))
+                                                         minimum=least, maximum=most))
         if self.record_count is not None:
             object.__setattr__(self, "record_count",
                                check_integer("record_count", self.record_count, minimum=2))
