@@ -221,3 +221,19 @@ def test_bisection_says_so_in_a_record_study(tmp_path, capsys):
     assert f"did not analyse {search['not_analysed']} of the 40 grid points" in search["caveat"]
     assert main([*argv, "--out", str(tmp_path / "t")]) == 0
     assert f"warning: {search['caveat']}" in capsys.readouterr().out
+
+
+def test_bisection_says_so_in_compare(capsys):
+    """The rigid-block column of compare: 7 amplitudes 0.3-0.6 g, coarse points every 6 steps
+    (the two ends): at least 2 analysed, so at most 5 of the 7 inferred."""
+    argv = ["compare", "--durations", "0.6", "--amplitudes", "0.3:0.6:0.05", "--resolution",
+            "0.01", "--no-progress", "--search", "bisection", "--stride", "6"]
+    assert main([*argv, "--json"]) == 0
+    row = json.loads(capsys.readouterr().out)[0]
+    assert row["search"] == "bisection" and row["scan_points"] == 7
+    assert 0 <= row["not_analysed"] <= 5
+    assert row["caveat"].startswith(f"rigid blocks: search 'bisection' did not analyse "
+                                    f"{row['not_analysed']} of the 7 grid points")
+    assert main(argv) == 0
+    assert "warning: rigid blocks: search 'bisection' did not analyse" in (
+        capsys.readouterr().out)

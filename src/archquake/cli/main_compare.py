@@ -92,9 +92,25 @@ def run(args: argparse.Namespace) -> int:
         plot_model_differences(comparison, right)
         save_figure(fig, args.plot)
     rows = comparison.to_list()
+    from ..defaults import DEFAULT_STRIDE
+    from ..studies.strategies import search_caveat
+
+    blocks = comparison.rigid_block  # the searched scan; the four-link one is exhaustive
+    stride = DEFAULT_STRIDE if args.stride is None else args.stride
     if args.json:
+        if blocks.search != "exhaustive" and blocks.not_analysed:
+            for row, skipped, points in zip(rows, blocks.not_analysed, blocks.scan_points,
+                                            strict=True):
+                row.update(search=blocks.search, not_analysed=skipped, scan_points=points)
+                caveat = search_caveat(blocks.search, skipped, points, stride)
+                if caveat:
+                    row["caveat"] = f"rigid blocks: {caveat}"
         print_json(rows)
         return 0
+    caveat = search_caveat(blocks.search, sum(blocks.not_analysed), sum(blocks.scan_points),
+                           stride)
+    if caveat:
+        print(f"warning: rigid blocks: {caveat}")
     from ..studies.undecided import bands_text, undecided_warning
 
     warning = undecided_warning(comparison.undecided_analyses,
