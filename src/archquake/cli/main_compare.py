@@ -98,13 +98,12 @@ def run(args: argparse.Namespace) -> int:
     blocks = comparison.rigid_block  # the searched scan; the four-link one is exhaustive
     stride = DEFAULT_STRIDE if args.stride is None else args.stride
     if args.json:
-        if blocks.search != "exhaustive" and blocks.not_analysed:
+        if blocks.search == "bisection" and blocks.not_analysed:  # what it may have missed
             for row, skipped, points in zip(rows, blocks.not_analysed, blocks.scan_points,
                                             strict=True):
-                row.update(search=blocks.search, not_analysed=skipped, scan_points=points)
-                caveat = search_caveat(blocks.search, skipped, points, stride)
-                if caveat:
-                    row["caveat"] = f"rigid blocks: {caveat}"
+                row.update(search=blocks.search, not_analysed=skipped, scan_points=points,
+                           caveat="rigid blocks: " + search_caveat(blocks.search, skipped,
+                                                                   points, stride))
         print_json(rows)
         return 0
     caveat = search_caveat(blocks.search, sum(blocks.not_analysed), sum(blocks.scan_points),

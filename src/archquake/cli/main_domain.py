@@ -100,13 +100,12 @@ def run(args: argparse.Namespace) -> int:
                            domain_stride)
     if args.json:
         rows = domain.to_list()
-        if domain.search != "exhaustive":  # what the search inferred without analysing it
+        if caveat:  # bisection: what it inferred without analysing it, and may have missed
             for row, skipped, points in zip(rows, domain.not_analysed, domain.scan_points,
                                             strict=True):
-                row.update(search=domain.search, not_analysed=skipped, scan_points=points)
-                if caveat:
-                    row["caveat"] = search_caveat(domain.search, skipped, points,
-                                                  domain_stride)
+                row.update(search=domain.search, not_analysed=skipped, scan_points=points,
+                           caveat=search_caveat(domain.search, skipped, points,
+                                                domain_stride))
         if not model.counts_half_cycles:  # the model is said where the output is as before
             for row, sl, undecided in zip(rows, domain.slices, domain.undecided, strict=True):
                 row["model"] = model.name
