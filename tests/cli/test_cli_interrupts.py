@@ -169,3 +169,17 @@ def test_ctrl_c_inside_compiled_code_of_a_pulse_study_is_an_interrupt(tmp_path, 
                  "--out", str(tmp_path / "s")]) == 130
     err = capsys.readouterr().err
     assert err.startswith("archquake: interrupted (SIGINT)") and "stopped the study" not in err
+
+
+def test_ctrl_c_inside_compiled_code_of_an_assessment_is_an_interrupt(tmp_path, capsys,
+                                                                      monkeypatch):
+    """As in a study: the assessment's record studies and domains run compiled code too."""
+    from archquake.report.assess import assessment
+
+    def interrupted(*args, **kwargs):
+        _interrupt_from_compiled_code()
+
+    monkeypatch.setattr(assessment, "_compute", interrupted)
+    assert main(["assess", "--quick", "--out", str(tmp_path / "a"), "--no-progress"]) == 130
+    err = capsys.readouterr().err
+    assert err.startswith("archquake: interrupted (SIGINT)") and "SystemError" not in err

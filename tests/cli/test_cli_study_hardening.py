@@ -237,3 +237,15 @@ def test_bisection_says_so_in_compare(capsys):
     assert main(argv) == 0
     assert "warning: rigid blocks: search 'bisection' did not analyse" in (
         capsys.readouterr().out)
+
+
+@pytest.mark.parametrize("argv", [["simulate", "--friction", "0.5"],
+                                  ["simulate", "--time-step", "0.001"],
+                                  ["compare", "--restitution", "paper"]])
+def test_a_command_of_fixed_models_has_no_option_of_a_model_it_does_not_run(capsys, argv):
+    """simulate runs the four-link model only, compare every restitution rule of it beside
+    the rigid blocks: neither takes an option it would not use (refused by the parser)."""
+    with pytest.raises(SystemExit) as exc:
+        main(argv)
+    assert exc.value.code == 2 and f"unrecognized arguments: {argv[1]}" in (
+        capsys.readouterr().err)
