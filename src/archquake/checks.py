@@ -11,7 +11,8 @@
     package writes goes through them;
 :func:`json_loads`
     JSON as the package reads it: a key given twice, ``NaN`` or a nesting too deep for Python
-    is a ``ValueError``, never a silent choice or a ``RecursionError``.
+    is a ``ValueError``, never a silent choice or a ``RecursionError`` (nor Python's message
+    about an integer too long to convert).
 
 The module imports nothing of the package, so any module may import it (geometry, ground motions,
 studies and result files alike).
@@ -154,6 +155,14 @@ def _refuse_duplicate_keys(pairs: list[tuple[str, Any]]) -> dict:
     return dict(pairs)
 
 
+def _read_integer(text: str) -> int:
+    try:
+        return int(text)
+    except ValueError:  # more digits than Python converts (sys.get_int_max_str_digits())
+        digits = len(text.lstrip("-"))
+        raise ValueError(f"an integer of {digits} digits is too long to be read") from None
+
+
 def _refuse_constant(name: str):
     raise ValueError(f"{name} is not a JSON number (strict JSON has no {name}); give a finite "
                      "number")
@@ -178,8 +187,8 @@ def json_loads(text: str, *, allow_nan: bool = False) -> Any:
     ------
     ValueError
         A key given twice in one object (:func:`json.loads` keeps the last), ``NaN`` or
-        ``Infinity`` unless ``allow_nan``, a nesting deeper than Python's recursion limit, or
-        text that is not JSON (a :class:`json.JSONDecodeError`, a subclass of ValueError).
+        ``Infinity`` unless ``allow_nan``, a nesting deeper than Python's recursion limit, an
+        integer of more digits than Python converts (4300 by default), or text that is not JSON (a :class:`json.JSONDecodeError`, a subclass of ValueError).
 
     Examples
     --------
@@ -190,7 +199,8 @@ def json_loads(text: str, *, allow_nan: bool = False) -> Any:
     """
     kwargs = {} if allow_nan else {"parse_constant": _refuse_constant}
     try:
-        return json.loads(text, object_pairs_hook=_refuse_duplicate_keys, **kwargs)
+        return json.loads(text, object_pairs_hook=_refuse_duplicate_keys,
+                          parse_int=_read_integer, **kwargs)
     except RecursionError:
         raise ValueError("the JSON is nested too deeply to be read") from None
 

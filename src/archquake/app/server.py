@@ -36,6 +36,7 @@ from __future__ import annotations
 import asyncio
 import io
 import json
+import math
 import os
 import re
 import shutil
@@ -97,13 +98,75 @@ async def _body(request: Request, limit: int) -> bytes:
 
 async def _json(request: Request) -> dict:
     data = await _body(request, LIMITS["request_bytes"])
+    return read_request(data)
+
+
+def read_request(data: bytes) -> dict:
+    """The JSON object of a request's body, read strictly (:func:`archquake.checks.json_loads`:
+    a key given twice, a nesting too deep are refused), with nothing the page cannot
+    take (:func:`check_values`).
+
+    Raises
+    ------
+    RequestError
+        Status 400, saying what is wrong (and where: the field of a number out of range).
+    """
+    from ..checks import json_loads
+
     try:
-        value = json.loads(data.decode("utf-8"))
-    except (UnicodeDecodeError, json.JSONDecodeError) as exc:
-        raise RequestError(400, f"the request is not JSON: {exc}") from None
+        # NaN read, to be refused naming its field (check_values)
+        value = json_loads(data.decode("utf-8"), allow_nan=True)
+    except UnicodeDecodeError as exc:
+        raise RequestError(400, f"the request is not JSON: not UTF-8 text (byte {exc.start})"
+                           ) from None
+    except json.JSONDecodeError as exc:
+        raise RequestError(400, f"the request is not JSON: {exc.msg} (line {exc.lineno}, "
+                                f"column {exc.colno})") from None
+    except ValueError as exc:  # a key given twice, NaN, nested too deeply, digits too many
+        raise RequestError(400, f"the request is not JSON the page reads: {exc}") from None
     if not isinstance(value, dict):
         raise RequestError(400, "the request must be a JSON object")
+    check_values(value)
     return value
+
+
+MAX_INTEGER_DIGITS = 15
+"""Most digits of an integer in a request: more is no size, count or seed of the page (and an
+integer beyond a float's range cannot even be compared with one)."""
+
+MAX_NESTING = 16
+"""Most levels of objects and lists in a request (the page's own nest three: the request, the
+motion, its parameters)."""
+
+
+def check_values(value) -> None:
+    """Refuse a request nested more than :data:`MAX_NESTING` levels deep, with a number that is
+    not finite (``NaN``, ``1e400``) or an integer of more than :data:`MAX_INTEGER_DIGITS`
+    digits, naming its field (the innermost key; ``[i]``
+    for the i-th item of a list).
+
+    Raises
+    ------
+    RequestError
+        Status 400.
+    """
+    stack = [(value, "the request", 0)]
+    while stack:
+        item, name, depth = stack.pop()
+        if isinstance(item, (dict, list)) and depth >= MAX_NESTING:
+            raise RequestError(400, f"the request is not JSON the page reads: it nests objects "
+                                    f"and lists more than {MAX_NESTING} levels deep")
+        if isinstance(item, dict):
+            stack.extend((v, str(k), depth + 1) for k, v in item.items())
+        elif isinstance(item, list):
+            stack.extend((v, f"{name}[{i}]", depth + 1) for i, v in enumerate(item))
+        elif isinstance(item, float) and not math.isfinite(item):
+            raise RequestError(400, f"{name} must be a finite number, got {item!r}")
+        elif (isinstance(item, int) and not isinstance(item, bool)
+              and abs(item) >= 10**MAX_INTEGER_DIGITS):
+            raise RequestError(400, f"{name} must be a number of this page's range; got an "
+                                    f"integer of {len(str(abs(item)))} digits (at most "
+                                    f"{MAX_INTEGER_DIGITS})")
 
 
 def _handler(function):

@@ -129,8 +129,11 @@ def _domain_settings(spec: dict) -> dict:
     from ..ground_motion import ANALYTIC_GROUND_MOTIONS
     from ..ranges import parse_values
 
-    given = {**DOMAIN_DEFAULTS, **{k: v for k, v in (spec.get("domain") or {}).items()
-                                   if v not in (None, "")}}
+    domain = spec.get("domain") or {}
+    if not isinstance(domain, dict):
+        raise ValueError(f"domain must be a JSON object of {', '.join(DOMAIN_DEFAULTS)}, got "
+                         f"{type(domain).__name__}")
+    given = {**DOMAIN_DEFAULTS, **{k: v for k, v in domain.items() if v not in (None, "")}}
     unknown = sorted(set(given) - set(DOMAIN_DEFAULTS))
     if unknown:
         raise ValueError(f"unknown failure-domain field(s) {unknown}; known: "
@@ -147,7 +150,7 @@ def _domain_settings(spec: dict) -> dict:
     if given["motion"] not in ANALYTIC_GROUND_MOTIONS:
         raise ValueError(f"motion must be one of {', '.join(ANALYTIC_GROUND_MOTIONS)}, got "
                          f"{given['motion']!r}")
-    resolution, extend = float(given["resolution"]), float(given["extend_to"])
+    resolution, extend = (_domain_number(given, name) for name in ("resolution", "extend_to"))
     if not (math.isfinite(resolution) and 1e-4 <= resolution <= 0.5):
         raise ValueError(f"resolution must be in [0.0001, 0.5] g, got {given['resolution']}")
     if not (math.isfinite(extend) and 0 <= extend <= LIMITS["amplitude_g"]):
@@ -156,6 +159,19 @@ def _domain_settings(spec: dict) -> dict:
     return {"durations": durations, "amplitudes": amplitudes, "direction": given["direction"],
             "motion": given["motion"], "resolution": resolution,
             "extend_to": extend if extend > amplitudes[-1] else None}
+
+
+def _domain_number(given: dict, name: str) -> float:
+    """The number of a failure-domain field, read as the command line reads its options."""
+    from ..ranges import number
+
+    value = given[name]
+    if not isinstance(value, bool) and isinstance(value, (int, float, str)):
+        try:
+            return number(value)
+        except ValueError:
+            pass
+    raise ValueError(f"{name} must be a number [g], got {value!r}")
 
 
 def check_domain(spec: dict) -> dict:
