@@ -188,7 +188,8 @@ def json_loads(text: str, *, allow_nan: bool = False) -> Any:
     ValueError
         A key given twice in one object (:func:`json.loads` keeps the last), ``NaN`` or
         ``Infinity`` unless ``allow_nan``, a nesting deeper than Python's recursion limit, an
-        integer of more digits than Python converts (4300 by default), or text that is not JSON (a :class:`json.JSONDecodeError`, a subclass of ValueError).
+        integer of more digits than Python converts (4300 by default), or text that is not JSON
+        (a :class:`json.JSONDecodeError`, a subclass of ValueError).
 
     Examples
     --------

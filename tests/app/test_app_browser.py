@@ -221,3 +221,133 @@ def test_code_check_shows_the_verdict_and_follows_the_site(page):
     assert page.locator("#check-verdict-SLV.fails").count() == 1
     assert page.locator("#check-curve polyline").count() == 1  # Mech-l = Mech-r
     assert page.locator("#check-nonlinear td.fails").count() == 2
+
+
+# ------------------------------------------------------------------------ another web site
+ATTACK = """<!doctype html><meta charset="utf-8"><title>another web site</title>
+<form id="form" method="POST" enctype="text/plain" action="APP/api/jobs/assess" target="sink">
+<input name='{"structure": {}, "pad": "' value='"}'></form>
+<iframe name="sink"></iframe>
+<script>
+window.results = [];
+const body = JSON.stringify({structure: {}, motion: {motion: "oppenheim", duration: 0.1}});
+(async () => {
+  for (const [name, init] of [
+      ["text", {method: "POST", mode: "no-cors", headers: {"Content-Type": "text/plain"}, body}],
+      ["form", {method: "POST", mode: "no-cors",
+                headers: {"Content-Type": "application/x-www-form-urlencoded"}, body}],
+      ["json", {method: "POST", headers: {"Content-Type": "application/json"}, body}]]) {
+    try {
+      const answer = await fetch("APP/api/jobs/simulate", init);
+      window.results.push([name, answer.type]);
+    } catch (error) {
+      window.results.push([name, "refused by the browser"]);
+    }
+  }
+  document.getElementById("form").submit();
+})();
+</script>"""
+"""A page of another web site whose script makes the browser send the page's server the
+requests that start jobs: as text and as a form (simple requests, sent without asking), as
+JSON (which the browser sends only if the server allows it), and a form posted as text whose
+body reads as JSON (``{"structure": {}, "pad": "="}``)."""
+
+
+class Recorder:
+    """ASGI wrapper that notes every request the application answers: method, path, headers
+    and status."""
+
+    def __init__(self, app):
+        self.app = app
+        self.seen = []
+
+    async def __call__(self, scope, receive, send):
+        if scope["type"] != "http":
+            return await self.app(scope, receive, send)
+        entry = {"method": scope["method"], "path": scope["path"],
+                 "headers": {k.decode("latin-1").lower(): v.decode("latin-1")
+                             for k, v in scope["headers"]}}
+        self.seen.append(entry)
+
+        async def noting(message):
+            if message["type"] == "http.response.start":
+                entry["status"] = message["status"]
+            await send(message)
+
+        await self.app(scope, receive, noting)
+
+
+def serve_in_thread(app):
+    """Serve an ASGI application with uvicorn on loopback in a thread: (server, url)."""
+    import uvicorn
+
+    from archquake.app.server import _listen
+
+    sock = _listen("127.0.0.1", 0)
+    server = uvicorn.Server(uvicorn.Config(app, log_level="warning", lifespan="on"))
+    thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True)
+    thread.start()
+    deadline = time.monotonic() + STARTUP_LIMIT
+    while not server.started:
+        assert time.monotonic() < deadline and thread.is_alive()
+        time.sleep(0.02)
+    return server, thread, f"http://127.0.0.1:{sock.getsockname()[1]}"
+
+
+def test_cross_site_post_is_refused(browser, tmp_path, monkeypatch):
+    from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+
+    from archquake.app.server import create_app
+
+    app = create_app(tmp_path / "work", warm=False)
+    started = []
+    start = app.state.jobs.start
+    monkeypatch.setattr(app.state.jobs, "start",
+                        lambda kind, spec: started.append(kind) or start(kind, spec))
+    recorder = Recorder(app)
+    server, thread, url = serve_in_thread(recorder)
+    page_html = ATTACK.replace("APP", url).encode()
+
+    class Site(BaseHTTPRequestHandler):
+        def do_GET(self):
+            self.send_response(200)
+            self.send_header("Content-Type", "text/html; charset=utf-8")
+            self.end_headers()
+            self.wfile.write(page_html)
+
+        def log_message(self, *args):
+            pass
+
+    site = ThreadingHTTPServer(("127.0.0.1", 0), Site)
+    threading.Thread(target=site.serve_forever, daemon=True).start()
+    other = f"http://localhost:{site.server_address[1]}"  # another origin: name and port
+    page = browser.new_page()
+    try:
+        page.goto(f"{other}/")
+        page.wait_for_function("window.results.length === 3", timeout=30_000)
+        deadline = time.monotonic() + 30
+        while not any(e["path"] == "/api/jobs/assess" for e in recorder.seen):
+            assert time.monotonic() < deadline, recorder.seen
+            time.sleep(0.05)
+        results = dict(page.evaluate("window.results"))
+        # the control: the page itself, from the server's origin, starts a job
+        page.goto(f"{url}/")
+        status = page.evaluate("""async (body) => (await fetch("/api/jobs/simulate", {
+            method: "POST", headers: {"Content-Type": "application/json"},
+            body: JSON.stringify(body)})).status""",
+                               {"structure": {}, "motion": {"motion": "oppenheim",
+                                                            "duration": 0.1}})
+    finally:
+        page.close()
+        site.shutdown()
+        server.should_exit = True
+        thread.join(30)
+    assert status == 200 and started == ["simulate"]  # the control's job, and none other
+    posts = [e for e in recorder.seen if e["method"] == "POST"
+             and e["headers"].get("origin") == other]
+    assert {(e["path"], e["status"]) for e in posts} == {("/api/jobs/simulate", 403),
+                                                         ("/api/jobs/assess", 403)}
+    assert len(posts) == 3  # text, form and the posted form; the JSON one was never sent
+    assert results["json"] == "refused by the browser"  # its preflight found no permission
+    assert results["text"] == results["form"] == "opaque"  # sent, the answer withheld
+    assert list((tmp_path / "work").glob("assessment-*")) == []

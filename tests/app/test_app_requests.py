@@ -145,3 +145,71 @@ def test_number_that_is_not_finite_is_refused_naming_its_field(quiet_client, fie
                   f'{{"structure": {{"{field}": {literal}}}}}'.encode())
     assert answer.status_code == 400
     assert answer.json()["error"].startswith(f"{field} must be a finite number, got ")
+
+
+# ------------------------------------------------------------------------ cross-site requests
+SIMPLE_TYPES = ("text/plain", "application/x-www-form-urlencoded", "multipart/form-data",
+                "text/plain;charset=UTF-8", "")
+"""The body types a web site's form or script sends to another origin without asking it."""
+
+
+@pytest.mark.parametrize("content_type", SIMPLE_TYPES + ("application/jsonp", "text/json"))
+@pytest.mark.parametrize("path", ["/api/jobs/simulate", "/api/jobs/assess", "/api/structure"])
+def test_body_not_sent_as_json_is_refused_415(quiet_client, path, content_type, monkeypatch):
+    started = []
+    monkeypatch.setattr(quiet_client.app.state.jobs, "start",
+                        lambda kind, spec: started.append(kind) or NoJob())
+    headers = {"Content-Type": content_type} if content_type else {}
+    answer = quiet_client.post(path, content=b'{"structure": {}, "motion": {}}', headers=headers)
+    assert answer.status_code == 415
+    assert "must be sent as application/json" in answer.json()["error"]
+    assert started == []
+    sent = quiet_client.post(path, content=b'{"structure": {}, "motion": {}}',
+                             headers={"Content-Type": "Application/JSON; charset=utf-8"})
+    assert sent.status_code == 200
+
+
+@pytest.mark.parametrize("content_type", SIMPLE_TYPES)
+def test_upload_not_sent_as_bytes_is_refused_415(quiet_client, content_type):
+    answer = quiet_client.post("/api/upload/record", content=b"0,0\n0.01,0.1\n",
+                               headers={"Content-Type": content_type, "X-File-Name": "r.csv"})
+    assert answer.status_code == 415
+    assert list(quiet_client.app.state.workdir.glob("uploads/*")) == []
+
+
+@pytest.mark.parametrize("origin", ["http://attacker.example", "http://127.0.0.1:8051",
+                                    "http://localhost", "https://testserver", "null",
+                                    "http://testserver.example", "http://testserver:x"])
+@pytest.mark.parametrize("method, path", [("POST", "/api/jobs/simulate"),
+                                          ("POST", "/api/structure"),
+                                          ("DELETE", "/api/jobs/0123456789abcdef"),
+                                          ("GET", "/api/options")])
+def test_cross_site_request_is_refused_403(quiet_client, monkeypatch, origin, method, path):
+    started = []
+    monkeypatch.setattr(quiet_client.app.state.jobs, "start",
+                        lambda kind, spec: started.append(kind) or NoJob())
+    answer = quiet_client.request(method, path, content=b'{"structure": {}}',
+                                  headers={"Content-Type": "application/json", "Origin": origin})
+    assert answer.status_code == 403
+    assert answer.json()["error"].startswith(f"requests from another web site ({origin})")
+    assert started == []
+
+
+@pytest.mark.parametrize("origin", ["http://testserver", "HTTP://TestServer",
+                                    "http://testserver:80", None])
+def test_same_origin_request_is_answered(quiet_client, origin):
+    headers = {"Origin": origin} if origin else {}
+    assert quiet_client.post("/api/structure", json={"structure": {}},
+                             headers=headers).status_code == 200
+
+
+@given(port=st.integers(min_value=1, max_value=65535),
+       other=st.integers(min_value=1, max_value=65535),
+       host=st.sampled_from(["127.0.0.1", "localhost", "[::1]", "127.0.0.2"]))
+def test_same_origin_is_the_hosts_port_and_plain_http(port, other, host):
+    from archquake.app.server import same_origin
+
+    assert same_origin(f"http://{host}:{port}", f"{host}:{port}")
+    assert same_origin(f"http://{host}:{other}", f"{host}:{port}") == (other == port)
+    assert not same_origin(f"https://{host}:{port}", f"{host}:{port}")
+    assert not same_origin(f"http://{host}.attacker.example:{port}", f"{host}:{port}")

@@ -12,6 +12,9 @@ from archquake.ground_motion import oppenheim_pulse
 from archquake.models import model_for
 from archquake.reference_arches import oppenheim
 
+BYTES = {"Content-Type": "application/octet-stream"}
+"""The type an upload is sent as (as the page's script sends it)."""
+
 
 def wait(client, job_id, *, until=("done", "failed", "cancelled"), timeout=120.0):
     """Poll a job until its state is one of ``until``; every status seen."""
@@ -55,13 +58,14 @@ def test_bad_input_is_refused_with_the_command_lines_message(client):
     bad = client.post("/api/structure", json={"structure": {"embrace": 400}})
     assert bad.status_code == 400
     assert bad.json()["error"] == fields_named(cli_error("limit", "--embrace", "400"))
-    assert client.post("/api/structure", content=b"{not json").status_code == 400
+    assert client.post("/api/structure", content=b"{not json",
+                       headers={"Content-Type": "application/json"}).status_code == 400
 
 
 def test_geometry_upload_is_checked_as_the_command_line_checks_it(client, tmp_path):
     (tmp_path / "bad.json").write_text(BAD_GEOMETRY)
     refused = client.post("/api/upload/geometry", content=BAD_GEOMETRY.encode(),
-                          headers={"X-File-Name": "bad.json"})
+                          headers={**BYTES, "X-File-Name": "bad.json"})
     assert refused.status_code == 400
     assert refused.json()["error"] == cli_error("limit", "--geometry", "bad.json", cwd=tmp_path)
     import json
@@ -71,7 +75,7 @@ def test_geometry_upload_is_checked_as_the_command_line_checks_it(client, tmp_pa
     good = shaped_arch("pointed", span=10, rise=7, thickness=0.7, voussoirs=8).to_dict()
     (tmp_path / "good.json").write_text(json.dumps(good))
     accepted = client.post("/api/upload/geometry", content=json.dumps(good).encode(),
-                           headers={"X-File-Name": "good.json"}).json()
+                           headers={**BYTES, "X-File-Name": "good.json"}).json()
     answer = client.post("/api/structure",
                          json={"structure": {"geometry": accepted["token"]}}).json()
     printed = cli_json("limit", "--geometry", str(tmp_path / "good.json"))
@@ -83,9 +87,10 @@ def test_huge_input_is_refused_before_it_is_read(client):
 
     big = b" " * (LIMITS["geometry_bytes"] + 1)
     refused = client.post("/api/upload/geometry", content=big,
-                          headers={"X-File-Name": "big.json"})
+                          headers={**BYTES, "X-File-Name": "big.json"})
     assert refused.status_code == 413 and "at most" in refused.json()["error"]
-    refused = client.post("/api/structure", content=b"[" * (LIMITS["request_bytes"] + 1))
+    refused = client.post("/api/structure", content=b"[" * (LIMITS["request_bytes"] + 1),
+                          headers={"Content-Type": "application/json"})
     assert refused.status_code == 413
 
 
@@ -247,7 +252,7 @@ def test_record_upload_and_a_simulation_under_it(client, data_dir):
 
     content = (data_dir / "decaying_sine.AT2").read_bytes()
     summary = client.post("/api/upload/record", content=content,
-                          headers={"X-File-Name": "decaying_sine.AT2"}).json()
+                          headers={**BYTES, "X-File-Name": "decaying_sine.AT2"}).json()
     expected = read_record(data_dir / "decaying_sine.AT2")
     assert summary["samples"] == expected.times.size
     assert summary["pga_g"] == pytest.approx(abs(expected.values).max() / GRAVITY, rel=1e-12)
@@ -260,7 +265,7 @@ def test_record_upload_and_a_simulation_under_it(client, data_dir):
         assert result[name]["outcome"]["status"] == outcome.status.label
     assert max(abs(y) for y in result["motion"]["y"]) == pytest.approx(0.6, rel=1e-9)
     refused = client.post("/api/upload/record", content=b"0,0\n0,1\n",
-                          headers={"X-File-Name": "flat.csv"})
+                          headers={**BYTES, "X-File-Name": "flat.csv"})
     assert refused.status_code == 400 and "flat.csv" in refused.json()["error"]
 
 

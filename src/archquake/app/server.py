@@ -26,9 +26,20 @@ the command line names the option):
   ``DELETE /api/jobs/{id}``: cancel it;
 - ``GET /api/download/{name}``: a file a job wrote (the assessment report, zipped).
 
-The server writes only in its temporary folder (uploads, reports), removed when it stops; it
-answers only requests whose ``Host`` is the address it serves (so that a web site cannot drive
-it from the user's browser), and reads no request body larger than its limits.
+The server writes only in its temporary folder (uploads, reports), removed when it stops, and
+reads no request body larger than its limits.
+
+A web site open in the same browser could otherwise make the browser send requests to the page
+(a form's or a script's request to any address is sent, only its answer is withheld), and so
+start jobs. The server refuses them three ways: it answers only requests whose ``Host`` is the
+address it serves (a site's own name resolved to this machine, "DNS rebinding", is refused:
+status 400); it refuses a request whose ``Origin`` header, which browsers send with every
+request but a plain navigation, names another origin (status 403, :class:`SameOrigin`); and it
+reads a body only when it is declared as JSON (``application/json``) or, for an upload, as
+bytes (``application/octet-stream``), types that a browser sends to another origin only after
+asking it, which the server never allows (status 415). A program's request, which carries no
+``Origin``, is answered: the server is as open to the programs of this machine's users as any
+local port (``--host`` other than loopback opens it to the network, with no authentication).
 """
 
 from __future__ import annotations
@@ -96,7 +107,18 @@ async def _body(request: Request, limit: int) -> bytes:
     return b"".join(chunks)
 
 
+def _require_type(request: Request, media_type: str) -> None:
+    """Refuse a body not declared as ``media_type`` (status 415): a web site can make the
+    user's browser send a form's or a script's body as text or a form (a "simple" request, sent
+    without asking the server first) to any address, but not as JSON or as bytes."""
+    given = request.headers.get("content-type", "").split(";", 1)[0].strip().lower()
+    if given != media_type:
+        raise RequestError(415, f"the request's body must be sent as {media_type}, got "
+                                f"{given or 'no Content-Type'}")
+
+
 async def _json(request: Request) -> dict:
+    _require_type(request, "application/json")
     data = await _body(request, LIMITS["request_bytes"])
     return read_request(data)
 
@@ -184,6 +206,57 @@ def _handler(function):
     endpoint.__name__ = function.__name__
     endpoint.__doc__ = function.__doc__
     return endpoint
+
+
+class SameOrigin:
+    """ASGI middleware: refuse (status 403) a request that a page of another origin made the
+    user's browser send.
+
+    A browser names the page that made a request in its ``Origin`` header on every request but
+    a plain navigation or a same-origin ``GET``; the request is refused when that origin is not
+    the server's own (``http://`` and the ``Host`` the request was sent to, which
+    :class:`~starlette.middleware.trustedhost.TrustedHostMiddleware` has checked), or is
+    ``null`` (a sandboxed frame, a local file). A request without ``Origin`` -- a program's, as
+    ``curl``'s or the tests' -- is not a browser's on behalf of a web site and is answered.
+    """
+
+    def __init__(self, app):
+        self.app = app
+
+    async def __call__(self, scope, receive, send):
+        if scope["type"] == "http":
+            headers = {k.decode("latin-1").lower(): v.decode("latin-1")
+                       for k, v in scope["headers"]}
+            origin = headers.get("origin")
+            if origin is not None and not same_origin(origin, headers.get("host", "")):
+                response = _error(403, f"requests from another web site ({origin}) are refused: "
+                                       "open the page itself")
+                await response(scope, receive, send)
+                return
+        await self.app(scope, receive, send)
+
+
+def same_origin(origin: str, host: str) -> bool:
+    """Whether the ``Origin`` of a request is the server's own: ``http://`` and its ``Host``
+    (names compared without case, a missing port as 80).
+
+    Examples
+    --------
+    >>> same_origin("http://127.0.0.1:8050", "127.0.0.1:8050")
+    True
+    >>> same_origin("http://127.0.0.1:8000", "127.0.0.1:8050")
+    False
+    """
+    match = re.fullmatch(r"http://([^/?#@\s]+)", origin.strip(), flags=re.IGNORECASE)
+    if match is None:
+        return False
+    return _netloc(match.group(1)) == _netloc(host)
+
+
+def _netloc(text: str) -> str:
+    """``host:port`` without case, the port 80 left out as a browser leaves it out."""
+    text = text.strip().lower()
+    return text[:-3] if text.endswith(":80") else text
 
 
 # ------------------------------------------------------------------------------ computations
@@ -394,6 +467,7 @@ def create_app(workdir: str | Path | None = None, *, hosts=LOOPBACK_NAMES,
         kind = request.path_params["kind"]
         if kind not in uploads.KINDS:
             raise RequestError(404, f"no upload of kind {kind!r}")
+        _require_type(request, "application/octet-stream")
         data = await _body(request, LIMITS[f"{kind}_bytes"])
         entry = uploads.save(kind, request.headers.get("x-file-name", ""), data)
         check = check_geometry_file if kind == "geometry" else check_record_file
@@ -476,7 +550,8 @@ def create_app(workdir: str | Path | None = None, *, hosts=LOOPBACK_NAMES,
         Route("/api/download/{name}", _handler(download)),
         Mount("/static", StaticFiles(directory=STATIC), name="static"),
     ]
-    middleware = [Middleware(TrustedHostMiddleware, allowed_hosts=list(hosts))]
+    middleware = [Middleware(TrustedHostMiddleware, allowed_hosts=list(hosts)),
+                  Middleware(SameOrigin)]
     app = Starlette(routes=routes, middleware=middleware, lifespan=lifespan)
     app.state.workdir = folder
     app.state.jobs = jobs
@@ -567,5 +642,6 @@ def serve(host: str = "127.0.0.1", port: int = 8050, *, open_browser: bool = Tru
     return 0
 
 
-__all__ = ["LOOPBACK_NAMES", "RequestError", "check_answer", "create_app", "limit_figure",
-           "options_answer", "serve", "structure_answer"]
+__all__ = ["LOOPBACK_NAMES", "RequestError", "SameOrigin", "check_answer", "create_app",
+           "limit_figure", "options_answer", "read_request", "same_origin", "serve",
+           "structure_answer"]

@@ -473,7 +473,7 @@ function capacityChart(svg, legend, c) {
 
 // ---------------------------------------------------------------------------- uploads
 async function upload(kind, file) {
-  const headers = { "X-File-Name": file.name };
+  const headers = { "X-File-Name": file.name, "Content-Type": "application/octet-stream" };
   return api(`/api/upload/${kind}`, file, { headers });
 }
 
