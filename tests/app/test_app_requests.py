@@ -213,3 +213,84 @@ def test_same_origin_is_the_hosts_port_and_plain_http(port, other, host):
     assert same_origin(f"http://{host}:{other}", f"{host}:{port}") == (other == port)
     assert not same_origin(f"https://{host}:{port}", f"{host}:{port}")
     assert not same_origin(f"http://{host}.attacker.example:{port}", f"{host}:{port}")
+
+
+# ------------------------------------------------------------------------ the disk the page uses
+def finished_job(client, wait_seconds: float = 60.0) -> str:
+    """A job that ends at once (its worker refuses the structure), started past the server's
+    own checks: its id, once finished."""
+    import time
+
+    job = client.app.state.jobs.start("simulate", {"structure": {"thickness": -1}})
+    deadline = time.monotonic() + wait_seconds
+    while job.status(result=False)["state"] == "running":
+        assert time.monotonic() < deadline
+        time.sleep(0.05)
+    return job.id
+
+
+def write_report(folder, job_id: str) -> None:
+    """The files an assessment job writes (:func:`archquake.app.tasks.assessment`)."""
+    (folder / f"assessment-{job_id}").mkdir()
+    (folder / f"assessment-{job_id}" / "report.html").write_text("<p>report</p>")
+    (folder / f"assessment-{job_id}.zip").write_bytes(b"PK\x05\x06" + bytes(18))
+
+
+@pytest.mark.parametrize("keep", [1, 2, 3])
+def test_forgotten_jobs_files_are_deleted(client, keep):
+    client.app.state.jobs.keep = keep
+    folder = client.app.state.workdir
+    ids = []
+    for _ in range(keep + 2):
+        ids.append(finished_job(client))
+        write_report(folder, ids[-1])
+    finished_job(client)  # one more is started: the finished before the last `keep` go
+    kept = ids[-keep:]
+    assert sorted(p.name for p in folder.glob("assessment-*")) == sorted(
+        name for i in kept for name in (f"assessment-{i}", f"assessment-{i}.zip"))
+    for job_id in ids:
+        got = client.get(f"/api/download/assessment-{job_id}.zip")
+        assert got.status_code == (200 if job_id in kept else 404)
+
+
+def test_cancelled_jobs_files_are_deleted(client):
+    start = client.post("/api/jobs/domain", json={
+        "structure": {}, "domain": {"durations": "0.1:1.0:0.05"}}).json()
+    write_report(client.app.state.workdir, start["id"])  # as a report under way would
+    assert client.delete(f"/api/jobs/{start['id']}").json()["state"] == "cancelled"
+    assert list(client.app.state.workdir.glob("assessment-*")) == []
+
+
+def test_assessment_keeps_only_its_zip(tmp_path, monkeypatch):
+    import zipfile
+
+    from archquake.app import tasks
+
+    def fake_report(structure, out_dir):
+        (out_dir / "figures").mkdir(parents=True)
+        (out_dir / "report.html").write_text("<p>report</p>")
+        (out_dir / "figures" / "a.png").write_bytes(b"\x89PNG")
+        return {"verdict": "v", "files": ["report.html"]}
+
+    monkeypatch.setattr(tasks, "assessment_report", fake_report)
+    out = tasks.assessment({"structure": {}, "workdir": str(tmp_path),
+                            "job": "0123456789abcdef"}, lambda *a: None)
+    assert [p.name for p in tmp_path.iterdir()] == [out["file"]]
+    names = zipfile.ZipFile(tmp_path / out["file"]).namelist()
+    assert sorted(names) == ["assessment-0123456789abcdef/figures/a.png",
+                             "assessment-0123456789abcdef/report.html"]
+
+
+@pytest.mark.parametrize("budget, sizes, kept", [
+    (1000, [400, 400, 400], [1, 2]),     # the third pushes the first out: 800 <= 1000
+    (1000, [300, 300, 300, 300], [1, 2, 3]),
+    (700, [900, 100], [1]),              # the newest is kept even alone over the budget
+    (10_000, [100] * 5, [0, 1, 2, 3, 4])])
+def test_uploads_are_kept_within_a_byte_budget(tmp_path, budget, sizes, kept):
+    from archquake.app.inputs import Uploads
+
+    uploads = Uploads(tmp_path, keep=64, keep_bytes=budget)
+    entries = [uploads.save("record", f"r{i}.csv", b"0" * size) for i, size in enumerate(sizes)]
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
+        f"record-{entries[i]['token']}.csv" for i in kept)
+    assert sum(p.stat().st_size for p in tmp_path.iterdir()) <= max(budget, sizes[-1])

@@ -227,10 +227,13 @@ def living_in_group(group: int) -> list[int]:
 
 def test_download_serves_only_the_reports_of_jobs(client):
     folder = client.app.state.workdir
-    (folder / "assessment-0123456789abcdef.zip").write_bytes(b"PK\x05\x06" + bytes(18))
+    job = client.app.state.jobs.start("simulate", {"structure": {"thickness": -1}})
+    for job_id in (job.id, "0123456789abcdef"):  # a job kept, and none
+        (folder / f"assessment-{job_id}.zip").write_bytes(b"PK\x05\x06" + bytes(18))
     (folder / "secret.txt").write_text("not offered")
-    got = client.get("/api/download/assessment-0123456789abcdef.zip")
+    got = client.get(f"/api/download/assessment-{job.id}.zip")
     assert got.status_code == 200 and got.content.startswith(b"PK")
+    assert client.get("/api/download/assessment-0123456789abcdef.zip").status_code == 404
     assert client.get("/api/download/secret.txt").status_code == 404
 
 

@@ -36,13 +36,15 @@ LIMITS = {
     "amplitude_g": 10.0,
     "request_bytes": 256 * 2**10,
     "uploads": 64,
+    "uploads_bytes": 64 * 2**20,
     "domain_durations": 25,
     "domain_amplitudes": 80,
 }
 """The page's limits: blocks of a structure (voussoirs and pier courses) [-], size of a geometry
 file and of a record file [bytes], samples of a record [-], duration of any ground motion [s],
 amplitude of a pulse and peak of a scaled record [g], size of a request's JSON body [bytes],
-uploaded files kept [-], and pulse durations and amplitudes of a failure domain [-]."""
+uploaded files kept [-] and their total size [bytes] (the oldest are deleted first), and pulse
+durations and amplitudes of a failure domain [-]."""
 
 TOKEN = re.compile(r"^[0-9a-f]{16}$")
 
@@ -263,15 +265,20 @@ class Uploads:
         The folder (created if missing); nothing is written elsewhere.
     keep : int
         Files kept: the oldest is deleted when one more is uploaded.
+    keep_bytes : int
+        Their total size [bytes]: the oldest are deleted (never the newest) until the files
+        kept are within it.
     """
 
     KINDS = {"geometry": (".json",), "record": (".at2", ".csv", ".asc")}
     """Kinds of upload and the file extensions each takes."""
 
-    def __init__(self, folder: Path, keep: int = LIMITS["uploads"]):
+    def __init__(self, folder: Path, keep: int = LIMITS["uploads"],
+                 keep_bytes: int = LIMITS["uploads_bytes"]):
         self.folder = Path(folder)
         self.folder.mkdir(parents=True, exist_ok=True)
         self.keep = keep
+        self.keep_bytes = keep_bytes
         self._files: OrderedDict[str, dict] = OrderedDict()
         self._lock = threading.Lock()
 
@@ -290,7 +297,7 @@ class Uploads:
         Returns
         -------
         dict
-            ``{"token", "kind", "name", "path"}``.
+            ``{"token", "kind", "name", "path", "bytes"}``.
 
         Raises
         ------
@@ -307,10 +314,13 @@ class Uploads:
         token = secrets.token_hex(8)
         path = self.folder / f"{kind}-{token}{suffix}"
         path.write_bytes(data)
-        entry = {"token": token, "kind": kind, "name": shown, "path": str(path)}
+        entry = {"token": token, "kind": kind, "name": shown, "path": str(path),
+                 "bytes": len(data)}
         with self._lock:
             self._files[token] = entry
-            while len(self._files) > self.keep:
+            while len(self._files) > 1 and (
+                    len(self._files) > self.keep
+                    or sum(e["bytes"] for e in self._files.values()) > self.keep_bytes):
                 _, old = self._files.popitem(last=False)
                 Path(old["path"]).unlink(missing_ok=True)
         return entry

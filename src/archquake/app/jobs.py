@@ -27,8 +27,9 @@ MAX_RUNNING = 3
 """Jobs running at once; one more is refused until one ends (the machine's cores are shared)."""
 
 KEEP_FINISHED = 8
-"""Finished jobs kept for the page to read, with their results (the oldest are forgotten
-first): an animation of many blocks is megabytes."""
+"""Finished jobs kept for the page to read, with their results and files (the oldest are
+forgotten first, their files deleted): an animation of many blocks is megabytes, an assessment
+report some."""
 
 
 class BusyError(RuntimeError):
@@ -170,11 +171,15 @@ class Jobs:
         Jobs running at once (:data:`MAX_RUNNING`).
     keep : int
         Finished jobs kept (:data:`KEEP_FINISHED`).
+    forget : callable, optional
+        ``forget(job_id)``, called for each job forgotten (to delete the files it wrote).
     """
 
-    def __init__(self, max_running: int = MAX_RUNNING, keep: int = KEEP_FINISHED):
+    def __init__(self, max_running: int = MAX_RUNNING, keep: int = KEEP_FINISHED,
+                 forget=None):
         self.max_running = max_running
         self.keep = keep
+        self.forget = forget
         self._jobs: OrderedDict[str, Job] = OrderedDict()
         self._lock = threading.Lock()
         self._context = context()
@@ -198,8 +203,12 @@ class Jobs:
             job = Job(self._context, kind, spec)
             self._jobs[job.id] = job
             finished = [i for i, j in self._jobs.items() if j.state != "running"]
-            for old in finished[:max(0, len(finished) - self.keep)]:
+            forgotten = finished[:max(0, len(finished) - self.keep)]
+            for old in forgotten:
                 del self._jobs[old]
+        for old in forgotten:
+            if self.forget is not None:
+                self.forget(old)
         return job
 
     def get(self, job_id: str) -> Job:

@@ -27,7 +27,10 @@ the command line names the option):
 - ``GET /api/download/{name}``: a file a job wrote (the assessment report, zipped).
 
 The server writes only in its temporary folder (uploads, reports), removed when it stops, and
-reads no request body larger than its limits.
+reads no request body larger than its limits. What it keeps there is bounded: the last
+:data:`~archquake.app.inputs.LIMITS` ``["uploads"]`` uploads within ``["uploads_bytes"]``, and
+the files of the jobs it keeps (:data:`~archquake.app.jobs.KEEP_FINISHED`): a job's report is
+deleted when the job is forgotten or cancelled, and no longer offered for download.
 
 A web site open in the same browser could otherwise make the browser send requests to the page
 (a form's or a script's request to any address is sent, only its answer is withheld), and so
@@ -76,7 +79,7 @@ STATIC = Path(__file__).parent / "static"
 LOOPBACK_NAMES = ("127.0.0.1", "localhost", "::1", "[::1]")
 """Host names that a server on loopback answers."""
 
-_DOWNLOAD = re.compile(r"^assessment-[0-9a-f]{16}\.zip$")
+_DOWNLOAD = re.compile(r"^assessment-([0-9a-f]{16})\.zip$")
 
 
 class RequestError(Exception):
@@ -414,7 +417,7 @@ def create_app(workdir: str | Path | None = None, *, hosts=LOOPBACK_NAMES,
     own = workdir is None
     folder = Path(tempfile.mkdtemp(prefix="archquake-app-") if own else workdir)
     uploads = Uploads(folder / "uploads")
-    jobs = Jobs()
+    jobs = Jobs(forget=lambda job_id: delete_job_files(folder, job_id))
     suite_list: list = []
     suite_lock = threading.Lock()
 
@@ -527,13 +530,20 @@ def create_app(workdir: str | Path | None = None, *, hosts=LOOPBACK_NAMES,
     async def job_cancel(request: Request):
         job = _job(request)
         await run_in_threadpool(job.cancel)
+        if job.state == "cancelled":  # what it wrote before it was ended is of no use
+            await run_in_threadpool(delete_job_files, folder, job.id)
         return JSONResponse(job.status(result=False))
 
     async def download(request: Request):
         name = request.path_params["name"]
         path = folder / name
-        if not _DOWNLOAD.match(name) or not path.is_file():
+        match = _DOWNLOAD.match(name)
+        if not match or not path.is_file():
             raise RequestError(404, "no such file")
+        try:
+            jobs.get(match.group(1))
+        except KeyError:  # its job is forgotten: its files are being deleted
+            raise RequestError(404, "no such file (its job is no longer kept)") from None
         return FileResponse(path, media_type="application/zip", filename=name)
 
     routes = [
@@ -557,6 +567,13 @@ def create_app(workdir: str | Path | None = None, *, hosts=LOOPBACK_NAMES,
     app.state.jobs = jobs
     app.state.uploads = uploads
     return app
+
+
+def delete_job_files(folder: Path, job_id: str) -> None:
+    """Delete what the job ``job_id`` wrote in the server's folder (its assessment report, the
+    zip and the folder it was made in), once the job is forgotten or cancelled."""
+    (folder / f"assessment-{job_id}.zip").unlink(missing_ok=True)
+    shutil.rmtree(folder / f"assessment-{job_id}", ignore_errors=True)
 
 
 def _warm_up(read_suites) -> None:
@@ -643,5 +660,5 @@ def serve(host: str = "127.0.0.1", port: int = 8050, *, open_browser: bool = Tru
 
 
 __all__ = ["LOOPBACK_NAMES", "RequestError", "SameOrigin", "check_answer", "create_app",
-           "limit_figure", "options_answer", "read_request", "same_origin", "serve",
-           "structure_answer"]
+           "delete_job_files", "limit_figure", "options_answer", "read_request", "same_origin",
+           "serve", "structure_answer"]

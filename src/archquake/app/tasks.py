@@ -18,6 +18,7 @@ from __future__ import annotations
 import base64
 import io
 import math
+import shutil
 import zipfile
 from dataclasses import replace
 from pathlib import Path
@@ -303,7 +304,8 @@ def assessment(spec: dict, report) -> dict:
     Returns
     -------
     dict
-        ``file``: the name of the zip file in ``workdir`` (the server offers it for download),
+        ``file``: the name of the zip file in ``workdir`` (the server offers it for download
+        while it keeps the job; the folder the report was written in is deleted once zipped),
         ``verdict`` and ``files`` of the report.
     """
     _, structure = structure_from_spec(spec.get("structure") or {})
@@ -316,6 +318,7 @@ def assessment(spec: dict, report) -> dict:
         for path in sorted((workdir / name).rglob("*")):
             if path.is_file():
                 zf.write(path, Path(name) / path.relative_to(workdir / name))
+    shutil.rmtree(workdir / name)  # the zip holds it: the server's folder keeps one copy
     report(1, 1, "done")
     return {"file": archive.name, **summary}
 
