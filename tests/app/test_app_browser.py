@@ -351,3 +351,23 @@ def test_cross_site_post_is_refused(browser, tmp_path, monkeypatch):
     assert results["json"] == "refused by the browser"  # its preflight found no permission
     assert results["text"] == results["form"] == "opaque"  # sent, the answer withheld
     assert list((tmp_path / "work").glob("assessment-*")) == []
+
+
+def test_record_warning_is_shown_on_the_page(page, tmp_path):
+    """A record whose peak is implausible in g (likely in cm/s^2): the library's warning is
+    shown beside the file, and again over the time history it shakes."""
+    peak = 6.5
+    rows = [f"{k / 100:.2f},{peak * (1 - abs(k - 100) / 100)!r}" for k in range(201)]
+    path = tmp_path / "in_cm.csv"
+    path.write_text("time_s,acc_g\n" + "\n".join(rows) + "\n")
+    page.select_option("#motion-source", "record")
+    page.set_input_files("#record-file", str(path))
+    page.wait_for_selector("#record-warnings:not([hidden])", timeout=30_000)
+    warning = text(page, "#record-warnings")
+    assert warning.startswith("Warning: record file 'in_cm.csv': its peak acceleration 6.5 g "
+                              "is implausible")
+    assert f"in cm/s^2 the peak is {peak / 100 / 9.80665:.3g} g" in warning
+    page.fill("#scale-to", "0.2")
+    page.click("#shake")
+    page.wait_for_selector("#shake-warnings:not([hidden])", timeout=60_000)
+    assert text(page, "#shake-warnings") == warning

@@ -294,3 +294,71 @@ def test_uploads_are_kept_within_a_byte_budget(tmp_path, budget, sizes, kept):
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
         f"record-{entries[i]['token']}.csv" for i in kept)
     assert sum(p.stat().st_size for p in tmp_path.iterdir()) <= max(budget, sizes[-1])
+
+
+# ------------------------------------------------------------------------ uploaded records
+def triangle_record(peak_g: float) -> bytes:
+    """A record in g rising linearly from 0 at 0 s to ``peak_g`` at 1 s and back to 0 at 2 s,
+    sampled every 0.01 s: its peak is ``peak_g`` (the sample at 1 s)."""
+    rows = [f"{k / 100:.2f},{peak_g * (1 - abs(k - 100) / 100)!r}" for k in range(201)]
+    return ("time_s,acc_g\n" + "\n".join(rows) + "\n").encode()
+
+
+def upload_record(client, name: str, content: bytes):
+    return client.post("/api/upload/record", content=content, headers={
+        "Content-Type": "application/octet-stream", "X-File-Name": name})
+
+
+@settings(max_examples=12, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(peak=st.floats(min_value=10.01, max_value=999.0))
+def test_uploaded_record_is_held_to_the_pages_10_g_cap(quiet_client, peak):
+    from archquake.app.inputs import LIMITS
+
+    assert LIMITS["amplitude_g"] == 10.0
+    summary = upload_record(quiet_client, "strong.csv", triangle_record(peak))
+    assert summary.status_code == 200
+    assert summary.json()["pga_g"] == pytest.approx(peak, rel=1e-12)
+    assert any("more than the 10 g this page shakes a structure with" in w
+               for w in summary.json()["warnings"])
+    token = summary.json()["token"]
+    refused = quiet_client.post("/api/jobs/simulate", json={
+        "structure": {}, "motion": {"record": token}})
+    assert refused.status_code == 400
+    assert refused.json()["error"].startswith(
+        f"the ground motion's peak acceleration is {peak:.4g} g; this page takes at most 10 g")
+    scaled = quiet_client.post("/api/jobs/simulate", json={
+        "structure": {}, "motion": {"record": token, "scale_to": 0.5}})
+    assert scaled.status_code == 200
+
+
+@pytest.mark.parametrize("peak, warned", [(0.8, False), (4.9, False), (5.2, True),
+                                          (9.9, True)])
+def test_uploaded_records_unit_warning_is_in_the_answer(quiet_client, peak, warned):
+    summary = upload_record(quiet_client, "in_cm.csv", triangle_record(peak)).json()
+    assert summary["pga_g"] == pytest.approx(peak, rel=1e-12)
+    if not warned:  # at most 5 g (PLAUSIBLE_PEAK_G) a record reads as in g
+        assert summary["warnings"] == []
+        return
+    [warning] = summary["warnings"]
+    # the library's warning, naming the file as the user did (not the server's copy)
+    assert warning.startswith(f"record file 'in_cm.csv': its peak acceleration {peak:.4g} g is "
+                              "implausible for a record (above 5 g)")
+    # in cm/s^2 the peak is peak / 100 / 9.80665 g
+    assert f"in cm/s^2 the peak is {peak / 100 / 9.80665:.3g} g" in warning
+
+
+def test_simulation_under_an_implausible_record_carries_its_warning(client):
+    import time
+
+    summary = upload_record(client, "in_cm.csv", triangle_record(7.5)).json()
+    start = client.post("/api/jobs/simulate", json={
+        "structure": {}, "motion": {"record": summary["token"], "scale_to": 0.3}}).json()
+    deadline = time.monotonic() + 120
+    while (status := client.get(f"/api/jobs/{start['id']}").json())["state"] == "running":
+        assert time.monotonic() < deadline
+        time.sleep(0.1)
+    assert status["state"] == "done", status
+    [warning] = status["result"]["warnings"]
+    assert warning.startswith("record file 'in_cm.csv': its peak acceleration 7.5 g")
+    assert max(abs(y) for y in status["result"]["motion"]["y"]) == pytest.approx(0.3, rel=1e-9)

@@ -113,7 +113,8 @@ def _number(value) -> float:
 
 
 def motion_from_spec(spec: dict):
-    """The ground motion of a description.
+    """The ground motion of a description (its warnings dropped: :func:`motion_and_warnings`
+    keeps them).
 
     Parameters
     ----------
@@ -130,11 +131,43 @@ def motion_from_spec(spec: dict):
     Raises
     ------
     ValueError
-        The library's message for the same values, naming the field; for a motion longer than
-        ``LIMITS["motion_duration"]``, or a pulse or a scaled record stronger than
-        ``LIMITS["amplitude_g"]``.
+        As :func:`motion_and_warnings`.
     """
-    from ..ground_motion import MotionSpec
+    return motion_and_warnings(spec)[0]
+
+
+def motion_and_warnings(spec: dict, *, page_peak: bool = True):
+    """The ground motion of a description and the library's warnings about it (a record whose
+    peak is implausible in g, likely in cm/s^2 or m/s^2), for the page to show.
+
+    The page's limits come on top of the library's (which the command line applies): the
+    motion lasts at most ``LIMITS["motion_duration"]``, a record has at most
+    ``LIMITS["record_samples"]``, and the peak of a pulse, of a scaled record and of any record,
+    uploaded or of a suite, as it shakes the structure is at most ``LIMITS["amplitude_g"]``.
+
+    Parameters
+    ----------
+    spec : dict
+        As :func:`motion_from_spec` takes it.
+    page_peak : bool
+        Refuse a peak above ``LIMITS["amplitude_g"]`` (an uploaded record is read without, as it
+        may be scaled when it is used).
+
+    Returns
+    -------
+    (GroundMotion, list of str)
+        The motion and the warnings' messages, which name a file as the user did.
+
+    Raises
+    ------
+    ValueError
+        The library's message for the same values, naming the field; for a motion longer than
+        ``LIMITS["motion_duration"]``, or stronger than ``LIMITS["amplitude_g"]``.
+    """
+    import warnings
+
+    from ..geometry import GRAVITY
+    from ..ground_motion import LINEAR, MotionSpec
 
     data, file = _with_path(spec, "record")
     if isinstance(spec, dict):
@@ -143,16 +176,25 @@ def motion_from_spec(spec: dict):
                 raise ValueError(f"{name} must be within +-{LIMITS['amplitude_g']:g} g on this "
                                  f"page, got {spec.get(name)}")
     try:
-        motion = MotionSpec.from_dict(data).build()
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            motion = MotionSpec.from_dict(data).build()
     except ValueError as exc:
         raise ValueError(_file_message(str(exc), file)) from None
+    said = [_file_message(str(w.message), file) for w in caught]
     if not motion.duration <= LIMITS["motion_duration"]:
         raise ValueError(f"the ground motion lasts {motion.duration:.4g} s; this page takes at "
                          f"most {LIMITS['motion_duration']:g} s")
     if motion.times.size > LIMITS["record_samples"]:
         raise ValueError(f"the record has {motion.times.size} samples; this page takes at most "
                          f"{LIMITS['record_samples']}")
-    return motion
+    if page_peak and motion.kind == LINEAR:
+        peak = float(abs(motion.values).max()) / GRAVITY
+        if not peak <= LIMITS["amplitude_g"]:
+            raise ValueError(f"the ground motion's peak acceleration is {peak:.4g} g; this page "
+                             f"takes at most {LIMITS['amplitude_g']:g} g (give scale_to, the "
+                             f"peak to scale the record to, or check that its values are in g)")
+    return motion, list(dict.fromkeys(said))
 
 
 SITE_FIELDS = ("ag", "f0", "tc_star", "soil", "topography", "knowledge_level", "slc_ag",
@@ -373,13 +415,15 @@ def check_geometry_file(entry: dict):
 
 
 def check_record_file(entry: dict) -> dict:
-    """A summary of an uploaded record (its duration, samples and peak), read as ``archquake
-    simulate --record`` reads it.
+    """A summary of an uploaded record (its duration, samples and peak) and the warnings about
+    it, read as ``archquake simulate --record`` reads it.
 
     Returns
     -------
     dict
-        ``name``, ``duration`` [s], ``samples`` [-] and ``pga_g`` [g].
+        ``name``, ``duration`` [s], ``samples`` [-], ``pga_g`` [g] and ``warnings`` (the
+        library's, naming the file as the user did; and the page's when the peak is more than it
+        takes unscaled).
 
     Raises
     ------
@@ -388,11 +432,17 @@ def check_record_file(entry: dict) -> dict:
     """
     from ..geometry import GRAVITY
 
-    motion = motion_from_spec({"record": {"path": entry["path"], "name": entry["name"]}})
+    motion, said = motion_and_warnings({"record": {"path": entry["path"],
+                                                   "name": entry["name"]}}, page_peak=False)
+    pga = float(abs(motion.values).max() / GRAVITY)
+    if pga > LIMITS["amplitude_g"]:
+        said.append(f"its peak acceleration {pga:.4g} g is more than the "
+                    f"{LIMITS['amplitude_g']:g} g this page shakes a structure with: give a "
+                    f"peak to scale it to (scale_to)")
     return {"name": entry["name"], "duration": float(motion.duration),
-            "samples": int(motion.times.size),
-            "pga_g": float(abs(motion.values).max() / GRAVITY)}
+            "samples": int(motion.times.size), "pga_g": pga, "warnings": said}
 
 
 __all__ = ["LIMITS", "SITE_FIELDS", "Uploads", "check_geometry_file", "check_record_file",
-           "motion_from_spec", "site_from_spec", "structure_from_spec", "suites"]
+           "motion_and_warnings", "motion_from_spec", "site_from_spec", "structure_from_spec",
+           "suites"]

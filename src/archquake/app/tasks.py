@@ -24,7 +24,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from . import views
-from .inputs import LIMITS, motion_from_spec, structure_from_spec
+from .inputs import LIMITS, motion_and_warnings, structure_from_spec
 
 DOMAIN_DEFAULTS = {"durations": "0.1:1.0:0.1", "amplitudes": "0.05:1.5:0.05",
                    "direction": "l", "motion": "oppenheim", "resolution": 0.01,
@@ -91,16 +91,19 @@ def simulate(spec: dict, report) -> dict:
     -------
     dict
         ``structure`` (:func:`~archquake.app.views.structure_view`), ``motion``
-        (:func:`~archquake.app.views.motion_view`), ``times`` of the frames [s] and their
+        (:func:`~archquake.app.views.motion_view`), ``warnings`` about the motion (a record's
+        implausible peak, :func:`~archquake.app.inputs.motion_and_warnings`), ``times`` of the
+        frames [s] and their
         rate ``fps`` [1/s] (:func:`~archquake.app.views.frame_rate`), and per model
         (``"four-link"``, ``"rigid-blocks"``) its view (:func:`~archquake.app.views.four_link_view`,
         :func:`~archquake.app.views.rigid_block_view`) or ``{"error": message}``.
     """
     nominal, structure = structure_from_spec(spec.get("structure") or {})
-    motion = motion_from_spec(spec.get("motion") or {})
+    motion, said = motion_and_warnings(spec.get("motion") or {})
     models = models_of(spec, structure, nominal)
     histories = {}
-    out = {"structure": views.structure_view(structure), "motion": views.motion_view(motion)}
+    out = {"structure": views.structure_view(structure), "motion": views.motion_view(motion),
+           "warnings": said}
     for k, (name, model) in enumerate(models.items()):
         report(k, 2, f"{name} model")
         if isinstance(model, str):

@@ -496,16 +496,25 @@ async function geometryChosen() {
   }
 }
 
+// the server's warnings (a record's implausible peak ...) in a box of the page, as text
+function showWarnings(id, warnings) {
+  const box = $(id);
+  box.textContent = (warnings || []).map((w) => `Warning: ${w}`).join("\n");
+  box.hidden = !box.textContent;
+}
+
 async function recordChosen() {
   const file = $("record-file").files[0];
   if (!file) return;
   state.record = null;
+  showWarnings("record-warnings", []);
   try {
     const answer = await upload("record", file);
     state.record = answer;
     $("record-name").textContent =
       `${answer.name}: ${answer.samples} samples, ${answer.duration.toFixed(2)} s, ` +
       `PGA ${answer.pga_g.toFixed(3)} g`;
+    showWarnings("record-warnings", answer.warnings);
     showMessage("");
   } catch (error) {
     showMessage(error.message);
@@ -586,6 +595,7 @@ async function shake() {
     body = { structure: structureSpec(), motion: motionSpec(), models: modelsSpec() };
   } catch (error) { showMessage(error.message); return; }
   for (const name of ["four-link", "rigid-blocks"]) { setOutcome(name, "…", ""); }
+  showWarnings("shake-warnings", []);
   $("shake-progress").textContent = "starting…";
   $("shake-cancel").hidden = false;
   const handlers = {
@@ -594,6 +604,7 @@ async function shake() {
       $("shake-progress").textContent = "";
       $("shake-cancel").hidden = true;
       state.shake = null;
+      showWarnings("shake-warnings", result.warnings);
       showShake(result);
     },
     error: (message) => {
