@@ -603,6 +603,42 @@ def _listen(host: str, port: int) -> socket.socket:
     return sock
 
 
+def check_host(host: str) -> str:
+    """The address ``--host`` names, checked: a name or an IP address, not empty (an empty
+    address listens on every interface, which is no default to fall into by mistake).
+
+    Raises
+    ------
+    ValueError
+        Naming ``--host``.
+    """
+    text = host.strip() if isinstance(host, str) else ""
+    if not text or any(c.isspace() for c in text) or "/" in text:
+        raise ValueError(f"--host must be an address to listen on: 127.0.0.1 (this machine only, "
+                         f"the default), or e.g. 0.0.0.0 to serve every network interface; got "
+                         f"{host!r}")
+    return text
+
+
+def is_loopback(host: str) -> bool:
+    """Whether ``host`` is this machine only: ``localhost``, any of 127.0.0.0/8 or ``::1``.
+
+    Examples
+    --------
+    >>> [is_loopback(h) for h in ("127.0.0.2", "[::1]", "localhost", "0.0.0.0", "10.0.0.1")]
+    [True, True, True, False, False]
+    """
+    import ipaddress
+
+    name = host.strip().strip("[]").lower()
+    if name == "localhost":
+        return True
+    try:
+        return ipaddress.ip_address(name).is_loopback
+    except ValueError:  # another name: it may resolve anywhere
+        return False
+
+
 def serve(host: str = "127.0.0.1", port: int = 8050, *, open_browser: bool = True,
           log=None) -> int:
     """Serve the page until interrupted (Ctrl-C or SIGTERM).
@@ -627,15 +663,17 @@ def serve(host: str = "127.0.0.1", port: int = 8050, *, open_browser: bool = Tru
     Raises
     ------
     ValueError
-        If the address cannot be listened on (the port in use, an unknown host).
+        If the address is empty (:func:`check_host`) or cannot be listened on (the port in
+        use, an unknown host).
     """
     import uvicorn
 
+    host = check_host(host)
     sock = _listen(host, port)
     shown = host if ":" not in host else f"[{host.strip('[]')}]"
     url = f"http://{shown}:{sock.getsockname()[1]}/"
-    loopback = host.strip("[]") in ("127.0.0.1", "localhost", "::1")
-    hosts = LOOPBACK_NAMES if loopback else ("*",)
+    loopback = is_loopback(host)
+    hosts = (*LOOPBACK_NAMES, host.strip("[]").lower(), shown.lower()) if loopback else ("*",)
     app = create_app(hosts=hosts)
     config = uvicorn.Config(app, log_level="warning", lifespan="on", timeout_graceful_shutdown=5)
     server = uvicorn.Server(config)
@@ -659,6 +697,6 @@ def serve(host: str = "127.0.0.1", port: int = 8050, *, open_browser: bool = Tru
     return 0
 
 
-__all__ = ["LOOPBACK_NAMES", "RequestError", "SameOrigin", "check_answer", "create_app",
-           "delete_job_files", "limit_figure", "options_answer", "read_request", "same_origin",
-           "serve", "structure_answer"]
+__all__ = ["LOOPBACK_NAMES", "RequestError", "SameOrigin", "check_answer", "check_host",
+           "create_app", "delete_job_files", "is_loopback", "limit_figure", "options_answer",
+           "read_request", "same_origin", "serve", "structure_answer"]

@@ -14,9 +14,11 @@ import json
 import os
 import signal
 import sys
+import threading
 import traceback
 
 import matplotlib
+import tqdm.std
 
 matplotlib.use("Agg")
 
@@ -29,6 +31,12 @@ from ..studies.comparison import domain_disagreement  # noqa: E402, F401
 from ..studies.failure_domain import domain_of  # noqa: E402, F401
 from .tasks import TASKS  # noqa: E402
 from .views import json_ready  # noqa: E402
+
+# The progress bars of the library's studies take a lock shared between processes (a
+# semaphore) unless given one: a worker ended while it holds one (a job cancelled, the server
+# stopped) leaves the semaphore behind, which the resource tracker reports as leaked when the
+# server stops. A worker's bars are its own: a lock of its threads is enough.
+tqdm.std.tqdm.set_lock(threading.RLock())
 
 
 def warm_up() -> None:

@@ -24,9 +24,10 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="TCP port, in [0, 65535]; 0 picks a free one (default: "
                              "%(default)s)")
     parser.add_argument("--host", default=DEFAULT_HOST,
-                        help="address to listen on (default: %(default)s, this machine only; "
-                             "another address serves the page to the network, which has no "
-                             "authentication)")
+                        help="address to listen on (default: %(default)s, this machine only, "
+                             "as is any 127.x.y.z, ::1 or localhost; another address, e.g. "
+                             "0.0.0.0 for every interface, serves the page to the network, "
+                             "which has no authentication; an empty one is refused)")
     parser.add_argument("--no-browser", action="store_true",
                         help="print the page's address instead of opening it in the browser")
 
