@@ -31,3 +31,13 @@ def test_json_float_keeps_finite_numbers_only():
     assert json_float(np.int64(2)) == 2.0
     for missing in (None, math.nan, np.nan, math.inf, -np.inf):
         assert json_float(missing) is None
+
+
+@pytest.mark.parametrize("digits", [4301, 5000, 20_000])
+def test_json_loads_refuses_an_overlong_integer_in_its_own_words(digits):
+    from archquake.checks import json_loads
+
+    with pytest.raises(ValueError) as refused:
+        json_loads('{"n": -' + "9" * digits + "}")
+    assert str(refused.value) == f"an integer of {digits} digits is too long to be read"
+    assert json_loads('{"n": -' + "9" * 4300 + "}")["n"] == -(10**4300 - 1)  # 4300: read

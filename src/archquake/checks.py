@@ -200,10 +200,14 @@ def json_loads(text: str, *, allow_nan: bool = False) -> Any:
     """
     kwargs = {} if allow_nan else {"parse_constant": _refuse_constant}
     try:
-        return json.loads(text, object_pairs_hook=_refuse_duplicate_keys,
-                          parse_int=_read_integer, **kwargs)
+        return json.loads(text, object_pairs_hook=_refuse_duplicate_keys, **kwargs)
     except RecursionError:
         raise ValueError("the JSON is nested too deeply to be read") from None
+    except json.JSONDecodeError:
+        raise
+    except ValueError:  # read again, rarely, to say an overlong integer in our own words
+        return json.loads(text, object_pairs_hook=_refuse_duplicate_keys,
+                          parse_int=_read_integer, **kwargs)
 
 
 __all__ = ["check_integer", "json_dumps", "json_float", "json_loads", "json_value"]
