@@ -362,3 +362,15 @@ def test_simulation_under_an_implausible_record_carries_its_warning(client):
     [warning] = status["result"]["warnings"]
     assert warning.startswith("record file 'in_cm.csv': its peak acceleration 7.5 g")
     assert max(abs(y) for y in status["result"]["motion"]["y"]) == pytest.approx(0.3, rel=1e-9)
+
+
+@settings(max_examples=80, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(content=st.binary(max_size=300) | st.text(alphabet="0123456789.,-e\n#[]{}\": ", max_size=300)
+       .map(str.encode) | values.map(lambda v: json.dumps(v).encode()),
+       name=st.sampled_from(["r.csv", "r.AT2", "r.asc", "g.json", "x.txt", ""]),
+       kind=st.sampled_from(["record", "geometry"]))
+def test_any_uploaded_file_is_answered_200_or_400_never_500(quiet_client, content, name, kind):
+    answer = quiet_client.post(f"/api/upload/{kind}", content=content, headers={
+        "Content-Type": "application/octet-stream", "X-File-Name": name})
+    assert answer.status_code in (200, 400), (answer.status_code, answer.text)
