@@ -147,7 +147,7 @@ def read_request(data: bytes) -> dict:
     except json.JSONDecodeError as exc:
         raise RequestError(400, f"the request is not JSON: {exc.msg} (line {exc.lineno}, "
                                 f"column {exc.colno})") from None
-    except ValueError as exc:  # a key given twice, NaN, nested too deeply, digits too many
+    except ValueError as exc:  # a key given twice, nested too deeply, digits too many
         raise RequestError(400, f"the request is not JSON the page reads: {exc}") from None
     if not isinstance(value, dict):
         raise RequestError(400, "the request must be a JSON object")
@@ -167,8 +167,7 @@ motion, its parameters)."""
 def check_values(value) -> None:
     """Refuse a request nested more than :data:`MAX_NESTING` levels deep, with a number that is
     not finite (``NaN``, ``1e400``) or an integer of more than :data:`MAX_INTEGER_DIGITS`
-    digits, naming its field (the innermost key; ``[i]``
-    for the i-th item of a list).
+    digits, naming its field (the innermost key; ``[i]`` for the i-th item of a list).
 
     Raises
     ------
