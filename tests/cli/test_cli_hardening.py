@@ -7,6 +7,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from archquake.cli import main
 from archquake.defaults import MAX_ACCELERATION_G
@@ -257,3 +259,50 @@ def test_fill_passive_still_raises_k_in_the_limit_analysis(capsys):
     without = StructureSpec(fill_cover=0.8).arches()[1]
     assert (both_directions(with_passive)[0].load_multiplier
             > both_directions(without)[0].load_multiplier)
+# --- a demanding new user -----------------------------------------------------------------------
+
+def _filled_structure_file(tmp_path, density: float) -> Path:
+    """A file of Oppenheim's arch under 0.5 m of fill, as archquake writes it (with its density)."""
+    from archquake import oppenheim
+    from archquake.geometry import Fill, Structure, circular_arch
+
+    nominal = oppenheim()
+    arch = circular_arch(10.0, nominal.embrace, 1.5, 7, density=density)
+    path = tmp_path / f"filled_{density:g}.json"
+    path.write_text(json.dumps(Structure(arch, fill=Fill(0.5, 1800.0)).to_dict()))
+    return path
+
+
+@settings(max_examples=5)
+@given(file_density=st.sampled_from([1500.0, 2000.0, 2600.0]),
+       density=st.floats(800.0, 4000.0).map(lambda x: round(x, 1)))
+def test_density_option_wins_over_the_geometry_file(tmp_path_factory, file_density, density):
+    """With fill, k depends on the masonry's density (the fill's weight is fixed): the k of
+    ``--geometry FILE --density D`` is that of the structure built directly with D, whatever
+    density the file gives; the file's own density is used without the option."""
+    from archquake import oppenheim
+    from archquake.geometry import Fill, Structure, circular_arch
+    from archquake.limit_analysis import load_multipliers
+    from fuzzing import run_cli
+
+    path = _filled_structure_file(tmp_path_factory.mktemp("geometry"), file_density)
+
+    def k_of(masonry):
+        arch = circular_arch(10.0, oppenheim().embrace, 1.5, 7, density=masonry)
+        return min(load_multipliers(Structure(arch, fill=Fill(0.5, 1800.0))))
+
+    status, out, _ = run_cli(["limit", "--geometry", str(path), "--density", repr(density),
+                              "--json"])
+    assert status == 0
+    assert strict_json(out)["k"] == pytest.approx(k_of(density), rel=1e-9)
+    status, out, _ = run_cli(["limit", "--geometry", str(path), "--json"])
+    assert strict_json(out)["k"] == pytest.approx(k_of(file_density), rel=1e-9)
+    if abs(density - file_density) > 50.0:  # the option is not ignored: k moves with it
+        assert abs(k_of(density) - k_of(file_density)) > 1e-4
+
+
+def test_density_help_says_it_replaces_the_geometry_files(capsys):
+    with pytest.raises(SystemExit):
+        main(["limit", "--help"])
+    help_text = " ".join(capsys.readouterr().out.split())
+    assert "replaces the density of the --geometry file" in help_text

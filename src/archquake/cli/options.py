@@ -298,7 +298,8 @@ def add_structure_options(parser: argparse.ArgumentParser) -> None:
                             "passive pressure in [0, 1]")
     group.add_argument("--density", type=number, metavar="KG/M3",
                        help=f"density of the masonry, arch and piers [kg/m^3] (default: "
-                            f"{DEFAULT_DENSITY:g})")
+                            f"the --geometry file's, else {DEFAULT_DENSITY:g}); given, it "
+                            "replaces the density of the --geometry file")
 
 
 def shape_spec(args: argparse.Namespace):

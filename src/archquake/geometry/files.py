@@ -37,7 +37,8 @@ KINDS = {"angles": CircularArch, "blocks": SurveyedArch, "shape": ShapedArch, "a
 """The key that tells each kind of description."""
 
 
-def arch_from_dict(data, *, density: float = DEFAULT_DENSITY) -> BlockArch:
+def arch_from_dict(data, *, density: float = DEFAULT_DENSITY,
+                   replace_density: bool = False) -> BlockArch:
     """The arch a dict describes (see the module for the four forms).
 
     Parameters
@@ -45,7 +46,9 @@ def arch_from_dict(data, *, density: float = DEFAULT_DENSITY) -> BlockArch:
     data : dict
         The description.
     density : float, default 2000
-        Density [kg/m^3] when ``data`` gives none.
+        Density [kg/m^3] when ``data`` gives none, or always with ``replace_density``.
+    replace_density : bool, default False
+        Whether ``density`` replaces the density ``data`` gives (a structure's arch's included).
 
     Returns
     -------
@@ -71,21 +74,23 @@ def arch_from_dict(data, *, density: float = DEFAULT_DENSITY) -> BlockArch:
             raise ValueError(f"geometry has the keys {kinds} of different kinds of arch; give one")
         kinds = ["angles"]  # an incomplete circular description: its own error names the key
     cls = KINDS[kinds[0]]
+    if cls is Structure:
+        return _structure_from_dict(data, density, replace_density)
+    if replace_density:
+        data = {**data, "density": density}
     if cls is ShapedArch:
         return ShapedArch.from_dict({"density": density, **data})
-    if cls is Structure:
-        return _structure_from_dict(data, density)
     return cls.from_dict(data, density=density)
 
 
-def _structure_from_dict(data: dict, density: float) -> Structure:
+def _structure_from_dict(data: dict, density: float, replace_density: bool) -> Structure:
     """The structure of :meth:`Structure.to_dict <archquake.geometry.Structure.to_dict>`:
     ``arch`` any arch description, the other keys optional."""
     keys = {"arch", "left_pier", "right_pier", "fill"}
     unknown = sorted(set(data) - keys)
     if unknown:
         raise ValueError(f"a structure has unknown key(s) {unknown}; allowed: {sorted(keys)}")
-    arch = arch_from_dict(data["arch"], density=density)
+    arch = arch_from_dict(data["arch"], density=density, replace_density=replace_density)
     if isinstance(arch, Structure):
         raise ValueError("a structure's 'arch' must describe an arch, not a structure")
     left, right, fill = (data.get(k) for k in ("left_pier", "right_pier", "fill"))
@@ -94,15 +99,19 @@ def _structure_from_dict(data: dict, density: float) -> Structure:
                      None if fill is None else Fill.from_dict(fill))
 
 
-def load_arch(path: str | Path, *, density: float = DEFAULT_DENSITY) -> BlockArch:
-    """The arch of a JSON file of any of the three forms.
+def load_arch(path: str | Path, *, density: float = DEFAULT_DENSITY,
+              replace_density: bool = False) -> BlockArch:
+    """The arch of a JSON file of any of the four forms.
 
     Parameters
     ----------
     path : str or pathlib.Path
         The file (UTF-8 JSON).
     density : float, default 2000
-        Density [kg/m^3] when the file gives none.
+        Density [kg/m^3] when the file gives none, or always with ``replace_density``.
+    replace_density : bool, default False
+        Whether ``density`` replaces the density the file gives (every file archquake writes
+        gives one).
 
     Returns
     -------
@@ -122,7 +131,7 @@ def load_arch(path: str | Path, *, density: float = DEFAULT_DENSITY) -> BlockArc
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
-            arch = arch_from_dict(data, density=density)
+            arch = arch_from_dict(data, density=density, replace_density=replace_density)
         except ValueError as exc:
             raise ValueError(f"geometry file {str(path)!r}: {exc}") from exc
     for warning in caught:  # said again, naming the file

@@ -199,8 +199,8 @@ class StructureSpec:
         ``"PHI,MOBILISATION"``: angle of friction in (0, 90) and mobilised fraction of
         Rankine's passive pressure in [0, 1].
     density : float, optional
-        Density of the masonry, arch and piers [kg/m^3] (default
-        :data:`~archquake.constants.DEFAULT_DENSITY`).
+        Density of the masonry, arch and piers [kg/m^3] (default: the geometry file's, else
+        :data:`~archquake.constants.DEFAULT_DENSITY`); given, it replaces the geometry file's.
     epsilon : float, optional
         Draw one irregular arch around the arch with the irregularity :math:`\epsilon` in
         [0, 1) of eq. (1) (:func:`~archquake.geometry.irregular_arch`).
@@ -334,7 +334,9 @@ class StructureSpec:
 
         density = DEFAULT_DENSITY if self.density is None else self.density
         if self.geometry is not None:
-            return load_arch(self.geometry, density=density)
+            # a density given replaces the file's (every file archquake writes gives one)
+            return load_arch(self.geometry, density=density,
+                             replace_density=self.density is not None)
         shape, kwargs = self.shape_arguments()
         thickness = self._value("thickness")
         if shape is None:
