@@ -1569,9 +1569,14 @@ def standing(structure: BlockArch) -> Standing:
                     "piers (too narrow for their height; see min_pier_width)", margin)
 
 
+MAX_PIER_XTOL = 1e-3
+"""Coarsest tolerance of :func:`min_pier_width`, as a fraction of the arch's size [-]."""
+
+
 def min_pier_width(arch: BlockArch, height: float, courses: int = 1, *,
                    fill: Fill | None = None, xtol: float = 1e-9) -> float:
-    """Narrowest equal rectangular piers on which an arch stands under its own weight [m].
+    """Narrowest equal rectangular piers on which an arch stands under its own weight [m]
+    (to ``xtol``, from above: the arch stands on the width returned).
 
     The piers (:class:`~archquake.geometry.Pier`, ``height`` high in ``courses`` courses) are
     widened from the narrowest that fit the springing joints (their horizontal extent) until
@@ -1590,7 +1595,8 @@ def min_pier_width(arch: BlockArch, height: float, courses: int = 1, *,
     fill : Fill, optional
         Fill over the arch (default: a Structure's own, else none).
     xtol : float, default 1e-9
-        Absolute tolerance on the width [m].
+        Absolute tolerance on the width [m], in (0, :data:`MAX_PIER_XTOL` x the arch's size]
+        (a coarser tolerance may return a width on which the arch cannot stand).
 
     Returns
     -------
@@ -1602,8 +1608,8 @@ def min_pier_width(arch: BlockArch, height: float, courses: int = 1, *,
     CannotStandError
         When the arch does not stand even on fixed springings (no pier helps).
     ValueError
-        For a bad height or number of courses, or no width up to a thousand times the arch's
-        size that makes it stand.
+        For a bad height, number of courses or ``xtol``, or no width up to a thousand times
+        the arch's size that makes it stand.
 
     Examples
     --------
@@ -1615,13 +1621,18 @@ def min_pier_width(arch: BlockArch, height: float, courses: int = 1, *,
         fill = arch.fill if fill is None else fill
         arch = arch.arch
     Pier(1.0, height, courses)  # checks height and courses
+    size = arch.length_scale
+    largest = MAX_PIER_XTOL * size
+    if isinstance(xtol, bool) or not isinstance(xtol, int | float | np.floating | np.integer) \
+            or not 0.0 < xtol <= largest:
+        raise ValueError(f"xtol must be a number in (0, {largest:.4g}] m ({MAX_PIER_XTOL:g} of "
+                         f"the arch's size {size:.4g} m), got {xtol!r}")
     free = Structure(arch, fill=fill)
     if _margin(free) < 0.0:
         raise CannotStandError(standing(free).reason + "; no pier can make it stand")
     joints = arch.joints
     reach = max(float(joints[0, 0, 0] - joints[0, 1, 0]),
                 float(joints[-1, 1, 0] - joints[-1, 0, 0]), 0.0)
-    size = arch.length_scale
 
     def margin(width: float) -> float:
         pier = Pier(width, height, courses)
@@ -1636,7 +1647,12 @@ def min_pier_width(arch: BlockArch, height: float, courses: int = 1, *,
         if hi > 1e3 * size:
             raise ValueError(f"no pier width up to {hi:.4g} m makes this arch stand on piers "
                              f"{height:g} m high")
-    return float(brentq(margin, lo, hi, xtol=xtol))
+    width = float(brentq(margin, lo, hi, xtol=xtol))
+    for _ in range(4):  # the root to xtol may fall short of it: the width returned stands
+        if margin(width) >= 0.0:
+            break
+        width = min(width + xtol, hi)
+    return width
 
 
 # ---------------------------------------------------------------------------------- safety

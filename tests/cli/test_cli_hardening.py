@@ -306,3 +306,78 @@ def test_density_help_says_it_replaces_the_geometry_files(capsys):
         main(["limit", "--help"])
     help_text = " ".join(capsys.readouterr().out.split())
     assert "replaces the density of the --geometry file" in help_text
+
+
+@pytest.mark.parametrize("option", ["--piers", "--pier-left", "--pier-right", "--fill-passive"])
+@pytest.mark.parametrize("value", ["", " ", "\t"])
+def test_an_empty_structure_option_is_refused_naming_it(capsys, option, value):
+    """``--piers ""`` was a bare arch without a word (the empty text was taken as absent)."""
+    assert main(["limit", "--fill-cover", "0.5", option, value]) == 2
+    line = error_line(capsys)
+    assert f"{option} was given an empty value" in line
+
+
+@settings(max_examples=20)
+@given(value=st.one_of(st.booleans(), st.floats(0.5, 20.0).map(str), st.just(None),
+                       st.just(1 + 0j), st.just(b"3")),
+       name=st.sampled_from(["width", "height"]))
+def test_pier_refuses_booleans_and_non_numbers_naming_the_parameter(value, name):
+    """``Pier(True, 6)`` was a pier 1 m wide; ``Pier("3", 6)`` one 3 m wide."""
+    from archquake.geometry import Pier
+
+    sizes = {"width": 3.0, "height": 6.0, name: value}
+    with pytest.raises(ValueError, match=f"^{name} must be a number"):
+        Pier(sizes["width"], sizes["height"])
+
+
+@pytest.mark.parametrize("build, name", [
+    (lambda g, v: g.circular_arch(v, 2.7, 1.5, 7), "radius"),
+    (lambda g, v: g.circular_arch(10.0, v, 1.5, 7), "embrace"),
+    (lambda g, v: g.circular_arch(10.0, 2.7, v, 7), "thickness"),
+    (lambda g, v: g.shaped_arch("parabolic", span=v, rise=3.0, thickness=0.5, voussoirs=8),
+     "span"),
+    (lambda g, v: g.shaped_arch("parabolic", span=10.0, rise=3.0, thickness=v, voussoirs=8),
+     "thickness"),
+    (lambda g, v: g.Fill(v, 1800.0), "cover"),
+    (lambda g, v: g.Pier.tapered(2.0, v, 6.0), "base_width"),
+])
+@pytest.mark.parametrize("value", [True, False, "1.5", np.bool_(True)])
+def test_geometry_builders_refuse_booleans_and_text_naming_the_parameter(build, name, value):
+    import archquake.geometry as geometry
+
+    with pytest.raises(ValueError, match=f"^{name} must be a number"):
+        build(geometry, value)
+
+
+def test_pier_still_takes_numpy_numbers():
+    from archquake.geometry import Pier
+
+    assert Pier(np.float64(3.0), np.int64(6)) == Pier(3.0, 6.0)
+
+
+@settings(max_examples=10)
+@given(xtol=st.one_of(st.floats(allow_nan=True), st.booleans(), st.just("1e-9")))
+def test_min_pier_width_bounds_xtol_naming_it(nominal, xtol):
+    """xtol = 1e9 returned a width on which the arch cannot stand; xtol = nan blamed the width.
+    Oppenheim's arch is 10 m in size: xtol in (0, 0.01] m."""
+    from archquake.limit_analysis import min_pier_width
+
+    if not isinstance(xtol, bool | str) and 0.0 < xtol <= 1e-3 * nominal.length_scale:
+        return  # a valid tolerance: the next test
+    with pytest.raises(ValueError, match=r"^xtol must be a number in \(0, 0.01\] m"):
+        min_pier_width(nominal, 6.0, xtol=xtol)
+
+
+@settings(max_examples=6)
+@given(xtol=st.floats(1e-9, 1e-2), height=st.sampled_from([4.0, 6.0]))
+def test_the_arch_stands_on_the_min_pier_width_for_every_xtol(nominal, xtol, height):
+    """The width returned is within xtol above the root (found at 1e-12), and the arch stands on
+    it: its self-weight margin is >= 0 there."""
+    from archquake.geometry import Pier, Structure
+    from archquake.limit_analysis import min_pier_width, self_weight_margin
+
+    root = min_pier_width(nominal, height, xtol=1e-12)
+    width = min_pier_width(nominal, height, xtol=xtol)
+    assert root - 1e-12 <= width <= root + 2 * xtol + 1e-9
+    pier = Pier(width, height)
+    assert self_weight_margin(Structure(nominal, pier, pier)) >= 0.0

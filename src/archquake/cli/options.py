@@ -332,8 +332,18 @@ def structure_spec(args: argparse.Namespace, *, draw: bool = True):
     values = {name: getattr(args, name, None) for name in names}
     if getattr(args, "min_pier_width", False):
         values["piers"] = None  # the piers are what --min-pier-width finds
+    for name, metavar in _TEXT_FIELDS.items():
+        if isinstance(values.get(name), str) and not values[name].strip():
+            raise ValueError(f"{FIELD_OPTIONS[name]} was given an empty value, got "
+                             f"{values[name]!r}: give {metavar} or leave the option out")
     with naming_options():
-        return StructureSpec(**{k: v for k, v in values.items() if v is not None and v != ""})
+        return StructureSpec(**{k: v for k, v in values.items() if v is not None})
+
+
+_TEXT_FIELDS = {"piers": "WIDTH,HEIGHT[,COURSES]", "pier_left": "WIDTH,HEIGHT[,COURSES]",
+                "pier_right": "WIDTH,HEIGHT[,COURSES]", "fill_passive": "PHI,MOBILISATION"}
+"""The structure options given as text, and what each takes: an empty one is refused (it was
+silently absent)."""
 
 
 def nominal_arch_from_args(args: argparse.Namespace):

@@ -54,6 +54,7 @@ from .blocks import (
     check_voussoir_count,
     float_array,
     is_json_number,
+    real_number,
     json_text,
     read_json_file,
 )
@@ -70,10 +71,7 @@ def _check_voussoir_count(n: int) -> None:
 
 
 def _check_positive(name: str, value: float, unit: str) -> float:
-    try:
-        value = float(value)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be a number [{unit}], got {value!r}") from exc
+    value = real_number(name, value, unit)
     if not math.isfinite(value) or value <= 0.0:
         raise ValueError(f"{name} must be a finite number > 0 [{unit}], got {value!r}")
     return value

@@ -112,12 +112,28 @@ def check_voussoir_count(count, name: str = "voussoirs") -> int:
     return n
 
 
+def real_number(name: str, value, unit: str) -> float:
+    """``value`` as a float, or a ValueError naming ``name`` for anything but a real number: a
+    bool (``True`` is not 1 m), a text (``"3"``) or a complex number are refused, not converted.
+
+    >>> real_number("width", 3, "m")
+    3.0
+    >>> real_number("width", True, "m")
+    Traceback (most recent call last):
+    ...
+    ValueError: width must be a number [m], got True
+    """
+    if isinstance(value, bool | np.bool_ | str | bytes | complex | np.complexfloating):
+        raise ValueError(f"{name} must be a number [{unit}], got {value!r}")
+    try:
+        return float(value)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{name} must be a number [{unit}], got {value!r}") from exc
+
+
 def check_length(name: str, value) -> float:
     """``value`` [m] as a float in :data:`LENGTH_RANGE`, or a ValueError naming ``name``."""
-    try:
-        value = float(value)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be a number [m], got {value!r}") from exc
+    value = real_number(name, value, "m")
     if not math.isfinite(value) or value <= 0.0:
         raise ValueError(f"{name} must be a finite number > 0 [m], got {value!r}")
     if not LENGTH_RANGE[0] <= value <= LENGTH_RANGE[1]:

@@ -64,17 +64,14 @@ from functools import cached_property
 import numpy as np
 
 from .. import defaults
-from .blocks import check_length
+from .blocks import check_length, real_number
 from .mass import Arc, Curve, Piece
 
 SQRT3 = math.sqrt(3.0)
 
 
 def _angle(name: str, value) -> float:
-    try:
-        value = float(value)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be a number [rad], got {value!r}") from exc
+    value = real_number(name, value, "rad")
     if not math.isfinite(value) or value <= 0.0:
         raise ValueError(f"{name} must be a finite number > 0 [rad], got {value!r}")
     return value

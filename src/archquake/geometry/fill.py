@@ -62,7 +62,7 @@ import numpy as np
 from .._equality import value_equality
 from ..constants import DEFAULT_FILL_DENSITY, GRAVITY
 from ..defaults import DEFAULT_FILL_INERTIA, FILL_INERTIA_MODELS
-from .blocks import LENGTH_RANGE, BlockArch, check_json_numbers, frozen_array
+from .blocks import LENGTH_RANGE, BlockArch, check_json_numbers, frozen_array, real_number
 from .mass import Arc, Segment, region_moments
 
 DYNAMIC_FILL_INERTIA = "centroid"
@@ -72,10 +72,7 @@ voussoir)."""
 
 def _check_number(name: str, value, low: float, high: float, unit: str, *,
                   closed_low: bool = True) -> float:
-    try:
-        x = float(value)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be a number [{unit}], got {value!r}") from exc
+    x = real_number(name, value, unit)
     ok = math.isfinite(x) and (x >= low if closed_low else x > low) and x <= high
     if not ok:
         bracket = "[" if closed_low else "("

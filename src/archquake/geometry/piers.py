@@ -40,7 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._equality import value_equality
-from .blocks import LENGTH_RANGE, check_json_numbers, check_length
+from .blocks import LENGTH_RANGE, check_json_numbers, check_length, real_number
 
 MAX_COURSES = 1000
 """Most courses of a pier [-]."""
@@ -100,9 +100,11 @@ class Pier:
         height = check_length("height", self.height)
         courses = _check_courses(self.courses)
         try:
-            face = tuple((float(w), float(y)) for w, y in self.outer_face)
+            face = tuple((real_number("outer_face w", w, "m"), real_number("outer_face y", y, "m"))
+                         for w, y in self.outer_face)
         except (TypeError, ValueError) as exc:
-            raise ValueError("outer_face must be a sequence of (w, y) points [m]") from exc
+            raise ValueError(f"outer_face must be a sequence of (w, y) points [m] (numbers): "
+                             f"{exc}") from exc
         if face:
             points = np.array(face)
             if not np.all(np.isfinite(points)):

@@ -54,6 +54,7 @@ from .blocks import (
     check_voussoir_count,
     float_array,
     frozen_array,
+    real_number,
 )
 from .centrelines import SHAPES, ArcPart, Centreline, centreline
 from .mass import Arc, Curve, Segment, region_properties
@@ -472,10 +473,7 @@ def shaped_arch(shape: str, *, thickness: float, voussoirs: int, span: float | N
     if faces not in VOUSSOIR_FACES:
         raise ValueError(f"faces must be one of {VOUSSOIR_FACES}, got {faces!r}")
     line = centreline(shape, span, rise, radius=radius, embrace=embrace)
-    try:
-        t = float(thickness)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"thickness must be a number [m], got {thickness!r}") from exc
+    t = real_number("thickness", thickness, "m")
     if not (math.isfinite(t) and t > 0):
         raise ValueError(f"thickness must be a finite number > 0 [m], got {thickness!r}")
     n = check_voussoir_count(voussoirs)
