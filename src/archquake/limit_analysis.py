@@ -477,6 +477,27 @@ _UNBOUNDED = (
 )
 
 
+def _is_strut(arch: BlockArch) -> bool:
+    """Whether a horizontal line crosses every joint of an arch on fixed springings strictly
+    between its ends (a nearly flat arch thicker than its rise): a thrust along it, grown
+    without bound, carries any finite load with its line inside every joint, so the arch never
+    collapses. A structure's piers may overturn: never a strut."""
+    if isinstance(arch, Structure):
+        return False
+    y = np.asarray(arch.joints)[:, :, 1]
+    return bool(np.max(np.min(y, axis=1)) < np.min(np.max(y, axis=1))
+                - 1e-9 * arch.length_scale)
+
+
+def _lp_failure(res, arch: BlockArch) -> ValueError:
+    """The error of a linear program that HiGHS ends without an answer (neither optimal,
+    infeasible nor unbounded: numerical difficulties or a limit reached) for an arch that is
+    not a strut (:func:`_is_strut`): its geometry is too degenerate to analyse."""
+    return ValueError(f"the limit-analysis linear program of this arch cannot be solved "
+                      f"({str(res.message).strip()}): its geometry is degenerate (nearly flat, "
+                      "or very large beside its thickness?)")
+
+
 def _original(arch: BlockArch, direction: str) -> BlockArch:
     """The arch in its own frame, from the arch analysed in ``direction``."""
     return arch if direction == "l" else arch.mirrored()
@@ -511,12 +532,14 @@ def _cannot_stand(arch: BlockArch, direction: str) -> CannotStandError:
 def _static(arch: BlockArch, direction: str) -> LimitAnalysis:
     s = _scaled(arch)
     res = _solve_lp(s)
+    if res.status != 0 and _is_strut(arch):  # unbounded, which HiGHS may fail to tell
+        raise NeverCollapsesError(_UNBOUNDED)
     if res.status == 2:
         raise _cannot_stand(arch, direction)
     if res.status == 3:
         raise NeverCollapsesError(_UNBOUNDED)
     if res.status != 0:
-        raise RuntimeError(f"the limit-analysis linear program failed: {res.message}")
+        raise _lp_failure(res, arch)
     nj = arch.n_voussoirs + 1
     x = res.x
     k = float(x[-1])
@@ -1189,8 +1212,10 @@ def load_multipliers_of(arches: Sequence[BlockArch],
         for i, a in enumerate(oriented):
             res = _solve_lp(_scaled(a))
             status = {0: None, 2: math.nan, 3: math.inf}.get(res.status, "failed")
+            if res.status != 0 and _is_strut(a):  # unbounded, which HiGHS may fail to tell
+                status = math.inf
             if status == "failed":
-                raise RuntimeError(f"the limit-analysis linear program failed: {res.message}")
+                raise _lp_failure(res, a)
             out[i, col] = float(res.x[-1]) if status is None else status
     return out
 
@@ -1256,7 +1281,7 @@ def self_weight_margin(arch: BlockArch) -> float:
     joint: a shallow arch whose thickness exceeds its rise stands as a strut under any thrust.
     """
     res = _solve_lp(_scaled(arch), fixed_k=0.0)
-    if res.status == 3:
+    if res.status == 3 or (res.status != 0 and _is_strut(arch)):
         return math.inf
     if res.status != 0:
         raise ValueError(f"the self-weight linear program of this arch cannot be solved "

@@ -381,3 +381,36 @@ def test_the_arch_stands_on_the_min_pier_width_for_every_xtol(nominal, xtol, hei
     assert root - 1e-12 <= width <= root + 2 * xtol + 1e-9
     pier = Pier(width, height)
     assert self_weight_margin(Structure(nominal, pier, pier)) >= 0.0
+
+
+@settings(max_examples=15)
+@given(radius=st.floats(1e3, 1e4), embrace=st.floats(1e-4, 0.2),
+       thickness=st.sampled_from([0.01, 0.1, 1.5, 5.0]))
+def test_flat_and_huge_arches_never_end_in_a_solver_traceback(radius, embrace, thickness):
+    """``limit --radius 10000 --embrace 0.001``: HiGHS gave up ("Not Set") and a traceback
+    followed. Every such arch now ends cleanly; one thicker than its rise, in that a horizontal
+    line runs inside it from springing to springing -- the crown's intrados R - t/2 below the
+    springings' extrados (R + t/2) cos(alpha/2), measured from the centre -- never collapses
+    (an ever larger thrust along that line carries any load)."""
+    from fuzzing import check_run, run_cli
+
+    argv = ["limit", "--radius", repr(radius), "--embrace", repr(embrace),
+            "--thickness", repr(thickness)]
+    status, out, err = run_cli(argv)
+    assert check_run(argv, status, out, err) in ("ok", "error")
+    half = math.radians(embrace) / 2
+    if radius - thickness / 2 < (radius + thickness / 2) * math.cos(half) - 1e-6:
+        assert status == 2 and "does not collapse under any horizontal load" in err
+
+
+def test_the_flattest_largest_arch_does_not_collapse_in_the_library():
+    """The library says so too, with either method (the static one's solver gives up)."""
+    from archquake.errors import NeverCollapsesError
+    from archquake.geometry import circular_arch
+    from archquake.limit_analysis import limit_analysis, load_multipliers
+
+    arch = circular_arch(1e4, math.radians(1e-3), 1.5, 7)
+    for method in ("static", "kinematic"):
+        with pytest.raises(NeverCollapsesError):
+            limit_analysis(arch, method=method)
+        assert load_multipliers(arch, method) == (math.inf, math.inf)
