@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from archquake.cli import main
@@ -414,3 +414,53 @@ def test_the_flattest_largest_arch_does_not_collapse_in_the_library():
         with pytest.raises(NeverCollapsesError):
             limit_analysis(arch, method=method)
         assert load_multipliers(arch, method) == (math.inf, math.inf)
+
+
+# --- record time steps at the ends of their range --------------------------------------------
+
+def _write_record(path, times_text):
+    path.write_text("time_s,acc_g\n" + "".join(
+        f"{t},{0.1 * (k % 2)}\n" for k, t in enumerate(times_text)))
+    return path
+
+
+@settings(max_examples=20)
+@given(start=st.integers(0, 3_500_000_000), count=st.integers(2, 40))
+def test_a_record_at_the_smallest_time_step_is_read(tmp_path_factory, start, count):
+    """Times written to 6 decimals in steps of 1e-6 s, anywhere in the first hour: each step is
+    1e-6 s up to round-off ("time step 1e-06 s ... is outside [1e-06, 1] s" was the answer)."""
+    from archquake.ground_motion.records import read_record
+
+    times = [f"{(start + k) // 10**6}.{(start + k) % 10**6:06d}" for k in range(count)]
+    path = _write_record(tmp_path_factory.mktemp("rec") / "fine.csv", times)
+    motion = read_record(path)
+    assert motion is not None
+
+
+@settings(max_examples=20)
+@example(start=1, fraction=123457, count=2)
+@given(start=st.integers(0, 3000), fraction=st.integers(0, 10**6 - 1),
+       count=st.integers(2, 6))
+def test_a_record_at_the_largest_time_step_is_read(tmp_path_factory, start, fraction, count):
+    """Steps of 1 s written to 6 decimals: 2.123457 - 1.123457 = 1.0000000000000002."""
+    from archquake.ground_motion.records import read_record
+
+    assert float("2.123457") - float("1.123457") > 1.0  # the round-off this is about
+    times = [f"{start + k}.{fraction:06d}" for k in range(count)]
+    read_record(_write_record(tmp_path_factory.mktemp("rec") / "coarse.csv", times))
+
+
+@settings(max_examples=20)
+@given(step=st.one_of(st.floats(1e-9, 0.9999e-6), st.floats(1.0001, 50.0)))
+def test_a_time_step_outside_its_range_is_printed_outside_it(tmp_path_factory, step):
+    """A refused step is printed with the digits that show it outside [1e-06, 1] s (never as
+    one of the ends)."""
+    import re
+
+    from archquake.ground_motion.records import read_record
+
+    path = _write_record(tmp_path_factory.mktemp("rec") / "bad.csv", ["0", repr(step)])
+    with pytest.raises(ValueError, match="is outside") as caught:
+        read_record(path)
+    printed = float(re.search(r"the time step (\S+) s", str(caught.value)).group(1))
+    assert printed < 1e-6 or printed > 1.0

@@ -145,6 +145,11 @@ def parse_csv_record(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
     return np.array(times), np.array(accelerations)
 
 
+TIME_STEP_TOLERANCE = 1e-5
+"""Relative tolerance on the ends of :data:`~archquake.defaults.RECORD_TIME_STEP_RANGE` [-]: the
+difference of two times of an hour written to 6 decimals (steps of 1e-6 s) is the step up to a
+round-off of about 2e-12 s, 2e-6 of it."""
+
 _NPTS = re.compile(r"\bNPTS\s*=\s*([^\s,]+)", re.IGNORECASE)
 _DT = re.compile(r"\bDT\s*=\s*([^\s,]+)", re.IGNORECASE)
 _UNITS = re.compile(r"UNITS\s+OF\s+(\S+)", re.IGNORECASE)
@@ -456,10 +461,13 @@ def read_record(
             f"{float(times[i + 1])!r} s after {float(times[i])!r} s"
         )
     low, high = RECORD_TIME_STEP_RANGE
-    if not (low <= steps.min() and steps.max() <= high):
-        i = int(np.argmax((steps < low) | (steps > high)))
+    # times written to a few decimals differ by a step that is the bound up to round-off
+    outside = ((steps < low * (1.0 - TIME_STEP_TOLERANCE))
+               | (steps > high * (1.0 + TIME_STEP_TOLERANCE)))
+    if np.any(outside):
+        i = int(np.argmax(outside))
         raise _record_error(
-            path, f"the time step {float(steps[i]):.6g} s after sample {i + 1} is outside "
+            path, f"the time step {float(steps[i]):.9g} s after sample {i + 1} is outside "
             f"[{low:g}, {high:g}] s (RECORD_TIME_STEP_RANGE): accelerographs sample at 50 to "
             f"1000 Hz; are the times in seconds?")
     if not times[-1] <= MAX_RECORD_DURATION:
