@@ -25,8 +25,11 @@ $(TEST): $(BASE)
 	$(BIN)/pip install --quiet -e ".[test,records]"
 	touch $@
 
-$(DOCS): $(BASE)
-	$(BIN)/pip install --quiet -e ".[docs]"
+# The API pages import every module, archquake.app (the app extra) included: `make docs` on a
+# fresh clone installs both extras. The stamp depends on this file so that a .venv made by an
+# older recipe is brought up to date.
+$(DOCS): $(BASE) Makefile
+	$(BIN)/pip install --quiet -e ".[docs,app]"
 	touch $@
 
 # OpenQuake's reader, which a test uses to load the NRML fragility models archquake writes, in a
