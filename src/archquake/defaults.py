@@ -219,6 +219,12 @@ lift-off and landing is taken at the time step) [-]: half the contact problems o
 arch, the failure accelerations of Oppenheim's arch at t_p = 0.3-0.7 s within 0.0008 g of
 those at a quarter of the step (``benchmarks/rigid_block_time_step.py``)."""
 
+MAX_COARSE_FACTOR = 1000
+"""Most steps of the time step taken as one by the rigid-block model [-]: a coarse step is never
+longer than the motion allows a step to be (0.02 sqrt(t/g), 7.8 default steps of any arch), so
+a larger factor means nothing unless the time step is over a hundred times the default's
+finer; a typo like ``--coarse-factor 20000`` is refused rather than silently clipped."""
+
 REFERENCE_THICKNESS = 1.5
 """Thickness at which :data:`DEFAULT_TIME_STEP` resolves the rigid-block model (Oppenheim's arch:
 its failure accelerations within 0.001 g of those at a quarter of the step for t_p = 0.4-0.7 s,

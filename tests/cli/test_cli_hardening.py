@@ -464,3 +464,26 @@ def test_a_time_step_outside_its_range_is_printed_outside_it(tmp_path_factory, s
         read_record(path)
     printed = float(re.search(r"the time step (\S+) s", str(caught.value)).group(1))
     assert printed < 1e-6 or printed > 1.0
+
+
+# --- small ones ---------------------------------------------------------------------------------
+
+@settings(max_examples=10)
+@given(factor=st.one_of(st.integers(1001, 10**15), st.integers(-10**6, 0)))
+def test_coarse_factor_is_bounded_naming_the_option(factor):
+    """``--coarse-factor 20000`` was taken (and silently clipped to the longest step allowed)."""
+    from fuzzing import run_cli
+
+    status, _, err = run_cli(["rigid-blocks", "--coarse-factor", str(factor)])
+    assert status == 2
+    assert "--coarse-factor must be an integer in [1, 1000]" in err
+
+
+@settings(max_examples=10)
+@given(factor=st.integers(1, 1000))
+def test_coarse_factor_within_its_range_is_taken(factor):
+    from archquake.rigid_blocks import BlockSettings
+
+    assert BlockSettings(coarse_factor=factor).coarse_factor == factor
+    with pytest.raises(ValueError, match="coarse_factor must be an integer"):
+        BlockSettings(coarse_factor=factor + 0.5)

@@ -45,6 +45,7 @@ from ..defaults import (
     DEFAULT_STRIDE,
     FILL_INERTIA_MODELS,
     MAX_ACCELERATION_G,
+    MAX_COARSE_FACTOR,
     MAX_CYCLES,
     MAX_SAMPLES,
     SEARCHES,
@@ -450,6 +451,8 @@ def add_rigid_block_options(parser: argparse.ArgumentParser, *, time_step: bool 
                                  "the time step (user guide, 'What a rigid-block study costs'); "
                                  f"1 takes every step at the time step (default: "
                                  f"{DEFAULT_COARSE_FACTOR})")
+                                 f"1 takes every step at the time step; at most "
+                                 f"{MAX_COARSE_FACTOR} (default: %(default)s)")
 
 
 # ---------------------------------------------------------------------------------------------

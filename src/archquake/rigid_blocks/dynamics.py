@@ -106,6 +106,7 @@ from ..defaults import (
     DEFAULT_FRICTION,
     DEFAULT_TIME_STEP,
     MAX_BLOCK_STEPS,
+    MAX_COARSE_FACTOR,
     REFERENCE_THICKNESS,
 )
 from ..geometry import GRAVITY, BlockArch
@@ -203,12 +204,12 @@ class BlockSettings:
         :data:`SETTLE_PERIODS` periods of the structure.
     coarse_factor : int
         Steps ``h`` taken as one while no contact starts or stops carrying an impulse [-],
-        >= 1; a step in which one does is taken again at ``h`` (2, the default, halves the
-        steps of a rocking arch and resolves every impact, lift-off and landing at ``h``:
-        :mod:`archquake.rigid_blocks.solver`, "Coarse steps"); 1 takes every step at ``h``. A
-        coarse step is never longer than the motion allows a step to be
-        (:func:`check_time_step`): under a shorter pulse or a finer record the analysis takes
-        fewer steps ``h`` as one, down to every step at ``h``.
+        in [1, :data:`~archquake.defaults.MAX_COARSE_FACTOR`]; a step in which one does is
+        taken again at ``h`` (2, the default, halves the steps of a rocking arch and resolves
+        every impact, lift-off and landing at ``h``: :mod:`archquake.rigid_blocks.solver`,
+        "Coarse steps"); 1 takes every step at ``h``. A coarse step is never longer than the
+        motion allows a step to be (:func:`check_time_step`): under a shorter pulse or a finer
+        record the analysis takes fewer steps ``h`` as one, down to every step at ``h``.
     active_set_solves : int
         Largest number of linear solves of the active-set method in a step before Lemke's
         algorithm solves the step's contact problem [-], >= 0
@@ -278,10 +279,14 @@ class BlockSettings:
             raise ValueError(f"friction must be >= 0 [-], got {self.friction!r}")
         if not 0.5 <= self.theta <= 1.0:
             raise ValueError(f"theta must be in [0.5, 1] [-], got {self.theta!r}")
-        for name in ("max_iterations", "coarse_factor"):
-            value = getattr(self, name)
-            if int(value) != value or value < 1:
-                raise ValueError(f"{name} must be an integer >= 1, got {value!r}")
+        value = self.max_iterations
+        if int(value) != value or value < 1:
+            raise ValueError(f"max_iterations must be an integer >= 1, got {value!r}")
+        value = self.coarse_factor
+        if (isinstance(value, bool) or not isinstance(value, int | float | np.integer)
+                or not 1 <= value <= MAX_COARSE_FACTOR or int(value) != value):
+            raise ValueError(f"coarse_factor must be an integer in [1, {MAX_COARSE_FACTOR}] "
+                             f"(MAX_COARSE_FACTOR), got {value!r}")
         value = self.active_set_solves
         if int(value) != value or value < 0:
             raise ValueError(f"active_set_solves must be an integer >= 0, got {value!r}")
