@@ -54,9 +54,9 @@ from .blocks import (
     check_voussoir_count,
     float_array,
     is_json_number,
-    real_number,
     json_text,
     read_json_file,
+    real_number,
 )
 from .mass import Arc
 
