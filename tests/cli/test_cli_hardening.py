@@ -487,3 +487,25 @@ def test_coarse_factor_within_its_range_is_taken(factor):
     assert BlockSettings(coarse_factor=factor).coarse_factor == factor
     with pytest.raises(ValueError, match="coarse_factor must be an integer"):
         BlockSettings(coarse_factor=factor + 0.5)
+
+
+@pytest.mark.parametrize("durations", ["0.5", "0.4,0.6"])
+def test_domain_takes_no_progress(durations):
+    """Every other command with a progress bar takes --no-progress; domain refused it."""
+    from fuzzing import run_cli
+
+    argv = ["domain", "--model", "rigid-blocks", "--durations", durations, "--amplitudes",
+            "0.3:0.4:0.1", "--extend-to", "0"]
+    status, _, err = run_cli([*argv, "--no-progress"])
+    assert status == 0 and "%|" not in err
+    status, _, err = run_cli(argv)
+    assert status == 0 and "%|" in err  # the bar the option takes away
+
+
+@pytest.mark.parametrize("command", [["limit"], ["simulate"], ["rigid-blocks"]])
+@pytest.mark.parametrize("mobilisation", ["1.5", "-0.5", "2", "1e300"])
+def test_fill_passive_error_names_fill_passive(capsys, command, mobilisation):
+    """A mobilisation outside [0, 1] is --fill-passive's, not --fill-cover's."""
+    assert main([*command, "--fill-cover", "0.5", "--fill-passive", f"30,{mobilisation}"]) == 2
+    line = error_line(capsys)
+    assert "--fill-passive" in line and "--fill-cover" not in line

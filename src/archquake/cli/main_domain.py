@@ -64,6 +64,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help=f"bisection width of every boundary [g], >= "
                              f"{MIN_RESOLUTION_G:g} (default: %(default)s)")
     options.add_plot_option(parser, "write the failure-domain figure")
+    options.add_progress_option(parser)
     options.add_json_option(parser)
 
 
@@ -87,7 +88,7 @@ def run(args: argparse.Namespace) -> int:
                            search=args.search,
                            stride=domain_stride,
                            workers=args.workers,
-                           progress=not model.grid_in_one_call)
+                           progress=not (args.no_progress or model.grid_in_one_call))
     if args.plot:
         from .output import pyplot, save_figure
 
