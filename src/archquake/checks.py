@@ -9,6 +9,9 @@
 :func:`json_value`, :func:`json_dumps`
     any value as strict JSON (``null`` for nan and infinities, never ``NaN``): every JSON the
     package writes goes through them;
+:func:`pulse_grid`
+    the durations and amplitudes of a grid of pulses as arrays, or a ``ValueError`` naming
+    the one refused;
 :func:`json_loads`
     JSON as the package reads it: a key given twice, ``NaN`` or a nesting too deep for Python
     is a ``ValueError``, never a silent choice or a ``RecursionError`` (nor Python's message
@@ -65,6 +68,52 @@ def check_integer(name: str, value: Any, minimum: int = 1, maximum: int | None =
         accepted = f">= {minimum}" if maximum is None else f"in [{minimum}, {maximum}]"
         raise ValueError(f"{name} must be an integer {accepted}, got {value!r}")
     return int(value)
+
+
+MAX_PULSE_AMPLITUDE_G = 1e300
+"""Largest amplitude of a pulse given in g that stays finite in m/s^2 [g] (far beyond any
+physical meaning: the command line caps amplitudes at
+:data:`~archquake.defaults.MAX_ACCELERATION_G`)."""
+
+
+def pulse_grid(durations: Any, amplitudes_g: Any):
+    """``(durations [s], amplitudes_g [g])`` broadcast against each other as float arrays.
+
+    Raises
+    ------
+    ValueError
+        Naming ``durations`` or ``amplitudes_g``: text, booleans, shapes that do not
+        broadcast, a duration not finite and > 0, or an amplitude not finite or beyond
+        :data:`MAX_PULSE_AMPLITUDE_G` in magnitude (it would overflow in m/s^2).
+
+    Examples
+    --------
+    >>> pulse_grid([0.4], [-1e308])
+    Traceback (most recent call last):
+    ...
+    ValueError: amplitudes_g must be finite numbers of magnitude at most 1e+300 [g], got -1e+308
+    """
+    import numpy as np
+
+    arrays = []
+    for name, value in (("durations", durations), ("amplitudes_g", amplitudes_g)):
+        array = np.asarray(value)
+        if array.dtype.kind not in "iuf":
+            raise ValueError(f"{name} must be numbers, got {value!r}")
+        arrays.append(array.astype(float))
+    try:
+        d, a = np.broadcast_arrays(*arrays)
+    except ValueError as exc:
+        raise ValueError(f"durations {arrays[0].shape} and amplitudes_g {arrays[1].shape} must "
+                         f"broadcast against each other") from exc
+    bad = ~np.isfinite(d) | (d <= 0)
+    if np.any(bad):
+        raise ValueError(f"durations must be finite numbers > 0 [s], got {float(d[bad].flat[0])!r}")
+    bad = ~(np.abs(a) <= MAX_PULSE_AMPLITUDE_G)
+    if np.any(bad):
+        raise ValueError(f"amplitudes_g must be finite numbers of magnitude at most "
+                         f"{MAX_PULSE_AMPLITUDE_G:g} [g], got {float(a[bad].flat[0])!r}")
+    return d, a
 
 
 def json_float(value: Any) -> float | None:

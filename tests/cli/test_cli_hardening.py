@@ -509,3 +509,73 @@ def test_fill_passive_error_names_fill_passive(capsys, command, mobilisation):
     assert main([*command, "--fill-cover", "0.5", "--fill-passive", f"30,{mobilisation}"]) == 2
     line = error_line(capsys)
     assert "--fill-passive" in line and "--fill-cover" not in line
+
+
+@pytest.mark.parametrize("name", ["four-link", "rigid-blocks"])
+@settings(max_examples=10)
+@given(amplitude=st.one_of(st.floats(1.1e300, 1.7e308), st.floats(-1.7e308, -1.1e300),
+                           st.just(math.nan), st.just(math.inf)))
+def test_model_outcomes_name_amplitudes_g_in_g(nominal, name, amplitude):
+    """``outcomes([0.4], [-1e308])`` said "amplitudes must be finite numbers [m/s^2]" after an
+    overflow warning: the parameter is amplitudes_g, in g."""
+    import warnings
+
+    from archquake.models import model_for
+
+    model = model_for(nominal, name)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no overflow on the way
+        with pytest.raises(ValueError, match=r"^amplitudes_g must be finite numbers .*\[g\]"):
+            model.outcomes([0.4], [amplitude])
+
+
+def test_model_outcomes_refuse_text_and_booleans_naming_the_parameter(nominal):
+    from archquake.models import model_for
+
+    model = model_for(nominal, "rigid-blocks")  # took True as 1 g
+    with pytest.raises(ValueError, match="^amplitudes_g must be numbers"):
+        model.outcomes([0.4], [True])
+    with pytest.raises(ValueError, match="^durations must be numbers"):
+        model.outcomes(["0.4"], [0.3])
+
+
+@pytest.mark.parametrize("screen", ["x", 3, object()])
+def test_domain_of_refuses_a_screen_that_is_not_a_model(nominal, screen):
+    from archquake.models import model_for
+    from archquake.studies.failure_domain import domain_of
+
+    with pytest.raises(ValueError, match="^screen must be None or a model of a structure"):
+        domain_of(model_for(nominal, "four-link"), [0.5], [0.3, 0.4], screen=screen)
+
+
+@pytest.mark.parametrize("out_dir", [3, None, "", b"dir", 1.5])
+def test_assess_refuses_an_out_dir_that_is_not_a_path_naming_it(out_dir):
+    from archquake.report.assess import assess
+
+    with pytest.raises(ValueError, match="^out_dir must name a directory"):
+        assess(out_dir=out_dir)
+
+
+def test_fragility_help_says_the_default_restitution_it_uses(capsys):
+    """The help said 'nominal'; the option's default, and the study's, is 'computed'."""
+    from archquake.cli import build_parser
+    from archquake.defaults import DEFAULT_RESTITUTION
+    from archquake.models import ModelSpec
+
+    args = build_parser().parse_args(["fragility", "--out", "unused"])
+    assert args.restitution == ModelSpec().restitution == DEFAULT_RESTITUTION == "computed"
+    with pytest.raises(SystemExit):
+        main(["fragility", "--help"])
+    help_text = " ".join(capsys.readouterr().out.split())
+    assert "Default restitution: 'computed'" in help_text
+    assert "Default restitution: 'nominal'" not in help_text
+
+
+@pytest.mark.parametrize("given_option, value", [("--suite", "far-field"),
+                                                 ("--records", str(DATA / "decaying_sine.csv"))])
+def test_record_fragility_without_levels_names_the_records_option_given(capsys, tmp_path,
+                                                                       given_option, value):
+    assert main(["record-fragility", given_option, value, "--out", str(tmp_path / "s"),
+                 "--no-progress"]) == 2
+    line = error_line(capsys)
+    assert f"--levels is required with {given_option}" in line

@@ -8,6 +8,7 @@ from __future__ import annotations
 import argparse
 
 from ..defaults import (
+    DEFAULT_RESTITUTION,
     DEFAULT_SAMPLE_LIMIT_METHOD,
     LIMIT_METHODS,
     LIMIT_SAMPLE_SIZE,
@@ -26,8 +27,9 @@ DESCRIPTION = (
     "directions over every (t_p, a) of the grid, and estimate P_F = h_f/h (eq. 9; an arch fails "
     "if it collapses in either direction), with quintic and lognormal fits per duration; the "
     "CDF of the limit-analysis multiplier k~ = min(k~_l, k~_r) of s arches; the nominal arch's "
-    "failure acceleration and k. Default restitution: 'nominal', the nominal arch's computed "
-    "c_v applied to every irregular arch (the paper's practice). A drawn arch that is not an "
+    f"failure acceleration and k. Default restitution: '{DEFAULT_RESTITUTION}', each arch's "
+    "own c_v from its momentum balance; --restitution nominal applies the nominal arch's "
+    "computed c_v to every irregular arch (the paper's practice). A drawn arch that is not an "
     "arch or cannot stand is excluded, counted and named, and left out of h. Writes "
     "results.parquet/.csv (one row per analysis), curves.csv, summary.json and limit_sample/ to "
     "--out; checkpoints allow --resume.")

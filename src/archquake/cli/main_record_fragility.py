@@ -67,7 +67,8 @@ def run(args: argparse.Namespace) -> int:
     if not args.records and not args.suite:
         raise ValueError("give the records: --records PATH... or --suite NAME")
     if args.levels is None:
-        raise ValueError(f"--levels is required with --records: the stripe levels of {im.name} "
+        given = "--suite" if args.suite else "--records"
+        raise ValueError(f"--levels is required with {given}: the stripe levels of {im.name} "
                          f"[{im.unit}], e.g. --levels 0.1:1.0:0.05")
     suite = options.suite_from_args(args)
     settings = RecordFragilitySettings(

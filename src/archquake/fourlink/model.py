@@ -23,6 +23,7 @@ from typing import ClassVar
 
 import numpy as np
 
+from ..checks import pulse_grid
 from ..defaults import (
     DEFAULT_LIMIT_METHOD,
     DEFAULT_RESTITUTION,
@@ -334,10 +335,11 @@ class FourLinkModel:
         """
         from .engine import outcomes_grid
 
+        durations, amplitudes_g = pulse_grid(durations, amplitudes_g)
         table_l, table_r = self.tables
         c_lr, c_rl = self.restitution
-        return outcomes_grid(table_l, table_r, c_lr, c_rl, durations,
-                             GRAVITY * np.asarray(amplitudes_g, dtype=float), motion)
+        return outcomes_grid(table_l, table_r, c_lr, c_rl, durations, GRAVITY * amplitudes_g,
+                             motion)
 
 
     def scaled_record_outcomes(self, motion, factors) -> dict[str, np.ndarray]:

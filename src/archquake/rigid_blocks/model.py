@@ -22,6 +22,7 @@ from typing import ClassVar
 
 import numpy as np
 
+from ..checks import pulse_grid
 from ..constants import GRAVITY
 from ..status import Status
 from .assembly import Assembly
@@ -229,8 +230,7 @@ class RigidBlockModel:
         """
         from ..ground_motion import ground_motion
 
-        d, a = np.broadcast_arrays(np.asarray(durations, dtype=float),
-                                   np.asarray(amplitudes_g, dtype=float))
+        d, a = pulse_grid(durations, amplitudes_g)
         status = np.full(d.shape, int(Status.REST), dtype=np.int64)
         collapse_time = np.full(d.shape, np.nan)
         for index in np.ndindex(d.shape):

@@ -638,6 +638,10 @@ def domain_of(model, durations=None, amplitudes_g=None, *, direction: str = "l",
         raise ValueError(f"model must be a model of a structure (archquake.models."
                          f"StructuralModel: four-link or rigid-blocks), got "
                          f"{type(model).__name__}")
+    if screen is not None and (getattr(screen, "name", None) not in DEFAULT_SEARCH
+                               or not callable(getattr(screen, "outcomes", None))):
+        raise ValueError(f"screen must be None or a model of a structure (archquake.models."
+                         f"StructuralModel), got {screen!r}")
     search = check_search(DEFAULT_SEARCH[name] if search is None else search)
     stride = check_stride(stride)
     sign = PULSE_SIGNS[check_direction(direction)]

@@ -425,6 +425,8 @@ def assess(structure=None, *, records=None, suite: str | None = None,
     from ..running import Steps
 
     t_start = time.perf_counter()
+    if not isinstance(out_dir, str | os.PathLike) or not str(out_dir).strip():
+        raise ValueError(f"out_dir must name a directory (str or os.PathLike), got {out_dir!r}")
     structure = oppenheim() if structure is None else structure
     if not isinstance(structure, BlockArch):
         raise ValueError(f"structure must be an arch or a Structure (archquake.geometry), got "
