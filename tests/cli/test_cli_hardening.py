@@ -579,3 +579,42 @@ def test_record_fragility_without_levels_names_the_records_option_given(capsys, 
                  "--no-progress"]) == 2
     line = error_line(capsys)
     assert f"--levels is required with {given_option}" in line
+
+
+def _survey_file(path, scale=1.0, offset=(0.0, 0.0)):
+    from archquake import oppenheim
+
+    arch = oppenheim()
+    blocks = [arch.outline(i, 10)[:-1] * scale + offset for i in range(arch.n_voussoirs)]
+    path.write_text(json.dumps({"blocks": [b.tolist() for b in blocks]}))
+    return path
+
+
+@settings(max_examples=10)
+@given(exponent=st.integers(8, 307))
+def test_a_survey_too_large_is_refused_for_its_coordinates_not_its_area(tmp_path_factory,
+                                                                        exponent):
+    """Oppenheim's arch surveyed x 1e300 was refused because it 'encloses no area' (the area
+    overflowed); the error names the file and a coordinate."""
+    from fuzzing import run_cli
+
+    path = _survey_file(tmp_path_factory.mktemp("survey") / "huge.json", 10.0 ** exponent)
+    status, _, err = run_cli(["limit", "--geometry", str(path)])
+    assert status == 2 and "encloses no area" not in err
+    assert "huge.json" in err and "too large: coordinates must be within +-1e+07 m" in err
+
+
+@settings(max_examples=4)
+@given(east=st.floats(0.0, 9e5), north=st.floats(0.0, 9.9e6))
+def test_a_survey_in_projected_coordinates_is_analysed_as_at_the_origin(tmp_path_factory,
+                                                                        east, north):
+    """A translation changes no collapse multiplier: Oppenheim's arch surveyed in UTM-sized
+    coordinates has the k of the same survey at the origin."""
+    from archquake.geometry import load_arch
+    from archquake.limit_analysis import load_multipliers
+
+    folder = tmp_path_factory.mktemp("survey")
+    here = load_multipliers(load_arch(_survey_file(folder / "here.json")))
+    there = load_multipliers(load_arch(_survey_file(folder / "there.json",
+                                                    offset=(east, north))))
+    assert there == pytest.approx(here, rel=1e-6)

@@ -82,6 +82,11 @@ def _cross(a, b):
     return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
+MAX_SURVEY_COORDINATE = 1e7
+"""Largest magnitude of a surveyed coordinate [m]: a projected coordinate (UTM northings reach
+1e7 m) fits; beyond it the areas and masses lose their digits or overflow."""
+
+
 def _polygon(name: str, vertices) -> np.ndarray:
     try:
         v = np.array(vertices, dtype=float)
@@ -91,6 +96,11 @@ def _polygon(name: str, vertices) -> np.ndarray:
         raise ValueError(f"{name} must be a list of [x, y] points [m], got shape {v.shape}")
     if not np.all(np.isfinite(v)):
         raise ValueError(f"{name} has a coordinate that is not a finite number")
+    if np.any(np.abs(v) > MAX_SURVEY_COORDINATE):
+        value = float(v.flat[int(np.argmax(np.abs(v)))])
+        raise ValueError(f"{name} has the coordinate {value:.6g} m, too large: coordinates must "
+                         f"be within +-{MAX_SURVEY_COORDINATE:g} m (MAX_SURVEY_COORDINATE); are "
+                         "they in metres?")
     keep = np.ones(len(v), dtype=bool)
     keep[1:] = np.any(v[1:] != v[:-1], axis=1)  # consecutive duplicates
     v = v[keep]
