@@ -618,3 +618,26 @@ def test_a_survey_in_projected_coordinates_is_analysed_as_at_the_origin(tmp_path
     there = load_multipliers(load_arch(_survey_file(folder / "there.json",
                                                     offset=(east, north))))
     assert there == pytest.approx(here, rel=1e-6)
+
+
+def test_assess_says_a_record_warning_once(tmp_path):
+    """A record with an implausible peak (30 g) was warned of three times: twice as
+    ``archquake: warning:`` (the suite read, then its intensities) and once raw, with a source
+    line, by the process that runs the rigid blocks. Run as a command (that process writes to
+    the same stderr)."""
+    import os
+    import subprocess
+    import sys
+
+    big = tmp_path / "big.csv"
+    big.write_text("time_s,acc_g\n0,0\n0.01,30\n0.02,-30\n0.03,0\n0.04,0\n")
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).parents[2] / "src")}
+    done = subprocess.run(
+        [sys.executable, "-m", "archquake", "assess", "--records", str(big),
+         str(DATA / "decaying_sine.csv"), "--quick", "--out", str(tmp_path / "report"),
+         "--no-progress"], capture_output=True, text=True, env=env, timeout=600)
+    assert done.returncode == 0, done.stderr[-2000:]
+    lines = [line for line in done.stderr.splitlines() if line.strip()]
+    assert lines == [line for line in lines if line.startswith("archquake: warning: ")]
+    assert sum("is implausible" in line for line in lines) == 1
+    assert "UserWarning" not in done.stderr

@@ -190,11 +190,19 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def run_command(module, args: argparse.Namespace) -> int:
-    """Run ``module.run(args)``: errors, warnings and interrupts as one line on stderr, and the
-    exit status."""
+    """Run ``module.run(args)``: errors, warnings (each message once) and interrupts as one line
+    on stderr, and the exit status."""
     from ._signals import interrupted, sigterm_as_interrupt
 
-    show_warning, warnings.showwarning = warnings.showwarning, _show_warning
+    shown: set[str] = set()
+
+    def show_once(message, category, filename, lineno, file=None, line=None) -> None:
+        # a record read again later in the run (its intensities, a study) warns again
+        if str(message) not in shown:
+            shown.add(str(message))
+            _show_warning(message, category, filename, lineno, file, line)
+
+    show_warning, warnings.showwarning = warnings.showwarning, show_once
     try:
         if "workers" in vars(args):  # one check of --workers for every command
             args.workers = options.check_workers(args.workers)
