@@ -449,10 +449,8 @@ def add_rigid_block_options(parser: argparse.ArgumentParser, *, time_step: bool 
                                  "carrying an impulse, and every step where one does at the "
                                  "time step: 2 halves the time of a study at the accuracy of "
                                  "the time step (user guide, 'What a rigid-block study costs'); "
-                                 f"1 takes every step at the time step (default: "
-                                 f"{DEFAULT_COARSE_FACTOR})")
                                  f"1 takes every step at the time step; at most "
-                                 f"{MAX_COARSE_FACTOR} (default: %(default)s)")
+                                 f"{MAX_COARSE_FACTOR} (default: {DEFAULT_COARSE_FACTOR})")
 
 
 # ---------------------------------------------------------------------------------------------
