@@ -249,3 +249,16 @@ def test_a_command_of_fixed_models_has_no_option_of_a_model_it_does_not_run(caps
         main(argv)
     assert exc.value.code == 2 and f"unrecognized arguments: {argv[1]}" in (
         capsys.readouterr().err)
+
+
+@pytest.mark.parametrize("friction", ["0.7", "0.9"])
+def test_a_rigid_block_record_study_header_names_the_rigid_blocks_not_a_restitution(
+        tmp_path, capsys, friction):
+    argv = ["record-fragility", "--model", "rigid-blocks", "--friction", friction,
+            "--records", str(DATA / "decaying_sine.csv"), "--levels", "0.2:0.6:0.2",
+            "--samples", "1", "--seed", "2", "--no-progress", "--out", str(tmp_path / "r")]
+    assert main(argv) == 0
+    header = next(line for line in capsys.readouterr().out.splitlines()
+                  if line.startswith("Record-based fragility"))
+    assert "restitution" not in header
+    assert f"rigid-block model (friction {float(friction):g}" in header

@@ -117,7 +117,7 @@ def _print(result, summary: dict) -> None:
           f"{s.epsilon:g}, seed {s.seed}) and the nominal arch, {len(result.records)} records "
           f"x {result.levels.size} levels of {s.im} [{unit}] x 2 polarities = "
           f"{analyses['total']} analyses ({analyses['at_rest_without_integration']} at rest "
-          f"without integration); restitution {s.model.restitution!r}")
+          f"without integration); {s.model.settings_text()}")
     curves = result.curves()
     print(f"{'level [' + unit + ']':>12} {'P irregular':>12} {'P nominal':>10} "
           f"{'lognormal':>10} {'band':>15}")
