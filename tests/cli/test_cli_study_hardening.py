@@ -262,3 +262,20 @@ def test_a_rigid_block_record_study_header_names_the_rigid_blocks_not_a_restitut
                   if line.startswith("Record-based fragility"))
     assert "restitution" not in header
     assert f"rigid-block model (friction {float(friction):g}" in header
+
+
+@pytest.mark.parametrize("restitution, friction", [("paper", "0.6"), ("0.8", "0.75")])
+def test_a_command_of_both_models_gives_each_its_own_options(restitution, friction):
+    # records-for-site runs the rigid blocks and the four-link model: --restitution is the
+    # four-link model's and --friction the rigid blocks', neither refused
+    from archquake.cli import build_parser
+    from archquake.cli.options import model_spec_from_args
+
+    args = build_parser(("records-for-site",)).parse_args(
+        ["records-for-site", "--code", "ntc2018", "--ag", "0.2", "--f0", "2.4", "--tc-star",
+         "0.3", "--suite", "fema-p695-far-field", "--restitution", restitution,
+         "--friction", friction])
+    rigid = model_spec_from_args(args, "rigid-blocks", both=True)
+    four = model_spec_from_args(args, "four-link", both=True)
+    assert rigid.friction == float(friction) and four.name == "four-link"
+    assert str(four.restitution) == restitution or four.restitution == float(restitution)

@@ -53,8 +53,8 @@ def run(args: argparse.Namespace) -> int:
         raise options.site_option_message(exc) from None
     if args.run:  # refuse a bad structure or model setting before the selection
         arch = options.arch_from_args(args)
-        specs = (options.model_spec_from_args(args, "rigid-blocks"),
-                 options.model_spec_from_args(args, "four-link"))
+        specs = (options.model_spec_from_args(args, "rigid-blocks", both=True),
+                 options.model_spec_from_args(args, "four-link", both=True))
     selection = options.compatible_selection_from_args(args, target, way)
     if not selection.compatible:  # the selection shown, then why it cannot serve
         if args.json:

@@ -496,12 +496,14 @@ def add_search_options(group) -> None:
                             f"levels of a record-based study)")
 
 
-def model_spec_from_args(args: argparse.Namespace, name: str | None = None):
+def model_spec_from_args(args: argparse.Namespace, name: str | None = None, *,
+                         both: bool = False):
     """The :class:`~archquake.models.ModelSpec` of the model options a command has:
     ``--model`` (or ``name``, for a command of one model), ``--restitution``, ``--friction``,
     ``--time-step``, ``--coarse-factor`` (each option the dest of a field of the spec; one a
     command lacks takes the spec's default). A refused setting names its option
-    (:func:`option_message`)."""
+    (:func:`option_message`). ``both``: the command runs both models, so the options of the
+    other model are its, not refused (each spec takes its own)."""
     from dataclasses import fields
 
     from ..models import ModelSpec
@@ -515,7 +517,9 @@ def model_spec_from_args(args: argparse.Namespace, name: str | None = None):
         values["name"] = name
     chosen = values.get("name", ModelSpec.name)
     for dest, model in MODEL_OPTIONS.items():
-        if dest in values and model != chosen:
+        if dest in values and model != chosen and both:
+            del values[dest]
+        elif dest in values and model != chosen:
             option = f"--{dest.replace('_', '-')}"
             raise ValueError(f"{option} is a setting of the {model} model, and this study runs "
                              f"the {chosen} model, which has none: leave {option} out, or "
