@@ -64,6 +64,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help=f"bisection width of every boundary [g], >= "
                              f"{MIN_RESOLUTION_G:g} (default: %(default)s)")
     options.add_plot_option(parser, "write the failure-domain figure")
+    options.add_model_check_option(parser)
     options.add_progress_option(parser)
     options.add_json_option(parser)
 
@@ -97,6 +98,9 @@ def run(args: argparse.Namespace) -> int:
 
         ax = plot_failure_domain(domain)
         save_figure(ax.figure, args.plot)
+    check = None
+    if model.counts_half_cycles:  # four-link numbers: checked against the rigid blocks
+        check = options.model_check(args, model.arch, model, durations)
     caveat = search_caveat(domain.search, sum(domain.not_analysed), sum(domain.scan_points),
                            domain_stride)
     if args.json:
@@ -114,9 +118,15 @@ def run(args: argparse.Namespace) -> int:
                 row["undecided"] = [list(b) for b in sl.undecided_bands_g]
                 row["undecided_analyses"] = undecided
                 del row["first_half_cycle_acceleration"]
+        if check is not None:
+            for row in rows:
+                row["model_check"] = options.model_check_of_row(check, row["duration"])
         print_json(rows)
         return 0
     four_link = model.counts_half_cycles  # the table of the paper's Fig. 16
+    if check is not None:
+        for line in check["lines"]:
+            print(f"warning: {line}")
     if four_link:
         c_lr, c_rl = domain.restitution
         what = f"restitution {c_lr:.4f} (l->r), {c_rl:.4f} (r->l)"
@@ -150,7 +160,8 @@ def run(args: argparse.Namespace) -> int:
                                  sl.first_half_cycle_bound, 13)]
         if not math.isfinite(sl.first_half_cycle_acceleration_g):
             beyond.append(sl.duration)
-        print(f"{sl.duration:>8.3f} {columns[0]} {columns[1]}  " + "; ".join(parts))
+        print(f"{sl.duration:>8.3f} {columns[0]} {columns[1]}  " + "; ".join(parts)
+              + options.model_check_note(check, sl.duration))
     _say_upper_bounds(domain)
     if beyond:
         extend_to = domain.extend_to_g

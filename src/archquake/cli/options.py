@@ -624,6 +624,72 @@ def add_plot_option(parser, help: str) -> None:
     parser.add_argument("--plot", metavar="FILE.png", help=help)
 
 
+def add_model_check_option(parser) -> None:
+    """``--no-model-check``: skip the check of the four-link numbers against the rigid-block
+    model (:func:`model_check`)."""
+    parser.add_argument("--no-model-check", action="store_true",
+                        help="skip the check of the four-link failure accelerations against "
+                             "the rigid-block model (both under Oppenheim's pulse at up to 3 "
+                             "of the durations, to 0.01 g: about a second); the output says "
+                             "it was skipped")
+
+
+def model_check(args: argparse.Namespace, structure, four_link, durations) -> dict:
+    """Check the four-link model's failure accelerations of ``structure`` against the trusted
+    rigid-block model at a few of ``durations``
+    (:func:`archquake.studies.comparison.agreement_probe`), unless ``--no-model-check``.
+
+    Returns
+    -------
+    dict
+        ``skipped`` (bool), ``lines`` (the warnings to print: the durations beyond the band or
+        undecided, or that the check was skipped), ``probe`` (the JSON-ready probe, None when
+        skipped) and ``value`` (the :class:`~archquake.studies.comparison.AgreementProbe`).
+    """
+    if getattr(args, "no_model_check", False):
+        return {"skipped": True, "probe": None, "value": None,
+                "lines": ["four-link values not checked against the rigid-block model "
+                          "(--no-model-check)"]}
+    from ..studies.comparison import agreement_probe, probe_durations
+
+    with analysing(args):
+        probe = agreement_probe(structure, probe_durations(durations), four_link=four_link,
+                                direction=getattr(args, "direction", "l"))
+    lines = probe.messages()
+    if not lines:
+        lines = ["four-link values checked against the rigid-block model at t_p = "
+                 + ", ".join(f"{r.duration:g}" for r in probe.rows)
+                 + f" s: within {100 * probe.band:g} %"]
+    return {"skipped": False, "probe": probe.to_dict(), "value": probe, "lines": lines}
+
+
+def model_check_of_row(check: dict, duration: float) -> dict:
+    """What a JSON row of one duration carries of :func:`model_check`: ``skipped``,
+    ``disagrees`` and ``undecided`` (anywhere probed), ``band`` and ``probed`` (the probe's row
+    at this duration, None when not probed there)."""
+    if check["skipped"]:
+        return {"skipped": True}
+    probe = check["value"]
+    row = probe.row_at(duration)
+    return {"skipped": False, "disagrees": probe.disagrees, "undecided": probe.undecided,
+            "band": probe.band, "probed": None if row is None else row.to_dict()}
+
+
+def model_check_note(check: dict, duration: float) -> str:
+    """The note beside a four-link failure acceleration at ``duration`` ("" where it was not
+    probed or agrees)."""
+    probe = check["value"]
+    row = None if probe is None else probe.row_at(duration)
+    if row is None:
+        return ""
+    if row.beyond:
+        return (f"  [rigid blocks (trusted): {row.rigid_block:.2f} g; four-link off by "
+                f"{100 * row.difference:+.0f} %]")
+    if row.undecided:
+        return "  [model check undecided]"
+    return ""
+
+
 def add_progress_option(parser, help: str = "no progress bar on stderr") -> None:
     """``--no-progress``."""
     parser.add_argument("--no-progress", action="store_true", help=help)

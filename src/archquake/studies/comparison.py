@@ -34,6 +34,7 @@ import numpy as np
 
 from ..checks import json_float
 from ..defaults import (
+    AGREEMENT_BAND,
     COMPARE_AMPLITUDES_G,
     COMPARE_DURATIONS,
     COMPARE_RESOLUTION_G,
@@ -403,4 +404,238 @@ def domain_disagreement(first, second) -> Disagreement:
     return Disagreement(tuple(float(s.duration) for s in first.slices), tuple(out), names)
 
 
-__all__ = ["Disagreement", "ModelComparison", "compare_models", "domain_disagreement"]
+PROBE_RESOLUTION_G = 0.01
+"""Bisection width of both models' failure accelerations in :func:`agreement_probe` [g]."""
+
+PROBE_STEP_G = 0.05
+"""Spacing of the amplitude scan of :func:`agreement_probe` [g], from just below the load
+multiplier k (no model moves below ``a = k``) up to :data:`PROBE_TOP_G`."""
+
+PROBE_TOP_G = 3.0
+"""Highest amplitude :func:`agreement_probe` analyses [g]: a failure acceleration above it is
+reported as undecided."""
+
+PROBE_DURATIONS = 3
+"""Durations a command's probe takes from its own (:func:`probe_durations`) [-]."""
+
+
+def probe_durations(durations, count: int = PROBE_DURATIONS) -> tuple[float, ...]:
+    """A few durations across ``durations``: all of them if at most ``count``, else the
+    shortest, the longest and those evenly between them (by rank) [s].
+
+    Parameters
+    ----------
+    durations : sequence of float
+        A command's pulse durations t_p [s].
+    count : int
+        Most durations kept, >= 2.
+
+    Returns
+    -------
+    tuple of float
+    """
+    d = sorted({float(x) for x in np.atleast_1d(np.asarray(durations, dtype=float))})
+    if not d:
+        raise ValueError("durations must hold at least one pulse duration t_p [s]")
+    if not (isinstance(count, int) and count >= 2):
+        raise ValueError(f"count must be an integer >= 2, got {count!r}")
+    if len(d) <= count:
+        return tuple(d)
+    ranks = np.unique(np.round(np.linspace(0, len(d) - 1, count)).astype(int))
+    return tuple(d[i] for i in ranks)
+
+
+@dataclass(frozen=True)
+class ProbeRow:
+    """The two models' failure accelerations under Oppenheim's pulse at one duration.
+
+    Attributes
+    ----------
+    duration : float
+        Pulse duration t_p [s].
+    four_link, rigid_block : float
+        Failure accelerations [g] (nan: none found, or not decided: see ``undecided``).
+    difference : float
+        ``(four_link - rigid_block) / rigid_block`` [-] (nan when undecided).
+    beyond : bool
+        Whether ``|difference|`` exceeds the band (False when undecided).
+    undecided : str
+        Why no difference is known, in words ("" when it is).
+    """
+
+    duration: float
+    four_link: float
+    rigid_block: float
+    difference: float
+    beyond: bool
+    undecided: str = ""
+
+    def to_dict(self) -> dict:
+        """JSON-ready: ``duration`` [s], ``four_link``, ``rigid_block`` [g] (None: none),
+        ``difference`` [-] (None: undecided), ``beyond_band`` and ``undecided`` (the reason, or
+        None)."""
+        return {"duration": self.duration, "four_link": json_float(self.four_link),
+                "rigid_block": json_float(self.rigid_block),
+                "difference": json_float(self.difference), "beyond_band": self.beyond,
+                "undecided": self.undecided or None}
+
+
+@dataclass(frozen=True)
+class AgreementProbe:
+    """Whether the four-link model's failure accelerations agree with the rigid-block model's
+    (:func:`agreement_probe`).
+
+    Attributes
+    ----------
+    rows : tuple of ProbeRow
+        One per probed duration, shortest first.
+    band : float
+        The agreement band [-] (:data:`archquake.defaults.AGREEMENT_BAND`).
+    resolution_g : float
+        Bisection width of both models' failure accelerations [g].
+    restitution : (float, float)
+        The four-link model's coefficients of restitution (l->r, r->l) [-].
+    seconds : float
+        Wall-clock time of the probe [s].
+    """
+
+    rows: tuple
+    band: float
+    resolution_g: float
+    restitution: tuple
+    seconds: float = 0.0
+
+    @property
+    def disagrees(self) -> bool:
+        """Whether the models disagree beyond the band at some probed duration."""
+        return any(r.beyond for r in self.rows)
+
+    @property
+    def undecided(self) -> bool:
+        """Whether some probed duration has no known difference."""
+        return any(r.undecided for r in self.rows)
+
+    def row_at(self, duration: float):
+        """The row of ``duration`` (to 1e-9 s), or None."""
+        return next((r for r in self.rows if abs(r.duration - duration) <= 1e-9), None)
+
+    def messages(self) -> list[str]:
+        """One line per probed duration where the four-link value is not to be trusted: beyond
+        the band, or no difference known."""
+        out = []
+        for r in self.rows:
+            if r.beyond:
+                out.append(f"the rigid-block model (trusted; agrees with LMGC90 to 0.4 % on "
+                           f"piers) gives {r.rigid_block:.2f} g at t_p = {r.duration:g} s: the "
+                           f"four-link value ({r.four_link:.2f} g) is off by "
+                           f"{100 * r.difference:+.0f} %")
+            elif r.undecided:
+                out.append(f"model check undecided at t_p = {r.duration:g} s: {r.undecided}")
+        return out
+
+    def to_dict(self) -> dict:
+        """JSON-ready: ``band``, ``resolution`` [g], ``restitution``, ``disagrees``,
+        ``undecided``, ``seconds`` and ``rows`` (:meth:`ProbeRow.to_dict`)."""
+        return {"band": self.band, "resolution": self.resolution_g,
+                "restitution": [float(c) for c in self.restitution],
+                "disagrees": self.disagrees, "undecided": self.undecided,
+                "seconds": round(self.seconds, 2), "rows": [r.to_dict() for r in self.rows]}
+
+
+def probe_grid(limit_multiplier: float) -> np.ndarray:
+    """The amplitude scan of :func:`agreement_probe` [g]: from just below the load multiplier
+    ``k`` (rounded down to :data:`PROBE_STEP_G`, at least one step) to :data:`PROBE_TOP_G`."""
+    from .failure_domain import inclusive_range
+
+    k = float(limit_multiplier)
+    start = max(PROBE_STEP_G, PROBE_STEP_G * math.floor(0.99 * k / PROBE_STEP_G)) \
+        if math.isfinite(k) else PROBE_STEP_G
+    return inclusive_range(start, PROBE_TOP_G, PROBE_STEP_G)
+
+
+def agreement_probe(arch: BlockArch, durations: Sequence[float], *, four_link=None,
+                    settings=None, direction: str = "l",
+                    resolution_g: float = PROBE_RESOLUTION_G) -> AgreementProbe:
+    """Do the four-link and the rigid-block model agree on the failure acceleration of
+    ``arch`` under Oppenheim's pulse? A cheap check beside any four-link number.
+
+    At every duration both models' failure accelerations (the lowest collapsing amplitude) are
+    found by the one failure-domain search (:func:`archquake.studies.failure_domain.domain_of`)
+    on the scan :func:`probe_grid` bisected to ``resolution_g`` (the rigid blocks by the
+    ``bisection`` search, no extension of the scan); the relative difference is called beyond
+    the band where ``|a_four_link / a_rigid_block - 1| >``
+    :data:`~archquake.defaults.AGREEMENT_BAND`. The rigid-block model is the one trusted: it
+    agrees with the discrete-element code LMGC90 to 1 % on fixed supports and 0.4 % on piers,
+    where the four-link model keeps the four hinges of the limit analysis.
+
+    No difference is known (the row says why) where either model collapses at the lowest
+    amplitude scanned or at none, or where the rigid blocks left an undecided band below their
+    lowest decided collapse (:mod:`archquake.studies.undecided`).
+
+    Parameters
+    ----------
+    arch : BlockArch
+        The structure.
+    durations : sequence of float
+        Pulse durations t_p [s] (a few: :func:`probe_durations`).
+    four_link : FourLinkModel, optional
+        The four-link model whose numbers are checked (its restitution); default the arch's
+        with the default restitution.
+    settings : BlockSettings, optional
+        The rigid-block model's settings (default :class:`~archquake.rigid_blocks.BlockSettings`).
+    direction : {"l", "r"}
+        Direction of the first pulse.
+    resolution_g : float
+        Bisection width of both failure accelerations [g].
+
+    Returns
+    -------
+    AgreementProbe
+
+    Raises
+    ------
+    ValueError
+        If ``four_link`` is not a FourLinkModel of ``arch``, or the durations, direction or
+        resolution are refused by :func:`~archquake.studies.failure_domain.domain_of`.
+    """
+    import time
+
+    from ..fourlink.model import FourLinkModel
+    from ..rigid_blocks import BlockSettings, RigidBlockModel
+    from .failure_domain import domain_of
+
+    start = time.perf_counter()
+    if four_link is None:
+        four_link = FourLinkModel.from_arch(arch)
+    elif not isinstance(four_link, FourLinkModel) or four_link.arch is not arch:
+        raise ValueError("four_link must be the FourLinkModel of arch")
+    d = tuple(sorted(float(x) for x in durations))
+    grid = probe_grid(four_link.load_multiplier)
+    fl = domain_of(four_link, d, grid, direction=direction, resolution_g=resolution_g,
+                   extend_to_g=None)
+    blocks = RigidBlockModel(arch, BlockSettings() if settings is None else settings)
+    rb = domain_of(blocks, d, grid, direction=direction, resolution_g=resolution_g,
+                   extend_to_g=None, search="bisection")
+    rows = []
+    for a, b in zip(fl.slices, rb.slices, strict=True):
+        why = []
+        for name, s in (("four-link", a), ("rigid-block", b)):
+            if s.failure_acceleration_bound == "upper":
+                why.append(f"the {name} model collapses from the lowest amplitude scanned "
+                           f"({grid[0]:g} g)")
+            elif math.isnan(s.failure_acceleration_g):
+                why.append(f"the {name} model does not collapse up to {grid[-1]:g} g")
+        if math.isfinite(b.failure_undecided_from_g):
+            why.append(f"the rigid-block analyses are undecided from "
+                       f"{b.failure_undecided_from_g:.2f} g")
+        fa, fb = a.failure_acceleration_g, b.failure_acceleration_g
+        diff = math.nan if why else fa / fb - 1.0
+        rows.append(ProbeRow(float(a.duration), fa, fb, diff,
+                             bool(not why and abs(diff) > AGREEMENT_BAND), "; ".join(why)))
+    return AgreementProbe(tuple(rows), AGREEMENT_BAND, float(resolution_g),
+                          tuple(float(c) for c in four_link.restitution),
+                          time.perf_counter() - start)
+
+
+__all__ = ["AgreementProbe", "Disagreement", "ModelComparison", "ProbeRow", "agreement_probe",
+           "compare_models", "domain_disagreement", "probe_durations", "probe_grid"]
