@@ -57,6 +57,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         default=DEFAULT_SAMPLE_LIMIT_METHOD,
                         help="limit-analysis method of that sample (same k~; kinematic is "
                              "faster) (default: %(default)s)")
+    options.add_model_check_option(parser)
     options.add_study_output_options(parser)
 
 
@@ -78,6 +79,12 @@ def run(args: argparse.Namespace) -> int:
     if args.plot_dir:
         written = _plot(result, args.plot_dir)
     summary = result.summary()
+    check = None
+    if settings.model.name == "four-link":  # the nominal arch's four-link numbers, checked
+        with options.analysing(args):
+            four_link = settings.model.build(settings.nominal, settings.nominal)
+        check = options.model_check(args, settings.nominal, four_link, settings.durations)
+        summary["model_check"] = {"skipped": check["skipped"], "probe": check["probe"]}
     if args.json:
         print_json(summary)
         return 0
@@ -97,6 +104,8 @@ def run(args: argparse.Namespace) -> int:
                                                       for d in result.nominal_domains))
     if warning:
         print(warning)
+    for line in (check or {}).get("lines", ()):
+        print(f"warning: nominal arch: {line}")
     print(f"Fragility study: h = {settings.sample_size} irregular arches (epsilon = "
           f"{settings.epsilon:g}, seed {settings.seed}), {len(settings.durations)} durations x "
           f"{len(settings.amplitudes_g)} amplitudes x 2 directions = {n_analyses} analyses; "
@@ -136,7 +145,8 @@ def run(args: argparse.Namespace) -> int:
     for row in summary["durations"]:
         print(f"{row['duration']:>8.3f} {nominal(row, 14)} {below(row, 12)} "
               f"{fmt(row['lowest_failure_acceleration'], 15, 2)} "
-              f"{fmt(row['lognormal_median'], 21)} {fmt(row['lognormal_dispersion'], 6, 3)}")
+              f"{fmt(row['lognormal_median'], 21)} {fmt(row['lognormal_dispersion'], 6, 3)}"
+              + ("" if check is None else options.model_check_note(check, row["duration"])))
     k = summary["limit_sample"]
 
     def number(x, digits=4):

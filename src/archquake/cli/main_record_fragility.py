@@ -50,6 +50,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     options.add_restitution_option(parser, of_a_model=True)
     options.add_rigid_block_options(parser, of_a_model=True)
     add_record_options(parser)
+    options.add_model_check_option(parser)
     options.add_study_output_options(parser)
 
 
@@ -88,9 +89,20 @@ def run(args: argparse.Namespace) -> int:
             raise ValueError(f"cannot write --export-nrml {args.export_nrml!r}: "
                              f"{exc.strerror}") from exc
     summary = result.summary()
+    check = None
+    if settings.model.name == "four-link":  # the nominal arch's four-link model, checked
+        from ..studies.comparison import PROBE_REFERENCE_DURATIONS
+
+        with options.analysing(args):
+            four_link = settings.model.build(settings.nominal, settings.nominal)
+        check = options.model_check(args, settings.nominal, four_link,
+                                    PROBE_REFERENCE_DURATIONS)
+        summary["model_check"] = {"skipped": check["skipped"], "probe": check["probe"]}
     if args.json:
         print_json(summary)
         return 0
+    for line in (check or {}).get("lines", ()):
+        print(f"warning: nominal arch under Oppenheim's pulse: {line}")
     _print(result, summary)
     print(f"written to {args.out}: results.parquet, results.csv, {CURVES_CSV}, "
           f"{INCREMENTAL_CSV}, summary.json")

@@ -415,6 +415,11 @@ PROBE_TOP_G = 3.0
 """Highest amplitude :func:`agreement_probe` analyses [g]: a failure acceleration above it is
 reported as undecided."""
 
+PROBE_REFERENCE_DURATIONS = (0.25, 0.5, 1.0)
+"""Pulse durations [s] of :func:`agreement_probe` for a command without its own (under
+records): short, middle and long pulses of the paper's range, where the two models disagree
+most, somewhat, and least on Oppenheim's arch."""
+
 PROBE_DURATIONS = 3
 """Durations a command's probe takes from its own (:func:`probe_durations`) [-]."""
 
@@ -638,4 +643,5 @@ def agreement_probe(arch: BlockArch, durations: Sequence[float], *, four_link=No
 
 
 __all__ = ["AgreementProbe", "Disagreement", "ModelComparison", "ProbeRow", "agreement_probe",
-           "compare_models", "domain_disagreement", "probe_durations", "probe_grid"]
+           "compare_models", "domain_disagreement", "probe_durations", "probe_grid",
+           "PROBE_REFERENCE_DURATIONS"]
