@@ -92,7 +92,13 @@ def run(args: argparse.Namespace) -> int:
         plot_model_differences(comparison, right)
         save_figure(fig, args.plot)
     rows = comparison.to_list()
-    from ..defaults import DEFAULT_STRIDE
+    from ..defaults import AGREEMENT_BAND, DEFAULT_STRIDE
+
+    differences = comparison.relative_differences()
+    for i, row in enumerate(rows):  # where the four-link value is not to be trusted
+        row["agreement_band"] = AGREEMENT_BAND
+        row["beyond_band"] = {name: bool(abs(d[i]) > AGREEMENT_BAND)
+                              for name, d in differences.items() if math.isfinite(d[i])}
     from ..studies.strategies import search_caveat
 
     blocks = comparison.rigid_block  # the searched scan; the four-link one is exhaustive
@@ -152,8 +158,14 @@ def run(args: argparse.Namespace) -> int:
             elif rigid is None or "rigid_block" in bounds:
                 cells.append(f"{value:>15.3f}")
             else:
-                cells.append(f"{value:>7.3f} ({100 * (value / rigid - 1):+4.0f} %)".rjust(15))
+                flag = "!" if row["beyond_band"].get(name) else " "
+                cells.append(f"{value:>7.3f} ({100 * (value / rigid - 1):+4.0f} %){flag}"
+                             .rjust(15))
         print(f"{row['duration']:>8.3f} " + " ".join(cells))
+    if any(any(row["beyond_band"].values()) for row in rows):
+        print(f"!: the four-link value is off by more than {100 * AGREEMENT_BAND:g} %: the "
+              f"rigid-block model is the trusted one (it agrees with LMGC90 to 1 % on fixed "
+              f"supports, 0.4 % on piers)")
     if upper:
         print("<=: collapse from the lowest amplitude scanned at t_p = "
               + ", ".join(f"{d:g}" for d in upper) + " s: the failure acceleration is at "
