@@ -146,7 +146,7 @@ def run(args: argparse.Namespace) -> int:
         print(f"{row['duration']:>8.3f} {nominal(row, 14)} {below(row, 12)} "
               f"{fmt(row['lowest_failure_acceleration'], 15, 2)} "
               f"{fmt(row['lognormal_median'], 21)} {fmt(row['lognormal_dispersion'], 6, 3)}"
-              + ("" if check is None else options.model_check_note(check, row["duration"])))
+              + options.model_check_note(check, row["duration"]))
     k = summary["limit_sample"]
 
     def number(x, digits=4):

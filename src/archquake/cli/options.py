@@ -652,9 +652,14 @@ def model_check(args: argparse.Namespace, structure, four_link, durations) -> di
                           "(--no-model-check)"]}
     from ..studies.comparison import agreement_probe, probe_durations
 
-    with analysing(args):
-        probe = agreement_probe(structure, probe_durations(durations), four_link=four_link,
+    probed = probe_durations(durations)
+    try:
+        probe = agreement_probe(structure, probed, four_link=four_link,
                                 direction=getattr(args, "direction", "l"))
+    except ValueError as exc:  # e.g. a pulse the rigid blocks' time step cannot resolve
+        return {"skipped": False, "probe": {"error": str(exc)}, "value": None,
+                "lines": [f"model check undecided: the four-link values could not be checked "
+                          f"against the rigid-block model: {exc}"]}
     lines = probe.messages()
     if not lines:
         lines = ["four-link values checked against the rigid-block model at t_p = "
@@ -670,6 +675,8 @@ def model_check_of_row(check: dict, duration: float) -> dict:
     if check["skipped"]:
         return {"skipped": True}
     probe = check["value"]
+    if probe is None:
+        return {"skipped": False, **check["probe"]}
     row = probe.row_at(duration)
     return {"skipped": False, "disagrees": probe.disagrees, "undecided": probe.undecided,
             "band": probe.band, "probed": None if row is None else row.to_dict()}
@@ -678,6 +685,8 @@ def model_check_of_row(check: dict, duration: float) -> dict:
 def model_check_note(check: dict, duration: float) -> str:
     """The note beside a four-link failure acceleration at ``duration`` ("" where it was not
     probed or agrees)."""
+    if check is None:
+        return ""
     probe = check["value"]
     row = None if probe is None else probe.row_at(duration)
     if row is None:
