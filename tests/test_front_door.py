@@ -55,6 +55,8 @@ def test_nominal_restitution_takes_the_nominal_arch(nominal):
 def test_domain_command_and_python_agree_with_their_defaults(capsys):
     assert main(["domain", "--durations", "0.3,0.6", "--json"]) == 0
     cli = json.loads(capsys.readouterr().out)
+    for row in cli:  # the check against the rigid blocks: tests/studies/test_agreement_probe.py
+        assert row.pop("model_check")["skipped"] is False
     python = domain_of(FourLinkModel.from_arch(oppenheim()), [0.3, 0.6]).to_list()
     assert cli == json.loads(json.dumps(python))
 

@@ -68,6 +68,13 @@ def test_cli_json_contract(capsys, comparison):
     for row, expected in zip(rows, comparison.to_list(), strict=True):
         assert {"duration", "rigid_block", "four_link"} <= set(row)
         assert {"computed", "link", "paper"} <= set(row["four_link"])
+        # beyond the agreement band: |a_four_link / a_rigid_block - 1| > 0.05, from the values
+        assert row.pop("agreement_band") == 0.05
+        beyond = row.pop("beyond_band")
+        assert beyond == {name: abs(a / row["rigid_block"] - 1) > 0.05
+                          for name, a in row["four_link"].items()
+                          if a is not None and row["rigid_block"] is not None
+                          and "failure_undecided_from" not in row}
         assert row == json.loads(json.dumps(expected))
         # accelerations in g: above the activation k = 0.370 and within the scan
         for value in [row["rigid_block"], *row["four_link"].values()]:
