@@ -123,7 +123,7 @@ def test_domain_json_keeps_its_keys_when_the_failure_is_bracketed(capsys):
     assert main(["domain", "--durations", "0.5", "--amplitudes", "0.3:1:0.05", "--json"]) == 0
     (row,) = strict_json(capsys.readouterr().out)
     assert set(row) == {"duration", "failure_acceleration", "first_half_cycle_acceleration",
-                        "scanned_to", "intervals"}
+                        "scanned_to", "intervals", "model_check"}
 
 
 @pytest.mark.parametrize("friction", ["0", "0.2"])
