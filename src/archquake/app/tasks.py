@@ -216,10 +216,14 @@ def failure_domain(spec: dict, report) -> dict:
         ``figure`` (a PNG as a data URL: the four-link domain with the disagreement hatched,
         beside the rigid blocks'), per model its ``failure`` curve (``durations`` [s],
         ``failure_g`` and ``first_half_cycle_g`` [g], None where none was found) or its
-        ``error``, and ``disagreement`` (:meth:`~archquake.studies.comparison.Disagreement.
-        to_list`).
+        ``error``, ``disagreement`` (:meth:`~archquake.studies.comparison.Disagreement.
+        to_list`) and ``model_check`` (``rows``: per duration both failure accelerations, their
+        difference and whether it is beyond the agreement band,
+        :func:`~archquake.studies.comparison.agreement_rows`; ``messages``: what to say beside
+        the four-link numbers).
     """
-    from ..studies.comparison import domain_disagreement
+    from ..defaults import AGREEMENT_BAND
+    from ..studies.comparison import AgreementProbe, agreement_rows, domain_disagreement
     from ..studies.failure_domain import domain_of
 
     settings = _domain_settings(spec)
@@ -263,6 +267,12 @@ def failure_domain(spec: dict, report) -> dict:
     if len(domains) == 2:
         disagreement = domain_disagreement(domains["four-link"], domains["rigid-blocks"])
         out["disagreement"] = disagreement.to_list()
+        # beside each four-link failure acceleration: the trusted rigid blocks' where they
+        # disagree beyond the agreement band (archquake domain prints the same)
+        rows = agreement_rows(domains["four-link"], domains["rigid-blocks"])
+        out["model_check"] = {"rows": [r.to_dict() for r in rows],
+                              "messages": AgreementProbe(rows, AGREEMENT_BAND, float(
+                                  settings["resolution"]), ()).messages()}
     out["figure"] = _domain_figure(domains, disagreement, models) if domains else None
     return out
 

@@ -558,6 +558,48 @@ def probe_grid(limit_multiplier: float) -> np.ndarray:
     return inclusive_range(start, PROBE_TOP_G, PROBE_STEP_G)
 
 
+def agreement_rows(four_link, rigid_block) -> tuple:
+    """Duration by duration, the two failure domains' failure accelerations, their relative
+    difference and whether it is beyond :data:`~archquake.defaults.AGREEMENT_BAND`.
+
+    Parameters
+    ----------
+    four_link, rigid_block : FailureDomain
+        The four-link and the rigid-block domain of one structure, same durations (to 1e-9 s).
+
+    Returns
+    -------
+    tuple of ProbeRow
+        No difference is known (``undecided`` says why) where either model collapses at the
+        lowest amplitude scanned or at none, or where the rigid blocks are undecided below
+        their lowest decided collapse.
+    """
+    from .failure_domain import FailureDomain
+
+    if not (isinstance(four_link, FailureDomain) and isinstance(rigid_block, FailureDomain)):
+        raise ValueError("four_link and rigid_block must be FailureDomain values")
+    if (four_link.durations.shape != rigid_block.durations.shape
+            or not np.allclose(four_link.durations, rigid_block.durations, rtol=0, atol=1e-9)):
+        raise ValueError("the two domains must have the same durations")
+    rows = []
+    for a, b in zip(four_link.slices, rigid_block.slices, strict=True):
+        why = []
+        for name, s in (("four-link", a), ("rigid-block", b)):
+            if s.failure_acceleration_bound == "upper":
+                why.append(f"the {name} model collapses from the lowest amplitude scanned "
+                           f"({s.intervals[0].start:g} g)")
+            elif math.isnan(s.failure_acceleration_g):
+                why.append(f"the {name} model does not collapse up to {s.scanned_to_g:g} g")
+        if math.isfinite(b.failure_undecided_from_g):
+            why.append(f"the rigid-block analyses are undecided from "
+                       f"{b.failure_undecided_from_g:.2f} g")
+        fa, fb = a.failure_acceleration_g, b.failure_acceleration_g
+        diff = math.nan if why else fa / fb - 1.0
+        rows.append(ProbeRow(float(a.duration), fa, fb, diff,
+                             bool(not why and abs(diff) > AGREEMENT_BAND), "; ".join(why)))
+    return tuple(rows)
+
+
 def agreement_probe(arch: BlockArch, durations: Sequence[float], *, four_link=None,
                     settings=None, direction: str = "l",
                     resolution_g: float = PROBE_RESOLUTION_G) -> AgreementProbe:
@@ -621,27 +663,13 @@ def agreement_probe(arch: BlockArch, durations: Sequence[float], *, four_link=No
     blocks = RigidBlockModel(arch, BlockSettings() if settings is None else settings)
     rb = domain_of(blocks, d, grid, direction=direction, resolution_g=resolution_g,
                    extend_to_g=None, search="bisection")
-    rows = []
-    for a, b in zip(fl.slices, rb.slices, strict=True):
-        why = []
-        for name, s in (("four-link", a), ("rigid-block", b)):
-            if s.failure_acceleration_bound == "upper":
-                why.append(f"the {name} model collapses from the lowest amplitude scanned "
-                           f"({grid[0]:g} g)")
-            elif math.isnan(s.failure_acceleration_g):
-                why.append(f"the {name} model does not collapse up to {grid[-1]:g} g")
-        if math.isfinite(b.failure_undecided_from_g):
-            why.append(f"the rigid-block analyses are undecided from "
-                       f"{b.failure_undecided_from_g:.2f} g")
-        fa, fb = a.failure_acceleration_g, b.failure_acceleration_g
-        diff = math.nan if why else fa / fb - 1.0
-        rows.append(ProbeRow(float(a.duration), fa, fb, diff,
-                             bool(not why and abs(diff) > AGREEMENT_BAND), "; ".join(why)))
-    return AgreementProbe(tuple(rows), AGREEMENT_BAND, float(resolution_g),
+    rows = agreement_rows(fl, rb)
+    return AgreementProbe(rows, AGREEMENT_BAND, float(resolution_g),
                           tuple(float(c) for c in four_link.restitution),
                           time.perf_counter() - start)
 
 
 __all__ = ["AgreementProbe", "Disagreement", "ModelComparison", "ProbeRow", "agreement_probe",
+           "agreement_rows",
            "compare_models", "domain_disagreement", "probe_durations", "probe_grid",
            "PROBE_REFERENCE_DURATIONS"]

@@ -775,7 +775,9 @@ async function startDomain() {
       const u = (result["four-link"].undecided || 0) + (result["rigid-blocks"].undecided || 0);
       finish(`done: ${n} analyses, ${u} undecided` +
              (result["four-link"].error ? `; four-link model: ${result["four-link"].error}` : "") +
-             (result["rigid-blocks"].error ? `; rigid blocks: ${result["rigid-blocks"].error}` : ""));
+             (result["rigid-blocks"].error ? `; rigid blocks: ${result["rigid-blocks"].error}` : "") +
+             (result.model_check && result.model_check.messages.length
+               ? `; four-link values: ${result.model_check.messages.join("; ")}` : ""));
     },
     error: (message) => { finish("failed"); showMessage(message); },
     cancelled: () => finish("cancelled"),
