@@ -81,8 +81,9 @@ def run(args: argparse.Namespace) -> int:
     summary = result.summary()
     check = None
     if settings.model.name == "four-link":  # the nominal arch's four-link numbers, checked
-        with options.analysing(args):
-            four_link = settings.model.build(settings.nominal, settings.nominal)
+        def four_link():
+            return settings.model.build(settings.nominal, settings.nominal)
+
         check = options.model_check(args, settings.nominal, four_link, settings.durations)
         summary["model_check"] = {"skipped": check["skipped"], "probe": check["probe"]}
     if args.json:

@@ -93,8 +93,10 @@ def run(args: argparse.Namespace) -> int:
     if settings.model.name == "four-link":  # the nominal arch's four-link model, checked
         from ..studies.comparison import PROBE_REFERENCE_DURATIONS
 
-        with options.analysing(args):
-            four_link = settings.model.build(settings.nominal, settings.nominal)
+
+        def four_link():
+            return settings.model.build(settings.nominal, settings.nominal)
+
         check = options.model_check(args, settings.nominal, four_link,
                                     PROBE_REFERENCE_DURATIONS)
         summary["model_check"] = {"skipped": check["skipped"], "probe": check["probe"]}

@@ -638,6 +638,8 @@ def model_check(args: argparse.Namespace, structure, four_link, durations) -> di
     """Check the four-link model's failure accelerations of ``structure`` against the trusted
     rigid-block model at a few of ``durations``
     (:func:`archquake.studies.comparison.agreement_probe`), unless ``--no-model-check``.
+    ``four_link`` is the model, or a call that builds it. A check that cannot be made (a model
+    refused, a pulse the rigid blocks' time step cannot resolve) is said as undecided.
 
     Returns
     -------
@@ -654,6 +656,8 @@ def model_check(args: argparse.Namespace, structure, four_link, durations) -> di
 
     probed = probe_durations(durations)
     try:
+        if callable(four_link):  # built here, so that a model that cannot be is said
+            four_link = four_link()
         probe = agreement_probe(structure, probed, four_link=four_link,
                                 direction=getattr(args, "direction", "l"))
     except ValueError as exc:  # e.g. a pulse the rigid blocks' time step cannot resolve
