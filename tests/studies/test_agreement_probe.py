@@ -143,3 +143,20 @@ def test_fragility_json_carries_the_nominal_arch_probe(tmp_path, capsys, direct)
     assert row["four_link"] == four and row["rigid_block"] == blocks and row["beyond_band"]
     assert math.isfinite(summary["model_check"]["probe"]["seconds"])
     assert np.isclose(summary["model_check"]["probe"]["band"], AGREEMENT_BAND)
+
+
+def test_bare_arch_under_a_short_pulse_is_flagged_with_its_own_reference():
+    # Oppenheim's arch at t_p = 0.25 s collapses only after impacts, where the four-link model
+    # keeps its mechanism: the models disagree (compare_models' docstring); the rigid blocks'
+    # reference on fixed supports is 1 % from LMGC90
+    arch = oppenheim()
+    probe = agreement_probe(arch, [0.25])
+    (row,) = probe.rows
+    fl = FourLinkModel.from_arch(arch)
+    grid = probe_grid(fl.load_multiplier)
+    blocks = domain_of(RigidBlockModel(arch, BlockSettings()), [0.25], grid,
+                       resolution_g=PROBE_RESOLUTION_G, extend_to_g=None, search="bisection")
+    assert row.rigid_block == blocks.failure_accelerations_g[0]
+    assert row.beyond and not probe.on_piers
+    (message,) = probe.messages()
+    assert "agrees with LMGC90 to 1 % on fixed supports" in message

@@ -271,8 +271,10 @@ def failure_domain(spec: dict, report) -> dict:
         # disagree beyond the agreement band (archquake domain prints the same)
         rows = agreement_rows(domains["four-link"], domains["rigid-blocks"])
         out["model_check"] = {"rows": [r.to_dict() for r in rows],
-                              "messages": AgreementProbe(rows, AGREEMENT_BAND, float(
-                                  settings["resolution"]), ()).messages()}
+                              "messages": AgreementProbe(
+                                  rows, AGREEMENT_BAND, float(settings["resolution"]), (),
+                                  on_piers=getattr(structure, "left", None) is not None
+                                  or getattr(structure, "right", None) is not None).messages()}
     out["figure"] = _domain_figure(domains, disagreement, models) if domains else None
     return out
 
