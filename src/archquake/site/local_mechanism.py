@@ -672,8 +672,17 @@ class _Scaled:
         return {**self.spectrum.to_dict(), "scaled_by": self.factor}
 
 
+class _Verdict:
+    """What a check concludes from its ratio of capacity to demand."""
+
+    @property
+    def passes(self) -> bool:
+        """True when the capacity covers the demand (the ratio is at least 1)."""
+        return self.ratio >= 1.0
+
+
 @dataclass(frozen=True)
-class LinearCheck:
+class LinearCheck(_Verdict):
     r"""The linear check at SLV of one direction: :math:`a_0^* \ge a_g S / q`.
 
     Attributes
@@ -696,10 +705,6 @@ class LinearCheck:
         """Capacity / demand [-]."""
         return self.capacity / self.demand
 
-    @property
-    def passes(self) -> bool:
-        """True when the capacity covers the demand."""
-        return self.ratio >= 1.0
 
     def to_dict(self) -> dict[str, Any]:
         return {"limit_state": self.limit_state, "direction": self.direction,
@@ -709,7 +714,7 @@ class LinearCheck:
 
 
 @dataclass(frozen=True)
-class NonlinearCheck:
+class NonlinearCheck(_Verdict):
     r"""The nonlinear check of one limit state and direction: :math:`d_u^* \ge S_{De}(T_s)`.
 
     Attributes
@@ -738,10 +743,6 @@ class NonlinearCheck:
         """Capacity / demand [-]."""
         return self.ultimate_displacement / self.demand
 
-    @property
-    def passes(self) -> bool:
-        """True when the capacity covers the demand."""
-        return self.ratio >= 1.0
 
     def to_dict(self) -> dict[str, Any]:
         return {"limit_state": self.limit_state, "direction": self.direction,
