@@ -646,3 +646,16 @@ def test_assess_says_a_record_warning_once(tmp_path):
     assert lines == [line for line in lines if line.startswith("archquake: warning: ")]
     assert sum("is implausible" in line for line in lines) == 1
     assert "UserWarning" not in done.stderr
+
+
+@pytest.mark.parametrize("piers", [(3.0, 6.0, 2), (2.5, 4.0, 1)])
+def test_a_survey_of_a_built_structure_takes_its_time_step(piers):
+    # the blocks of an arch on piers, given back as a survey: the same default time step as
+    # the structure built (the survey's thickness is its median joint depth, a voussoir's)
+    from archquake.geometry import StructureSpec, surveyed_arch
+    from archquake.rigid_blocks.dynamics import time_step_for
+
+    built = StructureSpec(piers=piers).arches()[1]
+    survey = surveyed_arch([built.outline(i) for i in range(built.n_voussoirs)])
+    assert survey.thickness_scale == pytest.approx(built.thickness_scale, rel=1e-12)
+    assert time_step_for(survey) == pytest.approx(time_step_for(built), rel=1e-12)

@@ -56,7 +56,7 @@ def describe_arch(arch: BlockArch) -> str:
                 f"{arch.thickness_scale:.4g} m")
     if isinstance(arch, Structure):
         return arch.describe()
-    return f"surveyed arch of {n} blocks, mean joint depth = {arch.thickness_scale:.4g} m"
+    return f"surveyed arch of {n} blocks, median joint depth = {arch.thickness_scale:.4g} m"
 
 
 @value_equality

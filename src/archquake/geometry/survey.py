@@ -345,6 +345,14 @@ class SurveyedArch(BlockArch):
         """Number of blocks n [-]."""
         return int(self.counts.size)
 
+    @property
+    def thickness_scale(self) -> float:
+        """The median depth of the joints [m]: a voussoir's thickness, as a built arch gives
+        its own, even where the survey holds piers (whose wider bed joints would raise a mean:
+        the survey of an arch on piers 3 m wide took a time step 15 % longer than the same
+        structure built)."""
+        return float(np.median(self.joint_lengths))
+
     def polygon(self, i: int) -> np.ndarray:
         """Vertices of block ``i``, counterclockwise [m], shape (k_i, 2)."""
         starts = self._cache["starts"]
