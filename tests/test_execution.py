@@ -496,3 +496,30 @@ def test_closing_the_client_of_a_lost_cluster_logs_nothing_of_distributeds(monke
     assert run_study(toy_tasks.trivial_task, StudyPlan({}, 0, 2, 1),
                      scheduler="tcp://127.0.0.1:8786", progress=False) == "table"
     assert [r.name for r in caplog.records] == ["distributed.client"]  # not silenced then
+
+
+@pytest.mark.parametrize("error", [ConnectionResetError("[Errno 104] Connection reset by peer"),
+                                   ConnectionAbortedError("aborted")])
+def test_a_reset_connection_to_the_scheduler_is_a_lost_scheduler(threaded_cluster, monkeypatch,
+                                                                 tmp_path, error):
+    # a connection reset while a result is fetched (the scheduler gone between two checks)
+    # ends as the lost scheduler does: the words scheduler and resume, not a raw OSError
+    original = execution._dask_result
+    calls = {"n": 0}
+
+    def flaky(future, chunk, address, unfinished):
+        calls["n"] += 1
+        if calls["n"] == 3:
+            raise error
+        return original(future, chunk, address, unfinished)
+
+    monkeypatch.setattr(execution, "_dask_result", flaky)
+    with pytest.raises(StudyError, match="lost the connection to the Dask scheduler") as info:
+        run_study(toy_tasks.random_task, StudyPlan({"draws": 2, "sleep": 0.0}, 3, 8, 1),
+                  tmp_path / "study", scheduler=threaded_cluster.scheduler_address,
+                  progress=False)
+    assert "resume" in str(info.value) and "chunks unfinished" in str(info.value)
+    cause = info.value
+    while cause is not None and not isinstance(cause, ConnectionError):
+        cause = cause.__cause__
+    assert isinstance(cause, type(error))  # the reset itself kept as the cause

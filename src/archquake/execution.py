@@ -590,14 +590,15 @@ def _dask(task: Task, chunks: list[Chunk], workers: int | None,
     :class:`StudyError` (scheduler lost, no worker for :data:`DASK_WORKER_TIMEOUT`, a chunk
     that killed the workers that ran it), not an endless wait or a Dask traceback."""
     import distributed
+    import distributed.comm
 
     address = getattr(getattr(client, "scheduler", None), "address", None) or "?"
     futures = []
+    returned = 0
     try:
         futures = client.map(_run_chunk, chunks, task=task, pure=False)
         chunk_of = {future.key: chunk for future, chunk in zip(futures, chunks, strict=True)}
         finished = distributed.as_completed(futures, loop=client.loop, raise_errors=False)
-        returned = 0
         without_workers_since = None
         next_check = time.monotonic()
         while not finished.is_empty():
@@ -625,6 +626,11 @@ def _dask(task: Task, chunks: list[Chunk], workers: int | None,
                 else:
                     without_workers_since = None
             time.sleep(0.02)
+    except (ConnectionError, distributed.comm.CommClosedError) as exc:
+        # the scheduler went away between two of the checks above (a reset connection while
+        # fetching a result or polling): the same lost cluster, said the same way
+        unfinished = f"{len(futures) - returned} of {len(futures)}" if futures else "all"
+        raise _scheduler_lost(address, unfinished) from exc
     finally:
         with suppress(Exception):  # the cluster may be gone
             client.cancel([f for f in futures if not f.done()])
