@@ -9,7 +9,6 @@ LMGC90 on piers) do not. Oppenheim's bare arch under a long pulse (t_p = 1 s) is
 """
 
 import json
-import math
 
 import numpy as np
 import pytest
@@ -141,7 +140,7 @@ def test_fragility_json_carries_the_nominal_arch_probe(tmp_path, capsys, direct)
     (row,) = summary["model_check"]["probe"]["rows"]
     four, blocks = direct
     assert row["four_link"] == four and row["rigid_block"] == blocks and row["beyond_band"]
-    assert math.isfinite(summary["model_check"]["probe"]["seconds"])
+    assert "seconds" not in summary["model_check"]["probe"]  # a resumed study's is the same
     assert np.isclose(summary["model_check"]["probe"]["band"], AGREEMENT_BAND)
 
 

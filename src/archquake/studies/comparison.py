@@ -545,11 +545,12 @@ class AgreementProbe:
 
     def to_dict(self) -> dict:
         """JSON-ready: ``band``, ``resolution`` [g], ``restitution``, ``disagrees``,
-        ``undecided``, ``seconds`` and ``rows`` (:meth:`ProbeRow.to_dict`)."""
+        ``undecided`` and ``rows`` (:meth:`ProbeRow.to_dict`); not its wall time
+        (``seconds``), so that a study's summary is the same when it is resumed."""
         return {"band": self.band, "resolution": self.resolution_g,
                 "restitution": [float(c) for c in self.restitution],
                 "disagrees": self.disagrees, "undecided": self.undecided,
-                "seconds": round(self.seconds, 2), "rows": [r.to_dict() for r in self.rows]}
+                "rows": [r.to_dict() for r in self.rows]}
 
 
 def probe_grid(limit_multiplier: float) -> np.ndarray:
