@@ -76,3 +76,13 @@ def test_bad_input_names_its_option(argv, option, capsys):
     err = capsys.readouterr().err
     assert err.startswith("archquake: error:") and option in err
     assert "Traceback" not in err
+
+
+@pytest.mark.parametrize("argv, option", [
+    (["check", "--site", "/no/such/site.csv"], "--site"),
+    (["check", "--code", "user", "--file", "/no/such/spectrum.csv"], "--file"),
+])
+def test_a_site_file_that_cannot_be_read_is_named_by_its_option(argv, option, capsys):
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"archquake: error: {option}:") and "Traceback" not in err

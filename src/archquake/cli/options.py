@@ -1124,3 +1124,6 @@ def site_actions(args: argparse.Namespace) -> list:
         return spec.actions()
     except ValueError as exc:
         raise _site_field_message(exc) from None
+    except OSError as exc:  # a site or spectrum file that cannot be read
+        option = "--site" if spec.grid is not None else "--file"
+        raise ValueError(f"{option}: {exc.strerror or exc}: {exc.filename}") from None
