@@ -7,6 +7,7 @@ static linear program with Coulomb cones written here (a second method: equilibr
 blocks, not their motion).
 """
 
+import json
 import math
 
 import numpy as np
@@ -14,6 +15,7 @@ import pytest
 from scipy.optimize import linprog
 
 from archquake import oppenheim
+from archquake.geometry import circular_arch
 from archquake.limit_analysis import load_multipliers
 from archquake.rigid_blocks import GROUND, Assembly, from_arch, rectangular_block
 from archquake.rigid_blocks.ramp import PIECE_MULTIPLIER, ramp_test
@@ -138,6 +140,24 @@ def test_oppenheim_arch_that_cannot_slide_takes_the_limit_analysis_multiplier():
     assert sorted(n - j for j in plus) == sorted(minus)
 
 
+def test_another_arch_takes_its_limit_analysis_multiplier():
+    # a circular arch R = 5 m, 170 degrees, t = 0.5 m, 8 voussoirs: k = 0.0755 both ways
+    arch = circular_arch(5.0, math.radians(170.0), 0.5, 8)
+    k_l, k_r = load_multipliers(arch)
+    result = ramp_test(arch, friction=5.0)
+    for onset, k in zip(result.onsets, (k_l, k_r), strict=True):
+        assert abs(onset.multiplier - k) <= onset.error
+        assert len(onset.rocking_joints) == 4 and onset.sliding_joints == ()
+
+
+def test_arch_too_thin_to_stand_moves_at_zero():
+    # t = 0.15 m on R = 5 m: no thrust line fits (limit analysis: nan), so it cannot stand
+    arch = circular_arch(5.0, math.radians(170.0), 0.15, 8)
+    assert all(math.isnan(k) for k in load_multipliers(arch))
+    onset = ramp_test(arch, friction=5.0, directions="+x").onset("+x")
+    assert onset.found and onset.multiplier == 0.0 and onset.tilt == 0.0
+
+
 def test_oppenheim_arch_friction_that_governs_lowers_the_multiplier():
     arch = oppenheim()
     assembly = from_arch(arch)
@@ -173,6 +193,18 @@ def test_nothing_moves_below_the_largest_multiplier():
                       directions="+x").onset("+x")
     assert not onset.found and onset.multiplier == math.inf and math.isnan(onset.error)
     assert onset.mode == "none"
+    assert json.loads(json.dumps(onset.to_dict()))["multiplier"] is None  # inf, said as null
+
+
+def test_result_reads_as_json():
+    result = ramp_test(rectangular_block(WIDTH, HEIGHT), friction=0.3)
+    data = json.loads(json.dumps(result.to_dict()))
+    assert [o["direction"] for o in data["onsets"]] == ["+x", "-x"]
+    assert data["onsets"][0]["sliding_joints"] == [0] and data["onsets"][0]["mode"] == "sliding"
+    assert abs(data["multiplier"] - 0.3) <= max(o["error"] for o in data["onsets"])
+    # tilt of a table: tan(16.699 deg) = 0.3
+    assert math.tan(math.radians(data["onsets"][0]["tilt"])) == pytest.approx(
+        data["onsets"][0]["multiplier"], rel=1e-12)
 
 
 @pytest.mark.parametrize("kwargs, name", [
@@ -181,7 +213,8 @@ def test_nothing_moves_below_the_largest_multiplier():
     ({"friction": [0.3, 0.4]}, "friction"), ({"threshold": 1e-9}, "threshold"),
     ({"threshold": 0.1}, "threshold"), ({"max_multiplier": 0.0}, "max_multiplier"),
     ({"directions": ("up",)}, "directions"), ({"directions": ()}, "directions"),
-    ({"time_step": -1.0}, "time_step"),
+    ({"time_step": -1.0}, "time_step"), ({"time_step": 0.1}, "time_step"),
+    ({"rate": 1e-6}, "rate"),  # 2 / 1e-6 s at 0.5 ms: 4e9 steps
 ])
 def test_bad_input_is_refused_naming_the_parameter(kwargs, name):
     with pytest.raises(ValueError, match=name):

@@ -63,7 +63,10 @@ blocks below the onset: they do not move). A piece in which the measure stays be
 again from the start of the piece before it (at rest, whatever moved below
 :math:`10^{-3}\delta` at its end) and runs, doubling its length, until the measure crosses
 :math:`\delta_3`: the ramp stops as soon as the onset is decided, at most a few pieces past it,
-and never follows the collapse. No onset up to ``max_multiplier`` gives ``inf``.
+and never follows the collapse. No onset up to ``max_multiplier`` gives ``inf``; an onset
+within its error of zero gives 0: the structure does not stand under its own weight (it moves
+from the start of the ramp, as the square of the time, and the cubic extrapolation would fall a
+little below zero).
 
 Friction
 --------
@@ -89,7 +92,7 @@ import numpy as np
 
 from .._equality import value_equality
 from ..checks import json_float
-from ..defaults import DEFAULT_FRICTION
+from ..defaults import DEFAULT_FRICTION, MAX_BLOCK_STEPS
 from ..geometry import GRAVITY
 from ..ground_motion import LINEAR, GroundMotion
 from .dynamics import BlockSettings, simulate_blocks, structure_assembly, time_step_for
@@ -133,7 +136,8 @@ class RampOnset:
     multiplier : float
         Collapse multiplier ``k``: the ratio of the horizontal load to the weight at the
         onset of motion [-] (module docstring); ``inf`` if nothing moved up to
-        ``max_multiplier``.
+        ``max_multiplier``; 0 if the structure does not stand under its own weight (it moved
+        from the start of the ramp).
     error : float
         Estimated error of ``multiplier`` [-] (module docstring); nan if nothing moved.
     crossings : tuple of float
@@ -302,7 +306,9 @@ def _onset(assembly, settings: BlockSettings, direction: str, rate: float, thres
     decision = int(np.argmax(measure >= levels[2]))
     rocking = tuple(int(j) for j in np.flatnonzero(openings[decision] >= levels[1]))
     sliding = tuple(int(j) for j in np.flatnonzero(slips[decision] >= levels[1]))
-    return RampOnset(direction, float(first), float(abs(first - second) + rate * h), crossings,
+    error = abs(first - second) + rate * h
+    # moving from the start: the structure does not stand under its own weight
+    return RampOnset(direction, float(first) if first > error else 0.0, float(error), crossings,
                      rocking, sliding, True, steps)
 
 
@@ -351,7 +357,9 @@ def ramp_test(structure, *, friction: float | None = None, rate: float = DEFAULT
     Raises
     ------
     ValueError
-        Naming the parameter out of its range, or as
+        Naming the parameter out of its range (``rate`` also if the ramp to
+        ``max_multiplier`` would take more than
+        :data:`~archquake.defaults.MAX_BLOCK_STEPS` time steps), or as
         :func:`~archquake.rigid_blocks.simulate_blocks` for the structure.
 
     References
@@ -391,6 +399,10 @@ def ramp_test(structure, *, friction: float | None = None, rate: float = DEFAULT
                          f"{directions!r}")
     h = time_step_for(assembly) if time_step is None else _check_positive(
         "time_step", time_step, "s")
+    if max_multiplier / rate / h > MAX_BLOCK_STEPS:
+        raise ValueError(f"rate must be at least {max_multiplier / (MAX_BLOCK_STEPS * h):.3g} "
+                         f"[1/s] to ramp to {max_multiplier:g} in at most {MAX_BLOCK_STEPS} "
+                         f"time steps of {h:g} s (MAX_BLOCK_STEPS), got {rate!r}")
     settings = BlockSettings(friction=float(friction), time_step=h)
     onsets = tuple(_onset(assembly, settings, d, rate, threshold, max_multiplier)
                    for d in directions)
