@@ -176,6 +176,16 @@ def test_oppenheim_arch_friction_that_governs_lowers_the_multiplier():
     assert len(low.sliding_joints) == 1
 
 
+@pytest.mark.parametrize("friction, mode", [(0.3, "mixed"), (0.45, "mixed"), (0.5, "rocking")])
+def test_oppenheim_arch_takes_the_multiplier_of_the_static_program_with_friction(friction,
+                                                                                  mode):
+    # below about mu = 0.5 a springing slides beside three hinges, above it four hinges govern
+    arch = oppenheim()
+    onset = ramp_test(arch, friction=friction, directions="+x").onset("+x")
+    assert abs(onset.multiplier - static_multiplier(from_arch(arch), friction)) <= onset.error
+    assert onset.mode == mode
+
+
 def test_ramp_stops_once_the_onset_is_decided():
     # the load the blocks saw, over every piece run, ends a few pieces past the onset:
     # at most the pieces up to the onset (k / rate seconds), the piece that moved and the

@@ -73,6 +73,14 @@ Friction
 The solver takes one Coulomb coefficient for every contact
 (:class:`~archquake.rigid_blocks.dynamics.BlockSettings`); the test takes one too.
 
+Oppenheim's arch (``archquake.oppenheim()``, load toward +x, default rate): with
+:math:`\mu \ge 0.5` four hinges form (joints 0, 3, 5, 7) at :math:`k = 0.3700`, the limit
+analysis's multiplier; below, the right springing slides beside three hinges and the multiplier
+falls: 0.3184 at :math:`\mu = 0.45`, 0.2638 at 0.4 (hinges 0, 3, 5), 0.1472 at 0.3 (hinges 1,
+3, 6). Each is, within the stated error (6e-5), the multiplier of the static program with
+Coulomb cones at the joint ends (the associative bound): on this arch the non-associative
+multiplier reaches it (``tests/rigid_blocks/test_ramp.py``).
+
 References
 ----------
 .. [1] G. W. Housner, "The behavior of inverted pendulum structures during earthquakes", Bull.
