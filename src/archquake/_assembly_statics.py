@@ -1,0 +1,589 @@
+r"""Limit analysis of any planar block assembly, with Coulomb friction at its interfaces.
+
+The statics of :mod:`archquake.limit_analysis` for a chain of blocks hold for any set of rigid
+blocks and the straight interfaces between them (:class:`~archquake.geometry.BlockAssembly`: a
+wall, a portal, a drawing; an arch is one, :func:`contacts_of`). Every block :math:`j` carries a
+weight :math:`W_j` along the vertical :math:`x = a_j` and a horizontal load :math:`k H_j` along
+the horizontal :math:`y = b_j` (:class:`~archquake.geometry.BlockLoads`; for a bare block
+:math:`W_j = H_j = m_j g` at its centroid), and :math:`k` is the horizontal load multiplier:
+with no cohesion only the direction of the load matters, so :math:`k = \tan\theta` for a
+tilting table tilted by :math:`\theta` (LACT3's test [1]_).
+
+**Static formulation (the associative linear program).** Interface :math:`i` between bodies
+:math:`a_i` and :math:`b_i` (one of them may be the ground), from :math:`\mathbf p_{i,0}` to
+:math:`\mathbf p_{i,1}`, with unit normal :math:`\mathbf n_i` from :math:`a_i` into :math:`b_i`
+and tangent :math:`\boldsymbol\tau_i = (\mathbf p_{i,1} - \mathbf p_{i,0}) / \ell_i`, carries
+normal forces :math:`n_{i,0}, n_{i,1} \ge 0` at its ends and a shear force :math:`t_i`: the force
+of :math:`a_i` on :math:`b_i` is :math:`(n_{i,0} + n_{i,1})\,\mathbf n_i + t_i
+\boldsymbol\tau_i`, the normal forces acting at their ends (so the resultant's pressure point
+lies in the interface: no tension) and the shear along the interface. Then
+
+.. math::
+
+    \max k \quad\text{subject to}\quad
+    \mathbf A \mathbf f + k\, \mathbf h + \mathbf w = 0, \qquad
+    n_{i,0}, n_{i,1} \ge 0, \qquad |t_i| \le \mu_i (n_{i,0} + n_{i,1})
+
+(three equilibrium equations per block; :math:`\mu_i = \infty`: Heyman's hypothesis, the
+interface does not slide). This is the lower-bound program of Livesley [2]_ and of LACT3. Its
+dual is the upper-bound (kinematic) program: the multipliers of the equilibrium rows are the
+virtual velocities :math:`(u_j, v_j, \omega_j)` of the blocks in the collapse mechanism
+(:attr:`AssemblyLimit.velocities`), with, at every interface end, an opening rate
+:math:`\delta_n \ge 0` and, where it slips, the opening :math:`\delta_n = \mu |\delta_t|` that
+normality (an associative flow rule) demands. For a chain without friction it is the program
+of :mod:`archquake.limit_analysis` written with other unknowns, and gives the same :math:`k`
+(tested).
+
+**Non-associative friction.** Real joints slide without opening (no dilatancy), and then the
+associative multiplier can overestimate the collapse load [2]_: it is an upper bound of
+nothing in particular. The iterative method of Gilbert, Casapulla and Ahmed [3]_ treats the
+friction of each interface as a cohesion fixed from the normal force of the previous iteration,
+:math:`|t_i| \le c_i^{(r)} = \mu_i \bar N_i^{(r-1)}` (its flow rule is a slip without opening:
+the non-associative one), starting from the associative solution's normal forces, relaxed as
+:math:`\bar N^{(r)} = \beta N^{(r)} + (1 - \beta) \bar N^{(r-1)}`, until the normal forces and
+:math:`k` no longer change. At convergence the forces satisfy Coulomb's law exactly (statically
+admissible) and the mechanism slides without dilatancy (kinematically admissible for the
+non-associative law): a solution of the non-associative problem, not proved the least one; where
+the iteration does not converge, the result says so. The rigid-block model under a slowly
+growing acceleration (:func:`archquake.rigid_blocks.ramp_test`) is the arbiter.
+
+References
+----------
+.. [1] LACT3, limit analysis of tilting-table tests of 2D block assemblies (associative
+   Coulomb friction, interfaces from a DXF drawing).
+.. [2] R. K. Livesley, "Limit analysis of structures formed from rigid blocks", Int. J. Numer.
+   Methods Eng. 12 (1978) 1853-1871.
+.. [3] M. Gilbert, C. Casapulla and H. M. Ahmed, "Limit analysis of masonry block structures with
+   non-associative frictional joints using linear programming", Comput. Struct. 84 (2006)
+   873-887.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import linprog
+from scipy.sparse import coo_array
+
+from .constants import GRAVITY
+
+GROUND = -1
+"""Body index of the ground [-]."""
+
+NONASSOCIATIVE_ITERATIONS = 200
+"""Largest number of linear programs of the non-associative iteration [-]."""
+
+NONASSOCIATIVE_TOLERANCE = 1e-7
+"""Convergence of the non-associative iteration: the largest change of a normal force, as a
+fraction of the assembly's weight, and of k [-]."""
+
+RELAXATION = 0.5
+r"""Relaxation :math:`\beta` of the normal forces between iterations [-] (Gilbert et al. [3]_
+relax the iteration to damp its oscillations)."""
+
+MOTION_TOLERANCE = 1e-6
+"""An interface end opens or slips when its rate exceeds this fraction of the mechanism's
+largest velocity [-]."""
+
+
+@dataclass(frozen=True, eq=False)
+class Contacts:
+    """The statics' view of an assembly: blocks with loads and the interfaces between them.
+
+    Attributes
+    ----------
+    n_blocks : int
+        Number of blocks [-].
+    a, b : array of int, shape (ni,)
+        The two bodies of every interface (:data:`GROUND` for a support).
+    p0, p1 : array of float, shape (ni, 2)
+        Its ends [m]; the tangent ``(p1 - p0) / |p1 - p0|`` is ``normal`` turned by +90 deg.
+    normal : array of float, shape (ni, 2)
+        Unit normal from body a into body b [-].
+    friction : array of float, shape (ni,)
+        Coulomb coefficient [-]; ``inf``: the interface cannot slide.
+    kind : array of str, shape (ni,)
+        ``"bed"``, ``"head"``, ``"ring"`` or ``"foundation"``.
+    vertical, vertical_x, horizontal, horizontal_y : array of float, shape (n_blocks,)
+        Every block's weight [N/m] and the abscissa of its line [m], its horizontal load per
+        unit multiplier [N/m] and the ordinate of its line [m].
+    outlines : tuple of arrays
+        Every block's outline [m], for drawing.
+    """
+
+    n_blocks: int
+    a: np.ndarray
+    b: np.ndarray
+    p0: np.ndarray
+    p1: np.ndarray
+    normal: np.ndarray
+    friction: np.ndarray
+    kind: np.ndarray
+    vertical: np.ndarray
+    vertical_x: np.ndarray
+    horizontal: np.ndarray
+    horizontal_y: np.ndarray
+    outlines: tuple
+
+    @property
+    def n_interfaces(self) -> int:
+        """Number of interfaces [-]."""
+        return int(self.a.size)
+
+    @property
+    def tangent(self) -> np.ndarray:
+        """Unit tangent of every interface, from p0 to p1 [-], shape (ni, 2)."""
+        return np.column_stack((-self.normal[:, 1], self.normal[:, 0]))
+
+    def with_friction(self, friction) -> Contacts:
+        """A copy whose interfaces have the Coulomb coefficient ``friction`` [-]: one number,
+        one per interface, or a dict interface kind -> coefficient (kinds it does not name
+        keep theirs)."""
+        mu = np.array(self.friction, dtype=float)
+        if isinstance(friction, dict):
+            for kind, value in friction.items():
+                mu[self.kind == kind] = _check_friction(value, f"friction[{kind!r}]")
+        else:
+            values = np.broadcast_to(np.asarray(friction, dtype=float), mu.shape)
+            for value in np.unique(values):
+                _check_friction(float(value), "friction")
+            mu = values.copy()
+        return Contacts(**{**self.__dict__, "friction": mu})
+
+
+def _check_friction(value, name: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, int | float | np.floating) \
+            or math.isnan(value) or value < 0:
+        raise ValueError(f"{name} must be a Coulomb coefficient >= 0 (inf: no sliding), "
+                         f"got {value!r}")
+    return float(value)
+
+
+def contacts_of(structure, friction=None) -> Contacts:
+    """The blocks, loads and interfaces of a structure.
+
+    Parameters
+    ----------
+    structure : BlockAssembly or BlockArch
+        Any assembly (:class:`~archquake.geometry.BlockAssembly`), or a chain
+        (:class:`~archquake.geometry.BlockArch`: an arch, an arch on piers, with fill), whose
+        joints are ``"bed"`` interfaces and whose two ends on the ground ``"foundation"`` ones.
+    friction : None, float or dict, optional
+        Coulomb coefficient of the interfaces [-] (see :meth:`Contacts.with_friction`); by
+        default the assembly's own, or none (no sliding) for a chain.
+
+    Returns
+    -------
+    Contacts
+    """
+    if hasattr(structure, "interfaces"):
+        contacts = _assembly_contacts(structure)
+    else:
+        contacts = _chain_contacts(structure)
+    return contacts if friction is None else contacts.with_friction(friction)
+
+
+def _assembly_contacts(assembly) -> Contacts:
+    faces = assembly.interfaces
+    weight = np.asarray(assembly.mass, dtype=float) * GRAVITY
+    centroid = np.asarray(assembly.centroid, dtype=float)
+    return Contacts(
+        n_blocks=int(assembly.n_blocks), a=np.asarray(faces.a, dtype=np.int64),
+        b=np.asarray(faces.b, dtype=np.int64), p0=np.asarray(faces.p0, dtype=float),
+        p1=np.asarray(faces.p1, dtype=float), normal=np.asarray(faces.normal, dtype=float),
+        friction=np.asarray(faces.friction, dtype=float), kind=np.asarray(faces.kind),
+        vertical=weight, vertical_x=centroid[:, 0].copy(), horizontal=weight,
+        horizontal_y=centroid[:, 1].copy(), outlines=tuple(assembly.polygons))
+
+
+def _chain_contacts(arch) -> Contacts:
+    n = arch.n_voussoirs
+    loads = arch.loads
+    if np.any(loads.passive_sign != 0):
+        raise ValueError("the limit analysis of an assembly takes no passive reaction of a fill "
+                         "(a bounded unknown force, not a contact): leave out --fill-passive")
+    joints = np.asarray(arch.joints, dtype=float)
+    a = np.arange(-1, n)
+    b = np.arange(0, n + 1)
+    b[-1] = GROUND
+    kind = np.full(n + 1, "bed", dtype=object)
+    kind[[0, -1]] = "foundation"
+    return Contacts(
+        n_blocks=n, a=a, b=b, p0=joints[:, 0].copy(), p1=joints[:, 1].copy(),
+        normal=np.asarray(arch.joint_normals, dtype=float).copy(),
+        friction=np.full(n + 1, np.inf), kind=kind.astype(str),
+        vertical=np.asarray(loads.vertical, dtype=float),
+        vertical_x=np.asarray(loads.vertical_x, dtype=float),
+        horizontal=np.asarray(loads.horizontal, dtype=float),
+        horizontal_y=np.asarray(loads.horizontal_y, dtype=float),
+        outlines=tuple(arch.outline(i) for i in range(n)))
+
+
+# --------------------------------------------------------------------------- the program
+@dataclass(frozen=True)
+class _Program:
+    """The equilibrium rows of an assembly, in units of its weight and size."""
+
+    a_eq: object        # sparse (3 nb, 3 ni + 1): columns n0, n1, t of every interface, then k
+    b_eq: np.ndarray
+    weight: float       # total weight [N/m]
+    origin: np.ndarray  # [m]
+    size: float         # [m]
+
+
+def _program(c: Contacts, sign: float) -> _Program:
+    ni, nb = c.n_interfaces, c.n_blocks
+    points = np.concatenate((c.p0, c.p1))
+    origin = points.mean(axis=0)
+    size = float(np.max(np.hypot(*(points - origin).T))) or 1.0
+    weight = float(np.sum(c.vertical))
+    p0 = (c.p0 - origin) / size
+    p1 = (c.p1 - origin) / size
+    n, t = c.normal, c.tangent
+    rows, cols, vals = [], [], []
+
+    def put(body, column, force, point):
+        keep = body >= 0
+        body, column, force, point = body[keep], column[keep], force[keep], point[keep]
+        moment = point[:, 0] * force[:, 1] - point[:, 1] * force[:, 0]
+        for r, value in enumerate((force[:, 0], force[:, 1], moment)):
+            rows.append(3 * body + r)
+            cols.append(column)
+            vals.append(value)
+
+    index = np.arange(ni)
+    for column, force, point in ((index, n, p0), (ni + index, n, p1), (2 * ni + index, t, p0)):
+        put(c.b, column, force, point)      # the force of a on b
+        put(c.a, column, -force, point)     # and of b on a
+    live_h = sign * c.horizontal / weight
+    live_y = (c.horizontal_y - origin[1]) / size
+    blocks = np.arange(nb)
+    rows += [3 * blocks, 3 * blocks + 2]
+    cols += [np.full(nb, 3 * ni), np.full(nb, 3 * ni)]
+    vals += [live_h, -live_y * live_h]
+    w = c.vertical / weight
+    wx = (c.vertical_x - origin[0]) / size
+    b_eq = np.zeros(3 * nb)
+    b_eq[3 * blocks + 1] = w
+    b_eq[3 * blocks + 2] = w * wx
+    a_eq = coo_array((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                     shape=(3 * nb, 3 * ni + 1)).tocsc()
+    return _Program(a_eq, b_eq, weight, origin, size)
+
+
+def _check_connected(c: Contacts) -> None:
+    touched = np.zeros(c.n_blocks, dtype=bool)
+    touched[c.a[c.a >= 0]] = True
+    touched[c.b[c.b >= 0]] = True
+    if not touched.all():
+        raise ValueError(f"block(s) {np.flatnonzero(~touched).tolist()} touch nothing: an "
+                         "assembly's blocks must each rest on another block or the ground")
+
+
+def _solve(prog: _Program, c: Contacts, shear: np.ndarray | None, fixed_k: float | None):
+    """Solve the program; ``shear``: the fixed shear capacities (non-associative step), else
+    Coulomb's cone with the interfaces' friction."""
+    ni = c.n_interfaces
+    nv = 3 * ni + 1
+    cost = np.zeros(nv)
+    cost[-1] = -1.0
+    bounds = np.empty((nv, 2))
+    bounds[:2 * ni] = (0.0, np.inf)
+    bounds[2 * ni:3 * ni] = (-np.inf, np.inf)
+    bounds[-1] = (-np.inf, np.inf) if fixed_k is None else (fixed_k, fixed_k)
+    a_ub = b_ub = None
+    finite = np.isfinite(c.friction)
+    if shear is not None:
+        bounds[2 * ni:3 * ni, 0] = np.where(finite, -shear, -np.inf)
+        bounds[2 * ni:3 * ni, 1] = np.where(finite, shear, np.inf)
+    elif finite.any():
+        rows = np.flatnonzero(finite)
+        m = rows.size
+        r = np.arange(m)
+        mu = c.friction[rows]
+        # t - mu (n0 + n1) <= 0 and -t - mu (n0 + n1) <= 0
+        a_ub = coo_array((np.concatenate((np.ones(m), -mu, -mu, -np.ones(m), -mu, -mu)),
+                          (np.concatenate((r, r, r, m + r, m + r, m + r)),
+                           np.concatenate((2 * ni + rows, rows, ni + rows,
+                                           2 * ni + rows, rows, ni + rows)))),
+                         shape=(2 * m, nv)).tocsc()
+        b_ub = np.zeros(2 * m)
+    res = linprog(cost, A_ub=a_ub, b_ub=b_ub, A_eq=prog.a_eq, b_eq=prog.b_eq,
+                  bounds=bounds, method="highs")
+    return res
+
+
+# --------------------------------------------------------------------------- results
+@dataclass(frozen=True, eq=False)
+class AssemblyLimit:
+    r"""The collapse of an assembly under a horizontal load one way (:func:`assembly_limit`).
+
+    Attributes
+    ----------
+    direction : str
+        ``"+x"`` (the load toward +x) or ``"-x"``.
+    load_multiplier : float
+        The collapse multiplier :math:`k` [-] (``inf``: no collapse under any horizontal load).
+    tilt : float
+        The tilt of a tilting table at collapse, :math:`\arctan k` [deg].
+    law : str
+        ``"no sliding"``, ``"associative"`` or ``"non-associative"``.
+    iterations : int
+        Linear programs solved [-] (1 for the first two laws).
+    converged : bool
+        Whether the non-associative iteration converged (always True otherwise).
+    normal, shear : array of float, shape (ni,)
+        Normal (compressive) and shear force of every interface at collapse [N/m].
+    pressure : array of float, shape (ni, 2)
+        The pressure point of every interface [m] (NaN where its normal force is zero).
+    velocities : array of float, shape (nb, 3)
+        The mechanism: every block's rigid motion ``(u, v, omega)`` [m/s, m/s, rad/s], its
+        velocity at ``origin`` and its rotation rate, scaled so that the fastest block corner
+        moves at 1 m/s (:meth:`velocity_at`).
+    opening : array of float, shape (ni, 2)
+        Opening rate of every interface at its two ends [m/s] (>= 0).
+    slip : array of float, shape (ni,)
+        Slip rate of every interface [m/s] (along its tangent).
+    state : array of str, shape (ni,)
+        ``"closed"``, ``"rocks"`` (one end opens: a hinge at the other), ``"separates"`` (both
+        open), ``"slides"`` or ``"rocks and slides"``.
+    contacts : Contacts
+        The assembly analysed.
+    origin : array of float, shape (2,)
+        The point at which :attr:`velocities` are given [m].
+    """
+
+    direction: str
+    load_multiplier: float
+    law: str
+    iterations: int
+    converged: bool
+    normal: np.ndarray
+    shear: np.ndarray
+    pressure: np.ndarray
+    velocities: np.ndarray
+    opening: np.ndarray
+    slip: np.ndarray
+    state: np.ndarray
+    contacts: Contacts
+    origin: np.ndarray
+
+    @property
+    def tilt(self) -> float:
+        """The tilting table's angle at collapse, atan(k) [deg]."""
+        return math.degrees(math.atan(self.load_multiplier))
+
+    def velocity_at(self, block: int, points) -> np.ndarray:
+        """Velocity of block ``block`` at ``points`` (m, 2) [m/s] in the mechanism."""
+        u, v, w = self.velocities[block]
+        p = np.asarray(points, dtype=float) - self.origin
+        return np.column_stack((u - w * p[:, 1], v + w * p[:, 0]))
+
+    def interfaces_that(self, state: str) -> list[int]:
+        """The interfaces whose state contains ``state`` (``"rocks"``, ``"slides"``, ...)."""
+        return [i for i, s in enumerate(self.state) if state in s]
+
+    def to_dict(self) -> dict:
+        """A JSON-ready summary: k, tilt, law, convergence and the moving interfaces."""
+        c = self.contacts
+        moving = [{"interface": i, "bodies": [int(c.a[i]), int(c.b[i])],
+                   "kind": str(c.kind[i]), "state": str(s)}
+                  for i, s in enumerate(self.state) if s != "closed"]
+        k = self.load_multiplier
+        return {"direction": self.direction, "law": self.law,
+                "load_multiplier": k if math.isfinite(k) else None,
+                "tilt_deg": self.tilt if math.isfinite(k) else None,
+                "iterations": self.iterations, "converged": self.converged,
+                "rocking": self.interfaces_that("rocks"),
+                "sliding": self.interfaces_that("slides"),
+                "separating": self.interfaces_that("separates"),
+                "moving_interfaces": moving}
+
+
+def _motion(c: Contacts, prog: _Program, marginals: np.ndarray):
+    """Velocities of the blocks from the equilibrium rows' multipliers, and the interfaces'
+    openings, slips and states."""
+    v = -np.asarray(marginals, dtype=float).reshape(-1, 3)
+    # velocity of a block at a point p (scaled frame about prog.origin)
+    def at(body, p):
+        out = np.zeros((body.size, 2))
+        ok = body >= 0
+        vb = v[body[ok]]
+        out[ok, 0] = vb[:, 0] - vb[:, 2] * p[ok, 1]
+        out[ok, 1] = vb[:, 1] + vb[:, 2] * p[ok, 0]
+        return out
+
+    p0 = (c.p0 - prog.origin) / prog.size
+    p1 = (c.p1 - prog.origin) / prog.size
+    rel0 = at(c.b, p0) - at(c.a, p0)
+    rel1 = at(c.b, p1) - at(c.a, p1)
+    opening = np.column_stack((np.sum(rel0 * c.normal, axis=1), np.sum(rel1 * c.normal, axis=1)))
+    slip = np.sum(rel0 * c.tangent, axis=1)
+    corners = [np.asarray(o, dtype=float) for o in c.outlines]
+    speed = 0.0
+    for j, outline in enumerate(corners):
+        p = (outline - prog.origin) / prog.size
+        u = v[j, 0] - v[j, 2] * p[:, 1]
+        w = v[j, 1] + v[j, 2] * p[:, 0]
+        speed = max(speed, float(np.max(np.hypot(u, w))))
+    if speed <= 0.0 or not math.isfinite(speed):
+        speed = 1.0
+    opening, slip = opening / speed, slip / speed
+    tol = MOTION_TOLERANCE
+    slides = np.abs(slip) > tol
+    turns = np.abs(opening[:, 0] - opening[:, 1]) > tol
+    opens = opening.min(axis=1) > tol
+    state = np.full(c.n_interfaces, "closed", dtype=object)
+    state[turns & ~opens] = "rocks"
+    state[opens & ~slides] = "separates"
+    state[slides] = "slides"
+    state[slides & turns] = "rocks and slides"
+    # in metres: translations u * size, rotation rates unchanged; the fastest corner at 1 m/s
+    velocities = np.column_stack((v[:, :2] / speed, v[:, 2] / (speed * prog.size)))
+    return velocities, opening, slip, state.astype(str)
+
+
+def _result(c, prog, res, direction, law, iterations, converged, k=None) -> AssemblyLimit:
+    ni = c.n_interfaces
+    x = res.x
+    n0, n1, t = x[:ni] * prog.weight, x[ni:2 * ni] * prog.weight, x[2 * ni:3 * ni] * prog.weight
+    normal = n0 + n1
+    with np.errstate(invalid="ignore", divide="ignore"):
+        u = np.where(normal > 0, n1 / np.where(normal > 0, normal, 1.0), np.nan)
+    pressure = c.p0 + u[:, None] * (c.p1 - c.p0)
+    velocities, opening, slip, state = _motion(c, prog, res.eqlin.marginals)
+    return AssemblyLimit(direction=direction, load_multiplier=float(x[-1]) if k is None else k,
+                         law=law, iterations=iterations, converged=converged, normal=normal,
+                         shear=t, pressure=pressure, velocities=velocities, opening=opening,
+                         slip=slip, state=state, contacts=c, origin=prog.origin)
+
+
+def _failure(res, what: str) -> ValueError:
+    return ValueError(f"the {what} linear program of this assembly cannot be solved "
+                      f"({res.message.strip()}): its geometry is degenerate")
+
+
+def _sign(direction: str) -> float:
+    if direction not in ("+x", "-x"):
+        raise ValueError(f"direction must be '+x' or '-x', got {direction!r}")
+    return 1.0 if direction == "+x" else -1.0
+
+
+def assembly_limit(structure, direction: str = "+x", *, friction=None,
+                   law: str = "associative") -> AssemblyLimit:
+    r"""The horizontal load multiplier at collapse of any assembly, one way.
+
+    Parameters
+    ----------
+    structure : BlockAssembly, BlockArch or Contacts
+        The assembly (:func:`contacts_of`).
+    direction : {"+x", "-x"}
+        The way the horizontal load pushes.
+    friction : None, float or dict, optional
+        Coulomb coefficient of the interfaces [-] (see :meth:`Contacts.with_friction`).
+    law : {"associative", "non-associative"}
+        The friction law: normality (the classical program, LACT3's), or slip without opening
+        by the iterative method of Gilbert et al. (see the module). Without friction (every
+        coefficient infinite) both are Heyman's, reported as ``"no sliding"``.
+
+    Returns
+    -------
+    AssemblyLimit
+
+    Raises
+    ------
+    CannotStandError
+        When the assembly cannot stand under its own weight (no equilibrium at k = 0 within
+        the interfaces' contacts and friction).
+    ValueError
+        For a block that touches nothing, or a degenerate geometry.
+    """
+    from .errors import CannotStandError
+
+    c = structure if isinstance(structure, Contacts) else contacts_of(structure)
+    if friction is not None:
+        c = c.with_friction(friction)
+    if law not in ("associative", "non-associative"):
+        raise ValueError(f"law must be 'associative' or 'non-associative', got {law!r}")
+    _check_connected(c)
+    sign = _sign(direction)
+    prog = _program(c, sign)
+    res = _solve(prog, c, None, None)
+    if res.status == 2:
+        raise CannotStandError("the assembly cannot stand under its own weight: no set of "
+                               "contact forces without tension and within the friction cones "
+                               "balances its blocks")
+    if res.status == 3:
+        inf_res = _solve(prog, c, None, 0.0)
+        return _result(c, prog, inf_res, direction,
+                       "no sliding" if not np.isfinite(c.friction).any() else law, 1, True,
+                       k=math.inf)
+    if res.status != 0:
+        raise _failure(res, "static")
+    if res.x[-1] < -1e-9:
+        raise CannotStandError(f"the assembly stands only under a horizontal push "
+                               f"{direction} of at least {-res.x[-1]:.3g} times its weight: it "
+                               "cannot stand under its own weight alone")
+    if not np.isfinite(c.friction).any():
+        return _result(c, prog, res, direction, "no sliding", 1, True)
+    if law == "associative":
+        return _result(c, prog, res, direction, law, 1, True)
+    return _nonassociative(c, prog, res, direction)
+
+
+def _nonassociative(c: Contacts, prog: _Program, res, direction: str) -> AssemblyLimit:
+    ni = c.n_interfaces
+    mu = np.where(np.isfinite(c.friction), c.friction, 0.0)
+    normal = res.x[:ni] + res.x[ni:2 * ni]
+    relaxed = normal.copy()
+    k_old = res.x[-1]
+    last = res
+    for iteration in range(1, NONASSOCIATIVE_ITERATIONS + 1):
+        step = _solve(prog, c, mu * relaxed, None)
+        if step.status == 3:
+            # unbounded with these capacities: keep the previous capacities' answer
+            return _result(c, prog, last, direction, "non-associative", iteration, False)
+        if step.status != 0:
+            raise _failure(step, "non-associative")
+        new = step.x[:ni] + step.x[ni:2 * ni]
+        change = float(np.max(np.abs(new - relaxed), initial=0.0))
+        k = step.x[-1]
+        last = step
+        if change <= NONASSOCIATIVE_TOLERANCE and abs(k - k_old) <= NONASSOCIATIVE_TOLERANCE:
+            return _result(c, prog, step, direction, "non-associative", iteration + 1, True)
+        relaxed = RELAXATION * new + (1.0 - RELAXATION) * relaxed
+        k_old = k
+    return _result(c, prog, last, direction, "non-associative",
+                   NONASSOCIATIVE_ITERATIONS + 1, False)
+
+
+def assembly_limits(structure, *, friction=None) -> dict[str, dict[str, AssemblyLimit]]:
+    """Both directions' collapse under each friction law: ``{"+x": {"associative": ...,
+    "non-associative": ...}, "-x": {...}}`` (only ``"no sliding"`` when nothing can slide)."""
+    c = structure if isinstance(structure, Contacts) else contacts_of(structure)
+    if friction is not None:
+        c = c.with_friction(friction)
+    laws = ("associative", "non-associative") if np.isfinite(c.friction).any() else (
+        "associative",)
+    out = {}
+    for direction in ("+x", "-x"):
+        out[direction] = {}
+        for law in laws:
+            result = assembly_limit(c, direction, law=law)
+            out[direction][result.law] = result
+    return out
+
+
+def stands(structure, *, friction=None) -> bool:
+    """Whether some set of contact forces balances the assembly under its own weight (no
+    tension, within the friction cones)."""
+    c = structure if isinstance(structure, Contacts) else contacts_of(structure)
+    if friction is not None:
+        c = c.with_friction(friction)
+    _check_connected(c)
+    res = _solve(_program(c, 1.0), c, None, 0.0)
+    if res.status not in (0, 2):
+        raise _failure(res, "self-weight")
+    return res.status == 0
