@@ -927,3 +927,90 @@ def plot_capacity_curve(check, ax=None):
     ax.set_title("Capacity curve of the mechanism (Circolare 2019 §C8.7.1.2.2)", fontsize=10)
     ax.legend(fontsize=7)
     return ax
+
+
+_STATE_STYLE = {
+    "rocks": ("tab:red", "rocks (a hinge at its closed end)"),
+    "slides": ("tab:blue", "slides"),
+    "rocks and slides": ("tab:purple", "rocks and slides"),
+    "separates": ("tab:orange", "separates"),
+}
+
+
+def plot_assembly_limit(result, ax=None, *, displacement: float | None = None):
+    """An assembly at collapse: its blocks, the mechanism and the state of every interface.
+
+    The blocks are drawn in grey, the mechanism's displaced blocks (the collapse velocities
+    times ``displacement``) in red outline, the interfaces that move in colour (red: rock, the
+    hinge as a dot at the end that stays closed; blue: slide; purple: both; orange: separate),
+    the pressure points of the loaded interfaces as black dots and the ground as a thick line
+    under the foundation interfaces.
+
+    Parameters
+    ----------
+    result : AssemblyLimit
+        One direction's collapse (:func:`archquake.limit_analysis.assembly_limit`).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; a new figure when None.
+    displacement : float, optional
+        Largest displacement of a block corner in the drawn mechanism [m] (default 6 % of the
+        assembly's size).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn on.
+    """
+    from matplotlib.patches import Polygon
+
+    ax = _axes(ax)
+    c = result.contacts
+    corners = np.concatenate([np.asarray(o, dtype=float) for o in c.outlines])
+    size = float(max(np.ptp(corners[:, 0]), np.ptp(corners[:, 1]))) or 1.0
+    scale = 0.06 * size if displacement is None else float(displacement)
+    for j, outline in enumerate(c.outlines):
+        outline = np.asarray(outline, dtype=float)
+        ax.add_patch(Polygon(outline, closed=True, facecolor="0.88", edgecolor="0.35",
+                             linewidth=0.7))
+        moved = outline + scale * result.velocity_at(j, outline)
+        if np.max(np.abs(moved - outline)) > 1e-3 * scale:
+            ax.add_patch(Polygon(moved, closed=True, fill=False, edgecolor="tab:red",
+                                 linewidth=0.8, linestyle="--"))
+    ground = (c.a < 0) | (c.b < 0)
+    for p0, p1 in zip(c.p0[ground], c.p1[ground], strict=True):
+        ax.plot([p0[0], p1[0]], [p0[1], p1[1]], color="black", linewidth=3, zorder=3)
+    seen = set()
+    for i, state in enumerate(result.state):
+        if state == "closed":
+            continue
+        colour, label = _STATE_STYLE[state]
+        ax.plot([c.p0[i, 0], c.p1[i, 0]], [c.p0[i, 1], c.p1[i, 1]], color=colour, linewidth=2.5,
+                zorder=4, label=None if state in seen else label)
+        seen.add(state)
+        if "rocks" in state:
+            hinge = c.p0[i] if result.opening[i, 0] < result.opening[i, 1] else c.p1[i]
+            ax.plot(*hinge, "o", color=colour, markeredgecolor="black", markersize=7, zorder=5)
+    loaded = np.isfinite(result.pressure[:, 0]) & (result.normal > 1e-9 * np.max(result.normal))
+    ax.plot(result.pressure[loaded, 0], result.pressure[loaded, 1], ".", color="black",
+            markersize=4, zorder=5, label="pressure points")
+    arrow = "-|>"
+    x0, x1 = (0.03, 0.16) if result.direction == "+x" else (0.16, 0.03)
+    ax.annotate("", xy=(x1, 0.93), xytext=(x0, 0.93), xycoords="axes fraction",
+                arrowprops={"arrowstyle": arrow, "color": "tab:green", "linewidth": 1.5})
+    ax.text(0.03, 0.86, "horizontal forces k W", transform=ax.transAxes, fontsize=8,
+            color="tab:green")
+    k = result.load_multiplier
+    title = (f"{result.direction}, {result.law}: k = {k:.4f} (tilt {result.tilt:.2f} deg)"
+             if np.isfinite(k) else f"{result.direction}, {result.law}: no collapse")
+    if not result.converged:
+        title += ", not converged"
+    ax.set_title(title, fontsize=10)
+    ax.set_aspect("equal")
+    pad = 0.08 * size
+    ax.set_xlim(corners[:, 0].min() - pad, corners[:, 0].max() + pad)
+    ax.set_ylim(corners[:, 1].min() - pad, corners[:, 1].max() + 2.5 * pad)
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.legend(loc="lower center", fontsize=8, frameon=False, ncol=3,
+              bbox_to_anchor=(0.5, -0.02))
+    return ax

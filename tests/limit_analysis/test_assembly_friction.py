@@ -8,7 +8,12 @@ import pytest
 
 import archquake
 from archquake._assembly_statics import (
-    Contacts, assembly_limit, assembly_limits, contacts_of, stands)
+    Contacts,
+    assembly_limit,
+    assembly_limits,
+    contacts_of,
+    stands,
+)
 from archquake.constants import GRAVITY
 from archquake.errors import CannotStandError
 from archquake.geometry import circular_arch
@@ -25,7 +30,7 @@ def rectangle_stack(width: float, heights, friction=math.inf, density=2000.0) ->
     n = heights.size
     half = 0.5 * width
     outlines = tuple(np.array([[-half, y0], [half, y0], [half, y1], [-half, y1]])
-                     for y0, y1 in zip(bottoms, tops))
+                     for y0, y1 in zip(bottoms, tops, strict=True))
     weight = density * width * heights * GRAVITY
     centre_y = 0.5 * (bottoms + tops)
     return Contacts(

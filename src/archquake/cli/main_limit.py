@@ -27,8 +27,14 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="print the narrowest equal rectangular piers on which the arch "
                              "(with its fill) stands under its own weight instead: give their "
                              "height as --piers ,HEIGHT[,COURSES], the width left blank")
+    parser.add_argument("--friction", type=options.number, default=None, metavar="MU",
+                        help="Coulomb friction coefficient of every interface, >= 0: the joints "
+                             "may slide as well as rock; both directions under the associative "
+                             "flow rule (the classical linear program) and the non-associative "
+                             "one (slip without opening, by iterated linear programs), with the "
+                             "interfaces that rock and slide (default: none, nothing slides)")
     options.add_plot_option(parser, "write a figure of both mechanisms (arch, hinges, line of "
-                                    "thrust)")
+                                    "thrust; with --friction, every law's mechanism)")
     options.add_json_option(parser)
 
 
@@ -39,6 +45,8 @@ def run(args: argparse.Namespace) -> int:
     if args.min_pier_width:
         return _min_pier_width(args)
     arch = options.arch_from_args(args)
+    if args.friction is not None:
+        return _with_friction(args, arch)
     with options.analysing(args):
         results = both_directions(arch, method=args.method)
     k_l, k_r = (r.load_multiplier for r in results)
@@ -132,4 +140,66 @@ def _plot(args: argparse.Namespace, results) -> None:
         frame = None if nominal is None else (nominal if r.direction == "l"
                                               else nominal.mirrored())
         plot_limit_analysis(r, ax, nominal=frame)
+    save_figure(fig, args.plot)
+
+
+def _with_friction(args: argparse.Namespace, structure) -> int:
+    """``limit --friction MU``: both directions under each friction law."""
+    import math
+
+    from .._assembly_statics import assembly_limits
+
+    if args.method != "static":
+        raise ValueError("--friction takes the static method (the linear program): the "
+                         "kinematic enumeration holds for mechanisms of hinges only")
+    with options.analysing(args):
+        results = assembly_limits(structure, friction=args.friction)
+    governing = {d: max(laws.values(), key=lambda r: r.law == "non-associative")
+                 for d, laws in results.items()}
+    k = min(r.load_multiplier for r in governing.values())
+    if args.plot:
+        _plot_friction(args, results)
+    if args.json:
+        print_json({"friction": args.friction,
+                    "k": k if math.isfinite(k) else None,
+                    "directions": {d: {law: r.to_dict() for law, r in laws.items()}
+                                   for d, laws in results.items()}})
+        return 0
+    print(f"Limit analysis with friction mu = {args.friction:g} at every interface: "
+          f"{describe_arch(structure)}")
+    print(f"{'direction':<10} {'law':<16} {'k [-]':>8} {'tilt [deg]':>10} {'LPs':>4}  "
+          "rock / slide (interfaces)")
+    for direction, laws in results.items():
+        for law, r in laws.items():
+            k_text = f"{r.load_multiplier:8.4f}" if math.isfinite(r.load_multiplier) else \
+                f"{'none':>8}"
+            tilt = f"{r.tilt:10.2f}" if math.isfinite(r.load_multiplier) else f"{'':>10}"
+            note = "" if r.converged else "  (did not converge)"
+            print(f"{direction:<10} {law:<16} {k_text} {tilt} {r.iterations:>4}  "
+                  f"{_listed(r.interfaces_that('rocks'))} / "
+                  f"{_listed(r.interfaces_that('slides'))}{note}")
+    print(f"k = {k:.4f}: the least of the two directions under the non-associative law (slip "
+          "without opening, the physical one; the associative multiplier is the classical "
+          "program's, which can overestimate)")
+    if args.plot:
+        print(f"figure written to {args.plot}")
+    return 0
+
+
+def _listed(interfaces) -> str:
+    return ",".join(str(i) for i in interfaces) or "-"
+
+
+def _plot_friction(args: argparse.Namespace, results) -> None:
+    from .output import pyplot, save_figure
+
+    plt = pyplot()
+    from ..plotting import plot_assembly_limit
+
+    laws = list(next(iter(results.values())))
+    fig, axes = plt.subplots(len(laws), 2, figsize=(13, 4.6 * len(laws)),
+                             constrained_layout=True, squeeze=False)
+    for column, laws_of in enumerate(results.values()):
+        for row, law in enumerate(laws):
+            plot_assembly_limit(laws_of[law], axes[row, column])
     save_figure(fig, args.plot)

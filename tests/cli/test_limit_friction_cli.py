@@ -1,0 +1,50 @@
+"""``archquake limit --friction``: both directions under both friction laws, against the
+library's chain program where nothing can slide, and refusals named."""
+
+import json
+
+import pytest
+
+import archquake
+from archquake.cli import main
+from archquake.limit_analysis import friction_margin, load_multipliers
+
+
+def _json(argv, capsys):
+    assert main([*argv, "--json"]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def test_high_friction_gives_heymans_multipliers(capsys):
+    # mu = 10: no joint of Oppenheim's arch is near sliding, so k is the frictionless chain
+    # program's in both directions, under both laws, and the mechanism has four hinges
+    out = _json(["limit", "--friction", "10"], capsys)
+    k_l, k_r = load_multipliers(archquake.oppenheim())
+    for direction, k in (("+x", k_l), ("-x", k_r)):
+        for law in ("associative", "non-associative"):
+            entry = out["directions"][direction][law]
+            assert entry["load_multiplier"] == pytest.approx(k, rel=1e-8)
+            assert len(entry["rocking"]) == 4 and entry["sliding"] == []
+
+
+def test_low_friction_slides_and_lowers_k(capsys, tmp_path):
+    out = _json(["limit", "--friction", "0.35", "--plot", str(tmp_path / "f.png")], capsys)
+    plus = out["directions"]["+x"]["non-associative"]
+    assert plus["sliding"] and plus["converged"]
+    assert out["k"] < load_multipliers(archquake.oppenheim())[0]
+    assert (tmp_path / "f.png").stat().st_size > 10_000
+
+
+def test_friction_too_low_to_stand_is_one_line(capsys):
+    assert friction_margin(archquake.oppenheim(), 0.1) == float("-inf")
+    assert main(["limit", "--friction", "0.1"]) == 2
+    assert "cannot stand" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("argv, match", [
+    (["--friction", "-0.2"], "friction"),
+    (["--friction", "0.4", "--method", "kinematic"], "static"),
+])
+def test_bad_friction_is_refused_by_name(argv, match, capsys):
+    assert main(["limit", *argv]) == 2
+    assert match in capsys.readouterr().err
