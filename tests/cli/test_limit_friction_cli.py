@@ -48,3 +48,23 @@ def test_friction_too_low_to_stand_is_one_line(capsys):
 def test_bad_friction_is_refused_by_name(argv, match, capsys):
     assert main(["limit", *argv]) == 2
     assert match in capsys.readouterr().err
+
+
+def test_the_arbiter_stands_beside_both_laws(capsys):
+    # Oppenheim's arch at mu = 0.35: a springing slides beside three hinges; the rigid blocks
+    # under a slow ramp (Coulomb without dilatancy, an independent model) start to move at the
+    # programs' multiplier, within the ramp's stated error, at the same interfaces
+    out = _json(["limit", "--friction", "0.35", "--arbiter"], capsys)
+    ramp = {o["direction"]: o for o in out["rigid_blocks_ramp"]["onsets"]}
+    for direction in ("+x", "-x"):
+        program = out["directions"][direction]["non-associative"]
+        onset = ramp[direction]
+        assert onset["multiplier"] == pytest.approx(program["load_multiplier"],
+                                                    abs=onset["error"] + 1e-6)
+        assert sorted(onset["sliding_joints"]) == program["sliding"]
+        assert sorted(onset["rocking_joints"]) == program["rocking"]
+
+
+def test_arbiter_needs_friction(capsys):
+    assert main(["limit", "--arbiter"]) == 2
+    assert "--friction" in capsys.readouterr().err

@@ -33,6 +33,11 @@ def configure(parser: argparse.ArgumentParser) -> None:
                              "flow rule (the classical linear program) and the non-associative "
                              "one (slip without opening, by iterated linear programs), with the "
                              "interfaces that rock and slide (default: none, nothing slides)")
+    parser.add_argument("--arbiter", action="store_true",
+                        help="with --friction: also find the multiplier of the rigid-block model "
+                             "(Coulomb friction without dilatancy) under a slowly growing "
+                             "horizontal acceleration, a tilting-table test, to arbitrate between "
+                             "the two laws (a second or so for an arch)")
     options.add_plot_option(parser, "write a figure of both mechanisms (arch, hinges, line of "
                                     "thrust; with --friction, every law's mechanism)")
     options.add_json_option(parser)
@@ -47,6 +52,8 @@ def run(args: argparse.Namespace) -> int:
     arch = options.arch_from_args(args)
     if args.friction is not None:
         return _with_friction(args, arch)
+    if args.arbiter:
+        raise ValueError("--arbiter compares the friction laws: give --friction MU")
     with options.analysing(args):
         results = both_directions(arch, method=args.method)
     k_l, k_r = (r.load_multiplier for r in results)
@@ -157,13 +164,21 @@ def _with_friction(args: argparse.Namespace, structure) -> int:
     governing = {d: max(laws.values(), key=lambda r: r.law == "non-associative")
                  for d, laws in results.items()}
     k = min(r.load_multiplier for r in governing.values())
+    ramp = None
+    if args.arbiter:
+        from ..rigid_blocks.ramp import ramp_test
+
+        with options.analysing(args):
+            ramp = ramp_test(structure, friction=args.friction)
     if args.plot:
         _plot_friction(args, results)
     if args.json:
-        print_json({"friction": args.friction,
-                    "k": k if math.isfinite(k) else None,
-                    "directions": {d: {law: r.to_dict() for law, r in laws.items()}
-                                   for d, laws in results.items()}})
+        out = {"friction": args.friction, "k": k if math.isfinite(k) else None,
+               "directions": {d: {law: r.to_dict() for law, r in laws.items()}
+                              for d, laws in results.items()}}
+        if ramp is not None:
+            out["rigid_blocks_ramp"] = ramp.to_dict()
+        print_json(out)
         return 0
     print(f"Limit analysis with friction mu = {args.friction:g} at every interface: "
           f"{describe_arch(structure)}")
@@ -178,6 +193,14 @@ def _with_friction(args: argparse.Namespace, structure) -> int:
             print(f"{direction:<10} {law:<16} {k_text} {tilt} {r.iterations:>4}  "
                   f"{_listed(r.interfaces_that('rocks'))} / "
                   f"{_listed(r.interfaces_that('slides'))}{note}")
+        if ramp is not None:
+            onset = ramp.onset(direction)
+            found = math.isfinite(onset.multiplier)
+            k_text = f"{onset.multiplier:8.4f}" if found else f"{'none':>8}"
+            tilt = f"{onset.tilt:10.2f}" if found else f"{'':>10}"
+            print(f"{direction:<10} {'rigid blocks':<16} {k_text} {tilt} {'':>4}  "
+                  f"{_listed(onset.rocking_joints)} / {_listed(onset.sliding_joints)}  "
+                  f"(ramp, +/- {onset.error:.1e})")
     print(f"k = {k:.4f}: the least of the two directions under the non-associative law (slip "
           "without opening, the physical one; the associative multiplier is the classical "
           "program's, which can overestimate)")
