@@ -7,17 +7,18 @@ import numpy as np
 import pytest
 
 import archquake
-from archquake._assembly_statics import (
-    Contacts,
-    assembly_limit,
-    assembly_limits,
-    contacts_of,
-    stands,
-)
 from archquake.constants import GRAVITY
 from archquake.errors import CannotStandError
 from archquake.geometry import circular_arch
-from archquake.limit_analysis import friction_margin, load_multipliers
+from archquake.limit_analysis import (
+    Contacts,
+    assembly_limit,
+    assembly_limits,
+    assembly_stands,
+    contacts_of,
+    friction_margin,
+    load_multipliers,
+)
 
 
 def rectangle_stack(width: float, heights, friction=math.inf, density=2000.0) -> Contacts:
@@ -89,10 +90,10 @@ def test_a_block_that_cannot_stand_is_refused():
     # friction zero on a level base still stands (no shear needed); a base tilted by
     # atan(0.75) does not (it needs mu >= 0.75)
     block = rectangle_stack(0.4, [1.0], 0.0)
-    assert stands(block)
+    assert assembly_stands(block)
     tilted = Contacts(**{**block.__dict__, "normal": np.array([[-0.6, 0.8]]),
                          "p0": np.array([[0.16, 0.12]]), "p1": np.array([[-0.16, -0.12]])})
-    assert not stands(tilted)
+    assert not assembly_stands(tilted)
     with pytest.raises(CannotStandError):
         assembly_limit(tilted, "+x")
 
@@ -131,7 +132,7 @@ def test_oppenheim_hinges_are_the_chain_programs():
 @pytest.mark.parametrize("friction", [0.25, 0.35, 0.5, 0.8])
 def test_standing_with_friction_agrees_with_the_chain_program(friction):
     for arch in (archquake.oppenheim(), circular_arch(1.0, math.pi, 0.15, 30)):
-        assert stands(arch, friction=friction) == (friction_margin(arch, friction) >= 0)
+        assert assembly_stands(arch, friction=friction) == (friction_margin(arch, friction) >= 0)
 
 
 def test_friction_only_lowers_the_multiplier_and_non_associative_never_exceeds():

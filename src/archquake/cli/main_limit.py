@@ -154,7 +154,7 @@ def _with_friction(args: argparse.Namespace, structure) -> int:
     """``limit --friction MU``: both directions under each friction law."""
     import math
 
-    from .._assembly_statics import assembly_limits
+    from ..limit_analysis import assembly_limits
 
     if args.method != "static":
         raise ValueError("--friction takes the static method (the linear program): the "

@@ -98,6 +98,14 @@ from .analysis import (
     load_multipliers_of,
     virtual_displacements,
 )
+from .assembly import (
+    AssemblyLimit,
+    Contacts,
+    assembly_limit,
+    assembly_limits,
+    assembly_stands,
+    contacts_of,
+)
 from .equilibrium import LP_TOLERANCE
 from .friction import friction_margin, standing_with_friction
 from .kinematic import (
@@ -121,8 +129,10 @@ from .thickness import (
 __all__ = [
     "AGREEMENT_TOLERANCE", "DIRECTIONS", "FACE_PATTERNS", "HINGE_TOLERANCE", "KINEMATIC_BATCH",
     "LP_TOLERANCE", "MAX_ENUMERATED_VOUSSOIRS", "MAX_PIER_XTOL", "METHODS",
-    "GeometricSafetyFactor", "LimitAnalysis", "LimitSample", "Standing", "ThrustLine",
-    "both_directions", "friction_margin", "geometric_safety_factor", "limit_analysis",
+    "AssemblyLimit", "Contacts", "GeometricSafetyFactor", "LimitAnalysis", "LimitSample",
+    "Standing", "ThrustLine",
+    "assembly_limit", "assembly_limits", "assembly_stands", "both_directions", "contacts_of",
+    "friction_margin", "geometric_safety_factor", "limit_analysis",
     "limit_sample", "load_multipliers", "load_multipliers_of", "min_pier_width",
     "min_thickness", "self_weight_margin", "shaped_min_thickness", "standing",
     "standing_with_friction", "virtual_displacements",

@@ -565,6 +565,8 @@ def _compute(structure, settings: AssessmentSettings, suite, suite_note: str, ou
         results["limit"] = ({k: v for k, v in limit.summary.items() if k != "verdict"}
                             if limit.collapses else None)
         results["safety"] = geometric_safety_factor(structure).to_dict()
+        results["sliding"] = (parts.sliding_part(structure, settings.friction)
+                              if limit.collapses else None)
     computed.limit = limit
     scale = time_scale(structure)
     results["sizes"] = {"time_scale": scale}
@@ -969,6 +971,10 @@ def sections(results: dict, figures: dict) -> list[Section]:
     if results["limit"] is not None:
         limit_blocks.insert(1, Table(["mechanism", "k [-]", "hinge", "where", "face", "x [m]",
                                       "y [m]"], text.hinge_rows(results)))
+    if results.get("sliding"):
+        limit_blocks.append(Paragraph(text.sliding_text(results["sliding"]), "note"))
+        limit_blocks.append(Table(["mechanism", "law", "k [-]", "rocking joints",
+                                   "sliding joints"], text.sliding_rows(results["sliding"])))
     out.append(Section("1. The structure and its limit analysis", limit_blocks))
     if results["limit"] is None:
         out.append(Section("Run, versions and settings", _run_blocks(results)))

@@ -164,6 +164,44 @@ def limit_part(structure) -> LimitPart:
     return LimitPart(tuple(analyses), summary)
 
 
+def sliding_part(structure, friction: float) -> dict | None:
+    """Sliding as well as rocking: the collapse multiplier each way with Coulomb friction
+    ``friction`` [-] at every joint (the rigid-block model's), under the associative and the
+    non-associative law (:func:`archquake.limit_analysis.assembly_limits`), and the rigid-block
+    model's own under a slow ramp (:func:`archquake.rigid_blocks.ramp.ramp_test`), the arbiter.
+
+    Returns
+    -------
+    dict or None
+        ``friction`` and, by direction (``"l"``: forces toward +x, ``"r"``: toward -x, as the
+        mechanisms), each law's ``k``, ``rocking`` and ``sliding`` joints; None when the
+        structure cannot be analysed so (a fill's passive reaction, or it cannot stand with
+        this friction).
+    """
+    from ...errors import CannotStandError
+    from ...limit_analysis import assembly_limits
+    from ...rigid_blocks.ramp import ramp_test
+
+    try:
+        limits = assembly_limits(structure, friction=friction)
+        ramp = ramp_test(structure, friction=friction)
+    except (CannotStandError, ValueError):
+        return None
+    out = {"friction": friction, "directions": {}}
+    for name, direction in (("l", "+x"), ("r", "-x")):
+        laws = {law: {"k": json_float(r.load_multiplier),
+                      "rocking": r.interfaces_that("rocks"),
+                      "sliding": r.interfaces_that("slides"), "converged": r.converged}
+                for law, r in limits[direction].items()}
+        onset = ramp.onset(direction)
+        laws["rigid blocks (ramp)"] = {"k": json_float(onset.multiplier),
+                                       "error": json_float(onset.error),
+                                       "rocking": list(onset.rocking_joints),
+                                       "sliding": list(onset.sliding_joints), "converged": True}
+        out["directions"][name] = laws
+    return out
+
+
 # ------------------------------------------------------------------------------ four links
 @dataclass(frozen=True, eq=False)
 class FourLinkPart:

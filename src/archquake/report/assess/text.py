@@ -450,6 +450,28 @@ def hinge_rows(results: dict) -> list[list[str]]:
     return rows
 
 
+def sliding_text(sliding: dict) -> str:
+    """What the table of sliding as well as rocking shows."""
+    return (f"Sliding as well as rocking: with Coulomb friction {sliding['friction']:g} at every "
+            "joint (the rigid-block model's), the limit analysis under the associative law "
+            "(the classical linear program), under the non-associative one (slip without "
+            "opening) and the rigid-block model's multiplier under a slowly growing "
+            "acceleration, the arbiter. Where they equal Heyman's k above, no joint slides.")
+
+
+def sliding_rows(sliding: dict) -> list[list[str]]:
+    """Rows of the sliding table: mechanism, law, k, rocking and sliding joints."""
+    rows = []
+    for d, laws in sliding["directions"].items():
+        for i, (law, entry) in enumerate(laws.items()):
+            k = "none" if entry["k"] is None else f"{entry['k']:.4f}"
+            name = ("Mech-l" if d == "l" else "Mech-r") if i == 0 else ""
+            rows.append([name, law, k,
+                         ", ".join(map(str, entry["rocking"])) or "-",
+                         ", ".join(map(str, entry["sliding"])) or "-"])
+    return rows
+
+
 # ------------------------------------------------------------------------------ four links
 MECHANISM_QUANTITIES = (
     ("theta_u", "theta_u, undisplaced link AB [rad]", 4),

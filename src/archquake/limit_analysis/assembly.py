@@ -67,7 +67,7 @@ import numpy as np
 from scipy.optimize import linprog
 from scipy.sparse import coo_array
 
-from .constants import GRAVITY
+from ..constants import GRAVITY
 
 GROUND = -1
 """Body index of the ground [-]."""
@@ -500,7 +500,7 @@ def assembly_limit(structure, direction: str = "+x", *, friction=None,
     ValueError
         For a block that touches nothing, or a degenerate geometry.
     """
-    from .errors import CannotStandError
+    from ..errors import CannotStandError
 
     c = structure if isinstance(structure, Contacts) else contacts_of(structure)
     if friction is not None:
@@ -576,7 +576,7 @@ def assembly_limits(structure, *, friction=None) -> dict[str, dict[str, Assembly
     return out
 
 
-def stands(structure, *, friction=None) -> bool:
+def assembly_stands(structure, *, friction=None) -> bool:
     """Whether some set of contact forces balances the assembly under its own weight (no
     tension, within the friction cones)."""
     c = structure if isinstance(structure, Contacts) else contacts_of(structure)
