@@ -456,7 +456,8 @@ def sliding_text(sliding: dict) -> str:
             "joint (the rigid-block model's), the limit analysis under the associative law "
             "(the classical linear program), under the non-associative one (slip without "
             "opening) and the rigid-block model's multiplier under a slowly growing "
-            "acceleration, the arbiter. Where they equal Heyman's k above, no joint slides.")
+            "acceleration, the arbiter. Where they equal Heyman's k above, no joint slides. Joints "
+            "are numbered from the left end of the structure in its own frame (not mirrored).")
 
 
 def sliding_rows(sliding: dict) -> list[list[str]]:
