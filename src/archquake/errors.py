@@ -48,6 +48,12 @@ class CannotStandError(ValueError):
     horizontal force (its largest load multiplier is negative, or none exists)."""
 
 
+class NoThicknessError(ValueError):
+    """No thickness of the arch's shape lets it stand under its own weight (with friction at
+    its joints: the friction is below the least with which the shape can stand): a verdict on
+    the shape, not a fault of the input."""
+
+
 class NeverCollapsesError(ValueError):
     """The arch does not collapse under any horizontal load multiplier: a line of thrust fits
     inside it for every k, so no ground acceleration sets it in motion."""

@@ -68,3 +68,15 @@ def test_the_arbiter_stands_beside_both_laws(capsys):
 def test_arbiter_needs_friction(capsys):
     assert main(["limit", "--arbiter"]) == 2
     assert "--friction" in capsys.readouterr().err
+
+
+def test_min_thickness_with_friction_and_its_verdict(capsys):
+    # the semicircle of 44 voussoirs: thicker at mu = 0.35 than without friction; none at 0.30
+    # (published least friction 0.309215, tests/limit_analysis/test_min_thickness_friction.py)
+    shape = ["min-thickness", "--shape", "circular", "--radius", "1", "--embrace", "180",
+             "--voussoirs", "44"]
+    free = _json(shape, capsys)
+    mixed = _json([*shape, "--friction", "0.35"], capsys)
+    assert mixed["ratio"] > free["ratio"] * 1.3 and mixed["friction"] == 0.35
+    none = _json([*shape, "--friction", "0.30"], capsys)
+    assert none["min_thickness"] is None and "no thickness" in none["verdict"]

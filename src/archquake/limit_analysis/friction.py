@@ -14,6 +14,14 @@ from .equilibrium import lp_matrices, scaled_arrays
 from .self_weight import Standing, standing
 
 
+def check_friction(friction) -> float:
+    """``friction`` as a Coulomb coefficient: a finite number >= 0 [-], else ValueError."""
+    if isinstance(friction, bool) or not (isinstance(friction, int | float)
+                                          and math.isfinite(friction) and friction >= 0):
+        raise ValueError(f"friction must be a finite number >= 0, got {friction!r}")
+    return float(friction)
+
+
 def friction_margin(arch: BlockArch, friction: float) -> float:
     r"""The self-weight margin of :func:`self_weight_margin` with Coulomb friction at the
     joints: the joints may also slide, so the force through every joint must lie within its
@@ -59,8 +67,7 @@ def friction_margin(arch: BlockArch, friction: float) -> float:
     """
     from scipy.sparse import csc_array, vstack
 
-    if not (isinstance(friction, int | float) and math.isfinite(friction) and friction >= 0):
-        raise ValueError(f"friction must be a finite number >= 0, got {friction!r}")
+    friction = check_friction(friction)
     s = scaled_arrays(arch)
     a_eq, b_eq, a_ub = lp_matrices(s, fixed_k=0.0)
     nj, nv = s.depth.size, a_eq.shape[1]

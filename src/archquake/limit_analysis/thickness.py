@@ -10,7 +10,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.optimize import brentq
 
-from ..errors import CannotStandError
+from ..errors import CannotStandError, NoThicknessError
 from ..geometry import (
     BlockArch,
     CircularArch,
@@ -23,11 +23,13 @@ from ..geometry import (
     shaped_arch,
 )
 from ..geometry.blocks import check_voussoir_count
+from .friction import check_friction, friction_margin
 from .self_weight import self_weight_margin, stand_margin, standing
 
 
 def min_thickness(
     radius: float, embrace: float, voussoirs: int, *, xtol: float = 1e-12,
+    friction: float | None = None,
 ) -> float:
     """Minimum thickness of a circular arch that stands under its own weight [m].
 
@@ -46,38 +48,74 @@ def min_thickness(
         Number of voussoirs n.
     xtol : float
         Absolute tolerance on t / R [-].
+    friction : float, optional
+        Coulomb coefficient of the joints [-]: the joints may also slide, and the thrust line
+        must lie within every joint's friction cone too (:func:`friction_margin`). Default:
+        none (Heyman's hypothesis, nothing slides). For a semicircle the purely rotational
+        minimum (t/R = 0.1075) needs a friction of about 0.395; below it the minimum grows,
+        and below about 0.309 no thickness suffices (the Couplet-Heyman problem with finite
+        friction [2]_; ``tests/limit_analysis/test_min_thickness_friction.py``).
 
     Returns
     -------
     float
         The minimum thickness t [m].
 
+    Raises
+    ------
+    NoThicknessError
+        When no thickness up to twice the radius lets the arch stand (with ``friction``: the
+        friction is below the critical one of this arch's shape).
+
     References
     ----------
     .. [1] Heyman, J. (1982). The Masonry Arch. Chichester: Ellis Horwood.
+    .. [2] G. Cocchetti and E. Rizzi, "Non-linear mechanics of the 'Couplet-Heyman problem'
+       with finite friction", Frattura ed Integrita Strutturale 51 (2020) 356-375, Table 3.
     """
     circular_arch(radius, embrace, 0.5 * radius, voussoirs)  # checks the input
     ratio = _min_thickness_ratio(
         lambda ratio: circular_arch(radius, embrace, ratio * radius, voussoirs), 2.0, xtol,
-        f"radius={radius} m, embrace={embrace} rad, voussoirs={voussoirs}")
+        f"radius={radius} m, embrace={embrace} rad, voussoirs={voussoirs}", friction)
     return float(ratio * radius)
 
 
-def _min_thickness_ratio(arch_of, largest: float, xtol: float, what: str) -> float:
-    """Root in ``(0, largest)`` of the self-weight margin of ``arch_of(ratio)``: bracketed from
-    ``largest / 4`` (up toward ``largest``, then halving down), then Brent's method."""
+def _min_thickness_ratio(arch_of, largest: float, xtol: float, what: str,
+                         friction: float | None = None) -> float:
+    """Root in ``(0, largest)`` of the self-weight margin of ``arch_of(ratio)`` (with
+    ``friction``: :func:`friction_margin`, ``-inf`` where no thrust line fits the friction
+    cones): bracketed from ``largest / 4`` (up toward ``largest``, then halving down), then
+    Brent's method."""
+    if friction is not None:
+        friction = check_friction(friction)
 
     def margin(ratio: float) -> float:
         # only its sign matters: clipped, an unbounded margin (inf) still brackets the root
-        return min(max(self_weight_margin(arch_of(ratio)), -1.0), 1.0)
+        arch = arch_of(ratio)
+        value = (self_weight_margin(arch) if friction is None
+                 else friction_margin(arch, friction))
+        return min(max(value, -1.0), 1.0)
 
     hi = 0.25 * largest
     while margin(hi) < 0.0:
         hi = 0.5 * (hi + largest)
+        if hi > (1.0 - 5e-4) * largest and friction is not None:
+            # with friction a thick arch may slide where a thinner one stands: look lower
+            hi = next((r for r in np.linspace(largest / 64, largest, 64, endpoint=False)
+                       if margin(r) >= 0.0),
+                      hi)
+            if margin(hi) >= 0.0:
+                break
         if hi > (1.0 - 5e-4) * largest:
-            raise ValueError(
-                "no thickness lets this arch stand under its own weight below its largest "
-                f"thickness ({what})")
+            if friction is None:
+                raise NoThicknessError(
+                    "no thickness lets this arch stand under its own weight below its largest "
+                    f"thickness ({what})")
+            raise NoThicknessError(
+                f"with friction {friction:g} at its joints no thickness lets this arch stand "
+                f"under its own weight, up to its largest thickness ({what}): the friction is "
+                "below the least with which the shape can stand (its joints would slide "
+                "whatever the thickness)")
     lo = 0.5 * hi
     while margin(lo) >= 0.0:
         hi, lo = lo, 0.5 * lo
@@ -89,7 +127,7 @@ def _min_thickness_ratio(arch_of, largest: float, xtol: float, what: str) -> flo
 def shaped_min_thickness(
     shape: str, *, voussoirs: int, span: float | None = None, rise: float | None = None,
     radius: float | None = None, embrace: float | None = None, faces: str = "curved",
-    xtol: float = 1e-12,
+    xtol: float = 1e-12, friction: float | None = None,
 ) -> float:
     r"""Minimum thickness of an arch of a shape that stands under its own weight [m].
 
@@ -112,6 +150,8 @@ def shaped_min_thickness(
         Voussoir faces.
     xtol : float
         Absolute tolerance on t / span [-].
+    friction : float, optional
+        Coulomb coefficient of the joints [-] (see :func:`min_thickness`); default none.
 
     Returns
     -------
@@ -133,7 +173,7 @@ def shaped_min_thickness(
 
     arch_of(0.25 * largest)  # checks the input
     ratio = _min_thickness_ratio(arch_of, largest, xtol,
-                                 f"{shape} arch of {voussoirs} voussoirs")
+                                 f"{shape} arch of {voussoirs} voussoirs", friction)
     return float(ratio * line.span)
 
 
