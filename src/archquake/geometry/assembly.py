@@ -715,8 +715,8 @@ class BlockAssembly:
         if bad.size:
             k = bad[np.lexsort((j[pair[bad]], i[pair[bad]]))[0]]
             x, y = int(i[pair[k]]), int(j[pair[k]])
-            raise ValueError(f"{self._body_name(x)} and {self._body_name(y)} overlap (by "
-                             f"{depth[k]:.3g} m, more than the tolerance {self.tolerance:.3g} "
+            raise ValueError(f"{self._body_name(x)} and {self._body_name(y)} overlap (by at "
+                             f"least {depth[k]:.3g} m, more than the tolerance {self.tolerance:.3g} "
                              "m)")
 
     def _check_connected(self, a: np.ndarray, b: np.ndarray) -> None:
@@ -725,6 +725,11 @@ class BlockAssembly:
         from scipy.sparse.csgraph import connected_components
 
         nb = self.n_blocks
+        if not np.any(a == GROUND):
+            where = ("no block edge lies on a support" if self.supports else
+                     "no block edge lies on the lowest line y = "
+                     f"{float(np.vstack(self.polygons)[:, 1].min()):.6g} m (give supports)")
+            raise ValueError(f"the assembly rests on nothing: {where}")
         touched = np.zeros(nb, dtype=bool)
         touched[b] = True
         touched[a[a >= 0]] = True
@@ -734,11 +739,6 @@ class BlockAssembly:
                              f"touch{'es' if lonely.size == 1 else ''} nothing: every block must "
                              f"share an edge with another block or a support (within the "
                              f"tolerance {self.tolerance:.3g} m)")
-        if not np.any(a == GROUND):
-            where = ("no block edge lies on a support" if self.supports else
-                     "no block edge lies on the lowest line y = "
-                     f"{float(np.vstack(self.polygons)[:, 1].min()):.6g} m (give supports)")
-            raise ValueError(f"the assembly rests on nothing: {where}")
         node = np.where(a == GROUND, nb, a)
         graph = coo_matrix((np.ones(a.size), (node, b)), shape=(nb + 1, nb + 1))
         _, label = connected_components(graph, directed=False)

@@ -15,7 +15,16 @@ value a JSON number):
   "right_pier": ..., "fill": ...}`` (:meth:`Structure.to_dict
   <archquake.geometry.Structure.to_dict>`).
 
-Each arch may hold a ``"density"``. The kind is told by the keys.
+One JSON object describes any block assembly (a wall, a portal, ...), not an arch:
+
+- ``{"blocks": [[[x, y], ...], ...], "supports": [[[x, y], ...], ...], "density": ...,
+  "friction": ..., "tolerance": ...}`` (:meth:`BlockAssembly.to_dict
+  <archquake.geometry.assembly.BlockAssembly.to_dict>`): ``"blocks"`` with ``"supports"``
+  (an empty list: the ground is the lowest line of the blocks), ``"friction"`` or ``"kinds"``.
+  ``"blocks"`` alone (or with ``"springings"``) stays the surveyed arch it always was.
+
+Each may hold a ``"density"``. The kind is told by the keys. :func:`load_arch` also reads a
+drawing (a ``.dxf`` file, :func:`archquake.geometry.dxf.read_dxf`) as a block assembly.
 """
 
 from __future__ import annotations
@@ -26,6 +35,7 @@ from pathlib import Path
 
 from ..constants import DEFAULT_DENSITY
 from .arch import CircularArch
+from .assembly import BlockAssembly
 from .blocks import BlockArch, read_json_file
 from .fill import Fill
 from .piers import Pier
@@ -36,10 +46,13 @@ from .survey import SurveyedArch
 KINDS = {"angles": CircularArch, "blocks": SurveyedArch, "shape": ShapedArch, "arch": Structure}
 """The key that tells each kind of description."""
 
+ASSEMBLY_KEYS = ("supports", "friction", "kinds")
+"""Keys that make a ``"blocks"`` description a :class:`BlockAssembly` (not a surveyed arch)."""
+
 
 def arch_from_dict(data, *, density: float = DEFAULT_DENSITY,
-                   replace_density: bool = False) -> BlockArch:
-    """The arch a dict describes (see the module for the four forms).
+                   replace_density: bool = False) -> BlockArch | BlockAssembly:
+    """The arch (or block assembly) a dict describes (see the module for the forms).
 
     Parameters
     ----------
@@ -52,18 +65,22 @@ def arch_from_dict(data, *, density: float = DEFAULT_DENSITY,
 
     Returns
     -------
-    CircularArch, SurveyedArch, ShapedArch or Structure
+    CircularArch, SurveyedArch, ShapedArch, Structure or BlockAssembly
 
     Raises
     ------
     ValueError
-        When ``data`` is not a dict of one of the four forms (the message says which keys were
+        When ``data`` is not a dict of one of the five forms (the message says which keys were
         expected) or describes no valid arch.
     """
     if not isinstance(data, dict):
         raise ValueError("geometry must be a JSON object: {'angles', 'thicknesses', 'radii'} "
                          "per voussoir, {'blocks'} polygons, or {'shape', ...}; got "
                          f"{type(data).__name__}")
+    if "blocks" in data and any(key in data for key in ASSEMBLY_KEYS):
+        if replace_density:
+            data = {**data, "density": density}
+        return BlockAssembly.from_dict(data, density=density)
     kinds = [key for key in KINDS if key in data]
     if len(kinds) != 1:
         if not kinds and not {"thicknesses", "radii"} & set(data):
@@ -100,8 +117,10 @@ def _structure_from_dict(data: dict, density: float, replace_density: bool) -> S
 
 
 def load_arch(path: str | Path, *, density: float = DEFAULT_DENSITY,
-              replace_density: bool = False) -> BlockArch:
-    """The arch of a JSON file of any of the four forms.
+              replace_density: bool = False) -> BlockArch | BlockAssembly:
+    """The arch of a JSON file of any of the forms of the module, or the block assembly of a
+    JSON file or a drawing (``.dxf``, :func:`archquake.geometry.dxf.read_dxf`, in the units
+    of its header).
 
     Parameters
     ----------
@@ -115,7 +134,7 @@ def load_arch(path: str | Path, *, density: float = DEFAULT_DENSITY,
 
     Returns
     -------
-    CircularArch, SurveyedArch or ShapedArch
+    CircularArch, SurveyedArch, ShapedArch, Structure or BlockAssembly
 
     Raises
     ------
@@ -126,6 +145,13 @@ def load_arch(path: str | Path, *, density: float = DEFAULT_DENSITY,
     if not isinstance(path, str | os.PathLike):
         raise ValueError(f"path must be the name of a geometry file (str or os.PathLike), got "
                          f"{path!r}")
+    if Path(path).suffix.lower() == ".dxf":
+        from .dxf import read_dxf
+
+        try:
+            return read_dxf(path, density=density)
+        except ValueError as exc:
+            raise ValueError(f"geometry file {str(path)!r}: {exc}") from exc
     data = read_json_file(path, "a JSON object with 'angles', 'thicknesses' and 'radii', or "
                                 "'blocks', or 'shape'")
     with warnings.catch_warnings(record=True) as caught:
