@@ -49,6 +49,13 @@ paper's eq. (1) on a circular :class:`CircularArch` and its generalisation on an
 (a shape, piers, a fill, an irregular draw), as the command line and the page describe one, is a
 :class:`StructureSpec` (:mod:`.spec`).
 
+**Any block assembly** -- a wall of any bond, a portal, a drawing, an arch -- is a
+:class:`BlockAssembly` (:mod:`.assembly`): blocks as polygons on supports, with the
+interfaces between them found from the geometry (:class:`Interfaces`); builders
+(:func:`block_on_ground`, :func:`stack`, :func:`wall`, :func:`portal`,
+:func:`assembly.from_arch <archquake.geometry.assembly.from_arch>` for any arch) and DXF
+drawings (:func:`read_dxf`, :func:`write_dxf`, :mod:`.dxf`) make one.
+
 References
 ----------
 .. [1] The paper, Sect. 2, eq. (1) and Fig. 1.
@@ -72,6 +79,16 @@ Oppenheim's arch and a pointed arch of the same span and rise:
 
 from ..constants import DEFAULT_DENSITY, GRAVITY
 from .arch import RADIUS_RANGE, CircularArch, circular_arch
+from .assembly import (
+    GROUND,
+    INTERFACE_KINDS,
+    BlockAssembly,
+    Interfaces,
+    block_on_ground,
+    portal,
+    stack,
+    wall,
+)
 from .blocks import (
     FACES,
     LENGTH_RANGE,
@@ -82,6 +99,7 @@ from .blocks import (
     Hinge,
 )
 from .centrelines import CENTRELINES, SHAPES, Centreline, centreline
+from .dxf import read_dxf, write_dxf
 from .files import arch_from_dict, load_arch
 from .fill import DEFAULT_FILL_INERTIA, FILL_INERTIA_MODELS, Fill
 from .irregular import check_epsilon, irregular_arch, irregular_sample
@@ -94,10 +112,11 @@ from .survey import SurveyedArch, surveyed_arch
 
 __all__ = [
     "CENTRELINES", "DEFAULT_DENSITY", "DEFAULT_FILL_INERTIA",
-    "FACES", "FILL_INERTIA_MODELS", "GRAVITY", "LENGTH_RANGE",
+    "FACES", "FILL_INERTIA_MODELS", "GRAVITY", "GROUND", "INTERFACE_KINDS", "LENGTH_RANGE",
     "MAX_GEOMETRY_FILE_BYTES", "MAX_VOUSSOIRS", "MIN_VOUSSOIRS", "RADIUS_RANGE", "SHAPES",
-    "VOUSSOIR_FACES", "BlockArch", "BlockLoads", "Centreline", "CircularArch", "Fill", "Hinge",
-    "Pier", "ShapedArch", "Structure", "StructureSpec", "SurveyedArch",
-    "arch_from_dict", "arch_on_piers", "centreline", "check_epsilon", "circular_arch",
-    "irregular_arch", "irregular_sample", "load_arch", "shaped_arch", "surveyed_arch",
+    "VOUSSOIR_FACES", "BlockArch", "BlockAssembly", "BlockLoads", "Centreline", "CircularArch",
+    "Fill", "Hinge", "Interfaces", "Pier", "ShapedArch", "Structure", "StructureSpec",
+    "SurveyedArch", "arch_from_dict", "arch_on_piers", "block_on_ground", "centreline",
+    "check_epsilon", "circular_arch", "irregular_arch", "irregular_sample", "load_arch", "portal",
+    "read_dxf", "shaped_arch", "stack", "surveyed_arch", "wall", "write_dxf",
 ]
