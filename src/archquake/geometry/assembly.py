@@ -840,6 +840,11 @@ class BlockAssembly:
         return cls(tuple(data["blocks"]), data.get("density", density), tuple(supports),
                    friction, data.get("tolerance"), tuple(tuple(k) for k in kinds))
 
+    def __repr__(self) -> str:
+        return (f"BlockAssembly({self.n_blocks} blocks, {len(self.supports)} supports, "
+                f"{self.interfaces.n_interfaces} interfaces, friction={self.friction!r}, "
+                f"tolerance={self.tolerance:.3g} m)")
+
     def __eq__(self, other):
         if other.__class__ is not self.__class__:
             return NotImplemented
