@@ -283,6 +283,15 @@ def test_overlapping_blocks_are_named():
         BlockAssembly((rectangle(0, -0.1, 1, 1),), supports=(rectangle(-1, -1, 2, 0),))
 
 
+@pytest.mark.parametrize("dx, dy", [(0.3, 0.9), (0.95, 0.2), (-0.6, 0.7), (0.0, 0.97)])
+def test_overlap_of_convex_blocks_is_their_exact_penetration(dx, dy):
+    """Two unit squares, the second shifted by (dx, dy) from the first: their projections
+    overlap by 1 - |dx| along x and 1 - |dy| along y, the penetration is the smaller."""
+    depth = min(1 - abs(dx), 1 - abs(dy))
+    with pytest.raises(ValueError, match=rf"overlap \(by at least {depth:.3g} m"):
+        BlockAssembly((rectangle(0, 0, 1, 1), rectangle(dx, dy, dx + 1, dy + 1)))
+
+
 def test_an_overlap_within_the_tolerance_is_a_contact():
     # 1e-4 m of overlap on a tolerance of 1e-3 m: a bed joint
     a = BlockAssembly((rectangle(0, 0, 1, 1), rectangle(0, 0.9999, 1, 2)), tolerance=1e-3)

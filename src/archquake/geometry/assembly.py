@@ -53,11 +53,15 @@ of 1 000 blocks takes about 0.1 s (``tests/geometry/test_assembly.py`` bounds it
 handle and layer): a polygon with fewer than three distinct vertices, a non-finite coordinate,
 crossing edges or no area; blocks whose interiors overlap by more than ``tolerance`` (or a block
 and a support); a block touching nothing; a group of blocks not connected to the ground; an
-assembly that rests on nothing. The overlap test is exact for any simple polygon: every polygon
-is cut into triangles (a fan for a convex one, ear clipping otherwise) and two triangles of
-different bodies overlap when the separating-axis test finds no axis (among their six edge
-normals) along which they are apart: their penetration, the least of the six overlaps of their
-projections, is more than ``tolerance``.
+assembly that rests on nothing. The overlap test takes convex pieces: a convex block of at most
+:data:`PIECE_VERTICES` vertices is one piece, any other block is cut into triangles (a fan for
+a convex one, ear clipping otherwise). Two pieces of different bodies overlap when the
+separating-axis test finds no axis among their edge normals along which they are apart: their
+penetration, the least overlap of their projections, is more than ``tolerance``. For convex
+blocks this is their exact penetration; for a non-convex one the penetration of its triangles is
+a lower bound of the block's, so nothing that does not overlap is refused (an L-shaped block
+holds a block in its notch) and an overlap is found once two triangles interpenetrate by more
+than the tolerance.
 
 References
 ----------
@@ -372,38 +376,67 @@ def _ear_clipping(v: np.ndarray) -> np.ndarray:
     return np.array(triangles, dtype=float)
 
 
-def _triangles(polygons) -> tuple[np.ndarray, np.ndarray]:
-    """Triangles (T, 3, 2) covering every counter-clockwise polygon and the number of each
-    polygon's: a fan for a convex polygon (its flat corners give flat triangles, harmless to
-    the separating-axis test), ear clipping otherwise."""
+PIECE_VERTICES = 8
+"""Most vertices of a convex block tested for overlap as one piece; a convex block of more, and
+a non-convex block, is cut into triangles [-]."""
+
+
+def _convex_pieces(polygons) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Convex pieces covering every counter-clockwise polygon: ``(pieces (T, K, 2), vertices
+    of each piece (T,), pieces of each polygon (n,))``, each piece padded to K =
+    :data:`PIECE_VERTICES` by repeating its last vertex. A convex polygon of at most K vertices
+    is one piece (its exact overlap), a larger convex one a fan of triangles, a non-convex one
+    the triangles of ear clipping."""
     v, first, count, prev, nxt = _packed(polygons)
     size = (np.maximum.reduceat(v, first) - np.minimum.reduceat(v, first)).max(axis=1)
     owner = np.repeat(np.arange(count.size), count)
     turn = _cross(v - v[prev], v[nxt] - v)
     convex = np.minimum.reduceat(turn / (size[owner] ** 2), first) >= -_COLLINEAR
-    fan = np.flatnonzero(convex)
-    k = np.concatenate([np.arange(1, c - 1) for c in count[fan]]) if fan.size else \
-        np.empty(0, dtype=int)
-    base = np.repeat(first[fan], count[fan] - 2)
-    pieces = {int(i): t for i, t in zip(fan, np.split(
-        np.stack((v[base], v[base + k], v[base + k + 1]), axis=1),
-        np.cumsum(count[fan] - 2)[:-1]), strict=True)}
-    for i in np.flatnonzero(~convex):
-        pieces[int(i)] = _ear_clipping(polygons[i])
-    triangles = [pieces[i] for i in range(count.size)]
-    return np.concatenate(triangles), np.array([len(t) for t in triangles])
+    k = PIECE_VERTICES
+    whole = convex & (count <= k)
+    per = np.ones(count.size, dtype=int)
+    cut = {}
+    for i in np.flatnonzero(~whole):
+        if convex[i]:
+            m = np.arange(1, count[i] - 1)
+            poly = polygons[i]
+            tri = np.stack((np.broadcast_to(poly[0], (m.size, 2)), poly[m], poly[m + 1]), axis=1)
+        else:
+            tri = _ear_clipping(polygons[i])
+        cut[int(i)] = np.concatenate((tri, np.repeat(tri[:, 2:], k - 3, axis=1)), axis=1)
+        per[i] = len(tri)
+    start = np.concatenate(([0], np.cumsum(per)[:-1]))
+    pieces = np.empty((int(per.sum()), k, 2))
+    vertices = np.full(int(per.sum()), 3)
+    rows = start[whole]  # the whole convex polygons, vectorised
+    col = np.minimum(np.arange(k)[None, :], count[whole, None] - 1)
+    pieces[rows] = v[first[whole, None] + col]
+    vertices[rows] = count[whole]
+    for i, tri in cut.items():
+        pieces[start[i]:start[i] + per[i]] = tri
+    return pieces, vertices, per
 
 
-def _penetration(ta: np.ndarray, tb: np.ndarray) -> np.ndarray:
-    """Separating-axis penetration of triangle pairs ``ta``, ``tb`` (m, 3, 2) [m]: the least,
-    over the six edge normals, of the overlap of their projections (<= 0: apart or touching)."""
-    edges = np.concatenate((np.roll(ta, -1, axis=1) - ta, np.roll(tb, -1, axis=1) - tb), axis=1)
-    axes = np.stack((edges[..., 1], -edges[..., 0]), axis=-1)
-    axes /= np.maximum(np.hypot(axes[..., 0], axes[..., 1]), 1e-300)[..., None]
-    pa = np.einsum("mvd,mad->mav", ta, axes)
-    pb = np.einsum("mvd,mad->mav", tb, axes)
-    overlap = np.minimum(pa.max(-1), pb.max(-1)) - np.maximum(pa.min(-1), pb.min(-1))
-    return overlap.min(axis=1)
+def _penetration(pa: np.ndarray, na: np.ndarray, pb: np.ndarray, nb: np.ndarray) -> np.ndarray:
+    """Separating-axis penetration of pairs of convex pieces ``pa``, ``pb`` (m, K, 2) of ``na``,
+    ``nb`` vertices [m]: the least, over their edge normals, of the overlap of their projections
+    (<= 0: apart or touching)."""
+    col = np.arange(pa.shape[1])[None, :]
+
+    def axes_of(p, n):
+        nxt = np.where(col + 1 < n[:, None], col + 1, 0)
+        edge = np.take_along_axis(p, nxt[..., None], axis=1) - p
+        axis = np.stack((edge[..., 1], -edge[..., 0]), axis=-1)
+        axis /= np.maximum(np.hypot(axis[..., 0], axis[..., 1]), 1e-300)[..., None]
+        return axis, col < n[:, None]
+
+    (aa, va), (ab, vb) = axes_of(pa, na), axes_of(pb, nb)
+    axes, valid = np.concatenate((aa, ab), axis=1), np.concatenate((va, vb), axis=1)
+    proj_a = np.einsum("mvd,mad->mav", pa, axes)
+    proj_b = np.einsum("mvd,mad->mav", pb, axes)
+    overlap = (np.minimum(proj_a.max(-1), proj_b.max(-1))
+               - np.maximum(proj_a.min(-1), proj_b.min(-1)))
+    return np.where(valid, overlap, np.inf).min(axis=1)
 
 
 @dataclass(frozen=True)
@@ -707,10 +740,11 @@ class BlockAssembly:
         tolerance (separating axes over their triangles, see the module)."""
         if i.size == 0:
             return
-        every, counts = _triangles(bodies)
+        every, vertices, counts = _convex_pieces(bodies)
         first = np.concatenate(([0], np.cumsum(counts)[:-1]))
         pair, ka, kb = _products(counts[i], counts[j])
-        depth = _penetration(every[first[i][pair] + ka], every[first[j][pair] + kb])
+        x, y = first[i][pair] + ka, first[j][pair] + kb
+        depth = _penetration(every[x], vertices[x], every[y], vertices[y])
         bad = np.flatnonzero(depth > self.tolerance)
         if bad.size:
             k = bad[np.lexsort((j[pair[bad]], i[pair[bad]]))[0]]
