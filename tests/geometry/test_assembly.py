@@ -8,7 +8,13 @@ import time
 import numpy as np
 import pytest
 
-from archquake.geometry import arch_from_dict, arch_on_piers, load_arch, shaped_arch
+from archquake.geometry import (
+    arch_from_dict,
+    arch_on_piers,
+    load_arch,
+    shaped_arch,
+    surveyed_arch,
+)
 from archquake.geometry.assembly import (
     GROUND,
     BlockAssembly,
@@ -210,7 +216,8 @@ def arch_joint_pairs(arch):
     lambda nominal: shaped_arch("parabolic", span=8.0, rise=2.5, thickness=0.6, voussoirs=9,
                                 faces="flat"),
     lambda nominal: arch_on_piers(nominal, 3.0, 6.0, 2),
-], ids=["oppenheim", "pointed", "parabolic-flat", "on-piers"])
+    lambda nominal: surveyed_arch([nominal.outline(i, 40)[:-1] for i in range(7)]),
+], ids=["oppenheim", "pointed", "parabolic-flat", "on-piers", "surveyed"])
 def test_from_arch_interfaces_are_the_arch_joints(nominal, make):
     arch = make(nominal)
     a = from_arch(arch)
