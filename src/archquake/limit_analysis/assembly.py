@@ -40,8 +40,14 @@ nothing in particular. The iterative method of Gilbert, Casapulla and Ahmed [3]_
 friction of each interface as a cohesion fixed from the normal force of the previous iteration,
 :math:`|t_i| \le c_i^{(r)} = \mu_i \bar N_i^{(r-1)}` (its flow rule is a slip without opening:
 the non-associative one), starting from the associative solution's normal forces, relaxed as
-:math:`\bar N^{(r)} = \beta N^{(r)} + (1 - \beta) \bar N^{(r-1)}`, until the normal forces and
-:math:`k` no longer change. At convergence the forces satisfy Coulomb's law exactly (statically
+:math:`\bar N^{(r)} = \beta N^{(r)} + (1 - \beta) \bar N^{(r-1)}`. In a statically
+indeterminate assembly (a wall) the program's optimum leaves many normal forces free, and an
+arbitrary choice among them makes the iteration wander: each step therefore takes, at the
+step's :math:`k`, the state whose normal forces are nearest the previous ones (a second linear
+program, least sum of absolute differences). It stops when :math:`k`, the normal forces of the
+interfaces at their shear capacity and Coulomb's law (:math:`|t_i| \le \mu_i N_i` with the
+state's own normal forces) all hold to :data:`NONASSOCIATIVE_TOLERANCE`.
+At convergence the forces satisfy Coulomb's law exactly (statically
 admissible) and the mechanism slides without dilatancy (kinematically admissible for the
 non-associative law): a solution of the non-associative problem, not proved the least one; where
 the iteration does not converge, the result says so. The rigid-block model under a slowly
@@ -72,16 +78,17 @@ from ..constants import GRAVITY
 GROUND = -1
 """Body index of the ground [-]."""
 
-NONASSOCIATIVE_ITERATIONS = 200
+NONASSOCIATIVE_ITERATIONS = 100
 """Largest number of linear programs of the non-associative iteration [-]."""
 
-NONASSOCIATIVE_TOLERANCE = 1e-7
+NONASSOCIATIVE_TOLERANCE = 1e-6
 """Convergence of the non-associative iteration: the largest change of a normal force, as a
 fraction of the assembly's weight, and of k [-]."""
 
-RELAXATION = 0.5
-r"""Relaxation :math:`\beta` of the normal forces between iterations [-] (Gilbert et al. [3]_
-relax the iteration to damp its oscillations)."""
+RELAXATION = 1.0
+r"""First relaxation :math:`\beta` of the normal forces between iterations [-], halved (down to
+0.02) whenever k turns back (Gilbert et al. [3]_ relax the iteration to damp its
+oscillations)."""
 
 MOTION_TOLERANCE = 1e-6
 """An interface end opens or slips when its rate exceeds this fraction of the mechanism's
@@ -315,6 +322,32 @@ def _solve(prog: _Program, c: Contacts, shear: np.ndarray | None, fixed_k: float
     return res
 
 
+def _closest(prog: _Program, c: Contacts, shear: np.ndarray, k: float, target: np.ndarray):
+    """Of the states in equilibrium at ``k`` within the shear capacities ``shear``, the one
+    whose normal forces are nearest ``target`` (least sum of absolute differences): the
+    non-associative iteration's step from its previous state, where the program's optimum
+    leaves the normal forces of a statically indeterminate assembly free."""
+    from scipy.sparse import hstack, identity, vstack
+
+    ni = c.n_interfaces
+    nv = 3 * ni + 1
+    cost = np.concatenate((np.zeros(nv), np.ones(ni)))
+    finite = np.isfinite(c.friction)
+    bounds = np.empty((nv + ni, 2))
+    bounds[:2 * ni] = (0.0, np.inf)
+    bounds[2 * ni:3 * ni, 0] = np.where(finite, -shear, -np.inf)
+    bounds[2 * ni:3 * ni, 1] = np.where(finite, shear, np.inf)
+    bounds[3 * ni] = (k, k)
+    bounds[nv:] = (0.0, np.inf)
+    pick = hstack((identity(ni), identity(ni), coo_array((ni, ni + 1))))
+    # (n0 + n1) - s <= target and -(n0 + n1) - s <= -target
+    a_ub = vstack((hstack((pick, -identity(ni))), hstack((-pick, -identity(ni))))).tocsc()
+    b_ub = np.concatenate((target, -target))
+    a_eq = hstack((prog.a_eq, coo_array((prog.a_eq.shape[0], ni)))).tocsc()
+    return linprog(cost, A_ub=a_ub, b_ub=b_ub, A_eq=a_eq, b_eq=prog.b_eq, bounds=bounds,
+                   method="highs")
+
+
 # --------------------------------------------------------------------------- results
 @dataclass(frozen=True, eq=False)
 class AssemblyLimit:
@@ -535,26 +568,40 @@ def assembly_limit(structure, direction: str = "+x", *, friction=None,
 
 def _nonassociative(c: Contacts, prog: _Program, res, direction: str) -> AssemblyLimit:
     ni = c.n_interfaces
-    mu = np.where(np.isfinite(c.friction), c.friction, 0.0)
-    normal = res.x[:ni] + res.x[ni:2 * ni]
-    relaxed = normal.copy()
-    k_old = res.x[-1]
+    finite = np.isfinite(c.friction)
+    mu = np.where(finite, c.friction, 0.0)
+    relaxed = res.x[:ni] + res.x[ni:2 * ni]
+    k_old, change_old = res.x[-1], 0.0
+    beta = RELAXATION
     last = res
+    tol = NONASSOCIATIVE_TOLERANCE
     for iteration in range(1, NONASSOCIATIVE_ITERATIONS + 1):
-        step = _solve(prog, c, mu * relaxed, None)
+        capacity = mu * relaxed
+        step = _solve(prog, c, capacity, None)
         if step.status == 3:
             # unbounded with these capacities: keep the previous capacities' answer
             return _result(c, prog, last, direction, "non-associative", iteration, False)
         if step.status != 0:
             raise _failure(step, "non-associative")
-        new = step.x[:ni] + step.x[ni:2 * ni]
-        change = float(np.max(np.abs(new - relaxed), initial=0.0))
         k = step.x[-1]
+        near = _closest(prog, c, capacity, k - 1e-10 * max(1.0, abs(k)), relaxed)
+        forces = near.x[:3 * ni] if near.status == 0 else step.x[:3 * ni]
+        new = forces[:ni] + forces[ni:2 * ni]
+        shear = forces[2 * ni:3 * ni]
         last = step
-        if change <= NONASSOCIATIVE_TOLERANCE and abs(k - k_old) <= NONASSOCIATIVE_TOLERANCE:
+        # converged: k settled, the normal forces of the interfaces at their shear capacity
+        # (the sliding ones) settled, and every shear within Coulomb's cone of its own normal
+        # force (statically admissible)
+        at_capacity = finite & (capacity > tol) & (np.abs(shear) >= capacity - tol)
+        settled = float(np.max(np.abs(new - relaxed)[at_capacity], initial=0.0))
+        admissible = bool(np.all(np.abs(shear[finite]) <= mu[finite] * new[finite] + tol))
+        if abs(k - k_old) <= tol and settled <= tol and admissible:
             return _result(c, prog, step, direction, "non-associative", iteration + 1, True)
-        relaxed = RELAXATION * new + (1.0 - RELAXATION) * relaxed
-        k_old = k
+        change = k - k_old
+        if change * change_old < 0.0 and abs(change) > tol:  # k oscillates: relax harder
+            beta = max(0.5 * beta, 0.02)
+        relaxed = beta * new + (1.0 - beta) * relaxed
+        k_old, change_old = k, change
     return _result(c, prog, last, direction, "non-associative",
                    NONASSOCIATIVE_ITERATIONS + 1, False)
 
