@@ -49,8 +49,8 @@ def run(args: argparse.Namespace) -> int:
 
     if args.min_pier_width:
         return _min_pier_width(args)
-    arch = options.arch_from_args(args)
-    if args.friction is not None:
+    arch = options.arch_from_args(args, assembly=True)
+    if args.friction is not None or hasattr(arch, "interfaces"):
         return _with_friction(args, arch)
     if args.arbiter:
         raise ValueError("--arbiter compares the friction laws: give --friction MU")
@@ -157,8 +157,9 @@ def _with_friction(args: argparse.Namespace, structure) -> int:
     from ..limit_analysis import assembly_limits
 
     if args.method != "static":
-        raise ValueError("--friction takes the static method (the linear program): the "
-                         "kinematic enumeration holds for mechanisms of hinges only")
+        raise ValueError("--friction and block assemblies take the static method (the linear "
+                         "program): the kinematic enumeration holds for chains of voussoirs "
+                         "whose joints do not slide")
     with options.analysing(args):
         results = assembly_limits(structure, friction=args.friction)
     governing = {d: max(laws.values(), key=lambda r: r.law == "non-associative")
@@ -180,8 +181,9 @@ def _with_friction(args: argparse.Namespace, structure) -> int:
             out["rigid_blocks_ramp"] = ramp.to_dict()
         print_json(out)
         return 0
-    print(f"Limit analysis with friction mu = {args.friction:g} at every interface: "
-          f"{describe_arch(structure)}")
+    print(f"Limit analysis of {_describe(structure)}; "
+          + ("no interface slides (give --friction MU to let them)" if args.friction is None
+             else f"friction mu = {args.friction:g} at every interface"))
     print(f"{'direction':<10} {'law':<16} {'k [-]':>8} {'tilt [deg]':>10} {'LPs':>4}  "
           "rock / slide (interfaces)")
     for direction, laws in results.items():
@@ -201,12 +203,22 @@ def _with_friction(args: argparse.Namespace, structure) -> int:
             print(f"{direction:<10} {'rigid blocks':<16} {k_text} {tilt} {'':>4}  "
                   f"{_listed(onset.rocking_joints)} / {_listed(onset.sliding_joints)}  "
                   f"(ramp, +/- {onset.error:.1e})")
-    print(f"k = {k:.4f}: the least of the two directions under the non-associative law (slip "
-          "without opening, the physical one; the associative multiplier is the classical "
-          "program's, which can overestimate)")
+    if args.friction is None:
+        print(f"k = {k:.4f}: the least of the two directions (Heyman: no sliding)")
+    else:
+        print(f"k = {k:.4f}: the least of the two directions under the non-associative law "
+              "(slip without opening, the physical one; the associative multiplier is the "
+              "classical program's, which can overestimate)")
     if args.plot:
         print(f"figure written to {args.plot}")
     return 0
+
+
+def _describe(structure) -> str:
+    if hasattr(structure, "interfaces"):
+        return (f"a block assembly of {structure.n_blocks} blocks and "
+                f"{structure.interfaces.a.size} interfaces")
+    return describe_arch(structure)
 
 
 def _listed(interfaces) -> str:

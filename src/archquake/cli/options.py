@@ -171,7 +171,7 @@ def given(args: argparse.Namespace, *names: str) -> list[str]:
 FIELD_OPTIONS = {
     **{name: f"--{name.replace('_', '-')}" for name in (
         "shape", "span", "rise", "radius", "embrace", "thickness", "voussoirs", "faces",
-        "geometry", "piers", "pier_left", "pier_right", "fill_cover", "fill_density",
+        "geometry", "units", "piers", "pier_left", "pier_right", "fill_cover", "fill_density",
         "fill_inertia", "fill_passive", "density", "epsilon", "seed", "motion", "amplitude",
         "duration", "cycles", "record", "suite", "scale_to", "reverse")},
     "params": "--param",
@@ -230,11 +230,18 @@ def add_shape_options(group, *, thickness: bool = True) -> None:
 
 
 def _add_geometry_file_option(group) -> None:
-    group.add_argument("--geometry", metavar="FILE.json",
+    group.add_argument("--geometry", metavar="FILE.json|FILE.dxf",
                        help="explicit arch, instead of the options above: a JSON file with "
                             "'angles' [rad], 'thicknesses' [m], 'radii' [m] per voussoir (a "
                             "circular arch), or 'blocks' (block polygons [[x, y], ...] [m], left "
-                            "to right, optionally 'springings')")
+                            "to right, optionally 'springings'); or any block assembly: a JSON "
+                            "file with 'blocks' and 'supports', or a DXF drawing of closed "
+                            "polylines (supports on a layer named SUPPORT or GROUND, else the "
+                            "ground is the lowest line)")
+    group.add_argument("--units", choices=("mm", "cm", "m", "in", "ft"), default=None,
+                       help="length unit of a DXF drawing, overriding its header's $INSUNITS "
+                            "(default: the header's; a drawing without units is taken in m, "
+                            "with a warning)")
 
 
 def add_arch_options(parser: argparse.ArgumentParser) -> None:
@@ -327,7 +334,7 @@ def structure_spec(args: argparse.Namespace, *, draw: bool = True):
     """
     from ..geometry.spec import SHAPE_FIELDS, STRUCTURE_FIELDS, StructureSpec
 
-    names = SHAPE_FIELDS + ("geometry",) + STRUCTURE_FIELDS + ("density",)
+    names = SHAPE_FIELDS + ("geometry", "units") + STRUCTURE_FIELDS + ("density",)
     if draw:
         names += ("epsilon", "seed")
     values = {name: getattr(args, name, None) for name in names}
@@ -365,15 +372,26 @@ def pier_from_option(option: str, text: str, *, blank_width: bool = False):
         return pier_field(field, text, blank_width=blank_width)
 
 
-def arches_from_args(args: argparse.Namespace):
-    """``(nominal, arch)``: the arch before and after the optional irregular draw."""
+ASSEMBLY_COMMANDS = ("limit", "rigid-blocks")
+"""The commands that take any block assembly (``--geometry`` with supports, or a drawing)."""
+
+
+def arches_from_args(args: argparse.Namespace, *, assembly: bool = False):
+    """``(nominal, arch)``: the arch before and after the optional irregular draw.
+    ``assembly``: whether the command takes any block assembly, else one is refused."""
     with naming_options():
-        return structure_spec(args).arches()
+        nominal, arch = structure_spec(args).arches()
+    if not assembly and hasattr(arch, "interfaces"):
+        raise ValueError(f"--geometry {args.geometry} describes a block assembly, not a chain of "
+                         "voussoirs between two springings: "
+                         f"{' and '.join(ASSEMBLY_COMMANDS)} analyse one, this command does not")
+    return nominal, arch
 
 
-def arch_from_args(args: argparse.Namespace):
-    """The arch described by the geometry options (after the irregular draw, if any)."""
-    return arches_from_args(args)[1]
+def arch_from_args(args: argparse.Namespace, *, assembly: bool = False):
+    """The arch described by the geometry options (after the irregular draw, if any);
+    ``assembly``: whether the command takes any block assembly."""
+    return arches_from_args(args, assembly=assembly)[1]
 
 
 def drawn(args: argparse.Namespace) -> str:

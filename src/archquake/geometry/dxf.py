@@ -91,8 +91,17 @@ def _outline(e, arc_chord_error: float | None, scale: float) -> np.ndarray:
         points = np.array([(*v.dxf.location[:2], v.dxf.get("bulge", 0.0)) for v in e.vertices],
                           dtype=float).reshape(-1, 3)
         closed = bool(e.is_closed)
-    if len(points) and not closed and np.all(points[0, :2] == points[-1, :2]):
-        closed = True  # drawn closed by repeating its first vertex
+    if len(points) > 1 and not closed:
+        # drawn closed by repeating its first vertex (to round-off of the drawing's size)
+        # or beyond it, retracing its first edges: the outline ends where it first returns
+        span = float(np.ptp(points[:, :2], axis=0).max())
+        back = np.flatnonzero(np.all(np.abs(points[1:, :2] - points[0, :2]) <= 1e-9 * span,
+                                     axis=1))
+        if back.size and back[0] + 1 >= 3 and np.allclose(
+                points[back[0] + 1:, :2], points[:len(points) - back[0] - 1, :2],
+                rtol=0.0, atol=1e-9 * span):
+            closed = True
+            points = points[:back[0] + 1]
     if not closed:
         raise ValueError(f"{_entity(e)}: an open polyline is no block outline (close it)")
     if np.any(points[:, 2] != 0.0):
@@ -107,10 +116,11 @@ def _outline(e, arc_chord_error: float | None, scale: float) -> np.ndarray:
             arc_chord_error / scale)], dtype=float)
         return flat
     xy = points[:, :2]
+    same = 1e-9 * float(np.ptp(xy, axis=0).max()) if len(xy) else 0.0
     keep = np.ones(len(xy), dtype=bool)
-    keep[1:] = np.any(xy[1:] != xy[:-1], axis=1)
+    keep[1:] = np.any(np.abs(xy[1:] - xy[:-1]) > same, axis=1)
     xy = xy[keep]
-    if len(xy) > 1 and np.all(xy[0] == xy[-1]):
+    while len(xy) > 1 and np.all(np.abs(xy[0] - xy[-1]) <= same):
         xy = xy[:-1]
     if len(xy) < 3:
         raise ValueError(f"{_entity(e)}: a block needs at least three distinct vertices, got "

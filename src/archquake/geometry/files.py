@@ -117,7 +117,8 @@ def _structure_from_dict(data: dict, density: float, replace_density: bool) -> S
 
 
 def load_arch(path: str | Path, *, density: float = DEFAULT_DENSITY,
-              replace_density: bool = False) -> BlockArch | BlockAssembly:
+              replace_density: bool = False, units: str | None = None
+              ) -> BlockArch | BlockAssembly:
     """The arch of a JSON file of any of the forms of the module, or the block assembly of a
     JSON file or a drawing (``.dxf``, :func:`archquake.geometry.dxf.read_dxf`, in the units
     of its header).
@@ -131,6 +132,8 @@ def load_arch(path: str | Path, *, density: float = DEFAULT_DENSITY,
     replace_density : bool, default False
         Whether ``density`` replaces the density the file gives (every file archquake writes
         gives one).
+    units : str, optional
+        A drawing's length unit, overriding its header's (:func:`~archquake.geometry.dxf.read_dxf`).
 
     Returns
     -------
@@ -149,7 +152,7 @@ def load_arch(path: str | Path, *, density: float = DEFAULT_DENSITY,
         from .dxf import read_dxf
 
         try:
-            return read_dxf(path, density=density)
+            return read_dxf(path, density=density, units=units)
         except ValueError as exc:
             raise ValueError(f"geometry file {str(path)!r}: {exc}") from exc
     data = read_json_file(path, "a JSON object with 'angles', 'thicknesses' and 'radii', or "

@@ -178,7 +178,11 @@ class StructureSpec:
         Voussoir faces (default ``"curved"``).
     geometry : str, optional
         Path of a geometry file (:func:`~archquake.geometry.load_arch`): the whole arch,
-        instead of the shape fields.
+        instead of the shape fields, or any block assembly (a JSON file with supports, or a
+        DXF drawing).
+    units : str, optional
+        The length unit of a DXF drawing (``"mm"``, ``"cm"``, ``"m"``, ``"in"``, ``"ft"``),
+        overriding its header's.
     piers : tuple or str, optional
         Two equal rectangular piers ``(width [m], height [m], courses)``, or the text
         ``"WIDTH,HEIGHT[,COURSES]"``: width from the intrados springing point outward, height
@@ -226,6 +230,7 @@ class StructureSpec:
     voussoirs: int | None = None
     faces: str | None = None
     geometry: str | None = None
+    units: str | None = None
     piers: tuple | str | None = None
     pier_left: tuple | str | None = None
     pier_right: tuple | str | None = None
@@ -333,10 +338,14 @@ class StructureSpec:
         from .shaped import shaped_arch
 
         density = DEFAULT_DENSITY if self.density is None else self.density
+        if self.units is not None and (self.geometry is None
+                                       or not str(self.geometry).lower().endswith(".dxf")):
+            raise DescriptionError("{units} is the length unit of a DXF drawing: give it with "
+                                   "{geometry} FILE.dxf")
         if self.geometry is not None:
             # a density given replaces the file's (every file archquake writes gives one)
             return load_arch(self.geometry, density=density,
-                             replace_density=self.density is not None)
+                             replace_density=self.density is not None, units=self.units)
         shape, kwargs = self.shape_arguments()
         thickness = self._value("thickness")
         if shape is None:

@@ -578,8 +578,9 @@ def _nonassociative(c: Contacts, prog: _Program, res, direction: str) -> Assembl
     for iteration in range(1, NONASSOCIATIVE_ITERATIONS + 1):
         capacity = mu * relaxed
         step = _solve(prog, c, capacity, None)
-        if step.status == 3:
-            # unbounded with these capacities: keep the previous capacities' answer
+        if step.status in (2, 3):
+            # no state within these capacities (or an unbounded k): the iteration cannot go
+            # on; the previous capacities' answer is returned, marked not converged
             return _result(c, prog, last, direction, "non-associative", iteration, False)
         if step.status != 0:
             raise _failure(step, "non-associative")
