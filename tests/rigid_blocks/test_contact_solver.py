@@ -54,7 +54,7 @@ def test_lemke_solves_the_lcp(seed):
     rng = np.random.default_rng(seed)
     contacts = int(rng.integers(1, 25))
     w, uf = contact_problem(rng, contacts, int(rng.integers(contacts, 2 * contacts + 3)))
-    mat, q, _ = contact_lcp(w, uf, float(rng.uniform(0.0, 1.2)), LEMKE_COMPLIANCE)
+    mat, q, _ = contact_lcp(w, uf, np.full(contacts, rng.uniform(0.0, 1.2)), LEMKE_COMPLIANCE)
     z, code, _ = lemke(mat, q, np.ones(q.size))
     assert code == LEMKE_SOLVED
     slack = q + mat @ z
@@ -74,7 +74,8 @@ def test_lemke_satisfies_coulomb_law(seed):
     mu = float(rng.uniform(0.0, 1.2))
     impulses = np.zeros(2 * contacts)
     states = np.zeros(contacts, dtype=np.int64)
-    code, _ = solve_contact_lcp(w, uf, mu, LEMKE_COMPLIANCE, impulses, states)
+    code, _ = solve_contact_lcp(w, uf, np.full(contacts, mu), LEMKE_COMPLIANCE, impulses,
+                                states)
     assert code == LEMKE_SOLVED
     assert coulomb_violation(w, uf, mu, impulses) < 10 * LEMKE_COMPLIANCE  # to the compliance
     pn, pt = impulses[0::2], impulses[1::2]
@@ -92,7 +93,7 @@ def test_one_contact_is_the_exact_local_solution(ufn, uft, mu):
     slide either way, separation)."""
     w = np.array([[2.0, 0.3], [0.3, 1.5]])
     impulses = np.zeros(2)
-    code, _ = solve_contact_lcp(w, np.array([ufn, uft]), mu, 0.0, impulses,
+    code, _ = solve_contact_lcp(w, np.array([ufn, uft]), np.full(1, mu), 0.0, impulses,
                                 np.zeros(1, dtype=np.int64))
     assert code == LEMKE_SOLVED
     exact = local_coulomb(ufn, uft, w[0, 0], w[0, 1], w[1, 1], mu)
@@ -108,7 +109,7 @@ def test_degenerate_problem_of_an_arch_does_not_end_on_a_ray():
     for _ in range(20):
         w, uf = contact_problem(rng, 60, 70)
         impulses = np.zeros(120)
-        code, _ = solve_contact_lcp(w, uf, 0.8, LEMKE_COMPLIANCE, impulses,
+        code, _ = solve_contact_lcp(w, uf, np.full(60, 0.8), LEMKE_COMPLIANCE, impulses,
                                     np.zeros(60, dtype=np.int64))
         assert code == LEMKE_SOLVED
         assert coulomb_violation(w, uf, 0.8, impulses) < 10 * LEMKE_COMPLIANCE

@@ -17,7 +17,14 @@ equivalent coefficient of restitution), :mod:`.plotting` (figures and animations
 imported on demand).
 """
 
-from .assembly import GROUND, Assembly, from_arch, rectangular_block
+from .assembly import (
+    GROUND,
+    Assembly,
+    from_arch,
+    from_block_assembly,
+    rectangular_block,
+    running_bond_wall,
+)
 from .dynamics import (
     MAX_BLOCKS,
     BlockHistory,
@@ -30,5 +37,6 @@ from .model import RigidBlockModel
 
 __all__ = [
     "GROUND", "MAX_BLOCKS", "Assembly", "BlockHistory", "BlockOutcome", "BlockSettings",
-    "RigidBlockModel", "block_outcome", "from_arch", "rectangular_block", "simulate_blocks",
+    "RigidBlockModel", "block_outcome", "from_arch", "from_block_assembly", "rectangular_block",
+    "running_bond_wall", "simulate_blocks",
 ]

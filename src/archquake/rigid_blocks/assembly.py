@@ -44,6 +44,12 @@ from ..geometry.fill import check_dynamic_fill
 GROUND = -1
 """Body index of the ground (the supports) [-]; in the frame of the ground it does not move."""
 
+STICK_FRICTION = 100.0
+"""Coulomb coefficient [-] with which the solver takes a joint that cannot slide (friction
+``inf``): a contact slides only once its tangential impulse exceeds 100 times its normal one
+(a friction angle of 89.4 degrees), i.e. not while it carries any load, and Lemke's tableau
+(:mod:`archquake.rigid_blocks.lemke`) stays finite."""
+
 FACE_EXTENSION = 0.1
 """Default extension of the face of body a beyond each end of a joint, as a fraction of the
 joint's length [-]: a corner that slides a little past the end of the opposite face stays in
@@ -92,6 +98,10 @@ class Assembly:
         are scaled.
     name : str
         Description.
+    friction : array of float, shape (nj,), optional
+        Coulomb coefficient of every joint [-], >= 0 (``inf``: the joint cannot slide, solved
+        as :data:`STICK_FRICTION`); None (the default): every joint takes the analysis's
+        ``BlockSettings.friction``. Where given, it is used instead of the settings'.
 
     Raises
     ------
@@ -100,7 +110,7 @@ class Assembly:
         non-finite entry, a joint pairs a body with itself or an index outside
         ``GROUND .. nb - 1``, a joint has length 0, a normal is not perpendicular to its joint
         (to 1e-9 in the cosine), a face does not contain its joint, the crown block is not a
-        block, or the thickness is not finite and > 0.
+        block, the thickness is not finite and > 0, or a friction coefficient is nan or < 0.
 
     Notes
     -----
@@ -127,6 +137,7 @@ class Assembly:
     crown: tuple = (0, (0.0, 0.0))
     thickness: float = 1.0
     name: str = ""
+    friction: np.ndarray | None = None
     _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False, hash=False)
 
     def __post_init__(self):
@@ -199,6 +210,13 @@ class Assembly:
         object.__setattr__(self, "outlines", tuple(_frozen(o) for o in self.outlines))
         object.__setattr__(self, "crown", (int(crown_block), _frozen(crown_point)))
         object.__setattr__(self, "thickness", thickness)
+        if self.friction is not None:
+            friction = _frozen(np.broadcast_to(np.asarray(self.friction, dtype=float), (nj,))
+                               if np.ndim(self.friction) == 0 else self.friction)
+            if friction.shape != (nj,) or np.any(np.isnan(friction)) or np.any(friction < 0):
+                raise ValueError(f"friction must be None or {nj} Coulomb coefficients >= 0 [-] "
+                                 f"(inf: no sliding), got {np.asarray(self.friction).tolist()}")
+            object.__setattr__(self, "friction", friction)
 
     @property
     def n_blocks(self) -> int:
@@ -341,3 +359,186 @@ def rectangular_block(width: float, height: float, density: float = 2000.0) -> A
         outlines=(outline,), crown=(0, (-b, h)),
         thickness=float(width), name=f"rectangular block {width:g} m x {height:g} m",
     )
+
+
+def from_block_assembly(blocks, *, thickness: float | None = None) -> Assembly:
+    r"""The rigid-block model of a general block assembly (a wall, a stack, any planar set of
+    blocks on fixed supports).
+
+    Reads, duck-typed, the attributes of :class:`archquake.geometry.assembly.BlockAssembly`:
+    ``polygons`` (every block's outline [m]), ``mass`` [kg/m], ``centroid`` [m], ``inertia``
+    [kg m], and its ``interfaces``: ``a``, ``b`` (bodies, ``-1`` for a support), ``p0``,
+    ``p1`` (ends [m]), ``normal`` (from a into b [-]) and ``friction`` (Coulomb coefficient
+    of every interface [-], ``inf``: no sliding). Interface ``j`` becomes joint ``j`` (the
+    solver renumbers the joints for a small bandwidth and gives every result back in this
+    order: :func:`archquake.rigid_blocks.dynamics.joint_order`).
+
+    Two choices that an arch makes by its shape are made here for any assembly:
+
+    - the **crown** (the point whose drop is reported, ``max_crown_drop``) is the top of the
+      highest block, among those whose top is highest (to 1e-9 of the assembly's height) the
+      one whose centroid is nearest the middle of the assembly's width: for a wall, the middle
+      of its top course (any block's centroid falling by ``collapse_drop`` thicknesses is a
+      collapse whatever the crown);
+    - the **thickness** (the length scale of the collapse and rest thresholds and of the
+      default time step, :func:`~archquake.rigid_blocks.dynamics.structure_time_step`) is,
+      unless given, the median over the blocks of the shorter side of each block's bounding
+      box: for a wall of bricks laid flat, the height of a course (a brick falling by one course
+      is a collapse; a contact closing at :math:`\sqrt{g t}` sinks by 1 % of a course in a
+      step).
+
+    Parameters
+    ----------
+    blocks : BlockAssembly
+        The assembly (or any object with the attributes above).
+    thickness : float, optional
+        Length scale [m], > 0 (default: above).
+
+    Returns
+    -------
+    Assembly
+        ``n_blocks`` blocks and one joint per interface, with the interfaces' friction
+        (:attr:`Assembly.friction`).
+
+    Raises
+    ------
+    ValueError
+        If an attribute is missing, or the data do not make a valid :class:`Assembly`.
+    """
+    try:
+        polygons = [np.asarray(p, dtype=float) for p in blocks.polygons]
+        masses, centroids = blocks.mass, blocks.centroid
+        inertias, interfaces = blocks.inertia, blocks.interfaces
+        a, b = np.asarray(interfaces.a), np.asarray(interfaces.b)
+        p0, p1 = np.asarray(interfaces.p0, float), np.asarray(interfaces.p1, float)
+        normals, friction = interfaces.normal, interfaces.friction
+    except AttributeError as exc:
+        raise ValueError(f"blocks must be a block assembly (polygons, mass, centroid, inertia, "
+                         f"interfaces a/b/p0/p1/normal/friction): {exc}") from exc
+    if not polygons:
+        raise ValueError("blocks must hold at least one block")
+    tops = np.array([p[:, 1].max() for p in polygons])
+    lows = np.array([p[:, 1].min() for p in polygons])
+    left = min(p[:, 0].min() for p in polygons)
+    right = max(p[:, 0].max() for p in polygons)
+    centroids = np.asarray(centroids, dtype=float)
+    span = max(float(tops.max() - lows.min()), 1e-300)
+    highest = np.flatnonzero(tops >= tops.max() - 1e-9 * span)
+    crown = int(highest[np.argmin(np.abs(centroids[highest, 0] - 0.5 * (left + right)))])
+    if thickness is None:
+        sides = [min(np.ptp(p[:, 0]), np.ptp(p[:, 1])) for p in polygons]
+        thickness = float(np.median(sides))
+    points = np.stack((p0, p1), axis=1) if p0.size else np.zeros((0, 2, 2))
+    return Assembly(
+        masses=masses, centroids=centroids, inertias=inertias,
+        joint_bodies=np.column_stack((a, b)), joint_points=points, joint_normals=normals,
+        outlines=tuple(np.vstack((p, p[:1])) for p in polygons),
+        crown=(crown, (centroids[crown, 0], tops[crown])), thickness=thickness,
+        friction=friction,
+        name=f"assembly of {len(polygons)} blocks and {a.size} interfaces",
+    )
+
+
+def running_bond_wall(courses: int, blocks: int, length: float = 0.4, height: float = 0.2,
+                      density: float = 2000.0, friction: float = 0.6) -> Assembly:
+    r"""A dry-stone wall in running bond on a rigid base, for checks and benchmarks.
+
+    Course ``k`` (``0 .. courses - 1``, from the base) lies between ``y = k h`` and
+    ``(k + 1) h``; an even course is ``blocks`` blocks ``length`` long from ``x = 0``, an odd
+    one half a block, ``blocks - 1`` blocks and half a block (``blocks + 1`` in all), so every
+    head joint lies at the middle of the blocks above and below. The interfaces are numbered
+    as a geometry code that collects them by kind might: the bases of course 0 on the ground
+    (``"foundation"``), then the bed joints course by course, then the head joints course by
+    course; so a block's bed and head joints lie far apart in the numbering (the solver
+    renumbers them, :func:`archquake.rigid_blocks.dynamics.joint_order`). The wall is built as
+    the duck-typed block assembly that :func:`from_block_assembly` reads (its crown: the middle
+    block of the top course; its thickness: ``min(length / 2, height)``, the course height for
+    bricks laid flat).
+
+    Parameters
+    ----------
+    courses : int
+        Number of courses [-], >= 1.
+    blocks : int
+        Blocks of an even course [-], >= 1.
+    length, height : float
+        Size of a whole block [m], > 0.
+    density : float
+        Density [kg/m^3], > 0.
+    friction : float
+        Coulomb coefficient of every interface [-], >= 0 (``inf``: nothing slides).
+
+    Returns
+    -------
+    Assembly
+        About ``courses * (blocks + 1/2)`` blocks (:func:`from_block_assembly`).
+
+    Raises
+    ------
+    ValueError
+        If a count is not an integer >= 1 or a size, the density or the friction is out of
+        range.
+    """
+    from types import SimpleNamespace
+
+    for name, value in (("courses", courses), ("blocks", blocks)):
+        if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < 1:
+            raise ValueError(f"{name} must be an integer >= 1, got {value!r}")
+    for name, value in (("length", length), ("height", height), ("density", density)):
+        if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
+            raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
+    if not (isinstance(friction, int | float) and friction >= 0):
+        raise ValueError(f"friction must be a number >= 0 (inf: no sliding), got {friction!r}")
+    spans = []  # per course: the x ends of its blocks
+    for k in range(courses):
+        if k % 2 == 0:
+            ends = length * np.arange(blocks + 1)
+        else:
+            ends = np.concatenate(([0.0], length * (np.arange(blocks) + 0.5),
+                                   [blocks * length]))
+        spans.append(ends)
+    polygons, first = [], []
+    for k, ends in enumerate(spans):
+        first.append(len(polygons))
+        y0, y1 = k * height, (k + 1) * height
+        for x0, x1 in zip(ends[:-1], ends[1:], strict=True):
+            polygons.append(np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]]))
+    a, b, p0, p1, normal = [], [], [], [], []
+
+    def interface(body_a, body_b, q0, q1, n):
+        a.append(body_a)
+        b.append(body_b)
+        p0.append(q0)
+        p1.append(q1)
+        normal.append(n)
+
+    for i, (x0, x1) in enumerate(zip(spans[0][:-1], spans[0][1:], strict=True)):
+        interface(GROUND, i, (x1, 0.0), (x0, 0.0), (0.0, 1.0))
+    for k in range(courses - 1):  # bed joints: every overlap of a block and one above
+        y = (k + 1) * height
+        lower, upper = spans[k], spans[k + 1]
+        for i in range(lower.size - 1):
+            for j in range(upper.size - 1):
+                lo, hi = max(lower[i], upper[j]), min(lower[i + 1], upper[j + 1])
+                if hi - lo > 1e-9 * length:
+                    interface(first[k] + i, first[k + 1] + j, (hi, y), (lo, y), (0.0, 1.0))
+    for k, ends in enumerate(spans):  # head joints, left block into right
+        for i in range(1, ends.size - 1):
+            interface(first[k] + i - 1, first[k] + i, (ends[i], k * height),
+                      (ends[i], (k + 1) * height), (1.0, 0.0))
+    areas = np.array([np.ptp(p[:, 0]) * np.ptp(p[:, 1]) for p in polygons])
+    widths = np.array([np.ptp(p[:, 0]) for p in polygons])
+    mass = density * areas
+    ni = len(a)
+    wall = SimpleNamespace(
+        polygons=tuple(polygons), mass=mass,
+        centroid=np.array([p.mean(axis=0) for p in polygons]),
+        inertia=mass * (widths**2 + height**2) / 12.0,
+        interfaces=SimpleNamespace(a=np.array(a), b=np.array(b), p0=np.array(p0, dtype=float),
+                                   p1=np.array(p1, dtype=float),
+                                   normal=np.array(normal, dtype=float),
+                                   friction=np.full(ni, float(friction))))
+    assembly = from_block_assembly(wall, thickness=min(0.5 * length, height))
+    object.__setattr__(assembly, "name", f"running-bond wall of {courses} courses, "
+                       f"{assembly.n_blocks} blocks {length:g} m x {height:g} m")
+    return assembly

@@ -198,8 +198,8 @@ def solve_contacts(v, inv_mass, contact_bodies, jac, w, active, impulse, mu, tol
         The active set.
     impulse : array (nc, 2)
         In: the warm start; out: the impulses ``(P_n, P_t)`` [N s/m].
-    mu : float
-        Friction coefficient [-].
+    mu : array (nc,)
+        Friction coefficient of every contact [-].
     tol_impulse : float
         Largest change of an impulse in the last sweep [N s/m].
     max_iterations : int
@@ -238,7 +238,7 @@ def solve_contacts(v, inv_mass, contact_bodies, jac, w, active, impulse, mu, tol
             pn, pt = impulse[c, 0], impulse[c, 1]
             ufn = un - (w[c, 0] * pn + w[c, 1] * pt)
             uft = ut - (w[c, 1] * pn + w[c, 2] * pt)
-            new_pn, new_pt = local_coulomb(ufn, uft, w[c, 0], w[c, 1], w[c, 2], mu)
+            new_pn, new_pt = local_coulomb(ufn, uft, w[c, 0], w[c, 1], w[c, 2], mu[c])
             dpn, dpt = new_pn - pn, new_pt - pt
             if dpn != 0.0 or dpt != 0.0:
                 apply_impulse(v, inv_mass, a, b, jac, c, dpn, dpt)
@@ -428,7 +428,7 @@ def _state_system(m, idx, state, mu, kl, wband, uf, aband, rhs, scale, full):
             for off in range(2 * kl + 1):
                 aband[rt, off] = 0.0
             aband[rt, kl] = 1.0
-            aband[rt, kl - 1] = -mu if st == 2 else mu
+            aband[rt, kl - 1] = -mu[idx[i]] if st == 2 else mu[idx[i]]
             rhs[rt] = 0.0
     for r in range(size):
         scale[r] = abs(aband[r, kl])
@@ -467,7 +467,7 @@ def _switch_states(m, idx, state, mu, p_tol, u_tol, kl, wband, uf, impulses, sol
         elif pn < -p_tol:
             new = 0
         elif st == 1:
-            if abs(pt) > mu * pn + p_tol:
+            if abs(pt) > mu[c] * pn + p_tol:
                 new = 2 if pt > 0.0 else 3
         elif st == 2:
             if _row_velocity(2 * i + 1, size, kl, wband, uf, impulses) > u_tol:
@@ -548,8 +548,8 @@ def solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse, state, m
         Out: the impulses ``(P_n, P_t)`` [N s/m] (0 for inactive contacts).
     state : array of int (nc,)
         In: the previous step's states; out: the new ones.
-    mu : float
-        Friction coefficient [-].
+    mu : array (nc,)
+        Friction coefficient of every contact [-].
     p_tol, u_tol : float
         Tolerances :math:`\epsilon_P` [N s/m] and :math:`\epsilon_u` [m/s] of the switching
         tests.
@@ -658,7 +658,10 @@ def solve_lemke(v, inv_mass, contact_bodies, jac, active, impulse, state, mu, p_
     free = uf[:size].copy()
     impulses = np.zeros(size)
     states = np.zeros(m, dtype=np.int64)
-    code, pivots = solve_contact_lcp(dense, free, mu, LEMKE_COMPLIANCE, impulses, states)
+    mu_active = np.empty(m)
+    for i in range(m):
+        mu_active[i] = mu[idx[i]]
+    code, pivots = solve_contact_lcp(dense, free, mu_active, LEMKE_COMPLIANCE, impulses, states)
     if code != LEMKE_SOLVED:
         return pivots, False
     for i in range(m):

@@ -71,14 +71,15 @@ undeformed centroid [m] of every block."""
 BODY_MASS, BODY_INERTIA, BODY_X, BODY_Y = range(4)
 
 CONTACT_FIELDS = ("ra_x", "ra_y", "rb_x", "rb_y", "normal_x", "normal_y", "tangent_x",
-                  "tangent_y", "offset", "face_lo", "face_hi", "length")
-"""Columns of the contact array ``contacts`` (nc, 12), contact ``2 j + k`` being end ``k`` of joint
+                  "tangent_y", "offset", "face_lo", "face_hi", "length", "friction")
+"""Columns of the contact array ``contacts`` (nc, 13), contact ``2 j + k`` being end ``k`` of joint
 ``j``: the undeformed contact point relative to the centroid of body a and of body b (absolute for
 the ground) [m], the joint's unit normal and tangent [-], the position of the end along the joint
-(0 or its length), the face of body a along the joint and the joint's length [m]. The bodies
+(0 or its length), the face of body a along the joint and the joint's length [m], and the
+joint's own Coulomb coefficient [-] (nan: the analysis's, ``BlockSettings.friction``). The bodies
 themselves are the int array ``contact_bodies`` (nc, 2): ``(a, b)``, -1 for the ground."""
 
-RA_X, RA_Y, RB_X, RB_Y, N_X, N_Y, T_X, T_Y, OFFSET, FACE_LO, FACE_HI, LENGTH = range(12)
+RA_X, RA_Y, RB_X, RB_Y, N_X, N_Y, T_X, T_Y, OFFSET, FACE_LO, FACE_HI, LENGTH, FRICTION = range(13)
 
 # ---------------------------------------------------------------------------------------------
 # Contacts: geometry, relative velocities, impulses
@@ -116,7 +117,7 @@ def contact_geometry(q, bodies, contacts, contact_bodies, trig, gap, slip, valid
         Displacements ``(x, y, theta)`` of the blocks [m, m, rad].
     bodies : array (nb, 4)
         The blocks (:data:`BODY_FIELDS`).
-    contacts : array (nc, 12)
+    contacts : array (nc, 13)
         The contacts (:data:`CONTACT_FIELDS`).
     contact_bodies : array of int (nc, 2)
         Bodies a and b of every contact (-1 for the ground).

@@ -113,7 +113,7 @@ from ..geometry import GRAVITY, BlockArch
 from ..ground_motion import LINEAR, STEP, GroundMotion
 from ..status import Status
 from . import solver
-from .assembly import GROUND, Assembly, from_arch
+from .assembly import GROUND, STICK_FRICTION, Assembly, from_arch
 from .contact_problem import ACTIVE_SET_SOLVES
 from .contacts import CONTACT_FIELDS
 
@@ -130,6 +130,14 @@ built. Above about ten blocks the active-set method may also cycle at the onset 
 an impact; the step is then solved by Lemke's algorithm, which cannot cycle and costs a dense
 tableau (:mod:`archquake.rigid_blocks.contact_problem`, "Contact problem"): most of the time of an
 analysis of 100 blocks."""
+
+MAX_ASSEMBLY_BLOCKS = 400
+r"""Largest number of blocks of an :class:`Assembly` given as such (a wall, any planar set of
+blocks) [-]. Its joints are renumbered to a small bandwidth (:func:`joint_order`), so a step
+costs what the bandwidth allows: a wall in running bond of 200 blocks and about 400 joints runs
+at rest in milliseconds per step and moving in tens (``benchmarks/rigid_block_wall.py``). An
+arch's voussoirs stay limited to :data:`MAX_BLOCKS` (a chain that rocks as a mechanism: many
+joints change state at once)."""
 
 CONTACT_STEP_FRACTION = 0.02
 r"""Longest time step, as a fraction of :math:`\sqrt{t / g}` (``t`` the thickness of the
@@ -481,11 +489,103 @@ class BlockHistory:
         return out
 
 
-def contact_arrays(assembly: Assembly) -> dict[str, np.ndarray]:
-    """The packed arrays of the compiled solver: contact ``2 j + k`` is end ``k`` of joint j.
+def joint_half_bandwidth(joint_bodies, n_blocks: int, order=None) -> int:
+    r"""Half-bandwidth of the contact problem in the joints [-]: the largest distance
+    ``|k - l|`` between the positions of two joints that touch one block, the joints numbered
+    in ``order`` (the caller's order if None).
+
+    With the two contacts of the joint at position ``k`` numbered ``2k, 2k + 1``, the
+    half-bandwidth of the contacts that :func:`~archquake.rigid_blocks.contact_problem.incidence`
+    computes is ``2 b + 1`` and that of the impulses ``4 b + 3`` (two per contact): a
+    contact problem costs :math:`O(n\,k_l^2)` per linear solve.
+
+    Parameters
+    ----------
+    joint_bodies : array of int (nj, 2)
+        Bodies of every joint (:data:`GROUND` for a support).
+    n_blocks : int
+        Number of blocks.
+    order : array of int (nj,), optional
+        Joint at every position: position ``k`` holds the caller's joint ``order[k]``.
+
+    Returns
+    -------
+    int
+        ``b`` [-] (0 if no block has two joints).
+    """
+    bodies = np.asarray(joint_bodies)
+    nj = bodies.shape[0]
+    position = np.arange(nj)
+    if order is not None:
+        position = np.empty(nj, dtype=np.int64)
+        position[np.asarray(order)] = np.arange(nj)
+    lo = np.full(n_blocks, nj, dtype=np.int64)
+    hi = np.full(n_blocks, -1, dtype=np.int64)
+    for side in range(2):
+        body = bodies[:, side]
+        block = body >= 0
+        np.minimum.at(lo, body[block], position[block])
+        np.maximum.at(hi, body[block], position[block])
+    used = hi >= 0
+    return int((hi[used] - lo[used]).max(initial=0))
+
+
+def joint_order(assembly: Assembly) -> np.ndarray:
+    r"""The order in which the solver numbers the joints: position ``k`` holds joint
+    ``order[k]`` of the assembly (read-only (nj,) int; cached on the assembly).
+
+    The Delassus matrix of the contact problem is a band matrix whose half-bandwidth is set by
+    the joints that touch one block (:func:`joint_half_bandwidth`): small for a chain numbered
+    along it (an arch), large for a wall whose joints come in an arbitrary order. The joints are
+    renumbered by the reverse Cuthill-McKee ordering [1]_ of their adjacency graph (two joints
+    adjacent when they touch one block; ``scipy.sparse.csgraph.reverse_cuthill_mckee``), and
+    the new order is kept only where it makes the half-bandwidth strictly smaller: an arch, or
+    any structure already well numbered, keeps its own order (the identity), so its analyses
+    are unchanged to the bit. Every output of an analysis is given back in the assembly's joint
+    order (:func:`simulate_blocks`).
+
+    Parameters
+    ----------
+    assembly : Assembly
+        The blocks and joints.
+
+    Returns
+    -------
+    array of int (nj,)
+        The permutation.
+
+    References
+    ----------
+    .. [1] A. George, J. W. H. Liu, "Computer solution of large sparse positive definite
+       systems", Prentice-Hall (1981), Sec. 4.3 (the reverse Cuthill-McKee algorithm).
+    """
+    if "joint_order" not in assembly._cache:
+        from scipy.sparse import csr_matrix
+        from scipy.sparse.csgraph import reverse_cuthill_mckee
+
+        bodies, nb, nj = assembly.joint_bodies, assembly.n_blocks, assembly.n_joints
+        order = np.arange(nj)
+        rows = np.concatenate([np.flatnonzero(bodies[:, side] >= 0) for side in range(2)])
+        cols = np.concatenate([bodies[bodies[:, side] >= 0, side] for side in range(2)])
+        incidence = csr_matrix((np.ones(rows.size), (rows, cols)), shape=(nj, nb))
+        adjacency = (incidence @ incidence.T).tocsr()
+        candidate = np.asarray(reverse_cuthill_mckee(adjacency, symmetric_mode=True),
+                               dtype=np.int64)
+        if (joint_half_bandwidth(bodies, nb, candidate)
+                < joint_half_bandwidth(bodies, nb)):
+            order = candidate
+        order = np.ascontiguousarray(order, dtype=np.int64)
+        order.setflags(write=False)
+        assembly._cache["joint_order"] = order
+    return assembly._cache["joint_order"]
+
+
+def contact_arrays(assembly: Assembly, reorder: bool = True) -> dict[str, np.ndarray]:
+    """The packed arrays of the compiled solver: contact ``2 k + e`` is end ``e`` of the joint
+    at position ``k`` of :func:`joint_order` (``reorder``; joint ``k`` itself without).
 
     ``bodies`` (nb, 4): mass [kg/m], inertia [kg m] and centroid [m] of every block
-    (:data:`archquake.rigid_blocks.contacts.BODY_FIELDS`); ``contacts`` (nc, 12): the contact
+    (:data:`archquake.rigid_blocks.contacts.BODY_FIELDS`); ``contacts`` (nc, 13): the contact
     point relative to the centroid of body a and of body b in the undeformed configuration (the
     absolute point for the ground) [m], the joint's unit normal and tangent [-], the position of
     the end along the joint (0 or its length), the face of body a along the joint and the joint's
@@ -503,52 +603,67 @@ def contact_arrays(assembly: Assembly) -> dict[str, np.ndarray]:
         The three arrays, contiguous and writable (one compiled signature whatever the
         assembly's arrays are), ``nc = 2 nj``; computed once and cached on the assembly.
     """
-    if "contacts" not in assembly._cache:
+    key = "contacts" if reorder else "contacts_natural"
+    if key not in assembly._cache:
         nj = assembly.n_joints
-        ca = np.repeat(assembly.joint_bodies[:, 0], 2)
-        cb = np.repeat(assembly.joint_bodies[:, 1], 2)
-        points = assembly.joint_points.reshape(2 * nj, 2)
+        order = joint_order(assembly) if reorder else np.arange(nj)
+        joint_bodies = assembly.joint_bodies[order]
+        joint_points = assembly.joint_points[order]
+        ca = np.repeat(joint_bodies[:, 0], 2)
+        cb = np.repeat(joint_bodies[:, 1], 2)
+        points = joint_points.reshape(2 * nj, 2)
         centroid = np.vstack((assembly.centroids, np.zeros((1, 2))))  # index -1: the ground
-        lengths = assembly.joint_lengths
-        tangents = (assembly.joint_points[:, 1] - assembly.joint_points[:, 0]) / lengths[:, None]
+        lengths = assembly.joint_lengths[order]
+        tangents = (joint_points[:, 1] - joint_points[:, 0]) / lengths[:, None]
+        faces = assembly.face_extents[order]
         columns = {
             "ra": points - centroid[ca], "rb": points - centroid[cb],
-            "normal": np.repeat(assembly.joint_normals, 2, axis=0),
+            "normal": np.repeat(assembly.joint_normals[order], 2, axis=0),
             "tangent": np.repeat(tangents, 2, axis=0),
             "offset": np.column_stack((np.zeros(nj), lengths)).reshape(-1),
-            "face_lo": np.repeat(assembly.face_extents[:, 0], 2),
-            "face_hi": np.repeat(assembly.face_extents[:, 1], 2),
+            "face_lo": np.repeat(faces[:, 0], 2),
+            "face_hi": np.repeat(faces[:, 1], 2),
             "length": np.repeat(lengths, 2),
+            "friction": np.repeat(np.full(nj, np.nan) if assembly.friction is None else
+                                  np.minimum(assembly.friction[order], STICK_FRICTION), 2),
         }
         contacts = np.column_stack([np.reshape(x, (2 * nj, -1)) for x in columns.values()])
         assert contacts.shape[1] == len(CONTACT_FIELDS)
         bodies = np.column_stack((assembly.masses, assembly.inertias, assembly.centroids))
-        assembly._cache["contacts"] = {
+        assembly._cache[key] = {
             "bodies": np.ascontiguousarray(bodies, dtype=float),
             "contacts": np.ascontiguousarray(contacts, dtype=float),
             "contact_bodies": np.ascontiguousarray(np.column_stack((ca, cb)), dtype=np.int64),
         }
-    return assembly._cache["contacts"]
+    return assembly._cache[key]
 
 
-def check_size(n_blocks: int) -> None:
-    """Refuse a structure of more than :data:`MAX_BLOCKS` blocks.
+def check_size(n_blocks: int, limit: int | None = None) -> None:
+    """Refuse a structure of more than ``limit`` blocks.
 
     Parameters
     ----------
     n_blocks : int
         Number of blocks of the structure (of voussoirs of an arch) [-].
+    limit : int, optional
+        The largest number of blocks [-]: :data:`MAX_BLOCKS` (the default, an arch's
+        voussoirs) or :data:`MAX_ASSEMBLY_BLOCKS` (an :class:`Assembly` given as such).
 
     Raises
     ------
     ValueError
-        If ``n_blocks > MAX_BLOCKS``.
+        If ``n_blocks > limit``.
     """
-    if n_blocks > MAX_BLOCKS:
-        raise ValueError(f"the rigid-block model takes at most {MAX_BLOCKS} blocks (MAX_BLOCKS), "
-                         f"this structure has {n_blocks} (voussoirs or blocks): the solves per "
-                         f"step grow with the blocks that move at once, and an analysis would "
-                         f"take minutes; use fewer voussoirs")
+    if limit is None or limit == MAX_BLOCKS:
+        if n_blocks > MAX_BLOCKS:
+            raise ValueError(f"the rigid-block model takes at most {MAX_BLOCKS} blocks "
+                             f"(MAX_BLOCKS), this structure has {n_blocks} (voussoirs or "
+                             f"blocks): the solves per step grow with the blocks that move at "
+                             f"once, and an analysis would take minutes; use fewer voussoirs")
+    elif n_blocks > limit:
+        raise ValueError(f"the rigid-block model takes an assembly of at most {limit} blocks "
+                         f"(MAX_ASSEMBLY_BLOCKS), this one has {n_blocks}: a step's contact "
+                         f"problem grows with the blocks and their joints' bandwidth")
 
 
 def structure_assembly(structure) -> Assembly:
@@ -561,7 +676,7 @@ def structure_assembly(structure) -> Assembly:
         an arch is converted).
     """
     if isinstance(structure, Assembly):
-        check_size(structure.n_blocks)
+        check_size(structure.n_blocks, MAX_ASSEMBLY_BLOCKS)
         return structure
     if isinstance(structure, BlockArch):
         check_size(structure.n_voussoirs)
@@ -735,11 +850,12 @@ def _initial_state(assembly: Assembly, initial) -> tuple[np.ndarray, np.ndarray]
 
 def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None, *,
          initial=None, record_every: int = 0, t_end: float | None = None,
-         tail: float = 0.5):
+         tail: float = 0.5, reorder: bool = True):
     """Check the input, scale the thresholds to the structure and run the compiled driver.
 
-    Returns ``(assembly, settings, motion, outcome, records)`` (records as
-    :func:`archquake.rigid_blocks.solver.run` returns them).
+    Returns ``(assembly, settings, motion, outcome, records, order)`` (records as
+    :func:`archquake.rigid_blocks.solver.run` returns them, their contacts numbered in the
+    joint order ``order``, :func:`joint_order` if ``reorder``).
     """
     assembly = structure_assembly(structure)
     settings = BlockSettings() if settings is None else settings
@@ -777,7 +893,8 @@ def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None,
         n_steps = int(math.ceil(span / h)) + (tail_steps if record_every else 0)
     thickness = assembly.thickness
     total_mass = assembly.total_mass
-    arrays = contact_arrays(assembly)
+    arrays = contact_arrays(assembly, reorder)
+    order = joint_order(assembly) if reorder else np.arange(assembly.n_joints)
     # writeable copies: one compiled signature whether the arrays are frozen or unpickled
     kind, params, times, values = (np.array(x, dtype=float) if i else x
                                    for i, x in enumerate(motion.compiled()))
@@ -813,11 +930,11 @@ def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None,
         mean_iterations=s["iterations"] / max(steps, 1), fallback_steps=int(s["fallbacks"]),
         unconverged_steps=int(s["unconverged_steps"]),
     )
-    return assembly, settings, motion, outcome, records
+    return assembly, settings, motion, outcome, records, order
 
 
 def block_outcome(structure, motion: GroundMotion | None, settings: BlockSettings | None = None,
-                  *, initial=None) -> BlockOutcome:
+                  *, initial=None, reorder: bool = True) -> BlockOutcome:
     """Outcome of the rigid-block model under a ground motion (no record; stops when decided).
 
     Parameters
@@ -831,6 +948,9 @@ def block_outcome(structure, motion: GroundMotion | None, settings: BlockSetting
     initial : (array (nb, 3), array (nb, 3)), optional
         Initial displacements ``(x, y, theta)`` [m, m, rad] and velocities [m/s, m/s, rad/s]
         of the blocks; default: at rest, undeformed.
+    reorder : bool
+        Number the joints in the solver by :func:`joint_order` (default) or in the assembly's
+        own order (False, for comparison).
 
     Returns
     -------
@@ -856,13 +976,13 @@ def block_outcome(structure, motion: GroundMotion | None, settings: BlockSetting
     >>> outcome.status.label, outcome.decided
     ('rest', True)
     """
-    return _run(structure, motion, settings, initial=initial)[3]
+    return _run(structure, motion, settings, initial=initial, reorder=reorder)[3]
 
 
 def simulate_blocks(structure, motion: GroundMotion | None,
                     settings: BlockSettings | None = None, *, initial=None,
                     record_every: int = 1, t_end: float | None = None,
-                    tail: float = 0.5) -> BlockHistory:
+                    tail: float = 0.5, reorder: bool = True) -> BlockHistory:
     """Time history of the rigid-block model under a ground motion.
 
     Parameters
@@ -882,6 +1002,10 @@ def simulate_blocks(structure, motion: GroundMotion | None,
         seconds after the outcome is decided.
     tail : float
         Time recorded after the decision [s], >= 0 (to show the collapse or the rest).
+    reorder : bool
+        Number the joints in the solver by :func:`joint_order` (the default: the same motion,
+        to round-off, at a cost that depends on the numbering); False keeps the assembly's own
+        order (for comparison). The records are in the assembly's joint order either way.
 
     Returns
     -------
@@ -898,20 +1022,23 @@ def simulate_blocks(structure, motion: GroundMotion | None,
         raise ValueError(f"record_every must be an integer >= 1, got {record_every!r}")
     if not (math.isfinite(tail) and tail >= 0):
         raise ValueError(f"tail must be a finite time >= 0 [s], got {tail!r}")
-    assembly, settings, motion, outcome, records = _run(
+    assembly, settings, motion, outcome, records, order = _run(
         structure, motion, settings, initial=initial, record_every=int(record_every),
-        t_end=t_end, tail=tail)
+        t_end=t_end, tail=tail, reorder=reorder)
     energy, q, per_contact = records
     nr, nb, nj = energy.shape[0], assembly.n_blocks, assembly.n_joints
     q = q.reshape(nr, nb, 3)
     nc = 2 * nj
-    gap, slip = per_contact[:, :nc], per_contact[:, nc:2 * nc]
-    force = per_contact[:, 2 * nc:].reshape(nr, nj, 2, 2)
+    position = np.empty(nj, dtype=np.int64)  # of the caller's joint j in the solver's order
+    position[order] = np.arange(nj)
+    gap = per_contact[:, :nc].reshape(nr, nj, 2)[:, position]
+    slip = per_contact[:, nc:2 * nc].reshape(nr, nj, 2)[:, position]
+    force = per_contact[:, 2 * nc:].reshape(nr, nj, 2, 2)[:, position]
     t = energy[:, 0]
     energy = energy[:, 1:]
     return BlockHistory(
         assembly=assembly, outcome=outcome, times=t, displacements=q[:, :, :2],
-        rotations=q[:, :, 2], gaps=gap.reshape(nr, nj, 2), offsets=slip.reshape(nr, nj, 2),
+        rotations=q[:, :, 2], gaps=gap, offsets=slip,
         normal_forces=force[..., 0], tangential_forces=force[..., 1],
         kinetic_energy=energy[:, 0], potential_energy=energy[:, 1],
         dissipated_energy=energy[:, 2], input_work=energy[:, 3], motion_name=motion.name,
@@ -919,8 +1046,9 @@ def simulate_blocks(structure, motion: GroundMotion | None,
     )
 
 
-__all__ = ["CONTACT_STEP_FRACTION", "GROUND", "MAX_BLOCKS", "OPEN_REST_PERIODS", "PULSE_STEPS",
+__all__ = ["CONTACT_STEP_FRACTION", "GROUND", "MAX_ASSEMBLY_BLOCKS", "MAX_BLOCKS", "OPEN_REST_PERIODS", "PULSE_STEPS",
            "REST_PERIODS", "SETTLE_PERIODS", "BlockHistory", "BlockOutcome", "BlockSettings",
            "block_outcome", "check_size", "check_time_step", "contact_arrays",
+           "joint_half_bandwidth", "joint_order",
            "observation_windows", "resolved_settings", "simulate_blocks", "structure_time_step",
            "study_time_step", "time_step_for"]

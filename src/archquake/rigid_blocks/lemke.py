@@ -330,8 +330,8 @@ def contact_lcp(w, uf, mu, compliance):
         ``i``-th active contact [m/kg].
     uf : array (2m,)
         Free velocities [m/s].
-    mu : float
-        Friction coefficient [-].
+    mu : array (m,)
+        Friction coefficient of every active contact [-].
     compliance : float
         Added to the diagonal of ``W``, relative to it, and on the slip rate [-].
 
@@ -372,7 +372,7 @@ def contact_lcp(w, uf, mu, compliance):
             mat[2 * m + i, 2 * m + j] = wtt
         mat[m + i, 3 * m + i] = 1.0
         mat[2 * m + i, 3 * m + i] = 1.0
-        mat[3 * m + i, i] = mu
+        mat[3 * m + i, i] = mu[i]
         mat[3 * m + i, m + i] = -1.0
         mat[3 * m + i, 2 * m + i] = -1.0
         mat[3 * m + i, 3 * m + i] = compliance
@@ -433,7 +433,7 @@ def solve_contact_lcp(w, uf, mu, compliance, impulses, states):
             pn = pt = 0.0
         elif slip > tiny:  # sliding: on the cone exactly (rho lambda dropped)
             states[i] = 2 if pt > 0.0 else 3
-            pt = mu * pn if pt > 0.0 else -mu * pn
+            pt = mu[i] * pn if pt > 0.0 else -mu[i] * pn
         else:
             states[i] = 1
         impulses[2 * i] = pn

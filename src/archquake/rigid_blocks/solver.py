@@ -176,7 +176,15 @@ import numpy as np
 
 from ..ground_motion import HARMONIC, STEP, analytic_duration, evaluate
 from .contact_problem import incidence, solve_active_set, solve_contacts, solve_lemke
-from .contacts import BODY_INERTIA, BODY_MASS, LENGTH, contact_geometry, relative_velocity, rotate
+from .contacts import (
+    BODY_INERTIA,
+    BODY_MASS,
+    FRICTION,
+    LENGTH,
+    contact_geometry,
+    relative_velocity,
+    rotate,
+)
 
 ACTIVATION_GAP = 1e-9
 """Predicted gap, as a fraction of the joint's length, below which a contact is active [-]: a
@@ -618,8 +626,9 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     ----------
     bodies : array (nb, 4)
         The blocks (:data:`~.contacts.BODY_FIELDS`).
-    contacts : array (nc, 12)
-        The contacts (:data:`~.contacts.CONTACT_FIELDS`).
+    contacts : array (nc, 13)
+        The contacts (:data:`~.contacts.CONTACT_FIELDS`; the last column the friction
+        coefficient of the contact's joint, nan for the settings' ``friction``).
     contact_bodies : array of int (nc, 2)
         Bodies a and b of every contact (-1: the ground).
     q0, v0 : array (nb, 3)
@@ -649,7 +658,11 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     """
     # -------- 0. set up
     nb, nc = bodies.shape[0], contacts.shape[0]
-    h, theta, mu = settings[S_TIME_STEP], settings[S_THETA], settings[S_FRICTION]
+    h, theta = settings[S_TIME_STEP], settings[S_THETA]
+    mu = np.empty(nc)  # every contact's friction: its joint's own, else the settings'
+    for c in range(nc):
+        own = contacts[c, FRICTION]
+        mu[c] = settings[S_FRICTION] if math.isnan(own) else own
     gravity = settings[S_GRAVITY]
     n_steps = int(settings[S_N_STEPS])
     max_iterations = int(settings[S_MAX_ITERATIONS])
