@@ -25,7 +25,9 @@ contacts that stick or slide and the tangential rows of the sticking ones carry 
 :data:`REGULARISATION` times their diagonal, which picks the smallest of the statically
 indeterminate impulses). Two contacts couple only through a block they both touch, so with the
 contacts numbered joint by joint ``W`` is a band matrix (for an arch each joint couples with its
-two neighbours: half-bandwidth 7 in the impulses, whatever the number of blocks): it is
+two neighbours: half-bandwidth 7 in the impulses, whatever the number of blocks; any other
+assembly, a wall, has its joints renumbered by reverse Cuthill-McKee to narrow the band,
+:func:`archquake.rigid_blocks.dynamics.joint_order`): it is
 assembled block by block and solved in band storage, by Cholesky's factorisation when no
 contact slides (the system is then symmetric positive definite), else by Gaussian elimination
 (:func:`~.band.band_cholesky_solve`, :func:`~.band.band_lu_solve`, :func:`~.band.band_solve`):

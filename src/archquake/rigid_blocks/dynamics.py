@@ -672,7 +672,8 @@ def structure_assembly(structure) -> Assembly:
     Raises
     ------
     ValueError
-        If ``structure`` is neither, or has more than :data:`MAX_BLOCKS` blocks (refused before
+        If ``structure`` is neither, or has more than :data:`MAX_BLOCKS` voussoirs (an arch) or
+        :data:`MAX_ASSEMBLY_BLOCKS` blocks (an Assembly) (refused before
         an arch is converted).
     """
     if isinstance(structure, Assembly):
@@ -963,6 +964,7 @@ def block_outcome(structure, motion: GroundMotion | None, settings: BlockSetting
     ValueError
         If ``structure``, ``motion`` or ``settings`` has the wrong type, ``initial`` is not
         two finite arrays of shape (nb, 3), the structure has more than :data:`MAX_BLOCKS`
+        voussoirs or :data:`MAX_ASSEMBLY_BLOCKS`
         blocks, the time step cannot resolve the motion (:func:`check_time_step`), or the
         analysis would take more than :data:`archquake.defaults.MAX_BLOCK_STEPS` time steps.
 
