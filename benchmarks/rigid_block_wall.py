@@ -5,8 +5,8 @@
 Walls of 0.4 m x 0.2 m blocks (friction 0.6) of about 50, 100 and 200 blocks
 (:func:`archquake.rigid_blocks.running_bond_wall`: 4 x 12, 8 x 12, 10 x 19 blocks per even
 course; the 200-block wall only with ``--all``: it takes many minutes, see below), their joints numbered as the wall lists them (foundation, bed, head joints: a block's
-bed and head joints far apart) and renumbered (:func:`archquake.rigid_blocks.dynamics.joint_order`,
-reverse Cuthill-McKee). For each: the half-bandwidth in joints, and simulated seconds per minute
+bed and head joints far apart) and renumbered (reverse Cuthill-McKee,
+:func:`archquake.rigid_blocks.dynamics.joint_order`). For each: the half-bandwidth in joints, and simulated seconds per minute
 of wall time (JIT excluded, one run each)
 
 - on a still ground, the first ``--quiet-time`` seconds: the static contact problem is solved
@@ -23,7 +23,10 @@ still 0.09 -> 0.11, pulse 0.005 -> 0.006 sim s/min (about 300 solves per step): 
 blocks the active-set method cycles at nearly every step, even at rest, and the step falls
 back to Lemke's algorithm on a dense tableau of 4 unknowns per contact, which the band's
 numbering does not touch. The renumbering removes the band's cost; that fallback is what keeps
-a wall of 200 blocks far from 10 s simulated per minute.
+a wall of 200 blocks far from 10 s simulated per minute. The cycling is between sticking and
+sliding: the 100-block wall at rest is decided in 29 s at friction 0.6 (8.2 solves per step),
+at once with friction inf (0.03 solves per step); the 200-block wall, friction inf, still
+ground: rest decided in 1.4 s (0.53 solves per step).
 """
 
 from __future__ import annotations
