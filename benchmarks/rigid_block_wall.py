@@ -4,9 +4,11 @@
 
 Walls of 0.4 m x 0.2 m blocks (friction 0.6) of about 50, 100 and 200 blocks
 (:func:`archquake.rigid_blocks.running_bond_wall`: 4 x 12, 8 x 12, 10 x 19 blocks per even
-course; the 200-block wall only with ``--all``: it takes many minutes, see below), their joints numbered as the wall lists them (foundation, bed, head joints: a block's
-bed and head joints far apart) and renumbered (reverse Cuthill-McKee,
-:func:`archquake.rigid_blocks.dynamics.joint_order`). For each: the half-bandwidth in joints, and simulated seconds per minute
+course; the 200-block wall only with ``--all``: it takes many minutes, see below), their
+joints numbered as the wall lists them (foundation, bed, head joints: a block's bed and head
+joints far apart) and renumbered (reverse Cuthill-McKee,
+:func:`archquake.rigid_blocks.dynamics.joint_order`). For each: the half-bandwidth in joints,
+and simulated seconds per minute
 of wall time (JIT excluded, one run each)
 
 - on a still ground, the first ``--quiet-time`` seconds: the static contact problem is solved

@@ -1049,8 +1049,8 @@ def simulate_blocks(structure, motion: GroundMotion | None,
 
 
 __all__ = ["CONTACT_STEP_FRACTION", "GROUND", "MAX_ASSEMBLY_BLOCKS", "MAX_BLOCKS",
-           "OPEN_REST_PERIODS", "PULSE_STEPS", "REST_PERIODS", "SETTLE_PERIODS", "BlockHistory", "BlockOutcome", "BlockSettings",
-           "block_outcome", "check_size", "check_time_step", "contact_arrays",
-           "joint_half_bandwidth", "joint_order",
-           "observation_windows", "resolved_settings", "simulate_blocks", "structure_time_step",
-           "study_time_step", "time_step_for"]
+           "OPEN_REST_PERIODS", "PULSE_STEPS", "REST_PERIODS", "SETTLE_PERIODS", "BlockHistory",
+           "BlockOutcome", "BlockSettings", "block_outcome", "check_size", "check_time_step",
+           "contact_arrays", "joint_half_bandwidth", "joint_order", "observation_windows",
+           "resolved_settings", "simulate_blocks", "structure_time_step", "study_time_step",
+           "time_step_for"]
