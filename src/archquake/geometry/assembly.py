@@ -8,7 +8,8 @@ supports (the ground): a wall of any bond, a portal, an arch on piers, a drawing
 - ``density``: every block's density [kg/m^3];
 - ``supports``: polygons of fixed bodies [m]; when none are given the ground is the lowest
   horizontal line of the blocks (below);
-- ``friction``: None (nothing slides), one Coulomb coefficient, or one per interface kind [-];
+- ``friction``: None (nothing slides, Heyman's hypothesis [2]_), one Coulomb coefficient, or
+  one per interface kind [-];
 
 and derives the mass properties (:attr:`BlockAssembly.mass`, :attr:`~BlockAssembly.centroid`,
 :attr:`~BlockAssembly.inertia`) by the polygon formulas [1]_, per unit depth with density
@@ -134,7 +135,7 @@ class Interfaces:
     kind : array of str, shape (ni,)
         One of :data:`INTERFACE_KINDS`.
     friction : array of float, shape (ni,)
-        Coulomb coefficient [-]; ``inf`` when the interface cannot slide [2]_.
+        Coulomb coefficient [-]; ``inf`` when the interface cannot slide (Heyman's hypothesis).
     """
 
     a: np.ndarray
@@ -280,7 +281,7 @@ def _check_kinds(kinds, n_blocks: int) -> tuple:
 def polygon_mass_properties(polygons, density) -> tuple[np.ndarray, np.ndarray, np.ndarray,
                                                         np.ndarray]:
     """Area [m^2], mass [kg/m], centroid [m] and polar moment about the centroid [kg m] of
-    counter-clockwise polygons, per unit depth, by the polygon formulas of the module [1]_.
+    counter-clockwise polygons, per unit depth, by the polygon formulas of the module.
 
     Parameters
     ----------

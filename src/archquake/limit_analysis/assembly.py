@@ -87,7 +87,7 @@ fraction of the assembly's weight, and of k [-]."""
 
 RELAXATION = 1.0
 r"""First relaxation :math:`\beta` of the normal forces between iterations [-], halved (down to
-0.02) whenever k turns back (Gilbert et al. [3]_ relax the iteration to damp its
+0.02) whenever k turns back (Gilbert et al. relax the iteration to damp its
 oscillations)."""
 
 MOTION_TOLERANCE = 1e-6
