@@ -51,7 +51,7 @@ At convergence the forces satisfy Coulomb's law exactly (statically
 admissible) and the mechanism slides without dilatancy (kinematically admissible for the
 non-associative law): a solution of the non-associative problem, not proved the least one; where
 the iteration does not converge, the result says so. The rigid-block model under a slowly
-growing acceleration (:func:`archquake.rigid_blocks.ramp_test`) is the arbiter.
+growing acceleration (:func:`archquake.rigid_blocks.ramp.ramp_test`) is the arbiter.
 
 References
 ----------
