@@ -3,10 +3,9 @@
     python benchmarks/rigid_block_wall.py [--pulse-time 0.002] [--quiet-time 0.05] [--all]
 
 Walls of 0.4 m x 0.2 m blocks (friction 0.6) of about 50, 100 and 200 blocks
-(:func:`archquake.rigid_blocks.running_bond_wall`: 4 x 12, 8 x 12, 10 x 19 blocks per even
-course; the 200-block wall only with ``--all``: it takes many minutes, see below), their
-joints numbered as the wall lists them (foundation, bed, head joints: a block's bed and head
-joints far apart) and renumbered (reverse Cuthill-McKee,
+(:func:`archquake.geometry.assembly.wall`: 4 x 12, 8 x 12, 10 x 19 blocks per course; the
+200-block wall only with ``--all``: it takes many minutes, see below), their joints numbered
+as the geometry lists them and renumbered (reverse Cuthill-McKee,
 :func:`archquake.rigid_blocks.dynamics.joint_order`). For each: the half-bandwidth in joints,
 and simulated seconds per minute
 of wall time (JIT excluded, one run each)
@@ -41,11 +40,17 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 
 from archquake.geometry import GRAVITY  # noqa: E402
+from archquake.geometry.assembly import wall as geometry_wall  # noqa: E402
 from archquake.ground_motion import sine_pulse  # noqa: E402
-from archquake.rigid_blocks import running_bond_wall, simulate_blocks  # noqa: E402
+from archquake.rigid_blocks import from_block_assembly, simulate_blocks  # noqa: E402
 from archquake.rigid_blocks.dynamics import joint_half_bandwidth, joint_order  # noqa: E402
 
 WALLS = ((4, 12), (8, 12), (10, 19))
+
+
+def running_bond_wall(courses: int, blocks: int):
+    """The rigid blocks of a wall of 0.4 x 0.2 m blocks, friction 0.6."""
+    return from_block_assembly(geometry_wall(courses, blocks, 0.4, 0.2, friction=0.6))
 
 
 def rate(wall, motion, t_end: float, reorder: bool) -> tuple[float, object]:

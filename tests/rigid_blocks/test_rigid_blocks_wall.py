@@ -15,12 +15,12 @@ import numpy as np
 import pytest
 
 from archquake.geometry import GRAVITY
+from archquake.geometry.assembly import wall as geometry_wall
 from archquake.ground_motion import rectangular_pulse
 from archquake.rigid_blocks import (
     BlockSettings,
     block_outcome,
     from_block_assembly,
-    running_bond_wall,
     simulate_blocks,
 )
 from archquake.rigid_blocks.dynamics import (
@@ -29,6 +29,22 @@ from archquake.rigid_blocks.dynamics import (
     joint_half_bandwidth,
     joint_order,
 )
+
+
+def running_bond_wall(courses: int, blocks: int, friction: float = 0.6):
+    """The rigid blocks of a wall in running bond of 0.4 x 0.2 m blocks
+    (:func:`archquake.geometry.assembly.wall`), its interfaces numbered as a geometry code that
+    collects them by kind might: the foundation, then the bed joints, then the head joints, so a
+    block's joints lie far apart in the numbering (the solver renumbers them)."""
+    built = geometry_wall(courses, blocks, 0.4, 0.2, friction=friction)
+    faces = built.interfaces
+    order = np.argsort([("foundation", "bed", "head").index(k) for k in faces.kind],
+                       kind="stable")
+    interfaces = SimpleNamespace(**{name: np.asarray(getattr(faces, name))[order]
+                                    for name in ("a", "b", "p0", "p1", "normal", "friction")})
+    return from_block_assembly(SimpleNamespace(
+        polygons=built.polygons, mass=built.mass, centroid=built.centroid,
+        inertia=built.inertia, interfaces=interfaces))
 
 
 def stack(n: int, b: float, h: float, friction: float = math.inf, density: float = 2000.0):
@@ -108,8 +124,11 @@ def test_renumbered_run_equals_natural_order():
     scale = np.abs(a.displacements).max()
     np.testing.assert_allclose(a.displacements, b.displacements, atol=1e-9 * scale)
     np.testing.assert_allclose(a.rotations, b.rotations, atol=1e-9)
+    # the wall is statically indeterminate: its contact forces are fixed only by the contact
+    # problem's regularisation (a compliance of 1e-9 of the diagonal), which two orders of
+    # elimination meet differently, to a few 1e-6 of the largest force (its motion is the same)
     force = np.abs(a.normal_forces).max()
-    np.testing.assert_allclose(a.normal_forces, b.normal_forces, atol=1e-7 * force)
+    np.testing.assert_allclose(a.normal_forces, b.normal_forces, atol=1e-5 * force)
     np.testing.assert_allclose(a.gaps, b.gaps, atol=1e-9 * scale)
 
 

@@ -169,8 +169,10 @@ def _with_friction(args: argparse.Namespace, structure) -> int:
     if args.arbiter:
         from ..rigid_blocks.ramp import ramp_test
 
+        on = structure.with_friction(args.friction) if hasattr(structure, "interfaces") \
+            else structure
         with options.analysing(args):
-            ramp = ramp_test(structure, friction=args.friction)
+            ramp = ramp_test(on, friction=args.friction)
     if args.plot:
         _plot_friction(args, results)
     if args.json:

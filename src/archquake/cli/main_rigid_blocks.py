@@ -41,7 +41,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """The rigid-block analysis of the arch of the options under the motion of the options."""
     spec = options.model_spec_from_args(args, "rigid-blocks")
-    arch = options.arch_from_args(args)
+    arch = options.arch_from_args(args, assembly=True)
     motion = options.motion_from_args(args)
     model = spec.build(arch)
     settings = model.settings  # with the time step used

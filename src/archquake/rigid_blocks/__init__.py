@@ -23,7 +23,6 @@ from .assembly import (
     from_arch,
     from_block_assembly,
     rectangular_block,
-    running_bond_wall,
 )
 from .dynamics import (
     MAX_BLOCKS,
@@ -38,5 +37,5 @@ from .model import RigidBlockModel
 __all__ = [
     "GROUND", "MAX_BLOCKS", "Assembly", "BlockHistory", "BlockOutcome", "BlockSettings",
     "RigidBlockModel", "block_outcome", "from_arch", "from_block_assembly", "rectangular_block",
-    "running_bond_wall", "simulate_blocks",
+    "simulate_blocks",
 ]

@@ -398,7 +398,8 @@ def from_block_assembly(blocks, *, thickness: float | None = None) -> Assembly:
     -------
     Assembly
         ``n_blocks`` blocks and one joint per interface, with the interfaces' friction
-        (:attr:`Assembly.friction`).
+        (:attr:`Assembly.friction`), or none where the assembly gives none (its ``friction``
+        None): the model's settings then give it.
 
     Raises
     ------
@@ -434,111 +435,6 @@ def from_block_assembly(blocks, *, thickness: float | None = None) -> Assembly:
         joint_bodies=np.column_stack((a, b)), joint_points=points, joint_normals=normals,
         outlines=tuple(np.vstack((p, p[:1])) for p in polygons),
         crown=(crown, (centroids[crown, 0], tops[crown])), thickness=thickness,
-        friction=friction,
+        friction=None if getattr(blocks, "friction", 0.0) is None else friction,
         name=f"assembly of {len(polygons)} blocks and {a.size} interfaces",
     )
-
-
-def running_bond_wall(courses: int, blocks: int, length: float = 0.4, height: float = 0.2,
-                      density: float = 2000.0, friction: float = 0.6) -> Assembly:
-    r"""A dry-stone wall in running bond on a rigid base, for checks and benchmarks.
-
-    Course ``k`` (``0 .. courses - 1``, from the base) lies between ``y = k h`` and
-    ``(k + 1) h``; an even course is ``blocks`` blocks ``length`` long from ``x = 0``, an odd
-    one half a block, ``blocks - 1`` blocks and half a block (``blocks + 1`` in all), so every
-    head joint lies at the middle of the blocks above and below. The interfaces are numbered
-    as a geometry code that collects them by kind might: the bases of course 0 on the ground
-    (``"foundation"``), then the bed joints course by course, then the head joints course by
-    course; so a block's bed and head joints lie far apart in the numbering (the solver
-    renumbers them, :func:`archquake.rigid_blocks.dynamics.joint_order`). The wall is built as
-    the duck-typed block assembly that :func:`from_block_assembly` reads (its crown: the middle
-    block of the top course; its thickness: ``min(length / 2, height)``, the course height for
-    bricks laid flat).
-
-    Parameters
-    ----------
-    courses : int
-        Number of courses [-], >= 1.
-    blocks : int
-        Blocks of an even course [-], >= 1.
-    length, height : float
-        Size of a whole block [m], > 0.
-    density : float
-        Density [kg/m^3], > 0.
-    friction : float
-        Coulomb coefficient of every interface [-], >= 0 (``inf``: nothing slides).
-
-    Returns
-    -------
-    Assembly
-        About ``courses * (blocks + 1/2)`` blocks (:func:`from_block_assembly`).
-
-    Raises
-    ------
-    ValueError
-        If a count is not an integer >= 1 or a size, the density or the friction is out of
-        range.
-    """
-    from types import SimpleNamespace
-
-    for name, value in (("courses", courses), ("blocks", blocks)):
-        if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < 1:
-            raise ValueError(f"{name} must be an integer >= 1, got {value!r}")
-    for name, value in (("length", length), ("height", height), ("density", density)):
-        if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
-            raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
-    if not (isinstance(friction, int | float) and friction >= 0):
-        raise ValueError(f"friction must be a number >= 0 (inf: no sliding), got {friction!r}")
-    spans = []  # per course: the x ends of its blocks
-    for k in range(courses):
-        if k % 2 == 0:
-            ends = length * np.arange(blocks + 1)
-        else:
-            ends = np.concatenate(([0.0], length * (np.arange(blocks) + 0.5),
-                                   [blocks * length]))
-        spans.append(ends)
-    polygons, first = [], []
-    for k, ends in enumerate(spans):
-        first.append(len(polygons))
-        y0, y1 = k * height, (k + 1) * height
-        for x0, x1 in zip(ends[:-1], ends[1:], strict=True):
-            polygons.append(np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]]))
-    a, b, p0, p1, normal = [], [], [], [], []
-
-    def interface(body_a, body_b, q0, q1, n):
-        a.append(body_a)
-        b.append(body_b)
-        p0.append(q0)
-        p1.append(q1)
-        normal.append(n)
-
-    for i, (x0, x1) in enumerate(zip(spans[0][:-1], spans[0][1:], strict=True)):
-        interface(GROUND, i, (x1, 0.0), (x0, 0.0), (0.0, 1.0))
-    for k in range(courses - 1):  # bed joints: every overlap of a block and one above
-        y = (k + 1) * height
-        lower, upper = spans[k], spans[k + 1]
-        for i in range(lower.size - 1):
-            for j in range(upper.size - 1):
-                lo, hi = max(lower[i], upper[j]), min(lower[i + 1], upper[j + 1])
-                if hi - lo > 1e-9 * length:
-                    interface(first[k] + i, first[k + 1] + j, (hi, y), (lo, y), (0.0, 1.0))
-    for k, ends in enumerate(spans):  # head joints, left block into right
-        for i in range(1, ends.size - 1):
-            interface(first[k] + i - 1, first[k] + i, (ends[i], k * height),
-                      (ends[i], (k + 1) * height), (1.0, 0.0))
-    areas = np.array([np.ptp(p[:, 0]) * np.ptp(p[:, 1]) for p in polygons])
-    widths = np.array([np.ptp(p[:, 0]) for p in polygons])
-    mass = density * areas
-    ni = len(a)
-    wall = SimpleNamespace(
-        polygons=tuple(polygons), mass=mass,
-        centroid=np.array([p.mean(axis=0) for p in polygons]),
-        inertia=mass * (widths**2 + height**2) / 12.0,
-        interfaces=SimpleNamespace(a=np.array(a), b=np.array(b), p0=np.array(p0, dtype=float),
-                                   p1=np.array(p1, dtype=float),
-                                   normal=np.array(normal, dtype=float),
-                                   friction=np.full(ni, float(friction))))
-    assembly = from_block_assembly(wall, thickness=min(0.5 * length, height))
-    object.__setattr__(assembly, "name", f"running-bond wall of {courses} courses, "
-                       f"{assembly.n_blocks} blocks {length:g} m x {height:g} m")
-    return assembly

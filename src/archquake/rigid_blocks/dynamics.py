@@ -113,7 +113,7 @@ from ..geometry import GRAVITY, BlockArch
 from ..ground_motion import LINEAR, STEP, GroundMotion
 from ..status import Status
 from . import solver
-from .assembly import GROUND, STICK_FRICTION, Assembly, from_arch
+from .assembly import GROUND, STICK_FRICTION, Assembly, from_arch, from_block_assembly
 from .contact_problem import ACTIVE_SET_SOLVES
 from .contacts import CONTACT_FIELDS
 
@@ -685,7 +685,11 @@ def structure_assembly(structure) -> Assembly:
         if key not in structure._cache:
             structure._cache[key] = from_arch(structure)
         return structure._cache[key]
-    raise ValueError(f"structure must be an arch or an Assembly, got {type(structure).__name__}")
+    if hasattr(structure, "interfaces") and hasattr(structure, "polygons"):  # BlockAssembly
+        check_size(structure.n_blocks, MAX_ASSEMBLY_BLOCKS)
+        return from_block_assembly(structure)
+    raise ValueError(f"structure must be an arch, a block assembly or an Assembly, got "
+                     f"{type(structure).__name__}")
 
 
 def structure_time_step(thickness: float) -> float:
