@@ -98,6 +98,7 @@ from .blocks import (
     BlockArch,
     Hinge,
 )
+from .bridge import multi_span
 from .centrelines import CENTRELINES, SHAPES, Centreline, centreline
 from .dxf import read_dxf, write_dxf
 from .files import arch_from_dict, load_arch
@@ -117,6 +118,7 @@ __all__ = [
     "VOUSSOIR_FACES", "BlockArch", "BlockAssembly", "BlockLoads", "Centreline", "CircularArch",
     "Fill", "Hinge", "Interfaces", "Pier", "ShapedArch", "Structure", "StructureSpec",
     "SurveyedArch", "arch_from_dict", "arch_on_piers", "block_on_ground", "centreline",
-    "check_epsilon", "circular_arch", "irregular_arch", "irregular_sample", "load_arch", "portal",
-    "read_dxf", "shaped_arch", "stack", "surveyed_arch", "wall", "write_dxf",
+    "check_epsilon", "circular_arch", "irregular_arch", "irregular_sample", "load_arch",
+    "multi_span", "portal", "read_dxf", "shaped_arch", "stack", "surveyed_arch", "wall",
+    "write_dxf",
 ]

@@ -27,6 +27,14 @@ and that of the right pier down, so their *intrados end* is on the inner face (t
 and their *extrados end* on the outer face: a hinge at the extrados end of a pier's base is at
 its outer toe.
 
+An **intermediate pier** (:func:`middle_pier_blocks`) carries the right springing of one arch
+and the left springing of the next: its faces are the verticals through the two intrados
+springing points, so its ``width`` is their distance and the clear span between two piers is
+the arch's intrados chord; its top follows both springing joints and runs level between their
+extrados ends; it needs the width of the two seats (the horizontal extents of the two joints),
+else the extrados ends would cross. Its courses are of equal height, the top one carrying both
+seats.
+
 A pier needs a springing joint that rises outward (its extrados end no lower than its intrados
 end and not inside the span): an arch over more than a semicircle (a horseshoe) is not put on
 piers.
@@ -221,6 +229,28 @@ def _clip(face: np.ndarray, y0: float, y1: float) -> np.ndarray:
     return np.array(points)
 
 
+def seat(springing) -> tuple[np.ndarray, np.ndarray, float, float]:
+    """The seat of a left springing joint on a pier: ``(P_i, P_e, reach, rise)``, its two ends
+    [m], its horizontal extent :math:`x_{P_i} - x_{P_e}` and its rise :math:`y_{P_e} - y_{P_i}`
+    [m] (both >= 0).
+
+    Raises
+    ------
+    ValueError
+        When the joint does not rise outward from its intrados end (beyond a relative 1e-12).
+    """
+    p_in, p_out = (np.asarray(p, dtype=float) for p in springing)
+    reach = float(p_in[0] - p_out[0])  # horizontal extent of the springing joint
+    rise = float(p_out[1] - p_in[1])
+    size = max(float(np.hypot(*(p_out - p_in))), 1e-300)
+    if reach < -1e-12 * size or rise < -1e-12 * size:
+        raise ValueError(
+            "a pier needs a springing joint that rises outward from its intrados end (an arch "
+            "over at most a semicircle): this springing joint runs "
+            f"{'inward' if reach < 0 else 'downward'}")
+    return p_in, p_out, max(reach, 0.0), max(rise, 0.0)
+
+
 def pier_blocks(pier: Pier, springing) -> tuple[list[np.ndarray], np.ndarray]:
     """The blocks and joints of a left pier under the springing joint ``springing``.
 
@@ -247,16 +277,7 @@ def pier_blocks(pier: Pier, springing) -> tuple[list[np.ndarray], np.ndarray]:
         horizontal extent of the springing joint or its outer face does not reach it, or the
         top course would not reach above its bed joint.
     """
-    p_in, p_out = (np.asarray(p, dtype=float) for p in springing)
-    reach = float(p_in[0] - p_out[0])  # horizontal extent of the springing joint
-    rise = float(p_out[1] - p_in[1])
-    size = max(float(np.hypot(*(p_out - p_in))), 1e-300)
-    if reach < -1e-12 * size or rise < -1e-12 * size:
-        raise ValueError(
-            "a pier needs a springing joint that rises outward from its intrados end (an arch "
-            "over at most a semicircle): this springing joint runs "
-            f"{'inward' if reach < 0 else 'downward'}")
-    reach, rise = max(reach, 0.0), max(rise, 0.0)
+    p_in, p_out, reach, rise = seat(springing)
     if pier.width < reach * (1.0 - 1e-12):
         raise ValueError(f"pier width must be at least the horizontal extent of the springing "
                          f"joint, {reach:.6g} m (the pier's top must carry the whole joint), got "
@@ -284,6 +305,68 @@ def pier_blocks(pier: Pier, springing) -> tuple[list[np.ndarray], np.ndarray]:
     return polygons, np.array(joints, dtype=float)
 
 
+def middle_pier_blocks(pier: Pier, right_springing, left_springing) -> list[np.ndarray]:
+    r"""The blocks of an intermediate pier between two arches (see the module's rules).
+
+    Parameters
+    ----------
+    pier : Pier
+        A rectangular pier: ``width`` :math:`W` is the distance between the two intrados
+        springing points it carries (its two faces), ``height`` :math:`h` from the ground up to
+        them [m].
+    right_springing : array_like, shape (2, 2)
+        The right springing joint of the arch on its left: intrados end :math:`P_i`, extrados
+        end :math:`P_e` [m].
+    left_springing : array_like, shape (2, 2)
+        The left springing joint of the arch on its right: :math:`Q_i`, :math:`Q_e` [m], with
+        :math:`x_{Q_i} - x_{P_i} = W`.
+
+    Returns
+    -------
+    list of ndarray (k, 2)
+        The courses from the ground up, counterclockwise [m]: the faces are the verticals through
+        :math:`P_i` and :math:`Q_i`, the top course's top the polyline :math:`Q_i, Q_e, P_e,
+        P_i` (the two seats, level between them when both joints end at one height).
+
+    Raises
+    ------
+    ValueError
+        For a pier with an outer face (an intermediate pier has none), springing joints that do
+        not rise outward or whose intrados ends are not at one height, or a pier narrower than
+        its two seats, :math:`W < (x_{P_e} - x_{P_i}) + (x_{Q_i} - x_{Q_e})` (the extrados ends
+        would cross), naming the width needed.
+    """
+    if not pier.is_rectangular:
+        raise ValueError("an intermediate pier is rectangular (both its faces carry an arch): "
+                         f"got {pier.describe()}")
+    flip = np.array([-1.0, 1.0])
+    p_in, p_out, reach_left, _ = seat(np.asarray(right_springing, dtype=float) * flip)
+    p_in, p_out = p_in * flip, p_out * flip
+    q_in, q_out, reach_right, _ = seat(left_springing)
+    width = float(q_in[0] - p_in[0])
+    scale = max(width, pier.height, float(np.hypot(*(p_out - p_in))))
+    if abs(float(q_in[1] - p_in[1])) > 1e-9 * scale:
+        raise ValueError(f"an intermediate pier carries two springings at one height: the "
+                         f"intrados springing points are at y = {p_in[1]:.9g} m and "
+                         f"{q_in[1]:.9g} m")
+    needed = reach_left + reach_right
+    if width < needed * (1.0 - 1e-12):
+        raise ValueError(f"intermediate pier width must be at least {needed:.6g} m, the "
+                         f"horizontal extents of the two springing joints it carries "
+                         f"({reach_left:.6g} m + {reach_right:.6g} m; narrower, their extrados "
+                         f"ends would cross), got {width:.6g} m")
+    ground = float(p_in[1]) - pier.height
+    c = pier.courses
+    beds = [ground + pier.height * k / c for k in range(c)]
+    x0, x1 = float(p_in[0]), float(q_in[0])
+    polygons = [np.array([(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
+                for y0, y1 in zip(beds[:-1], beds[1:], strict=True)]
+    top = np.array([(x0, beds[-1]), (x1, beds[-1]), tuple(q_in), tuple(q_out), tuple(p_out),
+                    tuple(p_in)])
+    polygons.append(_dedup(top, 1e-12 * scale))
+    return polygons
+
+
 def _dedup(points: np.ndarray, tol: float) -> np.ndarray:
     keep = [points[0]]
     for p in points[1:]:
@@ -294,4 +377,4 @@ def _dedup(points: np.ndarray, tol: float) -> np.ndarray:
     return np.array(keep)
 
 
-__all__ = ["MAX_COURSES", "Pier", "pier_blocks"]
+__all__ = ["MAX_COURSES", "Pier", "middle_pier_blocks", "pier_blocks", "seat"]
