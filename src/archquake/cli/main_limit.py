@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 
 from ..defaults import DEFAULT_LIMIT_METHOD, LIMIT_METHODS
 from . import options
@@ -49,7 +50,7 @@ def run(args: argparse.Namespace) -> int:
 
     if args.min_pier_width:
         return _min_pier_width(args)
-    arch = options.arch_from_args(args, assembly=True)
+    arch = options.arch_from_args(args, assembly=True, spans=True)
     if args.friction is not None or hasattr(arch, "interfaces"):
         return _with_friction(args, arch)
     if args.arbiter:
@@ -152,7 +153,6 @@ def _plot(args: argparse.Namespace, results) -> None:
 
 def _with_friction(args: argparse.Namespace, structure) -> int:
     """``limit --friction MU``: both directions under each friction law."""
-    import math
 
     from ..limit_analysis import assembly_limits
 
@@ -179,6 +179,11 @@ def _with_friction(args: argparse.Namespace, structure) -> int:
         out = {"friction": args.friction, "k": k if math.isfinite(k) else None,
                "directions": {d: {law: r.to_dict() for law, r in laws.items()}
                               for d, laws in results.items()}}
+        for d, laws in results.items():  # several spans: which move
+            for law, r in laws.items():
+                moving = _spans_moving(structure, r)
+                if moving is not None:
+                    out["directions"][d][law]["spans_moving"] = moving
         if ramp is not None:
             out["rigid_blocks_ramp"] = ramp.to_dict()
         print_json(out)
@@ -197,6 +202,9 @@ def _with_friction(args: argparse.Namespace, structure) -> int:
             print(f"{direction:<10} {law:<16} {k_text} {tilt} {r.iterations:>4}  "
                   f"{_listed(r.interfaces_that('rocks'))} / "
                   f"{_listed(r.interfaces_that('slides'))}{note}")
+            moving = _spans_moving(structure, r)
+            if moving is not None:
+                print(f"{'':<10} {'':<16} spans that move: {_listed(moving)}")
         if ramp is not None:
             onset = ramp.onset(direction)
             found = math.isfinite(onset.multiplier)
@@ -221,6 +229,20 @@ def _describe(structure) -> str:
         return (f"a block assembly of {structure.n_blocks} blocks and "
                 f"{structure.interfaces.a.size} interfaces")
     return describe_arch(structure)
+
+
+def _spans_moving(structure, result):
+    """The spans (from 1, left to right) whose voussoirs move in the mechanism of ``result``,
+    for an assembly of several spans (:func:`archquake.geometry.bridge.multi_span`); else
+    None."""
+    names = getattr(structure, "names", ())
+    if not any(name.startswith("span ") for name in names):
+        return None
+    from ..geometry.bridge import moving_blocks, spans_of
+
+    if not math.isfinite(result.load_multiplier):
+        return []
+    return spans_of(structure, moving_blocks(result))
 
 
 def _listed(interfaces) -> str:

@@ -171,9 +171,11 @@ def given(args: argparse.Namespace, *names: str) -> list[str]:
 FIELD_OPTIONS = {
     **{name: f"--{name.replace('_', '-')}" for name in (
         "shape", "span", "rise", "radius", "embrace", "thickness", "voussoirs", "faces",
-        "geometry", "units", "piers", "pier_left", "pier_right", "fill_cover", "fill_density",
-        "fill_inertia", "fill_passive", "density", "epsilon", "seed", "motion", "amplitude",
-        "duration", "cycles", "record", "suite", "scale_to", "reverse")},
+        "geometry", "units", "piers", "pier_left", "pier_right",
+        "spans", "pier_middle",
+        "fill_cover", "fill_density", "fill_inertia", "fill_passive", "density", "epsilon",
+        "seed", "motion", "amplitude", "duration", "cycles", "record", "suite", "scale_to",
+        "reverse")},
     "params": "--param",
     "suite_record": "--record",
 }
@@ -291,6 +293,14 @@ def add_structure_options(parser: argparse.ArgumentParser) -> None:
                             "unequal piers)")
     group.add_argument("--pier-right", metavar="WIDTH,HEIGHT[,COURSES]",
                        help="the pier under the right springing only")
+    group.add_argument("--spans", type=int, default=None, metavar="N",
+                       help="N equal arches in a row on N + 1 piers (a bridge, an arcade; limit "
+                            "only): the end piers those of --piers, --pier-left, --pier-right, "
+                            "the ones between the spans --pier-middle (default: 1)")
+    group.add_argument("--pier-middle", metavar="WIDTH,HEIGHT[,COURSES]",
+                       help="the piers between the spans: WIDTH [m] between the two intrados "
+                            "springing points each carries, HEIGHT [m] from the ground up to "
+                            "them, COURSES (default: the --piers value)")
     group.add_argument("--fill-cover", type=number, metavar="M",
                        help="a level fill over the arch, this deep above the crown [m]")
     group.add_argument("--fill-density", type=number, metavar="KG/M3",
@@ -320,7 +330,11 @@ def shape_spec(args: argparse.Namespace):
         return StructureSpec(**{k: v for k, v in values.items() if v is not None})
 
 
-def structure_spec(args: argparse.Namespace, *, draw: bool = True):
+SPANS_COMMANDS = ("limit",)
+"""The commands that take several spans (``--spans`` of 2 or more)."""
+
+
+def structure_spec(args: argparse.Namespace, *, draw: bool = True, spans: bool = False):
     """The :class:`~archquake.geometry.StructureSpec` of the geometry, structure and (with
     ``draw``) irregularity options: each option given is the field of its name (``--pier-left``
     is ``pier_left``); a refused description names the options.
@@ -331,10 +345,17 @@ def structure_spec(args: argparse.Namespace, *, draw: bool = True):
     draw : bool
         Whether ``--epsilon`` and ``--seed`` draw one irregular arch (``False`` where they are
         the settings of a sample, or not options at all).
+    spans : bool
+        Whether the command takes several spans (:data:`SPANS_COMMANDS`); else ``--spans``
+        other than 1 is refused by name.
     """
-    from ..geometry.spec import SHAPE_FIELDS, STRUCTURE_FIELDS, StructureSpec
+    from ..geometry.spec import SHAPE_FIELDS, SPAN_FIELDS, STRUCTURE_FIELDS, StructureSpec
 
     names = SHAPE_FIELDS + ("geometry", "units") + STRUCTURE_FIELDS + ("density",)
+    names += SPAN_FIELDS
+    if not spans and getattr(args, "spans", None) not in (None, 1):
+        raise ValueError(f"--spans {args.spans} builds several arches on shared piers: "
+                         f"{SPANS_COMMANDS[0]} analyses them, this command does not (yet)")
     if draw:
         names += ("epsilon", "seed")
     values = {name: getattr(args, name, None) for name in names}
@@ -350,6 +371,7 @@ def structure_spec(args: argparse.Namespace, *, draw: bool = True):
 
 _TEXT_FIELDS = {"piers": "WIDTH,HEIGHT[,COURSES]", "pier_left": "WIDTH,HEIGHT[,COURSES]",
                 "pier_right": "WIDTH,HEIGHT[,COURSES]", "fill_passive": "PHI,MOBILISATION"}
+_TEXT_FIELDS["pier_middle"] = "WIDTH,HEIGHT[,COURSES]"
 """The structure options given as text, and what each takes: an empty one is refused (it was
 silently absent)."""
 
@@ -376,11 +398,12 @@ ASSEMBLY_COMMANDS = ("limit", "rigid-blocks")
 """The commands that take any block assembly (``--geometry`` with supports, or a drawing)."""
 
 
-def arches_from_args(args: argparse.Namespace, *, assembly: bool = False):
+def arches_from_args(args: argparse.Namespace, *, assembly: bool = False, spans: bool = False):
     """``(nominal, arch)``: the arch before and after the optional irregular draw.
-    ``assembly``: whether the command takes any block assembly, else one is refused."""
+    ``assembly``: whether the command takes any block assembly, else one is refused;
+    ``spans``: whether it takes several spans (``--spans``), else they are refused."""
     with naming_options():
-        nominal, arch = structure_spec(args).arches()
+        nominal, arch = structure_spec(args, spans=spans).arches()
     if not assembly and hasattr(arch, "interfaces"):
         raise ValueError(f"--geometry {args.geometry} describes a block assembly, not a chain of "
                          "voussoirs between two springings: "
@@ -388,10 +411,10 @@ def arches_from_args(args: argparse.Namespace, *, assembly: bool = False):
     return nominal, arch
 
 
-def arch_from_args(args: argparse.Namespace, *, assembly: bool = False):
+def arch_from_args(args: argparse.Namespace, *, assembly: bool = False, spans: bool = False):
     """The arch described by the geometry options (after the irregular draw, if any);
-    ``assembly``: whether the command takes any block assembly."""
-    return arches_from_args(args, assembly=assembly)[1]
+    ``assembly``: whether the command takes any block assembly; ``spans``: several spans."""
+    return arches_from_args(args, assembly=assembly, spans=spans)[1]
 
 
 def drawn(args: argparse.Namespace) -> str:

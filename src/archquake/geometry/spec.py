@@ -55,9 +55,13 @@ STRUCTURE_FIELDS = ("piers", "pier_left", "pier_right", "fill_cover", "fill_dens
                     "fill_inertia", "fill_passive")
 """The fields that put the arch on piers or under fill."""
 
+SPAN_FIELDS = ("spans", "pier_middle")
+"""The fields that put several equal arches in a row on shared piers (a bridge, an arcade:
+:func:`~archquake.geometry.bridge.multi_span`)."""
+
 _NUMBERS = ("span", "rise", "radius", "embrace", "thickness", "fill_cover", "fill_density",
             "density", "epsilon")
-_INTEGERS = ("voussoirs", "seed")
+_INTEGERS = ("voussoirs", "seed", "spans")
 _CHOICES = {"shape": SHAPES, "faces": VOUSSOIR_FACES, "fill_inertia": FILL_INERTIA_MODELS}
 
 
@@ -189,6 +193,14 @@ class StructureSpec:
         from the ground up to it, courses of equal height (default 1).
     pier_left, pier_right : tuple or str, optional
         The pier under one springing only, as ``piers`` (unequal piers; not with ``piers``).
+    spans : int, optional
+        Number of equal arches in a row on shared piers, in [1, 100] (default 1); more than
+        one makes a :class:`~archquake.geometry.BlockAssembly`
+        (:func:`~archquake.geometry.bridge.multi_span`), the end piers those of ``piers``,
+        ``pier_left`` and ``pier_right``; no fill and no irregular draw yet.
+    pier_middle : tuple or str, optional
+        The intermediate piers ``(width [m], height [m], courses)`` (width between the two
+        intrados springing points each carries), as ``piers``; default: ``piers``.
     fill_cover : float, optional
         A level fill over the arch, this deep above the crown [m].
     fill_density : float, optional
@@ -234,6 +246,8 @@ class StructureSpec:
     piers: tuple | str | None = None
     pier_left: tuple | str | None = None
     pier_right: tuple | str | None = None
+    spans: int | None = None
+    pier_middle: tuple | str | None = None
     fill_cover: float | None = None
     fill_density: float | None = None
     fill_inertia: str | None = None
@@ -273,6 +287,7 @@ class StructureSpec:
         else:
             self._check_shape()
         self._check_structure()
+        self._check_spans()
         if self.epsilon is None and self.seed is not None:
             raise DescriptionError("{seed} needs {epsilon} (the seed of an irregular arch)")
         if self.epsilon is not None and self.seed is not None and self.seed < 0:
@@ -376,6 +391,54 @@ class StructureSpec:
         if self.fill_cover is not None:
             self.fill()
 
+    # ------------------------------------------------------------------ spans
+    def _check_spans(self) -> None:
+        from .bridge import MAX_SPANS
+
+        set_ = object.__setattr__
+        if self.spans is not None and not 1 <= self.spans <= MAX_SPANS:
+            raise DescriptionError(f"{{spans}} must be an integer in [1, {MAX_SPANS}], got "
+                                   f"{self.spans}")
+        if self.pier_middle is not None:
+            set_(self, "pier_middle", pier_field("pier_middle", self.pier_middle))
+        if (self.spans or 1) == 1:
+            if self.pier_middle is not None:
+                raise DescriptionError("{pier_middle} is the pier between two spans: give "
+                                       "{spans} of 2 or more")
+            return
+        if self.pier_middle is None and self.piers is None:
+            raise DescriptionError(f"{{spans}} {self.spans} needs the piers between the spans: "
+                                   "give {pier_middle} (or {piers}, which gives all the piers)")
+        fill = self._given("fill_cover", "fill_density", "fill_inertia", "fill_passive")
+        if fill:
+            raise DescriptionError(f"{{spans}} {self.spans}: fill over several spans is not "
+                                   f"modelled yet; leave out {', '.join(fill)}")
+        if self.epsilon is not None:
+            raise DescriptionError(f"{{spans}} {self.spans}: an irregular draw ({{epsilon}}) of "
+                                   "several spans is not modelled yet")
+
+    def _bridge(self, arch):
+        """The arch of the description in ``spans`` copies on shared piers."""
+        from .bridge import multi_span
+        from .piers import Pier
+        from .structure import Structure
+
+        if isinstance(arch, Structure) or hasattr(arch, "interfaces"):
+            what = "a structure" if isinstance(arch, Structure) else "a block assembly"
+            raise DescriptionError(f"{{spans}} puts copies of one arch on piers; the geometry "
+                                   f"file describes {what} already")
+        middle = Pier(*(self.pier_middle if self.pier_middle is not None else self.piers))
+        try:
+            return multi_span(arch, self.spans, end_piers=(self.pier("left"), self.pier("right")),
+                              middle_pier=middle)
+        except ValueError as exc:
+            text = str(exc).removeprefix("middle_pier: ")
+            name = "pier_middle" if self.pier_middle is not None else "piers"
+            for side in ("left", "right"):
+                if text.startswith(f"{side} pier"):
+                    name = f"pier_{side}" if getattr(self, f"pier_{side}") else "piers"
+            raise DescriptionError(f"{{{name}}}: {_literal(text)}") from None
+
     def pier(self, side: str):
         """The :class:`~archquake.geometry.Pier` under the ``"left"`` or ``"right"`` springing
         (None for a fixed springing)."""
@@ -439,7 +502,8 @@ class StructureSpec:
         BlockArch
             A :class:`~archquake.geometry.CircularArch`, :class:`~archquake.geometry.ShapedArch`
             or :class:`~archquake.geometry.SurveyedArch`, or a
-            :class:`~archquake.geometry.Structure` on piers or under fill.
+            :class:`~archquake.geometry.Structure` on piers or under fill; with ``spans`` of 2
+            or more a :class:`~archquake.geometry.BlockAssembly`.
 
         Raises
         ------
@@ -448,6 +512,8 @@ class StructureSpec:
             the arch cannot carry; the builder's own error (naming the same parameter) for a
             value it refuses, or the geometry file's.
         """
+        if (self.spans or 1) > 1:
+            return self._bridge(self._arch())
         return self._on_piers(self._arch())
 
     def arches(self):
@@ -516,5 +582,5 @@ class StructureSpec:
         return cls(**{k: v for k, v in data.items() if v is not None and v != ""})
 
 
-__all__ = ["SHAPE_FIELDS", "STRUCTURE_FIELDS", "StructureSpec", "integer_field", "number_field",
-           "pier_field"]
+__all__ = ["SHAPE_FIELDS", "SPAN_FIELDS", "STRUCTURE_FIELDS", "StructureSpec", "integer_field",
+           "number_field", "pier_field"]
