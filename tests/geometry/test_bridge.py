@@ -161,3 +161,20 @@ def test_a_three_span_bridge_is_analysed_quickly():
     assert bridge.n_blocks == 36
     assert math.isfinite(out["+x"]["no sliding"].load_multiplier)
     assert elapsed < 1.0
+
+
+def test_an_intermediate_pier_by_hand():
+    # Seats: the left arch's right springing from P_i = (0, 0) to P_e = (0.4, 0.3), the right
+    # arch's left springing from Q_i = (2, 0) to Q_e = (1.6, 0.3); a pier 2 m wide, 3 m high
+    # (ground at y = -3), two courses of 1.5 m: a rectangle, then the top course up to the seats
+    # with its top level at y = 0.3 between the extrados ends.
+    from archquake.geometry.piers import middle_pier_blocks
+
+    right, left = [(0.0, 0.0), (0.4, 0.3)], [(2.0, 0.0), (1.6, 0.3)]
+    lower, top = middle_pier_blocks(Pier(2.0, 3.0, 2), right, left)
+    assert lower.tolist() == [[0, -3], [2, -3], [2, -1.5], [0, -1.5]]
+    assert top.tolist() == [[0, -1.5], [2, -1.5], [2, 0], [1.6, 0.3], [0.4, 0.3], [0, 0]]
+    with pytest.raises(ValueError, match=r"at least 0\.8 m, .*\(0\.4 m \+ 0\.4 m"):
+        middle_pier_blocks(Pier(0.7, 3.0), right, [(0.7, 0.0), (0.3, 0.3)])
+    with pytest.raises(ValueError, match="two springings at one height"):
+        middle_pier_blocks(Pier(2.0, 3.0), right, [(2.0, 0.1), (1.6, 0.4)])

@@ -226,7 +226,13 @@ def _with_friction(args: argparse.Namespace, structure) -> int:
 
 def _describe(structure) -> str:
     if hasattr(structure, "interfaces"):
-        return (f"a block assembly of {structure.n_blocks} blocks and "
+        spans = ""
+        if any(name.startswith("span ") for name in structure.names):
+            from ..geometry.bridge import spans_of
+
+            n = len(spans_of(structure, range(structure.n_blocks)))
+            spans = f"{n} spans on {n + 1} piers, "
+        return (f"{spans}a block assembly of {structure.n_blocks} blocks and "
                 f"{structure.interfaces.a.size} interfaces")
     return describe_arch(structure)
 
