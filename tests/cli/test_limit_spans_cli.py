@@ -90,3 +90,13 @@ def test_other_commands_refuse_several_spans_by_name(command, capsys):
     assert main([*command, "--spans", "2"]) == 2
     err = capsys.readouterr().err
     assert "--spans 2 builds several arches on shared piers: limit analyses them" in err
+
+
+def test_the_page_refuses_several_spans_by_name():
+    from archquake.app.inputs import structure_from_spec
+
+    with pytest.raises(ValueError, match="spans: several spans are analysed by the command "
+                                         "line's limit only"):
+        structure_from_spec({"spans": 3, "piers": "3,6"})
+    _, structure = structure_from_spec({"spans": 1, "piers": "3,6"})
+    assert isinstance(structure, Structure)

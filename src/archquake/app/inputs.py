@@ -95,6 +95,10 @@ def structure_from_spec(spec: dict):
     if voussoirs not in (None, "") and _number(voussoirs) > LIMITS["blocks"]:
         raise ValueError(f"voussoirs must be at most {LIMITS['blocks']} on this page (the "
                          f"command line takes more), got {voussoirs}")
+    spans = data.get("spans") if isinstance(data, dict) else None
+    if spans not in (None, "", 1, "1"):
+        raise ValueError(f"spans: several spans are analysed by the command line's limit only, "
+                         f"not on this page, got {spans!r}")
     try:
         nominal, structure = StructureSpec.from_dict(data).arches()
     except ValueError as exc:
