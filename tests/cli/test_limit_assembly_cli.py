@@ -80,3 +80,15 @@ def test_commands_without_assemblies_refuse_one_by_name(tmp_path, capsys):
     assert "block assembly" in capsys.readouterr().err
     assert main(["limit", "--geometry", str(path), "--method", "kinematic"]) == 2
     assert "static" in capsys.readouterr().err
+
+
+def test_the_rigid_blocks_take_a_drawing(tmp_path, capsys):
+    # Housner's block 0.4 x 1 m (friction 0.8 > b/h: it rocks, never slides): at rest under a
+    # pulse below b/h = 0.4 g, set rocking above it (a pulse of 0.5 g and 0.27 s topples it)
+    path = tmp_path / "block.dxf"
+    from archquake.geometry.assembly import block_on_ground
+
+    write_dxf(block_on_ground(0.4, 1.0), path)
+    base = ["rigid-blocks", "--geometry", str(path), "--motion", "oppenheim"]
+    assert _json([*base, "--amplitude", "0.35"], capsys)["outcome"] == "rest"
+    assert _json([*base, "--amplitude", "0.5"], capsys)["outcome"] == "collapse"

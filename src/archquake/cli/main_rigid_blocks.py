@@ -41,7 +41,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """The rigid-block analysis of the arch of the options under the motion of the options."""
     spec = options.model_spec_from_args(args, "rigid-blocks")
-    arch = options.arch_from_args(args, assembly=True)
+    arch = options.arch_from_args(args, assembly=True, spans=True)
     motion = options.motion_from_args(args)
     model = spec.build(arch)
     settings = model.settings  # with the time step used
@@ -81,9 +81,10 @@ def run(args: argparse.Namespace) -> int:
         return 0
     why = (f"the contact problem of {outcome.unconverged_steps} steps unsolved"
            if outcome.unconverged_steps else "still moving")
-    text = {"rest": "the arch never moves (it moves with the ground)",
-            "recovery": "the arch rocks and comes back to rest",
-            "collapse": f"the arch collapses (certain at t = {outcome.collapse_time:.3f} s)",
+    what = "the structure" if hasattr(arch, "interfaces") else "the arch"
+    text = {"rest": f"{what} never moves (it moves with the ground)",
+            "recovery": f"{what} rocks and comes back to rest",
+            "collapse": f"{what} collapses (certain at t = {outcome.collapse_time:.3f} s)",
             "undecided": f"undecided: not decided by t = "
                          f"{outcome.steps * settings.time_step:.3f} s ({why})"}
     print(f"Rigid-block model, {motion.name}; friction {settings.friction:g}, time step "
