@@ -106,6 +106,7 @@ from .fill import DEFAULT_FILL_INERTIA, FILL_INERTIA_MODELS, Fill
 from .irregular import check_epsilon, irregular_arch, irregular_sample
 from .loads import BlockLoads
 from .piers import Pier
+from .rings import RING_BONDS, multi_ring
 from .shaped import VOUSSOIR_FACES, ShapedArch, shaped_arch
 from .spec import StructureSpec
 from .structure import Structure, arch_on_piers
@@ -114,11 +115,12 @@ from .survey import SurveyedArch, surveyed_arch
 __all__ = [
     "CENTRELINES", "DEFAULT_DENSITY", "DEFAULT_FILL_INERTIA",
     "FACES", "FILL_INERTIA_MODELS", "GRAVITY", "GROUND", "INTERFACE_KINDS", "LENGTH_RANGE",
-    "MAX_GEOMETRY_FILE_BYTES", "MAX_VOUSSOIRS", "MIN_VOUSSOIRS", "RADIUS_RANGE", "SHAPES",
+    "MAX_GEOMETRY_FILE_BYTES", "MAX_VOUSSOIRS", "MIN_VOUSSOIRS", "RADIUS_RANGE", "RING_BONDS",
+    "SHAPES",
     "VOUSSOIR_FACES", "BlockArch", "BlockAssembly", "BlockLoads", "Centreline", "CircularArch",
     "Fill", "Hinge", "Interfaces", "Pier", "ShapedArch", "Structure", "StructureSpec",
     "SurveyedArch", "arch_from_dict", "arch_on_piers", "block_on_ground", "centreline",
     "check_epsilon", "circular_arch", "irregular_arch", "irregular_sample", "load_arch",
-    "multi_span", "portal", "read_dxf", "shaped_arch", "stack", "surveyed_arch", "wall",
-    "write_dxf",
+    "multi_ring", "multi_span", "portal", "read_dxf", "shaped_arch", "stack", "surveyed_arch",
+    "wall", "write_dxf",
 ]

@@ -241,11 +241,12 @@ def _check_polygons(polygons, names: list[str]) -> tuple[np.ndarray, ...]:
 
 def _check_friction(friction):
     """``friction`` as None, a float or a dict kind -> float, or a ValueError."""
-    def coefficient(name, value):
+    def coefficient(name, value, infinite=False):
         if isinstance(value, bool) or not isinstance(value, int | float | np.floating) or not (
-                math.isfinite(value) and value >= 0):
-            raise ValueError(f"{name} must be a finite Coulomb coefficient >= 0 [-], got "
-                             f"{value!r}")
+                (math.isfinite(value) or (infinite and value == math.inf)) and value >= 0):
+            raise ValueError(f"{name} must be a finite Coulomb coefficient >= 0 [-]"
+                             f"{' (or inf: that kind does not slide)' if infinite else ''}, "
+                             f"got {value!r}")
         return float(value)
 
     if friction is None:
@@ -256,7 +257,8 @@ def _check_friction(friction):
         if unknown:
             raise ValueError(f"friction has unknown interface kind(s) {unknown}; allowed: "
                              f"{list(allowed)}")
-        return {str(k): coefficient(f"friction[{k!r}]", v) for k, v in sorted(friction.items())}
+        return {str(k): coefficient(f"friction[{k!r}]", v, True)
+                for k, v in sorted(friction.items())}
     return coefficient("friction", friction)
 
 
@@ -538,7 +540,8 @@ class BlockAssembly:
         Coulomb coefficient of the interfaces [-]: None (nothing slides: ``inf``), one value
         >= 0 for every interface, or a dict interface kind -> value (keys among
         :data:`INTERFACE_KINDS` and ``"default"`` for the kinds not listed; a kind present in
-        the assembly and missing from the dict is an error naming it).
+        the assembly and missing from the dict is an error naming it; a value ``inf``: that
+        kind does not slide).
     tolerance : float, optional
         Contact tolerance [m], finite and > 0: edges closer than it to one line are in contact,
         overlaps and gaps smaller than it are ignored. Default :data:`DEFAULT_TOLERANCE` (1e-6)
