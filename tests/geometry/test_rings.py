@@ -126,3 +126,21 @@ def test_thicknesses_and_friction_by_kind():
 def test_refusals_name_the_parameter(kwargs, message):
     with pytest.raises(ValueError, match=message):
         multi_ring(10.0, ALPHA, 1.5, **kwargs)
+
+
+def test_a_description_builds_the_rings():
+    from archquake.errors import DescriptionError
+    from archquake.geometry import StructureSpec
+
+    spec = StructureSpec.from_dict({"rings": 2, "ring_bond": "staggered", "ring_friction": "0.4",
+                                    "thickness": 1.2})
+    assert StructureSpec.from_dict(spec.to_dict()) == spec
+    built = spec.build()
+    # Oppenheim's radius and embrace, the thickness given, the default 7 voussoirs
+    direct = multi_ring(10.0, ALPHA, 1.2, rings=2, voussoirs=7, bond="staggered",
+                        ring_friction=0.4)
+    assert built == direct
+    with pytest.raises(DescriptionError, match="ring_bond must be one of"):
+        StructureSpec(rings=2, ring_bond="english")
+    with pytest.raises(DescriptionError, match="cannot be combined with fill_cover"):
+        StructureSpec(rings=2, fill_cover=1.0)

@@ -160,8 +160,9 @@ def _with_friction(args: argparse.Namespace, structure) -> int:
         raise ValueError("--friction and block assemblies take the static method (the linear "
                          "program): the kinematic enumeration holds for chains of voussoirs "
                          "whose joints do not slide")
+    friction = _friction_of(args)
     with options.analysing(args):
-        results = assembly_limits(structure, friction=args.friction)
+        results = assembly_limits(structure, friction=friction)
     governing = {d: max(laws.values(), key=lambda r: r.law == "non-associative")
                  for d, laws in results.items()}
     k = min(r.load_multiplier for r in governing.values())
@@ -177,6 +178,7 @@ def _with_friction(args: argparse.Namespace, structure) -> int:
         _plot_friction(args, results)
     if args.json:
         out = {"friction": args.friction, "k": k if math.isfinite(k) else None,
+               **_rings_json(args, structure, results),
                "directions": {d: {law: r.to_dict() for law, r in laws.items()}
                               for d, laws in results.items()}}
         for d, laws in results.items():  # several spans: which move
@@ -188,9 +190,7 @@ def _with_friction(args: argparse.Namespace, structure) -> int:
             out["rigid_blocks_ramp"] = ramp.to_dict()
         print_json(out)
         return 0
-    print(f"Limit analysis of {_describe(structure)}; "
-          + ("no interface slides (give --friction MU to let them)" if args.friction is None
-             else f"friction mu = {args.friction:g} at every interface"))
+    print(f"Limit analysis of {_describe(structure)}; " + _friction_text(args))
     print(f"{'direction':<10} {'law':<16} {'k [-]':>8} {'tilt [deg]':>10} {'LPs':>4}  "
           "rock / slide (interfaces)")
     for direction, laws in results.items():
@@ -200,8 +200,7 @@ def _with_friction(args: argparse.Namespace, structure) -> int:
             tilt = f"{r.tilt:10.2f}" if math.isfinite(r.load_multiplier) else f"{'':>10}"
             note = "" if r.converged else "  (did not converge)"
             print(f"{direction:<10} {law:<16} {k_text} {tilt} {r.iterations:>4}  "
-                  f"{_listed(r.interfaces_that('rocks'))} / "
-                  f"{_listed(r.interfaces_that('slides'))}{note}")
+                  f"{_moving(r)}{note}")
             moving = _spans_moving(structure, r)
             if moving is not None:
                 print(f"{'':<10} {'':<16} spans that move: {_listed(moving)}")
@@ -213,7 +212,7 @@ def _with_friction(args: argparse.Namespace, structure) -> int:
             print(f"{direction:<10} {'rigid blocks':<16} {k_text} {tilt} {'':>4}  "
                   f"{_listed(onset.rocking_joints)} / {_listed(onset.sliding_joints)}  "
                   f"(ramp, +/- {onset.error:.1e})")
-    if args.friction is None:
+    if args.friction is None and getattr(args, "ring_friction", None) is None:
         print(f"k = {k:.4f}: the least of the two directions (Heyman: no sliding)")
     else:
         print(f"k = {k:.4f}: the least of the two directions under the non-associative law "
@@ -222,6 +221,46 @@ def _with_friction(args: argparse.Namespace, structure) -> int:
     if args.plot:
         print(f"figure written to {args.plot}")
     return 0
+
+
+def _friction_of(args: argparse.Namespace):
+    """The friction the analysis applies over the assembly's own: ``--friction`` for every
+    interface or, with ``--ring-friction`` (already the ring interfaces' in the assembly), for
+    the others (a dict by kind: the ring interfaces keep theirs)."""
+    if args.friction is None or getattr(args, "ring_friction", None) is None:
+        return args.friction
+    return {kind: args.friction for kind in ("bed", "head", "foundation")}
+
+
+def _friction_text(args: argparse.Namespace) -> str:
+    ring = getattr(args, "ring_friction", None)
+    if ring is None:
+        return ("no interface slides (give --friction MU to let them)" if args.friction is None
+                else f"friction mu = {args.friction:g} at every interface")
+    others = ("the other interfaces do not slide" if args.friction is None
+              else f"mu = {args.friction:g} at the other interfaces")
+    return f"friction mu = {ring:g} between the rings, {others}"
+
+
+def _rings_json(args: argparse.Namespace, structure, results) -> dict:
+    """For an arch of several rings: the rings, and the rings whose blocks move in each
+    direction's mechanism under each law."""
+    if getattr(args, "rings", None) is None:
+        return {}
+    import numpy as np
+
+    ring_of = np.array([int(name.split(",")[0].split()[1]) for name in structure.names])
+    moving = {}
+    for direction, laws in results.items():
+        moving[direction] = {}
+        for law, r in laws.items():
+            speed = np.abs(r.velocities).max(axis=1)
+            moves = speed > 1e-6 * max(float(speed.max()), 1e-300)
+            moving[direction][law] = sorted({int(m) for m in ring_of[moves]})
+    return {"ring_friction": args.ring_friction,
+            "rings": {"count": int(ring_of.max()) + 1, "bond": args.ring_bond or "aligned",
+                      "blocks": [structure.names[i] for i in range(structure.n_blocks)],
+                      "moving_rings": moving}}
 
 
 def _describe(structure) -> str:
@@ -249,6 +288,26 @@ def _spans_moving(structure, result):
     if not math.isfinite(result.load_multiplier):
         return []
     return spans_of(structure, moving_blocks(result))
+
+
+def _moving(result) -> str:
+    """The interfaces that rock and slide; the chords of ring interfaces (an arch of several
+    rings) summed as the length of ring interface that opens and slides."""
+    import numpy as np
+
+    ring = result.contacts.kind == "ring"
+    if not ring.any():
+        return (f"{_listed(result.interfaces_that('rocks'))} / "
+                f"{_listed(result.interfaces_that('slides'))}")
+    c = result.contacts
+    length = np.hypot(*(c.p1 - c.p0).T)
+    state = np.asarray(result.state).astype(str)
+    opens = ring & np.isin(state, ("rocks", "separates"))
+    slides = ring & (np.char.find(state, "slides") >= 0)
+    rocks = [i for i in result.interfaces_that("rocks") if not ring[i]]
+    other = [i for i in result.interfaces_that("slides") if not ring[i]]
+    return (f"{_listed(rocks)} / {_listed(other)}; rings open over "
+            f"{length[opens].sum():.3g} m, slide over {length[slides].sum():.3g} m")
 
 
 def _listed(interfaces) -> str:

@@ -100,6 +100,8 @@ OPTION_NAMES = {
     "period_range": "--period-range",
     "factor_range": "--factor-range",
     "rule": "--compatibility",
+    "rings": "--rings",
+    "ring_friction": "--ring-friction",
 }
 """The option of each parameter of the library that an option sets, for the messages of
 :func:`option_message` (``sample_size`` of :class:`~archquake.studies.fragility.FragilitySettings`
@@ -173,7 +175,9 @@ FIELD_OPTIONS = {
         "shape", "span", "rise", "radius", "embrace", "thickness", "voussoirs", "faces",
         "geometry", "units", "piers", "pier_left", "pier_right",
         "spans", "pier_middle",
-        "fill_cover", "fill_density", "fill_inertia", "fill_passive", "density", "epsilon",
+        "fill_cover", "fill_density", "fill_inertia", "fill_passive",
+        "rings", "ring_bond", "ring_friction",
+        "density", "epsilon",
         "seed", "motion", "amplitude", "duration", "cycles", "record", "suite", "scale_to",
         "reverse")},
     "params": "--param",
@@ -318,6 +322,38 @@ def add_structure_options(parser: argparse.ArgumentParser) -> None:
                        help=f"density of the masonry, arch and piers [kg/m^3] (default: "
                             f"the --geometry file's, else {DEFAULT_DENSITY:g}); given, it "
                             "replaces the density of the --geometry file")
+    add_ring_options(parser)
+
+
+def add_ring_options(parser: argparse.ArgumentParser) -> None:
+    """``--rings``, ``--ring-bond`` and ``--ring-friction``: the circular arch of the shape
+    options cut into rings that can separate (:func:`archquake.geometry.multi_ring`); only
+    ``limit`` analyses one (:func:`refuse_rings`)."""
+    from ..geometry.rings import RING_BONDS
+
+    group = parser.add_argument_group("rings (limit only; default: one ring, the arch)")
+    group.add_argument("--rings", type=int, metavar="N",
+                       help="cut the circular arch (--radius, --embrace, --thickness, "
+                            "--voussoirs) into N concentric rings of equal thickness that can "
+                            "separate (a multi-ring brick arch), on fixed springings")
+    group.add_argument("--ring-bond", choices=RING_BONDS,
+                       help="joints of adjacent rings on the same radial lines (aligned) or "
+                            "offset by half a voussoir, with half voussoirs at the springings "
+                            "(staggered: brickwork) (default: aligned)")
+    group.add_argument("--ring-friction", type=number, metavar="MU",
+                       help="Coulomb friction coefficient of the interfaces between rings, "
+                            ">= 0 (default: they open but do not slide); --friction then gives "
+                            "the other interfaces' (without it they do not slide)")
+
+
+def refuse_rings(args: argparse.Namespace) -> None:
+    """Refuse ``--rings`` (and its options) naming them: an arch of several rings is a block
+    assembly, which only ``limit`` analyses."""
+    present = given(args, "rings", "ring_bond", "ring_friction") if hasattr(args, "rings") \
+        else []
+    if present:
+        raise ValueError(f"{', '.join(present)}: an arch of several rings is a block assembly, "
+                         "which limit analyses; this command does not")
 
 
 def shape_spec(args: argparse.Namespace):
@@ -349,9 +385,15 @@ def structure_spec(args: argparse.Namespace, *, draw: bool = True, spans: bool =
         Whether the command takes several spans (:data:`SPANS_COMMANDS`); else ``--spans``
         other than 1 is refused by name.
     """
-    from ..geometry.spec import SHAPE_FIELDS, SPAN_FIELDS, STRUCTURE_FIELDS, StructureSpec
+    from ..geometry.spec import (
+        RING_FIELDS,
+        SHAPE_FIELDS,
+        SPAN_FIELDS,
+        STRUCTURE_FIELDS,
+        StructureSpec,
+    )
 
-    names = SHAPE_FIELDS + ("geometry", "units") + STRUCTURE_FIELDS + ("density",)
+    names = SHAPE_FIELDS + ("geometry", "units") + STRUCTURE_FIELDS + RING_FIELDS + ("density",)
     names += SPAN_FIELDS
     if not spans and getattr(args, "spans", None) not in (None, 1):
         raise ValueError(f"--spans {args.spans} builds several arches on shared piers: "
@@ -379,6 +421,7 @@ silently absent)."""
 def nominal_arch_from_args(args: argparse.Namespace):
     """The arch of the geometry options, before any irregular draw (on piers and under fill if
     the structure options say so)."""
+    refuse_rings(args)
     with naming_options():
         return structure_spec(args, draw=False).nominal()
 
@@ -400,8 +443,11 @@ ASSEMBLY_COMMANDS = ("limit", "rigid-blocks")
 
 def arches_from_args(args: argparse.Namespace, *, assembly: bool = False, spans: bool = False):
     """``(nominal, arch)``: the arch before and after the optional irregular draw.
-    ``assembly``: whether the command takes any block assembly, else one is refused;
-    ``spans``: whether it takes several spans (``--spans``), else they are refused."""
+    ``assembly``: whether the command takes any block assembly (an arch of several rings too),
+    else one is refused; ``spans``: whether it takes several spans (``--spans``), else they are
+    refused."""
+    if not assembly:
+        refuse_rings(args)
     with naming_options():
         nominal, arch = structure_spec(args, spans=spans).arches()
     if not assembly and hasattr(arch, "interfaces"):

@@ -183,7 +183,9 @@ def multi_ring(radius: float, embrace: float, thickness: float, *, rings: int | 
     Returns
     -------
     BlockAssembly
-        The arch on its two springing supports, with ``kinds`` naming the ring interfaces.
+        The arch on its two springing supports, with ``kinds`` naming the ring interfaces and
+        ``names`` every block (``"ring 1, voussoir 3"``: ring 0 the intrados ring, voussoirs
+        from the left).
 
     Raises
     ------
@@ -231,12 +233,13 @@ def multi_ring(radius: float, embrace: float, thickness: float, *, rings: int | 
         r = radii[m]
         return np.column_stack((-r * np.cos(beta), r * np.sin(beta)))
 
-    polygons, ring_of, span = [], [], []
+    polygons, ring_of, span, names = [], [], [], []
     for m in range(n_rings):
-        for b0, b1 in zip(joints[m][:-1], joints[m][1:], strict=True):
+        for i, (b0, b1) in enumerate(zip(joints[m][:-1], joints[m][1:], strict=True)):
             polygons.append(np.vstack((arc(m, b0, b1), arc(m + 1, b0, b1)[::-1])))
             ring_of.append(m)
             span.append((b0, b1))
+            names.append(f"ring {m}, voussoir {i}")
     ring_of, span = np.array(ring_of), np.array(span)
     kinds = []
     for i in range(len(polygons)):
@@ -254,7 +257,8 @@ def multi_ring(radius: float, embrace: float, thickness: float, *, rings: int | 
         d = side * thickness * np.array([math.sin(beta), math.cos(beta)])
         supports.append(np.array([p_in, p_out, p_out + d, p_in + d]))
     return BlockAssembly(tuple(polygons), density, tuple(supports),
-                         ring_friction_of(friction, ring_friction), kinds=tuple(kinds))
+                         ring_friction_of(friction, ring_friction), kinds=tuple(kinds),
+                         names=tuple(names))
 
 
 def ring_friction_of(friction, ring_friction):

@@ -59,6 +59,10 @@ SPAN_FIELDS = ("spans", "pier_middle")
 """The fields that put several equal arches in a row on shared piers (a bridge, an arcade:
 :func:`~archquake.geometry.bridge.multi_span`)."""
 
+RING_FIELDS = ("rings", "ring_bond", "ring_friction")
+"""The fields that cut a circular arch into rings that can separate
+(:func:`~archquake.geometry.multi_ring`)."""
+
 _NUMBERS = ("span", "rise", "radius", "embrace", "thickness", "fill_cover", "fill_density",
             "density", "epsilon")
 _INTEGERS = ("voussoirs", "seed", "spans")
@@ -214,6 +218,17 @@ class StructureSpec:
         A passive reaction of the fill, ``(phi [deg], mobilisation [-])`` or the text
         ``"PHI,MOBILISATION"``: angle of friction in (0, 90) and mobilised fraction of
         Rankine's passive pressure in [0, 1].
+    rings : int, optional
+        Cut the circular arch (of ``radius``, ``embrace`` and ``thickness``, curved faces) into
+        this many concentric rings of equal thickness that can separate, >= 1: a
+        :class:`~archquake.geometry.BlockAssembly` (:func:`~archquake.geometry.multi_ring`)
+        on fixed springings, without piers, fill or irregular draw.
+    ring_bond : {"aligned", "staggered"}, optional
+        The joints of adjacent rings on the same radial lines, or offset by half a voussoir
+        (default ``"aligned"``); only with ``rings``.
+    ring_friction : float, optional
+        Coulomb coefficient of the ring interfaces [-], >= 0 (default: they do not slide);
+        only with ``rings``.
     density : float, optional
         Density of the masonry, arch and piers [kg/m^3] (default: the geometry file's, else
         :data:`~archquake.constants.DEFAULT_DENSITY`); given, it replaces the geometry file's.
@@ -252,6 +267,9 @@ class StructureSpec:
     fill_density: float | None = None
     fill_inertia: str | None = None
     fill_passive: tuple | str | None = None
+    rings: int | None = None
+    ring_bond: str | None = None
+    ring_friction: float | None = None
     density: float | None = None
     epsilon: float | None = None
     seed: int | None = None
@@ -288,6 +306,7 @@ class StructureSpec:
             self._check_shape()
         self._check_structure()
         self._check_spans()
+        self._check_rings()
         if self.epsilon is None and self.seed is not None:
             raise DescriptionError("{seed} needs {epsilon} (the seed of an irregular arch)")
         if self.epsilon is not None and self.seed is not None and self.seed < 0:
@@ -492,6 +511,46 @@ class StructureSpec:
                     name = f"pier_{side}" if getattr(self, f"pier_{side}") else "piers"
             raise DescriptionError(f"{{{name}}}: {_literal(text)}") from None
 
+    # ------------------------------------------------------------------ rings
+    def _check_rings(self) -> None:
+        from .rings import RING_BONDS
+
+        set_ = object.__setattr__
+        if self.rings is None:
+            given = self._given("ring_bond", "ring_friction")
+            if given:
+                raise DescriptionError(f"{', '.join(given)}: give {{rings}} (the number of "
+                                       "rings of the arch)")
+            return
+        set_(self, "rings", integer_field("rings", self.rings))
+        if self.rings < 1:
+            raise DescriptionError(f"{{rings}} must be an integer >= 1, got {self.rings}")
+        if self.ring_bond is not None and self.ring_bond not in RING_BONDS:
+            raise DescriptionError(f"{{ring_bond}} must be one of {_literal(list(RING_BONDS))}, "
+                                   f"got {_literal(repr(self.ring_bond))}")
+        if self.ring_friction is not None:
+            set_(self, "ring_friction", number_field("ring_friction", self.ring_friction))
+            if not self.ring_friction >= 0:
+                raise DescriptionError(f"{{ring_friction}} must be a Coulomb coefficient >= 0, "
+                                       f"got {self.ring_friction:g}")
+        other = self._given("geometry", "shape", "span", "rise", "faces", *STRUCTURE_FIELDS,
+                            "epsilon")
+        if other:
+            raise DescriptionError(f"{{rings}} cuts a circular arch given by {{radius}}, "
+                                   f"{{embrace}}, {{thickness}} and {{voussoirs}} into rings on "
+                                   f"fixed springings; it cannot be combined with "
+                                   f"{', '.join(other)}")
+
+    def _rings(self):
+        """The arch of several rings (:func:`~archquake.geometry.multi_ring`)."""
+        from .rings import multi_ring
+
+        return multi_ring(self._value("radius"), math.radians(self._value("embrace")),
+                          self._value("thickness"), rings=self.rings,
+                          voussoirs=self._value("voussoirs"), bond=self.ring_bond or "aligned",
+                          ring_friction=self.ring_friction,
+                          density=DEFAULT_DENSITY if self.density is None else self.density)
+
     # ------------------------------------------------------------------ the structure
     def nominal(self):
         """The structure before the irregular draw: the arch of the shape fields (or of the
@@ -499,11 +558,12 @@ class StructureSpec:
 
         Returns
         -------
-        BlockArch
+        BlockArch or BlockAssembly
             A :class:`~archquake.geometry.CircularArch`, :class:`~archquake.geometry.ShapedArch`
             or :class:`~archquake.geometry.SurveyedArch`, or a
             :class:`~archquake.geometry.Structure` on piers or under fill; with ``spans`` of 2
-            or more a :class:`~archquake.geometry.BlockAssembly`.
+            or more, or ``rings`` (or a geometry file of one), a
+            :class:`~archquake.geometry.BlockAssembly`.
 
         Raises
         ------
@@ -512,6 +572,8 @@ class StructureSpec:
             the arch cannot carry; the builder's own error (naming the same parameter) for a
             value it refuses, or the geometry file's.
         """
+        if self.rings is not None:
+            return self._rings()
         if (self.spans or 1) > 1:
             return self._bridge(self._arch())
         return self._on_piers(self._arch())
@@ -582,5 +644,5 @@ class StructureSpec:
         return cls(**{k: v for k, v in data.items() if v is not None and v != ""})
 
 
-__all__ = ["SHAPE_FIELDS", "SPAN_FIELDS", "STRUCTURE_FIELDS", "StructureSpec", "integer_field",
-           "number_field", "pier_field"]
+__all__ = ["RING_FIELDS", "SHAPE_FIELDS", "SPAN_FIELDS", "STRUCTURE_FIELDS", "StructureSpec",
+           "integer_field", "number_field", "pier_field"]

@@ -1,0 +1,100 @@
+"""``archquake limit --rings N``: Oppenheim's arch in rings that can separate, against the chain
+program of the one-ring arch, and how ``--ring-friction`` combines with ``--friction``."""
+
+import json
+import math
+
+import pytest
+
+from archquake.cli import main
+from archquake.geometry import circular_arch
+from archquake.limit_analysis import load_multipliers
+
+
+def _json(argv, capsys):
+    assert main([*argv, "--json"]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def test_two_rings_of_oppenheims_arch(capsys):
+    # the rings cannot slide on each other: the one-ring four-hinge mechanism through both rings
+    # is the weakest (tests/limit_analysis/test_rings_limit.py), so k is the chain program's
+    # 0.37001 of Oppenheim's arch, within the chords' error (arc_error 1.5 mm: 3e-5)
+    out = _json(["limit", "--rings", "2"], capsys)
+    k_chain = load_multipliers(circular_arch(10.0, math.radians(157.5), 1.5, 7), "static")[0]
+    assert out["k"] == pytest.approx(k_chain, abs=1e-4)
+    assert out["rings"]["count"] == 2 and out["rings"]["bond"] == "aligned"
+    assert len(out["rings"]["blocks"]) == 14
+    for direction in ("+x", "-x"):
+        entry = out["directions"][direction]["no sliding"]
+        assert entry["load_multiplier"] == pytest.approx(k_chain, abs=1e-4)
+        assert entry["sliding"] == []
+        # four hinges: on bed or foundation joints of both rings, the rings moving together
+        kinds = {m["kind"] for m in entry["moving_interfaces"] if m["state"] == "rocks"}
+        assert kinds <= {"bed", "foundation", "ring"}
+        assert out["rings"]["moving_rings"][direction]["no sliding"] == [0, 1]
+
+
+def test_ring_friction_alone_lets_only_the_rings_slide(capsys):
+    out = _json(["limit", "--rings", "2", "--ring-friction", "0.4"], capsys)
+    assert out["ring_friction"] == 0.4 and out["friction"] is None
+    for direction in ("+x", "-x"):
+        for law, entry in out["directions"][direction].items():
+            sliding = {m["kind"] for m in entry["moving_interfaces"] if "slides" in m["state"]}
+            assert sliding == {"ring"}, law
+    # rings that slide on each other are weaker than rings that cannot (a narrower cone)
+    assert out["k"] < 0.37
+
+
+def test_friction_is_the_other_interfaces_and_the_rings_without_ring_friction(capsys):
+    # --friction alone gives every interface, the ring ones too, its coefficient: the same
+    # multipliers as --friction MU --ring-friction MU
+    alone = _json(["limit", "--rings", "2", "--friction", "0.5"], capsys)
+    both = _json(["limit", "--rings", "2", "--friction", "0.5", "--ring-friction", "0.5"],
+                 capsys)
+    for direction in ("+x", "-x"):
+        a = alone["directions"][direction]["associative"]["load_multiplier"]
+        b = both["directions"][direction]["associative"]["load_multiplier"]
+        assert a == pytest.approx(b, rel=1e-9)
+    # a stiffer ring friction never lowers k (the static theorem: a wider cone)
+    stiff = _json(["limit", "--rings", "2", "--friction", "0.5", "--ring-friction", "0.9"],
+                  capsys)
+    assert (stiff["directions"]["+x"]["associative"]["load_multiplier"]
+            >= both["directions"]["+x"]["associative"]["load_multiplier"] - 1e-9)
+
+
+def test_plot_of_the_rings(tmp_path, capsys):
+    path = tmp_path / "rings.png"
+    assert main(["limit", "--rings", "2", "--ring-bond", "staggered", "--ring-friction", "0.5",
+                 "--plot", str(path)]) == 0
+    assert path.stat().st_size > 10_000
+    text = capsys.readouterr().out
+    assert "friction mu = 0.5 between the rings, the other interfaces do not slide" in text
+
+
+@pytest.mark.parametrize(("argv", "message"), [
+    (["simulate", "--rings", "2"], "--rings: an arch of several rings is a block assembly"),
+    (["domain", "--rings", "2", "--ring-bond", "staggered"], "--rings, --ring-bond: an arch"),
+    (["limit", "--rings", "2", "--min-pier-width", "--piers", ",3"], "--rings"),
+    (["limit", "--ring-friction", "0.3"], "--ring-friction: give --rings"),
+    (["limit", "--rings", "2", "--piers", "1,3"], "cannot be combined with --piers"),
+    (["limit", "--rings", "2", "--shape", "pointed", "--span", "10", "--rise", "8"],
+     "cannot be combined with --shape, --span, --rise"),
+    (["limit", "--rings", "2", "--epsilon", "0.1"], "cannot be combined with --epsilon"),
+    (["limit", "--rings", "0"], "--rings must be an integer >= 1"),
+    (["limit", "--rings", "2", "--ring-friction", "-1"], "--ring-friction must be"),
+])
+def test_refusals_name_the_options(argv, message, capsys):
+    assert main(argv) == 2
+    assert message in capsys.readouterr().err
+
+
+def test_blocks_named_by_ring(capsys):
+    out = _json(["limit", "--rings", "3", "--voussoirs", "4", "--ring-bond", "staggered"],
+                capsys)
+    names = out["rings"]["blocks"]
+    # rings 0 and 2 of 4 voussoirs, ring 1 of 3 and two halves
+    assert len(names) == 4 + 5 + 4
+    assert names[4] == "ring 1, voussoir 0" and names[-1] == "ring 2, voussoir 3"
+    # staggered rings that cannot slide on each other lock (no mechanism): k = inf, null
+    assert out["k"] is None
