@@ -103,6 +103,10 @@ def structure_from_spec(spec: dict):
         nominal, structure = StructureSpec.from_dict(data).arches()
     except ValueError as exc:
         raise ValueError(_file_message(str(exc), file)) from None
+    if hasattr(structure, "interfaces"):  # an arch of several rings, a wall, a drawing
+        raise ValueError("this page analyses an arch (a chain of voussoirs); a block assembly "
+                         "(an arch of several rings, or a file of one) is analysed by "
+                         "'archquake limit'")
     if structure.n_voussoirs > LIMITS["blocks"]:
         raise ValueError(f"the structure has {structure.n_voussoirs} blocks (voussoirs and pier "
                          f"courses); this page takes at most {LIMITS['blocks']}")

@@ -115,12 +115,12 @@ from .survey import SurveyedArch, surveyed_arch
 __all__ = [
     "CENTRELINES", "DEFAULT_DENSITY", "DEFAULT_FILL_INERTIA",
     "FACES", "FILL_INERTIA_MODELS", "GRAVITY", "GROUND", "INTERFACE_KINDS", "LENGTH_RANGE",
-    "MAX_GEOMETRY_FILE_BYTES", "MAX_VOUSSOIRS", "MIN_VOUSSOIRS", "RADIUS_RANGE", "RING_BONDS",
-    "SHAPES",
+    "MAX_GEOMETRY_FILE_BYTES", "MAX_VOUSSOIRS", "MIN_VOUSSOIRS", "RADIUS_RANGE", "SHAPES",
     "VOUSSOIR_FACES", "BlockArch", "BlockAssembly", "BlockLoads", "Centreline", "CircularArch",
     "Fill", "Hinge", "Interfaces", "Pier", "ShapedArch", "Structure", "StructureSpec",
     "SurveyedArch", "arch_from_dict", "arch_on_piers", "block_on_ground", "centreline",
     "check_epsilon", "circular_arch", "irregular_arch", "irregular_sample", "load_arch",
-    "multi_ring", "multi_span", "portal", "read_dxf", "shaped_arch", "stack", "surveyed_arch",
+    "multi_span", "portal", "read_dxf", "shaped_arch", "stack", "surveyed_arch",
     "wall", "write_dxf",
 ]
+__all__ += ["RING_BONDS", "multi_ring"]
