@@ -1,0 +1,89 @@
+"""Arches of several rings: k against arc_error (one ring against the chain program), k by
+rings, bond and ring friction for Oppenheim's arch, and the cost of three rings of 20 voussoirs.
+
+    python benchmarks/ring_arches.py [--quick]
+
+The tables of the user guide's page "Bridges: several rings". ``--quick`` skips the
+non-associative iterations (about a minute of the two).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path[:0] = [str(ROOT / "src")]
+
+from archquake.geometry import circular_arch, multi_ring  # noqa: E402
+from archquake.limit_analysis import load_multipliers  # noqa: E402
+from archquake.limit_analysis.assembly import assembly_limit  # noqa: E402
+
+ALPHA = math.radians(157.5)
+
+
+def convergence() -> None:
+    k_chain = load_multipliers(circular_arch(10.0, ALPHA, 1.5, 7), "static")[0]
+    print(f"one ring of Oppenheim's arch against the chain program (k = {k_chain:.6f})")
+    print(f"{'arc_error [mm]':>15} {'vertices/block':>15} {'k [-]':>10} {'k - chain':>10}")
+    for e in (1.5e-2, 1.5e-3, 1.5e-4, 1.5e-5):
+        arch = multi_ring(10.0, ALPHA, 1.5, rings=1, voussoirs=7, arc_error=e)
+        k = assembly_limit(arch).load_multiplier
+        print(f"{e * 1e3:15.3g} {len(arch.polygons[0]):15d} {k:10.6f} {k - k_chain:10.2e}")
+
+
+def by_friction(quick: bool) -> None:
+    print("\nOppenheim's arch, 7 voussoirs per ring: k associative / non-associative "
+          "(* not converged)")
+    mus = (None, 0.8, 0.6, 0.4, 0.3)
+    print(f"{'rings':<6}{'bond':<11}" + "".join(f"{'none' if m is None else m:>18}"
+                                                  for m in mus))
+    for rings, bond in ((2, "aligned"), (2, "staggered"), (3, "aligned"), (3, "staggered")):
+        row = []
+        for mu in mus:
+            arch = multi_ring(10.0, ALPHA, 1.5, rings=rings, voussoirs=7, bond=bond,
+                              ring_friction=mu)
+            k = assembly_limit(arch).load_multiplier
+            text = f"{k:.4f}"
+            if mu is not None and not quick:
+                r = assembly_limit(arch, law="non-associative")
+                text += f"/{r.load_multiplier:.4f}{'' if r.converged else '*'}"
+            row.append(text)
+        print(f"{rings:<6}{bond:<11}" + "".join(f"{t:>18}" for t in row))
+
+
+def cost(quick: bool) -> None:
+    print("\nthree staggered rings of 20 voussoirs, ring friction 0.5")
+    for e in (None, 1.5e-4):
+        t0 = time.perf_counter()
+        arch = multi_ring(10.0, ALPHA, 1.5, rings=3, voussoirs=20, bond="staggered",
+                          ring_friction=0.5, arc_error=e)
+        t1 = time.perf_counter()
+        k = assembly_limit(arch).load_multiplier
+        t2 = time.perf_counter()
+        text = (f"arc_error {'default' if e is None else f'{e * 1e3:g} mm'}: "
+                f"{arch.n_blocks} blocks, {arch.interfaces.n_interfaces} interfaces, built in "
+                f"{t1 - t0:.2f} s; associative k = {k:.4f} in {t2 - t1:.3f} s")
+        if not quick:
+            r = assembly_limit(arch, law="non-associative")
+            text += (f"; non-associative {r.load_multiplier:.4f} in {time.perf_counter() - t2:.1f}"
+                     f" s ({r.iterations} programs, converged: {r.converged})")
+        print(text)
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true",
+                        help="the associative program only")
+    args = parser.parse_args(argv)
+    convergence()
+    by_friction(args.quick)
+    cost(args.quick)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
