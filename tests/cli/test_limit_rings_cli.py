@@ -79,7 +79,8 @@ def test_plot_of_the_rings(tmp_path, capsys):
     (["limit", "--ring-friction", "0.3"], "--ring-friction: give --rings"),
     (["limit", "--rings", "2", "--piers", "1,3"], "cannot be combined with --piers"),
     (["limit", "--rings", "2", "--shape", "pointed", "--span", "10", "--rise", "8"],
-     "cannot be combined with --shape, --span, --rise"),
+     "a pointed arch's crown is a corner: give another --shape"),
+    (["limit", "--rings", "2", "--faces", "flat"], "cannot be combined with --faces"),
     (["limit", "--rings", "2", "--epsilon", "0.1"], "cannot be combined with --epsilon"),
     (["limit", "--rings", "0"], "--rings must be an integer >= 1"),
     (["limit", "--rings", "2", "--ring-friction", "-1"], "--ring-friction must be"),
@@ -98,3 +99,15 @@ def test_blocks_named_by_ring(capsys):
     assert names[4] == "ring 1, voussoir 0" and names[-1] == "ring 2, voussoir 3"
     # staggered rings that cannot slide on each other lock (no mechanism): k = inf, null
     assert out["k"] is None
+
+
+def test_rings_of_a_parabolic_arch(capsys):
+    # one ring of a parabolic arch is the shaped arch of the chain program, within the chords
+    # (arc_error 1e-3 of the thickness: 0.8 mm, k within 1e-4)
+    from archquake.geometry import shaped_arch
+
+    out = _json(["limit", "--rings", "1", "--shape", "parabolic", "--span", "10", "--rise", "3",
+                 "--thickness", "0.8", "--voussoirs", "9"], capsys)
+    k_chain = load_multipliers(shaped_arch("parabolic", span=10.0, rise=3.0, thickness=0.8,
+                                           voussoirs=9), "static")[0]
+    assert out["k"] == pytest.approx(k_chain, abs=1e-4)

@@ -144,3 +144,51 @@ def test_a_description_builds_the_rings():
         StructureSpec(rings=2, ring_bond="english")
     with pytest.raises(DescriptionError, match="cannot be combined with fill_cover"):
         StructureSpec(rings=2, fill_cover=1.0)
+
+
+def test_a_circle_by_span_and_rise_is_the_circle_by_radius_and_embrace():
+    # the same semicircle (S = 10, H = 5: R = 5, embrace pi) built by the two paths (closed-form
+    # circles about the origin; offset curves of the centreline about (0, H - R) = (0, 0)):
+    # the same blocks to round-off
+    by_angle = multi_ring(5.0, math.pi, 0.8, rings=2, voussoirs=9, bond="staggered")
+    by_size = multi_ring(shape="circular", span=10.0, rise=5.0, thickness=0.8, rings=2,
+                         voussoirs=9, bond="staggered")
+    assert by_size.n_blocks == by_angle.n_blocks
+    for p, q in zip(by_angle.polygons, by_size.polygons, strict=True):
+        np.testing.assert_allclose(p, q, atol=1e-12)
+    np.testing.assert_array_equal(by_size.interfaces.kind, by_angle.interfaces.kind)
+
+
+@pytest.mark.parametrize("shape", ["parabolic", "elliptical", "catenary", "three-centred"])
+def test_rings_follow_the_offset_curves_of_a_centreline(shape):
+    from archquake.geometry import centreline
+
+    e = 1e-3
+    curve = centreline(shape, 10.0, 3.5)
+    arch = multi_ring(shape=shape, span=10.0, rise=3.5, thickness=0.8, rings=2, voussoirs=9,
+                      arc_error=e)
+    kind = arch.interfaces.kind
+    assert int(np.sum(kind == "bed")) == 16 and int(np.sum(kind == "foundation")) == 4
+    # every ring interface's ends on the centreline (offset 0): nearest point of a dense
+    # sampling of the centreline within the sampling's own error
+    s = np.linspace(0.0, curve.length, 20001)
+    dense = np.array([curve.point(x) for x in s])
+    ends = arch.interfaces.p0[kind == "ring"]
+    gap = np.min(np.hypot(*(ends[:, None, :] - dense[None, :, :]).transpose(2, 0, 1)), axis=1)
+    assert gap.max() < 1e-3
+    # the intrados ring: between the offset curves at d = -0.4 and 0 m, an area
+    # int ds int (1 + d |kappa|) dd = 0.4 L - 0.08 Theta, Theta = int |kappa| ds the turning
+    # angle of the tangent from springing to springing (parabola, S = 10, H = 3.5: slopes
+    # +-4H/S = 1.4, Theta = 2 atan 1.4 = 1.9011 rad: 0.4 x 12.667 - 0.152 = 4.914 m^2), less
+    # or more the chords' segments, each at most 2/3 chord x sagitta
+    t0, t1 = curve.tangent(0.0), curve.tangent(curve.length)
+    theta = abs(math.atan2(t0[0] * t1[1] - t0[1] * t1[0], t0 @ t1))
+    inner = float(arch.area[:9].sum())
+    assert abs(inner - (0.4 * curve.length - 0.08 * theta)) <= 2 / 3 * e * 2 * curve.length
+
+
+def test_pointed_and_mixed_descriptions_are_refused():
+    with pytest.raises(ValueError, match="pointed arch's crown is a corner"):
+        multi_ring(shape="pointed", span=10.0, rise=8.0, thickness=0.8, rings=2)
+    with pytest.raises(ValueError, match="radius and embrace"):
+        multi_ring(10.0, ALPHA, 1.5, shape="parabolic", span=10.0, rise=3.0, rings=2)

@@ -128,3 +128,19 @@ def test_which_interfaces_move_when_rings_separate():
     sliding = np.array(result.interfaces_that("slides"), dtype=int)
     assert sliding.size and set(kinds[sliding]) == {"ring"}
     assert {"bed", "foundation"} & set(kinds[result.interfaces_that("rocks")])
+
+
+@pytest.mark.parametrize("shape", ["parabolic", "elliptical", "catenary", "three-centred"])
+def test_one_ring_of_a_shape_converges_to_the_chain_program(shape):
+    # the chain program of the shaped arch (joints normal to the centreline at equal arc
+    # lengths, exact faces by quadrature) against one ring of chords: within 1e-3 at a
+    # sagitta of 10 mm, 1e-5 at 0.1 mm
+    from archquake.geometry import shaped_arch
+
+    rise = 4.0 if shape == "three-centred" else 3.0
+    k_chain = load_multipliers(shaped_arch(shape, span=10.0, rise=rise, thickness=0.8,
+                                           voussoirs=9), "static")[0]
+    for e, tolerance in ((1e-2, 1e-3), (1e-4, 1e-5)):
+        arch = multi_ring(shape=shape, span=10.0, rise=rise, thickness=0.8, rings=1,
+                          voussoirs=9, arc_error=e)
+        assert abs(k_of(arch) - k_chain) < tolerance

@@ -333,9 +333,9 @@ def add_ring_options(parser: argparse.ArgumentParser) -> None:
 
     group = parser.add_argument_group("rings (limit only; default: one ring, the arch)")
     group.add_argument("--rings", type=int, metavar="N",
-                       help="cut the circular arch (--radius, --embrace, --thickness, "
-                            "--voussoirs) into N concentric rings of equal thickness that can "
-                            "separate (a multi-ring brick arch), on fixed springings")
+                       help="cut the arch of the shape options (not a pointed one) into N "
+                            "concentric rings of equal thickness that can separate (a "
+                            "multi-ring brick arch), on fixed springings")
     group.add_argument("--ring-bond", choices=RING_BONDS,
                        help="joints of adjacent rings on the same radial lines (aligned) or "
                             "offset by half a voussoir, with half voussoirs at the springings "

@@ -23,6 +23,15 @@ joints into voussoirs, each its own block:
   running bond of :func:`~archquake.geometry.assembly.wall` bent round), so every ring starts
   and ends on the springing line and no joint runs through two adjacent rings.
 
+**Other centrelines.** Given ``shape``, ``span`` and ``rise`` instead, the arch is built on a
+smooth centreline of :mod:`~archquake.geometry.centrelines` in its frame (springings at
+:math:`(\mp S/2, 0)`): the ring boundaries are the offset curves of the centreline at
+:math:`-t/2 < d_1 < \dots < t/2`, the joints normal to it at equal arc lengths (those of
+:func:`~archquake.geometry.shaped_arch`; a staggered ring offset by half of one), and the
+chords between two joint ends are the fewest equal steps of arc length (from the largest
+curvature between them, doubled until the sagitta, measured at the middle of each chord's arc,
+is at most ``arc_error``). A pointed arch is refused: its crown is a corner.
+
 **Faces as chords.** Every circle :math:`r_m` (intrados, extrados and the ring interfaces) is
 drawn as chords through one set of points: every joint end on it (of the ring inside and the
 ring outside), and between two consecutive joint ends the fewest equal chords whose sagitta
@@ -141,7 +150,9 @@ def _circle_points(radius: float, joints: np.ndarray, arc_error: float) -> np.nd
     return points
 
 
-def multi_ring(radius: float, embrace: float, thickness: float, *, rings: int | None = None,
+def multi_ring(radius: float | None = None, embrace: float | None = None,
+               thickness: float | None = None, *, shape: str | None = None,
+               span: float | None = None, rise: float | None = None, rings: int | None = None,
                thicknesses=None, voussoirs: int = 7, bond: str = "aligned", friction=None,
                ring_friction=None, arc_error: float | None = None,
                density: float = DEFAULT_DENSITY) -> BlockAssembly:
@@ -153,11 +164,23 @@ def multi_ring(radius: float, embrace: float, thickness: float, *, rings: int | 
     Parameters
     ----------
     radius : float
-        Mean radius :math:`R` of the arch [m], > thickness / 2.
+        Mean radius :math:`R` of a circular arch [m], > thickness / 2 (or give ``shape``,
+        ``span`` and ``rise``).
     embrace : float
-        Angle of embrace :math:`\alpha` [rad], in (0, 2 pi).
+        Angle of embrace :math:`\alpha` of a circular arch [rad], in (0, 2 pi).
     thickness : float
-        Total thickness :math:`t` of the arch, all rings [m], > 0.
+        Total thickness :math:`t` of the arch, all rings, normal to the centreline [m], > 0.
+    shape : str, optional
+        Instead of ``radius`` and ``embrace``: a smooth centreline of
+        :mod:`~archquake.geometry.centrelines` (``"circular"``, ``"elliptical"``,
+        ``"parabolic"``, ``"catenary"``, ``"three-centred"``; not ``"pointed"``, whose crown
+        corner the rings' offset curves cannot follow as chords) of ``span`` and ``rise`` [m],
+        in its frame (springings at :math:`(\mp S/2, 0)`): the rings are its offset curves,
+        the joints normal to it at equal arc lengths (as
+        :func:`~archquake.geometry.shaped_arch` cuts them), every chord's sagitta measured at
+        the middle of its arc.
+    span, rise : float, optional
+        Span and rise of the centreline [m], with ``shape``.
     rings : int, optional
         Number of rings of equal thickness :math:`t/N`, >= 1 (or give ``thicknesses``).
     thicknesses : sequence of float, optional
@@ -196,6 +219,14 @@ def multi_ring(radius: float, embrace: float, thickness: float, *, rings: int | 
     ----------
     .. [1] Melbourne and Gilbert (1995), see the module.
     """
+    if shape is not None or span is not None or rise is not None:
+        if radius is not None or embrace is not None:
+            raise ValueError("give radius and embrace (a circular arch) or shape, span and "
+                             "rise, not both")
+        return _on_centreline(shape or "circular", span, rise, thickness, rings=rings,
+                              thicknesses=thicknesses, voussoirs=voussoirs, bond=bond,
+                              friction=friction, ring_friction=ring_friction,
+                              arc_error=arc_error, density=density)
     radius = _positive("radius", radius)
     thickness = _positive("thickness", thickness)
     embrace = _positive("embrace", embrace)
@@ -204,11 +235,7 @@ def multi_ring(radius: float, embrace: float, thickness: float, *, rings: int | 
     if not thickness < 2 * radius:
         raise ValueError(f"thickness must be below twice the radius ({2 * radius:g} m), got "
                          f"{thickness!r}")
-    if isinstance(voussoirs, bool) or not isinstance(voussoirs, int | np.integer) \
-            or voussoirs < 1:
-        raise ValueError(f"voussoirs must be an integer >= 1, got {voussoirs!r}")
-    if bond not in RING_BONDS:
-        raise ValueError(f"bond must be one of {list(RING_BONDS)}, got {bond!r}")
+    _check_voussoirs_and_bond(voussoirs, bond)
     radii = _ring_radii(radius, thickness, rings, thicknesses)
     n_rings = radii.size - 1
     arc_error = ARC_ERROR * thickness if arc_error is None else _positive("arc_error",
@@ -233,21 +260,7 @@ def multi_ring(radius: float, embrace: float, thickness: float, *, rings: int | 
         r = radii[m]
         return np.column_stack((-r * np.cos(beta), r * np.sin(beta)))
 
-    polygons, ring_of, span, names = [], [], [], []
-    for m in range(n_rings):
-        for i, (b0, b1) in enumerate(zip(joints[m][:-1], joints[m][1:], strict=True)):
-            polygons.append(np.vstack((arc(m, b0, b1), arc(m + 1, b0, b1)[::-1])))
-            ring_of.append(m)
-            span.append((b0, b1))
-            names.append(f"ring {m}, voussoir {i}")
-    ring_of, span = np.array(ring_of), np.array(span)
-    kinds = []
-    for i in range(len(polygons)):
-        for j in np.flatnonzero(ring_of == ring_of[i] + 1):
-            if min(span[i, 1], span[j, 1]) - max(span[i, 0], span[j, 0]) > 1e-12:
-                kinds.append((i, int(j), "ring"))
-        if i + 1 < len(polygons) and ring_of[i + 1] == ring_of[i]:
-            kinds.append((i, i + 1, "bed"))
+    polygons, names, kinds = _blocks(joints, arc)
     supports = []
     for beta, side in ((start, -1.0), (start + embrace, 1.0)):
         p_in = np.array([-radii[0] * math.cos(beta), radii[0] * math.sin(beta)])
@@ -255,6 +268,126 @@ def multi_ring(radius: float, embrace: float, thickness: float, *, rings: int | 
         # the joint normal (toward increasing beta) is (sin beta, cos beta); the support lies
         # beyond the springing, away from the arch
         d = side * thickness * np.array([math.sin(beta), math.cos(beta)])
+        supports.append(np.array([p_in, p_out, p_out + d, p_in + d]))
+    return BlockAssembly(tuple(polygons), density, tuple(supports),
+                         ring_friction_of(friction, ring_friction), kinds=tuple(kinds),
+                         names=tuple(names))
+
+
+def _check_voussoirs_and_bond(voussoirs, bond) -> None:
+    if isinstance(voussoirs, bool) or not isinstance(voussoirs, int | np.integer) \
+            or voussoirs < 1:
+        raise ValueError(f"voussoirs must be an integer >= 1, got {voussoirs!r}")
+    if bond not in RING_BONDS:
+        raise ValueError(f"bond must be one of {list(RING_BONDS)}, got {bond!r}")
+
+
+def _blocks(joints, arc):
+    """Every ring's voussoirs between its joint stations ``joints[m]`` (angles or arc lengths),
+    each bounded by ``arc(m, a, b)`` inside and ``arc(m + 1, a, b)`` outside: ``(polygons,
+    names, kinds)``."""
+    polygons, ring_of, span, names = [], [], [], []
+    for m in range(len(joints)):
+        for i, (b0, b1) in enumerate(zip(joints[m][:-1], joints[m][1:], strict=True)):
+            polygons.append(np.vstack((arc(m, b0, b1), arc(m + 1, b0, b1)[::-1])))
+            ring_of.append(m)
+            span.append((b0, b1))
+            names.append(f"ring {m}, voussoir {i}")
+    ring_of, span = np.array(ring_of), np.array(span)
+    tol = 1e-12 * max(1.0, float(np.abs(span).max()))
+    kinds = []
+    for i in range(len(polygons)):
+        for j in np.flatnonzero(ring_of == ring_of[i] + 1):
+            if min(span[i, 1], span[j, 1]) - max(span[i, 0], span[j, 0]) > tol:
+                kinds.append((i, int(j), "ring"))
+        if i + 1 < len(polygons) and ring_of[i + 1] == ring_of[i]:
+            kinds.append((i, i + 1, "bed"))
+    return polygons, names, kinds
+
+
+def _offset(curve, s: np.ndarray, offset: float) -> np.ndarray:
+    """Points of the offset curve of ``curve`` at ``offset`` [m] at arc lengths ``s``."""
+    index, u = curve.stations(s)
+    out = np.empty((s.size, 2))
+    for i, part in enumerate(curve.parts):
+        here = index == i
+        if here.any():
+            out[here] = part.offset_point(u[here], offset)
+    return out
+
+
+def _offset_stations(curve, offset: float, joints: np.ndarray, arc_error: float) -> np.ndarray:
+    """Arc lengths [m] of the chord ends on the offset curve at ``offset``: the joint stations
+    and between each two the fewest equal steps (doubled until the sagitta, measured at the
+    middle of every chord's arc, is at most ``arc_error``)."""
+    out = [joints[:1]]
+    for a, b in zip(joints[:-1], joints[1:], strict=True):
+        kappa = curve.max_curvature(curve.locate(a, "right"), curve.locate(b, "left"))
+        rho = math.inf if kappa == 0 else 1.0 / kappa + offset
+        turn = 2.0 * math.acos(max(1.0 - arc_error / rho, -1.0)) if math.isfinite(rho) else \
+            math.inf
+        m = max(1, math.ceil((b - a) * kappa / turn - 1e-12)) if kappa > 0 else 1
+        while True:
+            s = a + (b - a) * np.arange(m + 1) / m
+            p = _offset(curve, s, offset)
+            mid = _offset(curve, 0.5 * (s[:-1] + s[1:]), offset)
+            chord = p[1:] - p[:-1]
+            gap = np.abs(chord[:, 0] * (mid[:, 1] - p[:-1, 1]) - chord[:, 1] * (
+                mid[:, 0] - p[:-1, 0])) / np.hypot(*chord.T)
+            if gap.max() <= arc_error or m > MAX_CHORDS:
+                break
+            m *= 2
+        s[0], s[-1] = a, b
+        out.append(s[1:])
+    return np.concatenate(out)
+
+
+def _on_centreline(shape, span, rise, thickness, *, rings, thicknesses, voussoirs, bond,
+                   friction, ring_friction, arc_error, density) -> BlockAssembly:
+    """:func:`multi_ring` on a smooth centreline of a shape (see its ``shape``)."""
+    from .centrelines import centreline
+
+    if shape == "pointed":
+        raise ValueError("shape must be a smooth centreline: a pointed arch's crown is a "
+                         "corner, which the rings' offset curves cannot follow; give another "
+                         "shape")
+    thickness = _positive("thickness", thickness)
+    _check_voussoirs_and_bond(voussoirs, bond)
+    curve = centreline(shape, span, rise)
+    if curve.corners:
+        raise ValueError(f"shape must be a smooth centreline; a {shape} one has corners")
+    least = min(curve.min_radius_of_curvature(a, b) for a, b in curve.segments)
+    if not thickness < 2 * least:
+        raise ValueError(f"thickness must be below twice the smallest radius of curvature of "
+                         f"the centreline ({2 * least:g} m), got {thickness!r}")
+    offsets = _ring_radii(0.0, thickness, rings, thicknesses)  # -t/2 .. t/2
+    n_rings = offsets.size - 1
+    arc_error = ARC_ERROR * thickness if arc_error is None else _positive("arc_error",
+                                                                          arc_error)
+    length = curve.length
+    joints = _ring_joints(0.0, length, int(voussoirs), n_rings, bond)
+    rough = sum(length / (2.0 * math.sqrt(2.0 * arc_error * (least + o))) for o in offsets
+                if least + o > 0)
+    if rough > MAX_CHORDS:
+        raise ValueError(f"arc_error must be larger: {arc_error:g} m draws the offset curves "
+                         f"with about {int(rough)} chords, more than {MAX_CHORDS}")
+    stations = []
+    for m, o in enumerate(offsets):
+        near = [joints[k] for k in (m - 1, m) if 0 <= k < n_rings]
+        stations.append(_offset_stations(curve, float(o), np.unique(np.concatenate(near)),
+                                         arc_error))
+    tol = 1e-12 * length
+
+    def arc(m, a, b):
+        s = stations[m]
+        return _offset(curve, s[(s >= a - tol) & (s <= b + tol)], float(offsets[m]))
+
+    polygons, names, kinds = _blocks(joints, arc)
+    supports = []
+    for s, side in ((0.0, -1.0), (length, 1.0)):
+        p_in, p_out = _offset(curve, np.array([s, s]), 0.0) + np.outer(
+            offsets[[0, -1]], curve.normal(s, "right" if side < 0 else "left"))
+        d = side * thickness * curve.tangent(s, "right" if side < 0 else "left")
         supports.append(np.array([p_in, p_out, p_out + d, p_in + d]))
     return BlockAssembly(tuple(polygons), density, tuple(supports),
                          ring_friction_of(friction, ring_friction), kinds=tuple(kinds),

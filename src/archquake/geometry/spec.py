@@ -219,7 +219,7 @@ class StructureSpec:
         ``"PHI,MOBILISATION"``: angle of friction in (0, 90) and mobilised fraction of
         Rankine's passive pressure in [0, 1].
     rings : int, optional
-        Cut the circular arch (of ``radius``, ``embrace`` and ``thickness``, curved faces) into
+        Cut the arch of the shape fields (a smooth centreline: not pointed; curved faces) into
         this many concentric rings of equal thickness that can separate, >= 1: a
         :class:`~archquake.geometry.BlockAssembly` (:func:`~archquake.geometry.multi_ring`)
         on fixed springings, without piers, fill or irregular draw.
@@ -533,23 +533,28 @@ class StructureSpec:
             if not self.ring_friction >= 0:
                 raise DescriptionError(f"{{ring_friction}} must be a Coulomb coefficient >= 0, "
                                        f"got {self.ring_friction:g}")
-        other = self._given("geometry", "shape", "span", "rise", "faces", *STRUCTURE_FIELDS,
-                            "epsilon")
+        other = self._given("geometry", "faces", *STRUCTURE_FIELDS, "epsilon")
         if other:
-            raise DescriptionError(f"{{rings}} cuts a circular arch given by {{radius}}, "
-                                   f"{{embrace}}, {{thickness}} and {{voussoirs}} into rings on "
-                                   f"fixed springings; it cannot be combined with "
-                                   f"{', '.join(other)}")
+            raise DescriptionError(f"{{rings}} cuts the arch of the shape fields into rings "
+                                   f"with curved faces, on fixed springings; it cannot be "
+                                   f"combined with {', '.join(other)}")
+        if self.shape == "pointed":
+            raise DescriptionError("{rings} cuts an arch of a smooth centreline into rings; a "
+                                   "pointed arch's crown is a corner: give another {shape}")
 
     def _rings(self):
         """The arch of several rings (:func:`~archquake.geometry.multi_ring`)."""
         from .rings import multi_ring
 
-        return multi_ring(self._value("radius"), math.radians(self._value("embrace")),
-                          self._value("thickness"), rings=self.rings,
-                          voussoirs=self._value("voussoirs"), bond=self.ring_bond or "aligned",
-                          ring_friction=self.ring_friction,
-                          density=DEFAULT_DENSITY if self.density is None else self.density)
+        shape, kwargs = self.shape_arguments()
+        common = {"rings": self.rings, "voussoirs": kwargs["voussoirs"],
+                  "bond": self.ring_bond or "aligned", "ring_friction": self.ring_friction,
+                  "density": DEFAULT_DENSITY if self.density is None else self.density}
+        if "radius" in kwargs:  # a circle by its radius and embrace (radians here)
+            return multi_ring(kwargs["radius"], kwargs["embrace"], self._value("thickness"),
+                              **common)
+        return multi_ring(shape=shape, span=kwargs["span"], rise=kwargs["rise"],
+                          thickness=self._value("thickness"), **common)
 
     # ------------------------------------------------------------------ the structure
     def nominal(self):
