@@ -190,7 +190,7 @@ def _with_friction(args: argparse.Namespace, structure) -> int:
             out["rigid_blocks_ramp"] = ramp.to_dict()
         print_json(out)
         return 0
-    print(f"Limit analysis of {_describe(structure)}; " + _friction_text(args))
+    print(f"Limit analysis of {_describe(structure, args)}; " + _friction_text(args))
     print(f"{'direction':<10} {'law':<16} {'k [-]':>8} {'tilt [deg]':>10} {'LPs':>4}  "
           "rock / slide (interfaces)")
     for direction, laws in results.items():
@@ -263,7 +263,12 @@ def _rings_json(args: argparse.Namespace, structure, results) -> dict:
                       "moving_rings": moving}}
 
 
-def _describe(structure) -> str:
+def _describe(structure, args=None) -> str:
+    rings = getattr(args, "rings", None)
+    if rings is not None:
+        return (f"an arch of {rings} {args.ring_bond or 'aligned'} ring"
+                f"{'' if rings == 1 else 's'} ({structure.n_blocks} blocks, "
+                f"{structure.interfaces.a.size} interfaces)")
     if hasattr(structure, "interfaces"):
         spans = ""
         if any(name.startswith("span ") for name in structure.names):
