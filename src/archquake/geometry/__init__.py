@@ -54,7 +54,8 @@ paper's eq. (1) on a circular :class:`CircularArch` and its generalisation on an
 interfaces between them found from the geometry (:class:`Interfaces`); builders
 (:func:`block_on_ground`, :func:`stack`, :func:`wall`, :func:`portal`,
 :func:`assembly.from_arch <archquake.geometry.assembly.from_arch>` for any arch) and DXF
-drawings (:func:`read_dxf`, :func:`write_dxf`, :mod:`.dxf`) make one.
+drawings (:func:`read_dxf`, :func:`write_dxf`, :mod:`.dxf`) make one. An arch of several
+rings that can separate (multi-ring brickwork) is one too: :func:`multi_ring` (:mod:`.rings`).
 
 References
 ----------
