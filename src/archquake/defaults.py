@@ -17,6 +17,10 @@ SHAPES: tuple[str, ...] = ("circular", "pointed", "elliptical", "parabolic", "ca
 """Names of the shapes of a centreline (:data:`archquake.geometry.CENTRELINES` holds their
 builders, in this order)."""
 
+RING_BONDS: tuple[str, ...] = ("aligned", "staggered")
+"""The bonds of the rings of a brick arch (:func:`archquake.geometry.multi_ring`): every ring's
+joints on the same radial lines, or offset by half a voussoir from the ring inside it."""
+
 VOUSSOIR_FACES: tuple[str, ...] = ("curved", "flat")
 """Faces of a voussoir of a shaped arch: ``"curved"`` (the intrados and extrados offset curves)
 or ``"flat"`` (chords between the ends of its joints)."""

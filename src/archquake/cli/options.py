@@ -329,7 +329,7 @@ def add_ring_options(parser: argparse.ArgumentParser) -> None:
     """``--rings``, ``--ring-bond`` and ``--ring-friction``: the circular arch of the shape
     options cut into rings that can separate (:func:`archquake.geometry.multi_ring`); only
     ``limit`` analyses one (:func:`refuse_rings`)."""
-    from ..geometry.rings import RING_BONDS
+    from ..defaults import RING_BONDS
 
     group = parser.add_argument_group("rings (limit only; default: one ring, the arch)")
     group.add_argument("--rings", type=int, metavar="N",

@@ -79,11 +79,12 @@ import math
 
 import numpy as np
 
+from .. import defaults
 from ..constants import DEFAULT_DENSITY
 from .assembly import BlockAssembly
 
-RING_BONDS = ("aligned", "staggered")
-"""The bonds of the rings :func:`multi_ring` builds."""
+RING_BONDS = defaults.RING_BONDS
+"""The bonds of the rings :func:`multi_ring` builds (:data:`archquake.defaults.RING_BONDS`)."""
 
 ARC_ERROR = 1e-3
 """Default largest sagitta of a chord as a fraction of the arch's thickness [-]."""
