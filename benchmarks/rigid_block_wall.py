@@ -18,16 +18,26 @@ of wall time (JIT excluded, one run each)
 - under a sine pulse of 0.3 g and 0.5 s, the first ``--pulse-time`` seconds (every step solves
   the contact problem: the cost of a step as the wall is shaken).
 
-Measured (2 shared cores): 50 blocks, half-bandwidth 84 -> 16 joints, still ground 66 -> 643
-sim s/min, pulse 1.1 -> 12.4 sim s/min (3.5 solves per step); 100 blocks, 180 -> 31 joints,
-still 0.09 -> 0.11, pulse 0.005 -> 0.006 sim s/min (about 300 solves per step): from about 100
-blocks the active-set method cycles at nearly every step, even at rest, and the step falls
-back to Lemke's algorithm on a dense tableau of 4 unknowns per contact, which the band's
-numbering does not touch. The renumbering removes the band's cost; that fallback is what keeps
-a wall of 200 blocks far from 10 s simulated per minute. The cycling is between sticking and
-sliding: the 100-block wall at rest is decided in 29 s at friction 0.6 (8.2 solves per step),
-at once with friction inf (0.03 solves per step); the 200-block wall, friction inf, still
-ground: rest decided in 1.4 s (0.53 solves per step).
+Measured (2 shared cores; natural -> renumbered joints, simulated s per minute):
+
+======  ==========  ===============  ===========  ==============  ===================
+blocks  b (joints)  still, before    still        pulse, before   pulse (solves/step)
+======  ==========  ===============  ===========  ==============  ===================
+50      37 -> 17    319 -> 1090      284 -> 1130  4.0 -> 15.3     6.2 -> 25.2 (2.5)
+100     37 -> 33    0.048 -> 0.056   108 -> 211   0.004 -> 0.003  1.9 -> 3.7 (3.0)
+195     58 -> 42    not run          1.7 -> 4.8   not run         0.27 -> 0.88 (3.0)
+======  ==========  ===============  ===========  ==============  ===================
+
+"before": with the switching tests' velocity tolerance at 1e-12 g h, below the residuals that
+the contact problem's compliance leaves in the velocities
+(:data:`archquake.rigid_blocks.contact_problem.SWITCH_VELOCITY`, now 1e-9 g h): from about
+100 blocks the active-set method then cycled at nearly every step, even at rest (a head joint,
+carrying no normal force, found closing at -1e-14 m/s when open and pulling when held; 336-540
+solves per step), and fell back to Lemke's algorithm on a dense tableau of 4 unknowns per
+contact. Now the steps take about 3 solves and the cost left is the band's: Gaussian
+elimination on a half-bandwidth that grows with the courses' length (42 joints, about 170 impulses,
+for 19 blocks a course), which keeps the 195-block wall under the pulse near 1 simulated s per
+minute.
 """
 
 from __future__ import annotations

@@ -110,6 +110,26 @@ def test_wall_at_rest_stays_at_rest():
     assert block_outcome(wall, None).status.label == "rest"
 
 
+def test_wall_of_100_blocks_at_rest_is_solved_without_cycling():
+    """A wall of 100 blocks (8 courses in running bond, friction 0.6) on a still ground: every
+    step's contact problem is decided by the active-set method in a few solves, nothing moves,
+    and the foundation carries the weight. Its head joints carry no normal force at rest, where
+    a velocity tolerance below the resolution of the contact problem's compliance once made the
+    active-set method cycle at every step (60 solves, then Lemke's algorithm). The weight, by
+    hand: courses of 12 blocks alternate with courses of 11 and two half blocks, 4 x 12 +
+    4 x 12 = 96 blocks' worth of 0.4 x 0.2 m at 2000 kg/m^3: M g = 96 x 0.08 x 2000 x g =
+    15,360 kg/m x g, on the 12 foundation joints."""
+    wall = running_bond_wall(8, 12)
+    assert wall.n_blocks == 4 * 12 + 4 * 13
+    history = simulate_blocks(wall, None, t_end=0.01)
+    assert history.outcome.fallback_steps == 0
+    assert history.outcome.mean_iterations < 5.0
+    assert np.abs(history.displacements).max() < 1e-9
+    assert np.abs(history.rotations).max() < 1e-9
+    weight = 96 * 0.4 * 0.2 * 2000.0 * GRAVITY
+    assert history.normal_forces[-1][:12].sum() == pytest.approx(weight, rel=1e-6)
+
+
 def test_renumbered_run_equals_natural_order():
     """A small wall (2 courses) under a pulse that slides it (0.8 g > mu = 0.6 g): the same
     outcome and the same histories, in the caller's joint order, to round-off."""

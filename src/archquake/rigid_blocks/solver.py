@@ -175,7 +175,13 @@ import numba
 import numpy as np
 
 from ..ground_motion import HARMONIC, STEP, analytic_duration, evaluate
-from .contact_problem import incidence, solve_active_set, solve_contacts, solve_lemke
+from .contact_problem import (
+    SWITCH_VELOCITY,
+    incidence,
+    solve_active_set,
+    solve_contacts,
+    solve_lemke,
+)
 from .contacts import (
     BODY_INERTIA,
     BODY_MASS,
@@ -768,7 +774,7 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
             hs = m * h
             tol_impulse = settings[S_TOLERANCE] * mean_mass * gravity * hs
             p_tol = 1e-12 * mean_mass * gravity * hs
-            u_tol = 1e-12 * gravity * hs
+            u_tol = SWITCH_VELOCITY * gravity * hs  # the compliance's resolution
             # -------- 6. free velocities
             ag = mean_acceleration(t, t + hs, kind, params, times, values)
             _free_velocities(v, v_old, v_free, hs, ag, gravity)
