@@ -1,5 +1,7 @@
 r"""Bridges and arcades: several equal arches in a row on shared piers, as one block assembly.
 
+The bridge is rigid blocks on piers, as Gilbert and Melbourne analyse it [1]_.
+
 :func:`multi_span` puts ``spans`` copies of one arch (any :class:`~archquake.geometry.BlockArch`:
 circular, of any shape, surveyed) side by side on ``spans + 1`` piers:
 
@@ -32,7 +34,8 @@ course 2"``, spans and piers counted from 1 and 0 left to right, voussoirs and c
 **Supports**: a square under every pier's base (and on a fixed springing's joint), as
 :func:`~archquake.geometry.assembly.from_arch` puts them.
 
-**Interface kinds**: voussoir joints ``"bed"``, pier courses on each other ``"bed"``, the
+**Interface kinds** (without friction none slides, Heyman's hypothesis [2]_): voussoir joints
+``"bed"``, pier courses on each other ``"bed"``, the
 arches' springings on the piers ``"bed"``, the piers' bases (and fixed springings)
 ``"foundation"``.
 
