@@ -102,3 +102,12 @@ def test_the_rigid_blocks_take_a_drawing(tmp_path, capsys):
     # (the moment a collapse is called certain depends on each construction's length scale and
     # time step, so only the outcome is compared)
     assert drawn["outcome"] == built.status.label == "collapse"
+
+
+def test_the_rigid_blocks_say_the_assemblys_own_friction(capsys):
+    # an arch of two rings sliding on each other at 0.6, its other joints not at all: the run
+    # uses (and says) the assembly's friction per kind, not the model's default 0.8
+    out = _json(["rigid-blocks", "--rings", "2", "--ring-friction", "0.6", "--amplitude",
+                 "0.05"], capsys)
+    assert out["friction"] == {"foundation": None, "bed": None, "ring": 0.6}
+    assert _json(["rigid-blocks", "--amplitude", "0.05"], capsys)["friction"] == 0.8

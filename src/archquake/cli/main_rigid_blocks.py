@@ -75,7 +75,7 @@ def run(args: argparse.Namespace) -> int:
         outcome = model.outcome(motion)
     if args.json:
         out = outcome.to_dict()
-        out = {"outcome": out.pop("status"), **out, "friction": settings.friction,
+        out = {"outcome": out.pop("status"), **out, "friction": _friction(arch, settings),
                "time_step": settings.time_step, "motion": motion.name}
         print_json(out)
         return 0
@@ -87,7 +87,11 @@ def run(args: argparse.Namespace) -> int:
             "collapse": f"{what} collapses (certain at t = {outcome.collapse_time:.3f} s)",
             "undecided": f"undecided: not decided by t = "
                          f"{outcome.steps * settings.time_step:.3f} s ({why})"}
-    print(f"Rigid-block model, {motion.name}; friction {settings.friction:g}, time step "
+    friction = _friction(arch, settings)
+    friction = (f"{friction:g}" if not isinstance(friction, dict) else ", ".join(
+        f"{kind} {'no sliding' if value is None else f'{value:g}'}"
+        for kind, value in friction.items()))
+    print(f"Rigid-block model, {motion.name}; friction {friction}, time step "
           f"{settings.time_step:g} s (coarse factor {settings.coarse_factor})")
     print(text[outcome.status.label])
     print(f"largest rotation {outcome.max_rotation:.4f} rad, crown drop "
@@ -116,3 +120,20 @@ def _plot(history, path) -> None:
     plot_blocks(history, moment, left)
     plot_block_history(history, right)
     save_figure(fig, path)
+
+
+def _friction(structure, settings):
+    """The Coulomb coefficient of the joints [-]: the model's, or, for a block assembly that
+    gives its own, one per interface kind (None: that kind does not slide)."""
+    own = getattr(structure, "friction", None) if hasattr(structure, "interfaces") else None
+    if own is None:
+        return settings.friction
+    import math
+
+    faces = structure.interfaces
+    out = {}
+    for kind in dict.fromkeys(faces.kind.tolist()):
+        values = {float(v) for v in faces.friction[faces.kind == kind]}
+        value = values.pop() if len(values) == 1 else None
+        out[kind] = None if value is None or math.isinf(value) else value
+    return out
