@@ -388,3 +388,19 @@ def test_dict_with_supports_is_an_assembly_and_survey_forms_still_read(nominal):
 def test_bad_dicts_are_named(data, message):
     with pytest.raises(ValueError, match=message):
         BlockAssembly.from_dict(data)
+
+
+def test_vectorised_polygon_formulas_equal_the_edge_integrals():
+    # two routes to one polygon's mass properties: the shoelace sums over many polygons at once
+    # and geometry.mass's edge integrals (region_properties), on an irregular pentagon and an L
+    from archquake.geometry.mass import polygon_mass_properties, polygon_properties
+
+    shapes = [np.array([[0.0, 0.0], [2.0, 0.1], [2.5, 1.3], [1.0, 2.2], [-0.3, 1.0]]),
+              np.array([[0.0, 0.0], [3.0, 0.0], [3.0, 1.0], [1.0, 1.0], [1.0, 2.0],
+                        [0.0, 2.0]])]
+    _, mass, centroid, inertia = polygon_mass_properties(shapes, np.array([2000.0, 1800.0]))
+    for k, (shape, rho) in enumerate(zip(shapes, (2000.0, 1800.0), strict=True)):
+        m, c, i = polygon_properties(shape, rho)
+        assert mass[k] == pytest.approx(m, rel=1e-12)
+        np.testing.assert_allclose(centroid[k], c, rtol=1e-12)
+        assert inertia[k] == pytest.approx(i, rel=1e-12)

@@ -89,7 +89,8 @@ import numpy as np
 
 from .._equality import frozen_value
 from ..constants import DEFAULT_DENSITY, GRAVITY
-from .blocks import BlockArch, check_json_numbers
+from .blocks import BlockArch, check_json_numbers, polygon_vertices
+from .mass import polygon_mass_properties
 
 GROUND = -1
 """Body index of the ground (every support) [-]; always an interface's ``a``."""
@@ -176,22 +177,7 @@ class Interfaces:
 # ---------------------------------------------------------------------------------- validation
 def _polygon(name: str, vertices) -> np.ndarray:
     """``vertices`` as a (k, 2) float array, repeated vertices dropped, or a ValueError."""
-    try:
-        v = np.array(vertices, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be a list of [x, y] points [m]") from exc
-    if v.ndim != 2 or v.shape[1] != 2:
-        raise ValueError(f"{name} must be a list of [x, y] points [m], got shape {v.shape}")
-    if not np.all(np.isfinite(v)):
-        raise ValueError(f"{name} has a coordinate that is not a finite number")
-    keep = np.ones(len(v), dtype=bool)
-    keep[1:] = np.any(v[1:] != v[:-1], axis=1)
-    v = v[keep]
-    if len(v) > 1 and np.all(v[0] == v[-1]):
-        v = v[:-1]
-    if len(v) < 3:
-        raise ValueError(f"{name} must have at least three distinct vertices, got {len(v)}")
-    return v
+    return polygon_vertices(name, vertices)
 
 
 def _signed_area(v: np.ndarray) -> float:
@@ -280,46 +266,6 @@ def _check_kinds(kinds, n_blocks: int) -> tuple:
 
 
 # ---------------------------------------------------------------------------------- geometry
-def polygon_mass_properties(polygons, density) -> tuple[np.ndarray, np.ndarray, np.ndarray,
-                                                        np.ndarray]:
-    """Area [m^2], mass [kg/m], centroid [m] and polar moment about the centroid [kg m] of
-    counter-clockwise polygons, per unit depth, by the polygon formulas of the module.
-
-    Parameters
-    ----------
-    polygons : sequence of array (k_i, 2)
-        Counter-clockwise vertices [m], not repeated at the end.
-    density : array of float, shape (n,)
-        Density of every polygon [kg/m^3].
-
-    Returns
-    -------
-    area, mass : ndarray (n,)
-    centroid : ndarray (n, 2)
-    inertia : ndarray (n,)
-    """
-    counts = np.array([len(p) for p in polygons])
-    starts = np.concatenate(([0], np.cumsum(counts)[:-1]))
-    v = np.vstack(polygons)
-    owner = np.repeat(np.arange(counts.size), counts)
-    reference = v[starts]
-    p = v - reference[owner]  # about each polygon's first vertex: no cancellation far away
-    nxt = np.arange(len(v)) + 1
-    nxt[starts + counts - 1] = starts
-    q = p[nxt]
-    c = _cross(p, q)
-    x0, y0, x1, y1 = p[:, 0], p[:, 1], q[:, 0], q[:, 1]
-    area = np.add.reduceat(c, starts) / 2.0
-    qx = np.add.reduceat(c * (x0 + x1), starts) / 6.0
-    qy = np.add.reduceat(c * (y0 + y1), starts) / 6.0
-    j = np.add.reduceat(c * (x0 * x0 + x0 * x1 + x1 * x1 + y0 * y0 + y0 * y1 + y1 * y1),
-                        starts) / 12.0
-    offset = np.column_stack((qx, qy)) / area[:, None]
-    density = np.asarray(density, dtype=float)
-    inertia = density * (j - area * np.sum(offset * offset, axis=1))
-    return area, density * area, reference + offset, inertia
-
-
 def _candidate_pairs(lo: np.ndarray, hi: np.ndarray, tol: float) -> tuple[np.ndarray, np.ndarray]:
     """Pairs ``(i, j)``, ``i < j``, of boxes ``[lo, hi]`` (n, 2) that overlap within ``tol``:
     sort and sweep along the axis on which fewer boxes overlap."""
@@ -1090,4 +1036,4 @@ def from_arch(arch: BlockArch, *, points: int = ARC_POINTS, friction=None) -> Bl
 
 __all__ = ["ARC_POINTS", "BED_ANGLE", "BONDS", "DEFAULT_TOLERANCE", "GROUND", "INTERFACE_KINDS",
            "BlockAssembly", "Interfaces", "block_on_ground", "from_arch",
-           "polygon_mass_properties", "portal", "stack", "wall"]
+           "portal", "stack", "wall"]

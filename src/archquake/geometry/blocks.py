@@ -209,6 +209,31 @@ def read_json_file(path: str | Path, expected: str):
         raise ValueError(f"{where} is not valid JSON: {exc}") from exc
 
 
+def polygon_vertices(name: str, vertices, check=None) -> np.ndarray:
+    """``vertices`` as a (k, 2) float array [m], consecutive repeats and a repeated first vertex
+    dropped, or a ValueError naming ``name``: not a list of points, a coordinate not finite,
+    fewer than three distinct vertices. ``check(name, v)``, if given, checks the parsed points
+    further before the repeats are dropped."""
+    try:
+        v = np.array(vertices, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{name} must be a list of [x, y] points [m]") from exc
+    if v.ndim != 2 or v.shape[1] != 2:
+        raise ValueError(f"{name} must be a list of [x, y] points [m], got shape {v.shape}")
+    if not np.all(np.isfinite(v)):
+        raise ValueError(f"{name} has a coordinate that is not a finite number")
+    if check is not None:
+        check(name, v)
+    keep = np.ones(len(v), dtype=bool)
+    keep[1:] = np.any(v[1:] != v[:-1], axis=1)  # consecutive duplicates
+    v = v[keep]
+    if len(v) > 1 and np.all(v[0] == v[-1]):
+        v = v[:-1]
+    if len(v) < 3:
+        raise ValueError(f"{name} must have at least three distinct vertices, got {len(v)}")
+    return v
+
+
 def float_array(name: str, values) -> np.ndarray:
     """``values`` as a one-dimensional float array (a copy), or a ValueError naming ``name``."""
     try:

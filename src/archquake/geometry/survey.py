@@ -45,6 +45,7 @@ from .blocks import (
     BlockArch,
     check_density,
     check_json_numbers,
+    polygon_vertices,
 )
 from .mass import Segment, polygon_properties
 
@@ -87,28 +88,16 @@ MAX_SURVEY_COORDINATE = 1e7
 1e7 m) fits; beyond it the areas and masses lose their digits or overflow."""
 
 
-def _polygon(name: str, vertices) -> np.ndarray:
-    try:
-        v = np.array(vertices, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be a list of [x, y] points [m]") from exc
-    if v.ndim != 2 or v.shape[1] != 2:
-        raise ValueError(f"{name} must be a list of [x, y] points [m], got shape {v.shape}")
-    if not np.all(np.isfinite(v)):
-        raise ValueError(f"{name} has a coordinate that is not a finite number")
+def _bounded(name: str, v: np.ndarray) -> None:
     if np.any(np.abs(v) > MAX_SURVEY_COORDINATE):
         value = float(v.flat[int(np.argmax(np.abs(v)))])
         raise ValueError(f"{name} has the coordinate {value:.6g} m, too large: coordinates must "
                          f"be within +-{MAX_SURVEY_COORDINATE:g} m (MAX_SURVEY_COORDINATE); are "
                          "they in metres?")
-    keep = np.ones(len(v), dtype=bool)
-    keep[1:] = np.any(v[1:] != v[:-1], axis=1)  # consecutive duplicates
-    v = v[keep]
-    if len(v) > 1 and np.all(v[0] == v[-1]):
-        v = v[:-1]
-    if len(v) < 3:
-        raise ValueError(f"{name} must have at least three distinct vertices, got {len(v)}")
-    return v
+
+
+def _polygon(name: str, vertices) -> np.ndarray:
+    return polygon_vertices(name, vertices, _bounded)
 
 
 def _signed_area(v: np.ndarray) -> float:
