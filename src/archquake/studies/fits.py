@@ -48,7 +48,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import optimize, special, stats
+from scipy import optimize, special
 
 BAND_POINTS = 200
 """IM values (log-spaced over the levels) at which a bootstrap band is evaluated."""
@@ -125,7 +125,7 @@ class LognormalFragility:
         a = np.asarray(amplitude, dtype=float)
         with np.errstate(divide="ignore"):
             z = np.log(np.where(a > 0, a, np.nan) / self.median) / self.dispersion
-        return np.where(a > 0, stats.norm.cdf(z), 0.0)
+        return np.where(a > 0, special.ndtr(z), 0.0)
 
 
 def log_likelihood(eta, trials, failures) -> np.ndarray:
@@ -605,7 +605,7 @@ def bootstrap_lognormal(levels, failed, fit: LognormalFragility, *, resamples: i
     theta = np.exp(-a[ok] * beta)
     if x is None:
         x = np.geomspace(levels[0], levels[-1], BAND_POINTS)
-    curves = stats.norm.cdf(np.log(x[None, :] / theta[:, None]) / beta[:, None])
+    curves = special.ndtr(np.log(x[None, :] / theta[:, None]) / beta[:, None])
     tail = 50.0 * (1.0 - confidence)
     lower, upper = np.percentile(curves, [tail, 100.0 - tail], axis=0)
     return BootstrapBand(

@@ -89,7 +89,6 @@ from ..checks import check_integer, json_float
 from ..defaults import (
     DEFAULT_EPSILON,
     DEFAULT_SAMPLE_LIMIT_METHOD,
-    DEFAULT_SEARCH,
     DEFAULT_SEED,
     LIMIT_METHODS,
     LIMIT_SAMPLE_SIZE,
@@ -102,6 +101,7 @@ from ..defaults import (
     STUDY_AMPLITUDES_G,
     STUDY_DURATIONS,
     STUDY_SAMPLE_SIZE,
+    STUDY_SEARCH,
 )
 from ..geometry import GRAVITY, BlockArch, arch_from_dict
 from ..models import DEFAULT_MODEL, ModelSpec, model_spec
@@ -129,7 +129,7 @@ from .fits import (
     probability_of_failure,
     rising_part,
 )
-from .strategies import DEFAULT_STRIDE
+from .strategies import DEFAULT_STRIDE, pool_pays, study_seconds
 from .undecided import undecided_count, undecided_summary
 
 # ---------------------------------------------------------------------------------------------
@@ -193,7 +193,7 @@ class FragilitySettings:
         rigid-block study costs").
     search : {"exhaustive", "bisection", "screened"}, optional
         How each arch's amplitude lines are searched (:mod:`archquake.studies.strategies`;
-        default :data:`archquake.defaults.DEFAULT_SEARCH` of the model).
+        default :data:`archquake.defaults.STUDY_SEARCH` of the model: every point).
     stride : int, optional
         Grid steps between the coarse points of ``bisection`` and ``screened`` [-] (default
         :data:`archquake.defaults.DEFAULT_STRIDE`).
@@ -225,7 +225,7 @@ class FragilitySettings:
         # resolved for the nominal structure (its time step), then recorded
         object.__setattr__(self, "model", model_spec(self.model).resolved(self.nominal))
         object.__setattr__(self, "search", check_search(
-            self.model.default_search if self.search is None else self.search))
+            STUDY_SEARCH[self.model.name] if self.search is None else self.search))
         object.__setattr__(self, "stride", check_stride(
             DEFAULT_STRIDE if self.stride is None else self.stride))
         sample = ArchSample(self.nominal, self.epsilon, self.seed)  # nominal, epsilon, seed
@@ -369,7 +369,7 @@ def model_outcomes(model, durations, amplitudes_g, *, motion: str = "oppenheim",
     motion : str
         Pulse shape (:data:`archquake.ground_motion.ANALYTIC_GROUND_MOTIONS`).
     search : {"exhaustive", "bisection", "screened"}, optional
-        Search strategy (default :data:`archquake.defaults.DEFAULT_SEARCH` of the model).
+        Search strategy (default :data:`archquake.defaults.STUDY_SEARCH` of the model).
     stride : int
         Coarse stride of the faster strategies [grid steps].
     screen : StructuralModel, optional
@@ -385,7 +385,7 @@ def model_outcomes(model, durations, amplitudes_g, *, motion: str = "oppenheim",
         [-] (nan for a model without restitution) (2 x durations x amplitudes rows);
         ``status`` holds the integer codes of :class:`archquake.status.Status`.
     """
-    search = DEFAULT_SEARCH[model.name] if search is None else search
+    search = STUDY_SEARCH[model.name] if search is None else search
     if not (model.grid_in_one_call and search == "exhaustive"):
         return _searched_outcomes(model, durations, amplitudes_g, motion, search, stride,
                                   screen)
@@ -986,6 +986,21 @@ def warm_up() -> None:
     run_fragility(tiny, backend="serial", progress=False)
 
 
+LIMIT_ANALYSIS_SECONDS = 1e-3
+"""Time of the kinematic limit analysis of one arch of the limit sample [s] (measured: 1,000
+arches in about a second)."""
+
+
+def _serial_seconds(settings: FragilitySettings) -> float:
+    """Estimated time of a study in one process [s]: its arches and analyses
+    (:func:`archquake.studies.strategies.study_seconds`), the nominal arch's, and the limit
+    sample."""
+    grid = 2 * len(settings.durations) * len(settings.amplitudes_g)
+    arches = settings.sample_size + 1
+    return (study_seconds(settings.model.name, "pulse", arches, arches * grid)
+            + settings.limit_sample_size * LIMIT_ANALYSIS_SECONDS)
+
+
 def _nominal_domains(settings: FragilitySettings, resolution_g: float | None) -> tuple:
     """The nominal arch's failure domains over the study grid, directions l and r (point Q of
     Fig. 16 per duration), to ``resolution_g`` [g] (default
@@ -1038,7 +1053,11 @@ def run_fragility(
         ``"processes"`` with ``workers`` or ``pool``, else in this process, as the command line
         and the report). Both studies share one process pool / Dask cluster.
     workers : int, optional
-        Local processes (default: the number of CPUs).
+        Local processes (default: the number of CPUs). Without an explicit ``backend``, a
+        study whose estimated work (:func:`_serial_seconds`) is shorter than what the workers
+        would save once started (:func:`archquake.studies.strategies.pool_pays`) runs in this
+        process instead (the four-link model's paper-sized study: about 3 s of work, 6 s
+        in this process against 14 s on two fresh workers); its metadata say ``"serial"``.
     scheduler : str or distributed.Client, optional
         Dask scheduler address ``tcp://HOST:PORT`` or a client.
     pool : concurrent.futures.Executor, optional
@@ -1086,6 +1105,10 @@ def run_fragility(
                       "epsilon": settings.epsilon, "limit_method": settings.limit_method}
     limit_plan = StudyPlan(limit_settings, settings.seed, settings.limit_sample_size,
                            check_integer("limit_chunk_size", limit_chunk_size))
+    if backend is None and pool is None and workers is not None and scheduler is None:
+        check_integer("workers", workers)
+        if not pool_pays(_serial_seconds(settings), workers):
+            workers = None  # fewer seconds of work than starting the workers would save
     backend = default_backend(backend, workers, scheduler, pool)
     out = None if out_dir is None else Path(out_dir)
     limit_dir = None if out is None else out / LIMIT_DIRECTORY

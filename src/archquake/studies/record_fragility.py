@@ -129,6 +129,7 @@ from ..defaults import (
     DEFAULT_SEED,
     MAX_SAMPLES,
     STUDY_SAMPLE_SIZE,
+    STUDY_SEARCH,
 )
 from ..geometry import BlockArch, arch_from_dict
 from ..ground_motion.suites import RecordSuite, stripe_measure
@@ -216,8 +217,8 @@ class RecordFragilitySettings:
         chosen from it unless given; at most the records' sample spacing).
     search : {"exhaustive", "bisection", "screened"}, optional
         How each (arch, record, polarity) line of levels is searched
-        (:mod:`archquake.studies.strategies`; default :data:`archquake.defaults.DEFAULT_SEARCH`
-        of the model).
+        (:mod:`archquake.studies.strategies`; default :data:`archquake.defaults.STUDY_SEARCH`
+        of the model: every level).
     stride : int, optional
         Levels between the coarse points of ``bisection`` and ``screened`` [-] (default
         :data:`archquake.defaults.DEFAULT_LEVEL_STRIDE`).
@@ -247,7 +248,7 @@ class RecordFragilitySettings:
         # resolved for the nominal structure (its time step), then recorded
         object.__setattr__(self, "model", model_spec(self.model).resolved(self.nominal))
         object.__setattr__(self, "search", check_search(
-            self.model.default_search if self.search is None else self.search))
+            STUDY_SEARCH[self.model.name] if self.search is None else self.search))
         object.__setattr__(self, "stride", check_stride(
             DEFAULT_LEVEL_STRIDE if self.stride is None else self.stride))
 
@@ -1058,7 +1059,10 @@ def run_record_fragility(
         How the chunks run (:func:`archquake.execution.run_study`); default
         :func:`archquake.execution.default_backend`.
     workers : int, optional
-        Local processes (default: the number of CPUs).
+        Local processes (default: the number of CPUs). Without an explicit ``backend``, a
+        study whose estimated work is shorter than what the workers would save once started
+        runs in this process instead (:func:`archquake.studies.strategies.pool_pays`); its
+        metadata say ``"serial"``.
     scheduler : str or distributed.Client, optional
         Dask scheduler address ``tcp://HOST:PORT`` or a client.
     pool : concurrent.futures.Executor, optional
@@ -1087,6 +1091,7 @@ def run_record_fragility(
     """
     from ..execution import StudyPlan, run_study
     from ..results_io import atomic_path, save_study, write_csv
+    from .strategies import pool_pays, study_seconds
 
     if not isinstance(settings, RecordFragilitySettings):
         raise ValueError(f"settings must be RecordFragilitySettings, got "
@@ -1102,6 +1107,13 @@ def run_record_fragility(
         _check_resume(out, settings)
     plan = StudyPlan(settings.to_dict(), settings.seed, settings.sample_size + 1,
                      check_integer("chunk_size", chunk_size))
+    if backend is None and pool is None and workers is not None and scheduler is None:
+        check_integer("workers", workers)
+        arches = settings.sample_size + 1  # and the nominal arch
+        analyses = arches * len(settings.suite) * len(settings.levels) * 2
+        if not pool_pays(study_seconds(settings.model.name, "record", arches, analyses),
+                         workers):
+            workers = None  # fewer seconds of work than starting the workers would save
     table = run_study(record_fragility_task, plan, out, backend=backend, workers=workers,
                       scheduler=scheduler, pool=pool, resume=resume, progress=progress)
     metadata = dict(table.attrs.get("study", {}))

@@ -353,6 +353,80 @@ def smooth_outcomes(out: dict, excitation_end: float | None) -> np.ndarray:
     return (status == 0) | ((status == 2) & (time <= excitation_end))
 
 
+POOL_START_SECONDS = 3.0
+"""Wall time [s] before a pool of fresh worker processes analyses anything: each starts an
+interpreter and imports numpy, pandas, scipy, numba and the package (2-3 s measured on the 2
+cores of the development machine, the two workers starting together;
+``benchmarks/fragility_command.py``)."""
+
+ANALYSIS_SECONDS = {("four-link", "pulse"): 1.5e-5, ("four-link", "record"): 5e-3,
+                    ("rigid-blocks", "pulse"): 2e-3, ("rigid-blocks", "record"): 8e-2}
+"""Time of one analysis by model and excitation [s], of one process, measured: the four-link
+grid under pulses 15 µs a point; a rigid-block analysis under Oppenheim's pulse 1.8 ms on
+average over the paper's grid (0.3 ms at rest, 6 ms for a recovery); under 20-s records,
+about 5 ms (four-link) and 80 ms (rigid blocks)."""
+
+ARCH_SECONDS = 0.06
+"""Time to draw one arch of a study and build its model [s] (the four-link model's tables and
+limit analysis dominate, about 60 ms)."""
+
+
+def study_seconds(model: str, excitation: str, arches: int, analyses: int) -> float:
+    """Estimated serial time of a study's analyses [s]: ``arches`` x :data:`ARCH_SECONDS` +
+    ``analyses`` x :data:`ANALYSIS_SECONDS` of the model under the excitation.
+
+    Parameters
+    ----------
+    model : {"four-link", "rigid-blocks"}
+        The model's name.
+    excitation : {"pulse", "record"}
+        What the analyses apply.
+    arches : int
+        Arches drawn and modelled [-].
+    analyses : int
+        Grid points of all arches [-].
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    The paper's study with the four-link model, 40 arches x 488 points:
+
+    >>> round(study_seconds("four-link", "pulse", 40, 40 * 488), 2)  # 2.4 + 0.29
+    2.69
+    """
+    return arches * ARCH_SECONDS + analyses * ANALYSIS_SECONDS[(model, excitation)]
+
+
+def pool_pays(seconds: float, workers: int) -> bool:
+    """Whether ``seconds`` of serial work end sooner on ``workers`` fresh worker processes than
+    in this process: ``POOL_START_SECONDS + seconds / workers < seconds``.
+
+    A study of the four-link model's 40 arches (about 3 s of work) ends in half the time in
+    the process that reads the command (``benchmarks/fragility_command.py``): two workers would
+    spend as long starting as it takes to finish.
+
+    Parameters
+    ----------
+    seconds : float
+        Estimated serial time of the work [s] (:func:`study_seconds`).
+    workers : int
+        Worker processes [-].
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> pool_pays(5.0, 2), pool_pays(7.0, 2)  # 3 + 2.5 > 5, 3 + 3.5 < 7
+    (False, True)
+    """
+    return workers > 1 and POOL_START_SECONDS + seconds / workers < seconds
+
+
 def _keys(out: dict) -> np.ndarray:
     """Outcome keys of a model's ``outcomes``: status code x 1000 + the half cycle of a collapse
     (0 for a model that does not count half cycles)."""
@@ -361,6 +435,7 @@ def _keys(out: dict) -> np.ndarray:
     return status * 1000 + np.where(status == 2, half, 0)
 
 
-__all__ = ["DEFAULT_STRIDE", "SEARCHES", "change_hints", "check_search", "check_stride",
-           "coarse_indices", "excitation_end", "pulse_grid_outcomes", "search_caveat",
-           "search_grid", "smooth_outcomes"]
+__all__ = ["ANALYSIS_SECONDS", "ARCH_SECONDS", "DEFAULT_STRIDE", "POOL_START_SECONDS",
+           "SEARCHES", "change_hints", "check_search", "check_stride",
+           "coarse_indices", "excitation_end", "pool_pays", "pulse_grid_outcomes",
+           "search_caveat", "search_grid", "smooth_outcomes", "study_seconds"]

@@ -1,0 +1,58 @@
+"""How a fragility study chooses its search and where it runs: every point by default, and a
+study shorter than starting worker processes runs in the process that asked for it, with the
+same results (studies.strategies.pool_pays)."""
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from archquake.studies.fragility import FragilitySettings, _serial_seconds, run_fragility
+from archquake.studies.strategies import POOL_START_SECONDS, pool_pays, study_seconds
+
+TINY = {"sample_size": 2, "durations": (0.4,), "limit_sample_size": 4, "seed": 3,
+        "amplitudes_g": (0.2, 0.4, 0.6)}
+FAST = {"progress": False, "nominal_resolution_g": 0.05, "limit_chunk_size": 2}
+
+
+@pytest.mark.parametrize("model", ["four-link", "rigid-blocks"])
+def test_a_study_analyses_every_point_by_default(model):
+    settings = FragilitySettings(**TINY, model=model)
+    assert settings.search == "exhaustive"
+    assert FragilitySettings(**TINY, model=model, search="screened").search == "screened"
+
+
+def test_the_estimate_of_a_study_is_its_arches_and_analyses():
+    # the paper's four-link study: 41 arches (40 and the nominal one) x 2 x 4 x 61 points:
+    # 41 x 0.06 s + 41 x 488 x 15 us = 2.46 + 0.30014 s, and 1,000 limit analyses at 1 ms
+    settings = FragilitySettings(amplitudes_g=tuple(np.round(np.arange(0.2, 0.805, 0.01), 2)))
+    assert _serial_seconds(settings) == pytest.approx(2.46 + 41 * 488 * 1.5e-5 + 1.0)
+    # the rigid blocks: 41 x 0.06 + 41 x 488 x 2 ms = 2.46 + 40.016 s
+    blocks = FragilitySettings(amplitudes_g=settings.amplitudes_g, model="rigid-blocks")
+    assert _serial_seconds(blocks) == pytest.approx(2.46 + 40.016 + 1.0)
+    assert study_seconds("rigid-blocks", "record", 2, 100) == pytest.approx(0.12 + 8.0)
+
+
+def test_workers_pay_only_beyond_what_starting_them_costs():
+    # seconds s on w workers: POOL_START_SECONDS + s / w < s, i.e. s > 3 w / (w - 1): 6 s on 2
+    assert POOL_START_SECONDS == 3.0
+    assert not pool_pays(5.99, 2) and pool_pays(6.01, 2)
+    assert not pool_pays(4.49, 3) and pool_pays(4.51, 3)  # 3 x 3 / 2 = 4.5 s
+    assert not pool_pays(math.inf, 1)  # one worker never beats this process
+
+
+def test_a_small_study_on_workers_runs_here_with_the_same_results(monkeypatch):
+    settings = FragilitySettings(**TINY)
+    serial = run_fragility(settings, backend="serial", **FAST)
+    here = run_fragility(settings, workers=2, **FAST)  # about 0.2 s of work: no pool
+    assert here.metadata["backend"] == "serial"
+    pd.testing.assert_frame_equal(here.table, serial.table)
+    np.testing.assert_array_equal(here.probability, serial.probability)
+    from archquake.studies import fragility
+
+    monkeypatch.setattr(fragility, "pool_pays", lambda seconds, workers: True)
+    pooled = run_fragility(settings, workers=2, **FAST)
+    assert pooled.metadata["backend"] == "processes"
+    pd.testing.assert_frame_equal(pooled.table, serial.table)
+
