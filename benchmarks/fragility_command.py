@@ -39,7 +39,8 @@ Studies (``--study``):
 ``four-link``
     the same paper-sized study with the four-link model;
 ``records``
-    ``record-fragility`` with the rigid blocks (20 arches, 2 records, 0.2-1.0 g).
+    ``record-fragility`` with the rigid blocks: the nominal and one irregular arch under the 28
+    near-field pulse records of FEMA P695 at 5 PGA levels, both polarities (560 analyses).
 """
 
 from __future__ import annotations
@@ -63,8 +64,8 @@ STUDIES = {
                "--amplitudes 0.2:0.8:0.01",
     "paper": "fragility --model rigid-blocks --amplitudes 0.2:0.8:0.01",
     "four-link": "fragility --amplitudes 0.2:0.8:0.01",
-    "records": "record-fragility --model rigid-blocks --samples 20 --records 2 "
-               "--levels 0.2:1.0:0.05",
+    "records": "record-fragility --model rigid-blocks --suite fema-p695-near-field-pulse "
+               "--samples 1 --levels 0.2:1.8:0.4",
 }
 """The commands of the studies (``archquake`` and the output options are added)."""
 

@@ -1,5 +1,6 @@
-"""The paper's fragility study with the rigid-block model: the default search strategy against
-the exhaustive grid, side by side on the same arches, and P_F compared at every amplitude.
+"""The paper's fragility study with the rigid-block model: the ``screened`` search against the
+exhaustive grid (the default), side by side on the same arches, and P_F compared at every
+amplitude; and what an analysis costs by its outcome, which is why screening does not pay.
 
     python benchmarks/rigid_block_fragility.py [--arches 40] [--exhaustive-arches 10]
                                                [--workers 2] [--skip-full] [--time-step H]
@@ -10,9 +11,12 @@ The paper's study [Sect. 5.3.3]: h = 40 irregular arches (epsilon = 0.10), t_p =
 
 1. the full study with the default strategy (the target: <= 30 s on 2 cores), wall and CPU
    time, the analyses it ran and the share of the grid they are;
-2. on the first ``--exhaustive-arches`` arches (the same seeds, so the same arches), the default
-   strategy and the exhaustive grid one after the other: their wall times, the ratio, and whether
-   the statuses and P_F agree at every amplitude (an exit status of 1 if they do not);
+2. on the first ``--exhaustive-arches`` arches (the same seeds, so the same arches),
+   ``screened`` and the exhaustive grid one after the other: their wall times, the ratio, and
+   whether the statuses and P_F agree at every amplitude (an exit status of 1 if they do not);
+   and the time of one analysis by outcome (rest, collapse during the pulse, which ``screened``
+   infers between two analysed points, and recovery, collapse after the pulse, which it must
+   analyse), over the paper's grid of the first arch, in this process;
 3. the four-link study of the same 40 arches, for scale;
 
 and the grid points the rigid blocks left undecided (an exit status of 1 if any).
@@ -69,6 +73,33 @@ def _analysed(result) -> tuple[int, int]:
     return int(table["analysed"].sum()), len(table)
 
 
+def _cost_by_outcome(blocks) -> None:
+    """Time of one analysis by outcome class over the paper's grid of arch 0 (this process)."""
+    from archquake.studies.strategies import excitation_end
+
+    settings = FragilitySettings(**PAPER, sample_size=1, model=blocks)
+    model = settings.sample.member(0, settings.model).model
+    cost: dict[str, list] = {}
+    for tp in settings.durations:
+        end = excitation_end("oppenheim", tp)
+        for sign in (-1.0, 1.0):
+            for a in settings.amplitudes_g:
+                t0 = time.perf_counter()
+                out = model.outcomes(tp, np.array([sign * a]))
+                dt = time.perf_counter() - t0
+                status = int(out["status"][0])
+                name = {0: "rest (inferred)", 1: "recovery", -1: "undecided"}.get(status) or (
+                    "collapse in pulse (inferred)" if out["collapse_time"][0] <= end
+                    else "collapse after pulse")
+                cost.setdefault(name, []).append(dt)
+    total = sum(sum(v) for v in cost.values())
+    print(f"\nOne analysis by outcome, arch 0, the paper's grid ({sum(map(len, cost.values()))} "
+          f"analyses, {total:.1f} s in this process):")
+    for name, times in sorted(cost.items()):
+        print(f"  {name:<30} {len(times):4d} analyses, {np.mean(times) * 1e3:5.2f} ms each, "
+              f"{sum(times) / total:4.0%} of the time")
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--arches", type=int, default=40, help="h of the full study (40)")
@@ -112,7 +143,7 @@ def main(argv: list[str] | None = None) -> int:
             status = 1 if _undecided(result) else status
 
         n = args.exhaustive_arches
-        default = FragilitySettings(**PAPER, sample_size=n, model=blocks)
+        default = FragilitySettings(**PAPER, sample_size=n, model=blocks, search="screened")
         exhaustive = FragilitySettings(**PAPER, sample_size=n, model=blocks,
                                        search="exhaustive")
         fast, fast_wall = _study(default, pool)
@@ -145,6 +176,7 @@ def main(argv: list[str] | None = None) -> int:
                   f"{np.abs(fast.probability - full.probability).max():.3f}")
             status = 1
 
+        _cost_by_outcome(blocks)
         four_link = FragilitySettings(**PAPER, sample_size=args.arches)
         _, fl_wall = _study(four_link, pool)
         print(f"\nThe four-link study of the same {args.arches} arches: {fl_wall:.1f} s wall "

@@ -987,6 +987,7 @@ def run_study(
     resume: bool = False,
     progress: bool = True,
     pool: Any = None,
+    save: bool = True,
 ) -> pd.DataFrame:
     """Evaluate every chunk of a study and return all rows as one tidy table.
 
@@ -1027,6 +1028,10 @@ def run_study(
     pool : concurrent.futures.Executor, optional
         With backend ``"processes"``: run the chunks on this existing pool (from
         :func:`process_pool`; left open) instead of starting one; ``workers`` must then be None.
+    save : bool, optional
+        Write the results to ``out_dir`` at the end (default); False leaves that to the
+        caller, who saves the table with more (a study's summary) and would otherwise write
+        the same table twice. The checkpoints are written either way.
 
     Returns
     -------
@@ -1089,7 +1094,7 @@ def run_study(
     failed = True
     try:
         table = _run(task, plan, out_dir, backend, workers, client, resume, progress, started,
-                     pool)
+                     pool, save)
         failed = False
         return table
     finally:
@@ -1102,7 +1107,7 @@ def run_study(
 
 def _run(task: Task, plan: StudyPlan, out_dir: str | os.PathLike | None, backend: str,
          workers: int | None, client: Any, resume: bool, progress: bool,
-         started: float, pool: Any = None) -> pd.DataFrame:
+         started: float, pool: Any = None, save: bool = True) -> pd.DataFrame:
     """:func:`run_study` once the options are checked and a Dask client (if any) connected."""
     if client is not None:
         workers = len(client.nthreads())  # record the size of the cluster
@@ -1153,7 +1158,7 @@ def _run(task: Task, plan: StudyPlan, out_dir: str | os.PathLike | None, backend
         "chunks_resumed": resumed,
     })
     table.attrs["study"] = metadata
-    if out_dir is not None:
+    if out_dir is not None and save:
         save_study(out_dir, table, metadata=metadata)
     return table
 

@@ -1120,7 +1120,8 @@ def run_fragility(
         running = run.get("pool")
         nominal = (None if running is None
                    else running.submit(_nominal_domains, settings, nominal_resolution_g))
-        table = run_study(fragility_task, plan, out, **options, **run)
+        table = run_study(fragility_task, plan, out, **options, **run,
+                          save=False)  # saved below, with the summary
         limit_table = run_study(limit_task, limit_plan, limit_dir, **options, **run)
         domains = (_nominal_domains(settings, nominal_resolution_g) if nominal is None
                    else nominal.result())

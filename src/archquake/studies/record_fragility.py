@@ -1115,7 +1115,8 @@ def run_record_fragility(
                          workers):
             workers = None  # fewer seconds of work than starting the workers would save
     table = run_study(record_fragility_task, plan, out, backend=backend, workers=workers,
-                      scheduler=scheduler, pool=pool, resume=resume, progress=progress)
+                      scheduler=scheduler, pool=pool, resume=resume, progress=progress,
+                      save=False)  # saved below, with the summary
     metadata = dict(table.attrs.get("study", {}))
     result = record_fragility_result(settings, table, metadata)
     if out is not None:

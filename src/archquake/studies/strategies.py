@@ -360,9 +360,9 @@ cores of the development machine, the two workers starting together;
 ``benchmarks/fragility_command.py``)."""
 
 ANALYSIS_SECONDS = {("four-link", "pulse"): 1.5e-5, ("four-link", "record"): 5e-3,
-                    ("rigid-blocks", "pulse"): 2e-3, ("rigid-blocks", "record"): 8e-2}
+                    ("rigid-blocks", "pulse"): 3e-3, ("rigid-blocks", "record"): 8e-2}
 """Time of one analysis by model and excitation [s], of one process, measured: the four-link
-grid under pulses 15 µs a point; a rigid-block analysis under Oppenheim's pulse 1.8 ms on
+grid under pulses 15 µs a point; a rigid-block analysis under Oppenheim's pulse 3 ms on
 average over the paper's grid (0.3 ms at rest, 6 ms for a recovery); under 20-s records,
 about 5 ms (four-link) and 80 ms (rigid blocks)."""
 
