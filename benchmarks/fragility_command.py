@@ -22,10 +22,14 @@ are the package's own; nothing else changes):
 - curves: the fits of the fragility curves;
 - writing: results.parquet/.csv, curves.csv, summary.json (and the tables ``run_study``
   writes);
-- figures (with ``--plot-dir``) and the rest of the command (printing, the model check).
+- figures (with ``--plot-dir``) and the rest of the command (printing, the model check);
+- the CPU time of the command and its worker processes, which depends less than the wall time
+  on what else runs on the machine (timed from outside).
 
-The two variants A and B are run interleaved ``--repeats`` times each; the medians and the
-ratio B / A of every phase are printed side by side. The defaults compare the command as a user
+The two variants A and B are run ``--untimed`` times each untimed (compiled code cached, files read), then
+interleaved ``--repeats`` times each; the medians and the ratio B / A of every phase are
+printed side by side. ``--b-src`` runs B on another copy of the package (the version before a
+change: before/after). The defaults compare the command as a user
 runs it (A: its defaults with ``--workers 2``) with the study's former way (B: ``--search
 screened`` on a pool of two worker processes started whatever the study's size: ``--always-pool``,
 an option of this script, not of the command, puts back the former rule).
@@ -49,6 +53,7 @@ import argparse
 import functools
 import json
 import os
+import resource
 import shlex
 import statistics
 import subprocess
@@ -71,7 +76,7 @@ STUDIES = {
 
 PHASES = ("interpreter start", "imports", "settings", "dynamic study", "  task s (summed)",
           "  checkpoints", "  pool, start-up, wait", "limit sample", "nominal", "curves",
-          "writing", "figures", "rest of the command", "total")
+          "writing", "figures", "rest of the command", "total", "CPU s, all processes")
 
 
 def _child(argv: list[str]) -> None:
@@ -143,7 +148,7 @@ def _child(argv: list[str]) -> None:
           else study.RecordFragilitySettings, "__post_init__", "settings")
     timed(execution, "_save_chunk", "  checkpoints")
     timed(results_io, "save_study", "writing")
-    for name in ("fragility_curves", "record_fragility_curves"):
+    for name in ("fragility_curves", "record_fragility_result"):
         if hasattr(study, name):
             timed(study, name, "curves")
     for name in ("_nominal_domains", "_nominal_outcomes"):
@@ -168,22 +173,33 @@ def _child(argv: list[str]) -> None:
     print("PHASES " + json.dumps(phases), file=sys.stderr)
 
 
-def _run(command: str, extra: str) -> dict:
-    """One run of ``archquake COMMAND EXTRA`` in a fresh interpreter; its phases [s]."""
+def _children_cpu() -> float:
+    """CPU seconds of the finished child processes of this one and theirs (the command and its
+    worker processes): less sensitive than wall time to what else the machine runs."""
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def _run(command: str, extra: str, src: Path) -> dict:
+    """One run of ``archquake COMMAND EXTRA`` in a fresh interpreter, the package imported from
+    ``src``; its phases [s]."""
     with tempfile.TemporaryDirectory() as tmp:
         argv = shlex.split(command) + shlex.split(extra) + ["--out", str(Path(tmp) / "out"),
                                                             "--no-progress"]
-        env = {**os.environ, "PYTHONPATH": str(ROOT / "src")}
+        env = {**os.environ, "PYTHONPATH": str(src)}
         t0 = time.perf_counter()
+        cpu0 = _children_cpu()
         done = subprocess.run([sys.executable, __file__, "--child", *argv], env=env,
                               capture_output=True, text=True)
         wall = time.perf_counter() - t0
+        cpu = _children_cpu() - cpu0
     if done.returncode:
         raise SystemExit(f"archquake {' '.join(argv)} failed:\n{done.stderr[-3000:]}")
     line = [x for x in done.stderr.splitlines() if x.startswith("PHASES ")][-1]
     phases = json.loads(line[len("PHASES "):])
     phases["interpreter start"] = wall - phases["total"]
     phases["total"] = wall
+    phases["CPU s, all processes"] = cpu
     phases["output"] = done.stdout
     return phases
 
@@ -196,18 +212,30 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--study", choices=STUDIES, default="reduced")
     parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--untimed", type=int, default=1,
+                        help="untimed runs of each variant first (0 once its compiled code is "
+                             "cached)")
+    parser.add_argument("--b-src", type=Path, default=ROOT / "src",
+                        help="the package's source directory of variant B, e.g. an older "
+                             "version's (git archive COMMIT src | tar -x -C DIR: DIR/src); "
+                             "default this one")
     parser.add_argument("--a", default="--workers 2", help="options of variant A")
     parser.add_argument("--b", default="--workers 2 --search screened --always-pool",
                         help="options of variant B (the baseline)")
     args = parser.parse_args(argv)
     command = STUDIES[args.study]
+    variants = (("A", args.a, ROOT / "src"), ("B", args.b, args.b_src))
+    for _ in range(args.untimed):  # compiled code cached and files read once: not timed
+        for _, extra, src in variants:
+            _run(command, extra, src)
     runs = {"A": [], "B": []}
     for _ in range(args.repeats):
-        for name, extra in (("A", args.a), ("B", args.b)):
-            runs[name].append(_run(command, extra))
+        for name, extra, src in variants:
+            runs[name].append(_run(command, extra, src))
     print(f"archquake {command} --out DIR --no-progress, median of {args.repeats} runs, "
           f"interleaved")
-    print(f"  A: {args.a}\n  B: {args.b}")
+    print(f"  A: {args.a}\n  B: {args.b}" + ("" if args.b_src == ROOT / "src"
+                                               else f" (package from {args.b_src})"))
     print(f"{'phase [s]':<26}{'A':>9}{'B':>9}{'B / A':>9}")
     for phase in PHASES:
         a = statistics.median(r[phase] for r in runs["A"])

@@ -1,6 +1,6 @@
-"""The paper's fragility study with the rigid-block model: the ``screened`` search against the
-exhaustive grid (the default), side by side on the same arches, and P_F compared at every
-amplitude; and what an analysis costs by its outcome, which is why screening does not pay.
+"""The paper's fragility study with the rigid-block model: the ``screened`` search (the default)
+against the exhaustive grid, side by side on the same arches, and P_F compared at every
+amplitude; and what an analysis costs by its outcome, which bounds what screening can save.
 
     python benchmarks/rigid_block_fragility.py [--arches 40] [--exhaustive-arches 10]
                                                [--workers 2] [--skip-full] [--time-step H]

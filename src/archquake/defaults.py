@@ -289,19 +289,20 @@ under a pulse (0.2 ms at rest), so the grid is scanned coarsely, every change of
 bisected, and the stretches where its outcome is not smooth in the amplitude analysed point by
 point (``"screened"``, :mod:`archquake.studies.strategies`: the outcomes of the exhaustive grid
 in every case compared). Under records it analyses nearly every level (only rest is smooth
-there) and costs what ``"exhaustive"`` costs. ``"bisection"`` is faster still, and misses the
+there) and costs more than ``"exhaustive"``, which the record-based study therefore runs
+(:data:`RECORD_STUDY_SEARCH`). ``"bisection"`` is faster still, and misses the
 isolated recoveries of the rigid-block model among its late collapses."""
 
-STUDY_SEARCH = {"four-link": "exhaustive", "rigid-blocks": "exhaustive"}
-"""Search strategy of the fragility studies (``fragility``, ``record-fragility``) per model: every
-point. ``"screened"`` infers only the outcomes that are smooth in the amplitude, rest and the
-collapses decided during the pulse, and those are the cheapest analyses of the rigid blocks
-(measured on the paper's study: 0.3 ms at rest, 1.9 ms for a collapse during the pulse, 3.7 ms
-for one after it and 6.3 ms for a recovery, both of which it must analyse): it skips a third of
-the grid and saves 4-10 % of the analyses' time, less than its bisections, screening model and
-unbalanced chunks cost a study on worker processes (the paper's study: 60.8 s screened, 56.7 s
-exhaustive, the same curves; under records it analyses nearly every level). The failure domain
-of one structure keeps :data:`DEFAULT_SEARCH`; ``--search screened`` still chooses it."""
+RECORD_STUDY_SEARCH = {"four-link": "exhaustive", "rigid-blocks": "exhaustive"}
+"""Search strategy of the record-based study (``record-fragility``) per model: every level.
+Under a record only rest is smooth in the level, and rest is the cheapest analysis, so
+``"screened"`` analyses nearly every level and adds its bisections: 34 s against 32 s exhaustive
+(``python benchmarks/fragility_command.py --study records``). Under pulses it pays, a little
+(:data:`DEFAULT_SEARCH`): it infers rest and the collapses decided during the pulse, 0.3 and
+1.9 ms an analysis against 3.7 ms for a collapse after the pulse and 6.3 ms for a recovery,
+which it must analyse; on the paper's study 80-95 % of the exhaustive grid's analysis time
+(``--study paper``), and no search that reproduces the exhaustive grid can do much better, since
+the points it may infer hold about a sixth of that time."""
 
 # --- fill over an arch (archquake.geometry.fill)
 

@@ -249,6 +249,6 @@ def test_both_models_section_comes_from_the_studies(report):
         row["rigid_block"] for row in results["comparison"]["rows"]]
     rigid = rigid_block_fragility(settings)
     assert np.array_equal(both["fragility"]["rigid_blocks"], rigid.probability)
-    assert both["fragility"]["search"] == "exhaustive"  # defaults.STUDY_SEARCH
+    assert both["fragility"]["search"] == "screened"
     html = (out / "report.html").read_text()
     assert "Both models in the paper" in html and "multi-fidelity" in html

@@ -1,4 +1,4 @@
-"""How a fragility study chooses its search and where it runs: every point by default, and a
+"""How a fragility study chooses its search and where it runs: every level under records, and a
 study shorter than starting worker processes runs in the process that asked for it, with the
 same results (studies.strategies.pool_pays)."""
 
@@ -16,11 +16,18 @@ TINY = {"sample_size": 2, "durations": (0.4,), "limit_sample_size": 4, "seed": 3
 FAST = {"progress": False, "nominal_resolution_g": 0.05, "limit_chunk_size": 2}
 
 
-@pytest.mark.parametrize("model", ["four-link", "rigid-blocks"])
-def test_a_study_analyses_every_point_by_default(model):
-    settings = FragilitySettings(**TINY, model=model)
-    assert settings.search == "exhaustive"
-    assert FragilitySettings(**TINY, model=model, search="screened").search == "screened"
+@pytest.mark.parametrize("model, search", [("four-link", "exhaustive"),
+                                           ("rigid-blocks", "screened")])
+def test_the_default_search_under_pulses_and_under_records(model, search):
+    from archquake.ground_motion import RecordSuite
+    from archquake.studies.record_fragility import RecordFragilitySettings
+
+    assert FragilitySettings(**TINY, model=model).search == search
+    suite = RecordSuite.from_stochastic(1, seed=4, significant_duration=2.0, duration=4.0)
+    records = RecordFragilitySettings(suite=suite, levels=(0.3, 0.6), model=model)
+    assert records.search == "exhaustive"  # only rest is smooth under a record
+    assert RecordFragilitySettings(suite=suite, levels=(0.3, 0.6), model=model,
+                                   search="screened").search == "screened"
 
 
 def test_the_estimate_of_a_study_is_its_arches_and_analyses():
@@ -56,3 +63,18 @@ def test_a_small_study_on_workers_runs_here_with_the_same_results(monkeypatch):
     assert pooled.metadata["backend"] == "processes"
     pd.testing.assert_frame_equal(pooled.table, serial.table)
 
+
+
+def test_a_small_record_study_on_workers_runs_here_with_the_same_results():
+    from archquake.ground_motion import RecordSuite
+    from archquake.studies.record_fragility import RecordFragilitySettings, run_record_fragility
+
+    suite = RecordSuite.from_stochastic(1, seed=4, significant_duration=2.0, duration=4.0)
+    settings = RecordFragilitySettings(suite=suite, levels=(0.3, 0.6), sample_size=1, seed=2,
+                                       bootstrap=10)
+    assert settings.search == "exhaustive"
+    # 2 arches x 1 record x 2 levels x 2 polarities = 8 analyses: 2 x 0.06 + 8 x 5 ms = 0.16 s
+    serial = run_record_fragility(settings, backend="serial", progress=False)
+    here = run_record_fragility(settings, workers=2, progress=False)
+    assert here.metadata["backend"] == "serial"
+    pd.testing.assert_frame_equal(here.table, serial.table)

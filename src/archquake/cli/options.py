@@ -575,8 +575,8 @@ def add_search_options(group) -> None:
                        help="how each line of the grid is searched: every point, a coarse scan "
                             "with bisection of every change, or that screened by the four-link "
                             "model with the stretches whose outcome is not smooth analysed "
-                            "point by point (default: exhaustive for the four-link model, "
-                            "screened for the rigid blocks)")
+                            "point by point (default: screened for the rigid blocks under "
+                            "pulses, else exhaustive)")
     group.add_argument("--stride", type=int, default=None, metavar="N",
                        help=f"grid steps between the coarse points of bisection and screened "
                             f"(default: {DEFAULT_STRIDE} amplitudes, {DEFAULT_LEVEL_STRIDE} "

@@ -89,6 +89,7 @@ from ..checks import check_integer, json_float
 from ..defaults import (
     DEFAULT_EPSILON,
     DEFAULT_SAMPLE_LIMIT_METHOD,
+    DEFAULT_SEARCH,
     DEFAULT_SEED,
     LIMIT_METHODS,
     LIMIT_SAMPLE_SIZE,
@@ -101,7 +102,6 @@ from ..defaults import (
     STUDY_AMPLITUDES_G,
     STUDY_DURATIONS,
     STUDY_SAMPLE_SIZE,
-    STUDY_SEARCH,
 )
 from ..geometry import GRAVITY, BlockArch, arch_from_dict
 from ..models import DEFAULT_MODEL, ModelSpec, model_spec
@@ -193,7 +193,7 @@ class FragilitySettings:
         rigid-block study costs").
     search : {"exhaustive", "bisection", "screened"}, optional
         How each arch's amplitude lines are searched (:mod:`archquake.studies.strategies`;
-        default :data:`archquake.defaults.STUDY_SEARCH` of the model: every point).
+        default :data:`archquake.defaults.DEFAULT_SEARCH` of the model).
     stride : int, optional
         Grid steps between the coarse points of ``bisection`` and ``screened`` [-] (default
         :data:`archquake.defaults.DEFAULT_STRIDE`).
@@ -225,7 +225,7 @@ class FragilitySettings:
         # resolved for the nominal structure (its time step), then recorded
         object.__setattr__(self, "model", model_spec(self.model).resolved(self.nominal))
         object.__setattr__(self, "search", check_search(
-            STUDY_SEARCH[self.model.name] if self.search is None else self.search))
+            self.model.default_search if self.search is None else self.search))
         object.__setattr__(self, "stride", check_stride(
             DEFAULT_STRIDE if self.stride is None else self.stride))
         sample = ArchSample(self.nominal, self.epsilon, self.seed)  # nominal, epsilon, seed
@@ -369,7 +369,7 @@ def model_outcomes(model, durations, amplitudes_g, *, motion: str = "oppenheim",
     motion : str
         Pulse shape (:data:`archquake.ground_motion.ANALYTIC_GROUND_MOTIONS`).
     search : {"exhaustive", "bisection", "screened"}, optional
-        Search strategy (default :data:`archquake.defaults.STUDY_SEARCH` of the model).
+        Search strategy (default :data:`archquake.defaults.DEFAULT_SEARCH` of the model).
     stride : int
         Coarse stride of the faster strategies [grid steps].
     screen : StructuralModel, optional
@@ -385,7 +385,7 @@ def model_outcomes(model, durations, amplitudes_g, *, motion: str = "oppenheim",
         [-] (nan for a model without restitution) (2 x durations x amplitudes rows);
         ``status`` holds the integer codes of :class:`archquake.status.Status`.
     """
-    search = STUDY_SEARCH[model.name] if search is None else search
+    search = DEFAULT_SEARCH[model.name] if search is None else search
     if not (model.grid_in_one_call and search == "exhaustive"):
         return _searched_outcomes(model, durations, amplitudes_g, motion, search, stride,
                                   screen)

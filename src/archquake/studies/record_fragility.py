@@ -128,8 +128,8 @@ from ..defaults import (
     DEFAULT_LEVEL_STRIDE,
     DEFAULT_SEED,
     MAX_SAMPLES,
+    RECORD_STUDY_SEARCH,
     STUDY_SAMPLE_SIZE,
-    STUDY_SEARCH,
 )
 from ..geometry import BlockArch, arch_from_dict
 from ..ground_motion.suites import RecordSuite, stripe_measure
@@ -217,8 +217,8 @@ class RecordFragilitySettings:
         chosen from it unless given; at most the records' sample spacing).
     search : {"exhaustive", "bisection", "screened"}, optional
         How each (arch, record, polarity) line of levels is searched
-        (:mod:`archquake.studies.strategies`; default :data:`archquake.defaults.STUDY_SEARCH`
-        of the model: every level).
+        (:mod:`archquake.studies.strategies`; default
+        :data:`archquake.defaults.RECORD_STUDY_SEARCH` of the model: every level).
     stride : int, optional
         Levels between the coarse points of ``bisection`` and ``screened`` [-] (default
         :data:`archquake.defaults.DEFAULT_LEVEL_STRIDE`).
@@ -248,7 +248,7 @@ class RecordFragilitySettings:
         # resolved for the nominal structure (its time step), then recorded
         object.__setattr__(self, "model", model_spec(self.model).resolved(self.nominal))
         object.__setattr__(self, "search", check_search(
-            STUDY_SEARCH[self.model.name] if self.search is None else self.search))
+            RECORD_STUDY_SEARCH[self.model.name] if self.search is None else self.search))
         object.__setattr__(self, "stride", check_stride(
             DEFAULT_LEVEL_STRIDE if self.stride is None else self.stride))
 

@@ -887,7 +887,7 @@ def record_fragility(settings: ReproductionSettings,
 def rigid_block_fragility(settings: ReproductionSettings):
     """The fragility study with the rigid-block model (a worker's task): the first
     ``rigid_fragility_sample_size`` arches of the four-link study's sample, on its grid, with the
-    default search of a study (:data:`archquake.defaults.STUDY_SEARCH`).
+    default search (:data:`archquake.defaults.DEFAULT_SEARCH`).
 
     Parameters
     ----------
