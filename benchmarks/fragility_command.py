@@ -2,7 +2,8 @@
 and two ways of running it side by side.
 
     python benchmarks/fragility_command.py [--study reduced|paper|four-link|records]
-                                           [--repeats 3] [--a ARGS] [--b ARGS]
+                                           [--repeats 3] [--untimed 1] [--a ARGS] [--b ARGS]
+                                           [--b-src DIR]
 
 Each run is the command as a user types it, in a fresh interpreter (``python -m archquake``),
 writing its outputs to a new directory. A run is timed from outside (the wall time of the
@@ -18,7 +19,8 @@ are the package's own; nothing else changes):
   the chunks written, and the rest (worker processes started, their imports and compiled
   code loaded, waiting);
 - limit sample: the limit analyses of the s arches (its own ``run_study``);
-- nominal: the nominal arch's failure domains (waited for, when a worker computed them);
+- nominal: the nominal arch's failure domains, when this process computes them (when a worker
+  does, waiting for them is in the rest of the command);
 - curves: the fits of the fragility curves;
 - writing: results.parquet/.csv, curves.csv, summary.json (and the tables ``run_study``
   writes);
@@ -26,13 +28,22 @@ are the package's own; nothing else changes):
 - the CPU time of the command and its worker processes, which depends less than the wall time
   on what else runs on the machine (timed from outside).
 
-The two variants A and B are run ``--untimed`` times each untimed (compiled code cached, files read), then
-interleaved ``--repeats`` times each; the medians and the ratio B / A of every phase are
-printed side by side. ``--b-src`` runs B on another copy of the package (the version before a
-change: before/after). The defaults compare the command as a user
-runs it (A: its defaults with ``--workers 2``) with the study's former way (B: ``--search
-screened`` on a pool of two worker processes started whatever the study's size: ``--always-pool``,
-an option of this script, not of the command, puts back the former rule).
+The two variants A and B are first run ``--untimed`` times each (compiled code cached, files
+read), then interleaved ``--repeats`` times each; the medians and the ratio B / A of every
+phase are printed side by side. ``--b-src`` runs B on another copy of the package (the version
+before a change: before/after). The defaults compare the command as a user runs it (A: its defaults
+with ``--workers 2``) with the exhaustive grid (B: ``--search exhaustive``). ``--always-pool``,
+an option of this script, not of the command, puts back the former rule of execution: worker
+processes whenever ``--workers`` is above 1, whatever the study's size.
+
+The figures of the user guide ("What screening can save", "What the whole command costs")::
+
+    python benchmarks/fragility_command.py --study four-link --b "--workers 2" --b-src OLD/src
+    python benchmarks/fragility_command.py --study paper --repeats 1 --untimed 0
+    python benchmarks/fragility_command.py --study records --repeats 1 --b "--workers 2" \
+        --b-src OLD/src
+
+with ``OLD`` an older version of the package (``git archive b9d6ce0 src | tar -x -C OLD``).
 
 Studies (``--study``):
 
@@ -220,7 +231,7 @@ def main(argv: list[str] | None = None) -> int:
                              "version's (git archive COMMIT src | tar -x -C DIR: DIR/src); "
                              "default this one")
     parser.add_argument("--a", default="--workers 2", help="options of variant A")
-    parser.add_argument("--b", default="--workers 2 --search screened --always-pool",
+    parser.add_argument("--b", default="--workers 2 --search exhaustive",
                         help="options of variant B (the baseline)")
     args = parser.parse_args(argv)
     command = STUDIES[args.study]
