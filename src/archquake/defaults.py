@@ -298,11 +298,12 @@ RECORD_STUDY_SEARCH = {"four-link": "exhaustive", "rigid-blocks": "exhaustive"}
 Under a record only rest is smooth in the level, and rest is the cheapest analysis, so
 ``"screened"`` analyses nearly every level and adds its bisections: 34 s against 32 s exhaustive
 (``python benchmarks/fragility_command.py --study records``). Under pulses it pays, a little
-(:data:`DEFAULT_SEARCH`): it infers rest and the collapses decided during the pulse, 0.3 and
-1.9 ms an analysis against 3.7 ms for a collapse after the pulse and 6.3 ms for a recovery,
-which it must analyse; on the paper's study 80-95 % of the exhaustive grid's analysis time
-(``--study paper``), and no search that reproduces the exhaustive grid can do much better, since
-the points it may infer hold about a sixth of that time."""
+(:data:`DEFAULT_SEARCH`): it infers rest and the collapses decided during the pulse, 0.9 and
+3.8 ms an analysis against 5.3 ms for a collapse after the pulse and 7.4 ms for a recovery,
+which it must analyse (``python benchmarks/rigid_block_fragility.py``, a busy machine); on the
+paper's study 80-95 % of the exhaustive grid's analysis time (``--study paper``), and no search
+that reproduces the exhaustive grid can do much better, since the points it may infer hold
+about 28 % of that time."""
 
 # --- fill over an arch (archquake.geometry.fill)
 
