@@ -19,11 +19,16 @@ K = WIDTH / HEIGHT  # the block starts to rock at k g
 SETTINGS = BlockSettings(time_step=0.001)
 
 
-def rest_decision(excitation_end, h=0.001, window=100):
+def rest_decision(excitation_end, h=0.001, window=100, coarse=2):
     """When rest is decided [s]: ``window`` steps of rest counted from the first step that
-    starts at or after the end of the excitation (t_k = k h >= t_exc, as the solver tests it)."""
+    starts at or after the end of the excitation (t_k = k h >= t_exc, as the solver tests it),
+    the step that ends there counting the steps h it spans: ``coarse`` (the default
+    coarse_factor) if it ends on the grid of coarse steps (a multiple of ``coarse`` steps, as
+    every coarse step at rest does), else one. E.g. t_exc = 0.3 s at h = 1 ms, coarse 2: the
+    step 0.298-0.300 s counts 2, every later one 2, so the count reaches 100 at 0.398 s."""
     first = next(k for k in range(10**6) if k * h >= excitation_end)
-    return (first + window - 1) * h
+    counted = coarse if first % coarse == 0 else 1
+    return (first + window - counted) * h
 
 
 def step_motion(pieces):

@@ -158,6 +158,9 @@ PULSE_STEPS = 20
 """Fewest steps in the shortest piece of a pulse (the time scale of an analytic pulse, the
 shortest piece of a piecewise-constant one) [-]."""
 
+PHASES = ("still", "pulse", "free", "window")
+"""The phases of an analysis in which :func:`outcome_with_phases` counts the steps solved."""
+
 STATUS_NAMES = {solver.REST: Status.REST, solver.RECOVERY: Status.RECOVERY,
                 solver.COLLAPSE: Status.COLLAPSE}
 """Outcome code of :func:`archquake.rigid_blocks.solver.run` -> name."""
@@ -225,11 +228,19 @@ class BlockSettings:
         method is fast but may cycle, Lemke's algorithm cannot. 0 solves every step by Lemke's
         algorithm (a check of the active-set method: the same motion to round-off, many times
         slower).
+    skip_rest : bool
+        Skip the steps that would repeat a static equilibrium (True, the default): a structure
+        at rest under a constant piece of a piecewise-constant pulse stays at rest to the
+        piece's end, and one at rest after the excitation stays at rest through its window of
+        rest (:func:`archquake.rigid_blocks.solver.steady_steps`). False takes every step: the
+        same outcome, its times and maxima, the check of the skip
+        (``benchmarks/rigid_block_savings.py`` times both).
 
     Raises
     ------
     ValueError
-        If a field is not a finite number, ``friction < 0``, ``theta`` is outside [0.5, 1],
+        If a field is not a finite number (``skip_rest``: not a bool), ``friction < 0``,
+        ``theta`` is outside [0.5, 1],
         ``max_iterations`` is not an integer >= 1, or another field is not > 0.
 
     Notes
@@ -273,11 +284,16 @@ class BlockSettings:
     settle_time: float = 20.0
     coarse_factor: int = DEFAULT_COARSE_FACTOR
     active_set_solves: int = ACTIVE_SET_SOLVES
+    skip_rest: bool = True
 
     def __post_init__(self):
+        if not isinstance(self.skip_rest, bool | np.bool_):
+            raise ValueError(f"skip_rest must be True or False, got {self.skip_rest!r}")
         for f in fields(self):
             value = getattr(self, f.name)
             if f.name == "time_step" and value is None:  # chosen from the structure
+                continue
+            if f.name == "skip_rest":
                 continue
             if isinstance(value, bool) or not isinstance(value, (int, float)):
                 raise ValueError(f"{f.name} must be a number, got {value!r}")
@@ -858,9 +874,10 @@ def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None,
          tail: float = 0.5, reorder: bool = True):
     """Check the input, scale the thresholds to the structure and run the compiled driver.
 
-    Returns ``(assembly, settings, motion, outcome, records, order)`` (records as
+    Returns ``(assembly, settings, motion, outcome, records, order, phases)`` (records as
     :func:`archquake.rigid_blocks.solver.run` returns them, their contacts numbered in the
-    joint order ``order``, :func:`joint_order` if ``reorder``).
+    joint order ``order``, :func:`joint_order` if ``reorder``; ``phases`` the steps solved by
+    phase, :func:`outcome_with_phases`).
     """
     assembly = structure_assembly(structure)
     settings = BlockSettings() if settings is None else settings
@@ -918,7 +935,8 @@ def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None,
         energy_margin=settings.energy_margin * total_mass * GRAVITY * thickness,
         record_stride=int(record_every), tail_steps=tail_steps,
         crown_block=crown_block, crown_x=crown_r[0], crown_y=crown_r[1],
-        coarse_factor=coarse, active_set_solves=settings.active_set_solves)
+        coarse_factor=coarse, active_set_solves=settings.active_set_solves,
+        skip_rest=1.0 if settings.skip_rest else 0.0)
     summary, records = solver.run(arrays["bodies"], arrays["contacts"], arrays["contact_bodies"],
                                   q0, v0, int(kind), params, times, values, packed)
     s = dict(zip(solver.SUMMARY_FIELDS, summary.tolist(), strict=True))
@@ -935,7 +953,9 @@ def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None,
         mean_iterations=s["iterations"] / max(steps, 1), fallback_steps=int(s["fallbacks"]),
         unconverged_steps=int(s["unconverged_steps"]),
     )
-    return assembly, settings, motion, outcome, records, order
+    phases = {name: int(s[key]) for name, key in zip(
+        PHASES, ("solved_still", "solved_pulse", "solved_free", "solved_window"), strict=True)}
+    return assembly, settings, motion, outcome, records, order, phases
 
 
 def block_outcome(structure, motion: GroundMotion | None, settings: BlockSettings | None = None,
@@ -985,6 +1005,29 @@ def block_outcome(structure, motion: GroundMotion | None, settings: BlockSetting
     return _run(structure, motion, settings, initial=initial, reorder=reorder)[3]
 
 
+def outcome_with_phases(structure, motion: GroundMotion | None,
+                        settings: BlockSettings | None = None) -> tuple[BlockOutcome, dict]:
+    """:func:`block_outcome`, and where its steps went: the steps solved until the decision
+    (a contact problem each; a coarse step counts one, a skipped step none) by phase
+    (:data:`PHASES`).
+
+    Parameters
+    ----------
+    structure, motion, settings
+        As :func:`block_outcome`.
+
+    Returns
+    -------
+    (BlockOutcome, dict of str to int)
+        The outcome, and the steps solved [-] by the names of :data:`PHASES`: ``still``
+        during the excitation before the structure first moves (its kinetic energy above that
+        of rest), ``pulse`` during the excitation after that, ``free`` after the excitation
+        while the structure moves, ``window`` after it in the window of rest that decides.
+    """
+    out = _run(structure, motion, settings)
+    return out[3], out[6]
+
+
 def simulate_blocks(structure, motion: GroundMotion | None,
                     settings: BlockSettings | None = None, *, initial=None,
                     record_every: int = 1, t_end: float | None = None,
@@ -1028,7 +1071,7 @@ def simulate_blocks(structure, motion: GroundMotion | None,
         raise ValueError(f"record_every must be an integer >= 1, got {record_every!r}")
     if not (math.isfinite(tail) and tail >= 0):
         raise ValueError(f"tail must be a finite time >= 0 [s], got {tail!r}")
-    assembly, settings, motion, outcome, records, order = _run(
+    assembly, settings, motion, outcome, records, order, _ = _run(
         structure, motion, settings, initial=initial, record_every=int(record_every),
         t_end=t_end, tail=tail, reorder=reorder)
     energy, q, per_contact = records

@@ -141,7 +141,8 @@ The driver
                     method fails) is taken again at h from 6 ("Coarse steps")
     9. advance      energy bookkeeping and the positions q_{k+1}
     10. at rest     two steps at rest under one constant ground acceleration: the steps that
-                    would repeat them are skipped (:func:`steady_steps`)
+                    would repeat them are skipped (:func:`steady_steps`; unless the setting
+                    ``skip_rest`` is 0)
 
 The structure reaches the driver as three packed arrays (the blocks,
 :data:`~.contacts.BODY_FIELDS`; the contacts, :data:`~.contacts.CONTACT_FIELDS`; the bodies of
@@ -214,13 +215,18 @@ REST, RECOVERY, COLLAPSE = 0, 1, 2
 SUMMARY_FIELDS = (
     "status", "decided", "collapse_time", "decision_time", "max_rotation", "max_crown_drop",
     "max_slip", "max_opening", "max_drop", "steps", "iterations", "max_iterations_used",
-    "unconverged_steps", "final_time", "closed", "fallbacks",
+    "unconverged_steps", "final_time", "closed", "fallbacks", "solved_still", "solved_pulse",
+    "solved_free", "solved_window",
 )
 """Layout of the summary vector returned by :func:`run`: outcome code; 1 if decided; collapse and
 decision times [s] (nan if none); largest block rotation [rad], crown drop, slip, opening and
 drop [m]; steps, linear solves or sweeps in all, most in one step, unconverged steps [-]; final
 time of the run [s]; 1 if every joint was closed; steps left to Gauss-Seidel [-] (a coarse step
-counts in ``steps`` as the steps ``h`` it spans). Everything but
+counts in ``steps`` as the steps ``h`` it spans); the steps solved (a contact problem each, a
+coarse step and a step skipped as in :func:`steady_steps` counting one and none) until the
+decision by phase [-]: during the excitation while the structure has not yet moved (its kinetic
+energy never above :math:`T_{rest}`), during the excitation after that, after it while the
+structure moves (the count of rest at 0), and after it in the window of rest. Everything but
 the final time is that of the decision (of the last step if undecided): a recording that goes on
 after the decision changes nothing of it."""
 
@@ -313,7 +319,7 @@ SETTINGS_FIELDS = (
     "time_step", "theta", "friction", "tolerance", "max_iterations", "gravity",
     "excitation_end", "n_steps", "drop_limit", "rest_energy", "closed_gap", "rest_steps",
     "open_rest_steps", "moved_threshold", "energy_margin", "record_stride", "tail_steps",
-    "crown_block", "crown_x", "crown_y", "coarse_factor", "active_set_solves",
+    "crown_block", "crown_x", "crown_y", "coarse_factor", "active_set_solves", "skip_rest",
 )
 """Entries of the settings vector of :func:`run` (:func:`pack_settings`; counts and indices stored
 as floats): time step h [s]; theta [-]; friction coefficient mu [-]; Gauss-Seidel tolerance as a
@@ -327,12 +333,13 @@ and ``tail_steps`` (steps recorded after the decision, -1: to ``n_steps``) [-]; 
 carries the crown point and that point relative to its centroid [m]; the steps of ``h`` taken as
 one while no contact starts or stops carrying an impulse (:func:`run`) [-]; the largest number of
 linear solves of the active-set method in a step before Lemke's algorithm takes over (0: Lemke's
-algorithm at every step) [-]."""
+algorithm at every step) [-]; 1 to skip the steps that repeat a static equilibrium
+(:func:`steady_steps`), 0 to take every step (the same outcome: a check) [-]."""
 
 (S_TIME_STEP, S_THETA, S_FRICTION, S_TOLERANCE, S_MAX_ITERATIONS, S_GRAVITY, S_EXCITATION_END,
  S_N_STEPS, S_DROP_LIMIT, S_REST_ENERGY, S_CLOSED_GAP, S_REST_STEPS, S_OPEN_REST_STEPS,
  S_MOVED_THRESHOLD, S_ENERGY_MARGIN, S_RECORD_STRIDE, S_TAIL_STEPS, S_CROWN_BLOCK, S_CROWN_X,
- S_CROWN_Y, S_COARSE_FACTOR, S_ACTIVE_SET_SOLVES) = range(22)
+ S_CROWN_Y, S_COARSE_FACTOR, S_ACTIVE_SET_SOLVES, S_SKIP_REST) = range(23)
 
 RECORD_ENERGY_FIELDS = ("t", "kinetic", "potential", "dissipated", "input")
 """Columns of the record of times and energies: t [s], T, V, D, W [J/m]."""
@@ -561,7 +568,7 @@ def _changed(active, state, carried):
 
 @numba.njit(cache=True, _nrt=False)
 def steady_steps(step, h, ag, kind, params, times, values, settings, rest_count, closed,
-                 last):
+                 last, stop_step):
     r"""How many steps from ``step`` on repeat a static equilibrium (0 if none can be skipped).
 
     Called after two consecutive steps at rest (kinetic energy at most
@@ -573,21 +580,34 @@ def steady_steps(step, h, ag, kind, params, times, values, settings, rest_count,
     - before the end of the excitation, of a piecewise-constant motion (``STEP``): the steps
       that lie wholly in the piece of the next step, if its mean acceleration is ``ag`` (to
       round-off: the mean over a step is computed from its ends) (``times[i] <= t <
-      times[i + 1]``, up to the step that meets ``times[i + 1]``);
+      times[i + 1]``), up to the last point of the grid of coarse steps (``coarse_factor``
+      ``k``: the multiples of ``k``) before the step that meets ``times[i + 1]``: from there on
+      the steps are those of the run without the skip, coarse or not, so a motion that starts
+      in a later piece is taken by the same steps;
     - after it, on a still ground: the steps of the count of rest up to the one that decides
       (its window, ``rest_steps`` if every joint is ``closed``, else ``open_rest_steps``, less
       the ``rest_count`` steps already counted and the ``last`` steps ``h`` of the step just
-      taken, which the next test counts), so that the decision falls on the same step as
+      taken, which the next test counts), the count advanced as the run without the skip
+      advances it (a coarse step of ``k`` from a multiple of ``k`` whose step fits before
+      ``stop_step``, else a step ``h``), so that the decision falls on the same step as
       without the skip.
 
     Nothing of the outcome changes but the round-off of the skipped steps (velocities of
-    :math:`10^{-13}` m/s). Returns the number of steps to skip [-]."""
+    :math:`10^{-13}` m/s): the same status, times of collapse and of decision, steps
+    (``BlockSettings.skip_rest`` False takes them all: tested). Returns the number of steps to
+    skip [-]."""
     t = step * h
+    coarse = max(1, int(settings[S_COARSE_FACTOR]))
     if t >= settings[S_EXCITATION_END]:
         if ag != 0.0:
             return 0
         needed = settings[S_REST_STEPS] if closed else settings[S_OPEN_REST_STEPS]
-        return max(0, int(needed) - rest_count - last)
+        s, count = step, rest_count + last  # the count that the test at step s sees
+        while count < needed:
+            m = coarse if (s % coarse == 0 and s + coarse <= stop_step) else 1
+            s += m
+            count += m
+        return s - step
     if kind != STEP or abs(mean_acceleration(t, t + h, kind, params, times, values)
                            - ag) > 1e-12 * settings[S_GRAVITY]:  # the same, to round-off
         return 0
@@ -595,8 +615,8 @@ def steady_steps(step, h, ag, kind, params, times, values, settings, rest_count,
     i = np.searchsorted(times, t, side="right")  # times[i - 1] <= t < times[i]
     if i >= n:
         return 0
-    last = int(math.floor(times[i] / h)) - 1  # the last step wholly before times[i]
-    return max(0, last - step)
+    whole = int(math.floor(times[i] / h)) - 1  # the last step wholly before times[i]
+    return max(0, (whole // coarse) * coarse - step)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -678,6 +698,7 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     crown_x, crown_y = settings[S_CROWN_X], settings[S_CROWN_Y]
     coarse = max(1, int(settings[S_COARSE_FACTOR]))
     active_set_solves = int(settings[S_ACTIVE_SET_SOLVES])
+    skip_rest = settings[S_SKIP_REST] != 0.0
     mean_mass = bodies[:, BODY_MASS].mean()
     inv_mass = np.empty((nb, 4))  # 1/m, 1/I, their square roots
     for i in range(nb):
@@ -725,6 +746,8 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     rest_count = 0
     closed = True
     iterations = max_used = unconverged = fallbacks = 0
+    solved = np.zeros(4, dtype=np.int64)  # steps solved by phase (SUMMARY_FIELDS)
+    moved_once = False
     stop_step = n_steps
     step = decision_step = 0
     last = 1  # steps h of the last step taken
@@ -765,6 +788,12 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
                 stop_step = n_steps if tail_steps < 0 else min(n_steps, step + tail_steps + 1)
                 if step + 1 >= stop_step:
                     break
+        if not decided:
+            moved_once = moved_once or energies[0] > settings[S_REST_ENERGY]
+            if t < settings[S_EXCITATION_END]:
+                solved[1 if moved_once else 0] += 1
+            else:
+                solved[3 if rest_count > 0 else 2] += 1
         # -------- 6.-8. a coarse step if one fits, taken again at h if a contact changes
         m = coarse if (step % coarse == 0 and step + coarse <= stop_step) else 1
         if m > 1:
@@ -818,9 +847,10 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
         step += m
         last = m
         # -------- 10. at rest under a constant load: skip the steps that repeat it
-        if not decided and max(kinetic_before, energies[0]) <= steady_energy:
+        if (skip_rest and not decided
+                and max(kinetic_before, energies[0]) <= steady_energy):
             skip = min(steady_steps(step, h, ag, kind, params, times, values, settings,
-                                    rest_count, closed, last), stop_step - step)
+                                    rest_count, closed, last, stop_step), stop_step - step)
             if recording:  # the skipped steps' records: the same state
                 for k in range(step, step + skip):
                     if k >= next_record:
@@ -849,4 +879,5 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     summary[13] = step * h
     summary[14] = 1.0 if closed else 0.0
     summary[15] = fallbacks
+    summary[16:20] = solved
     return summary, (rec_energy[:n_rec], rec_q[:n_rec], rec_contacts[:n_rec])
