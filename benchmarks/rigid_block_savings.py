@@ -1,0 +1,129 @@
+"""Where the steps of a rigid-block analysis of Oppenheim's pulse go, and what the skips at rest
+save: the time per analysis with them and without, side by side.
+
+    python benchmarks/rigid_block_savings.py [--repeat 3] [--step-g 0.02] [--durations 0.4,...]
+
+Over the paper's grid of Oppenheim's pulse [Sect. 5.3.3] on the paper's arch (Oppenheim's, 7
+voussoirs, 1 ms steps, coarse steps of 2 ms): t_p = 0.4-0.7 s x 0.20-0.80 g (by ``--step-g``),
+every pulse analysed by ``block_outcome`` with the skips at rest (``BlockSettings()``, the
+default: :func:`archquake.rigid_blocks.solver.steady_steps`) and without them
+(``skip_rest=False``, every step taken), interleaved, ``--repeat`` times each; the median of each
+[ms], their ratio, whether the outcomes (status, collapse and decision times, steps) are the
+same, and the steps solved (one contact problem each) by phase
+(:func:`archquake.rigid_blocks.dynamics.outcome_with_phases`): ``still`` during the pulse before
+the arch moves, ``pulse`` during the pulse after that, ``free`` after the pulse while the arch
+moves, ``window`` the window of rest that decides. Then the bound on any earlier decision of
+the recoveries: the steps and time per analysis if every recovery were decided at the end of the
+pulse (its ``free`` and ``window`` steps not solved), and every collapse as well, at the
+measured time per step solved.
+JIT compilation excluded; one core.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
+
+from archquake import oppenheim  # noqa: E402
+from archquake.geometry import GRAVITY  # noqa: E402
+from archquake.ground_motion import oppenheim_pulse  # noqa: E402
+from archquake.rigid_blocks import BlockSettings, block_outcome  # noqa: E402
+from archquake.rigid_blocks.dynamics import PHASES, outcome_with_phases  # noqa: E402
+
+SKIP, FULL = BlockSettings(), BlockSettings(skip_rest=False)
+
+
+def timed(arch, motion, settings) -> float:
+    start = time.perf_counter()
+    block_outcome(arch, motion, settings)
+    return time.perf_counter() - start
+
+
+def same(a, b) -> bool:
+    return (a.status == b.status and a.decision_time == b.decision_time and a.steps == b.steps
+            and (a.collapse_time == b.collapse_time
+                 or (np.isnan(a.collapse_time) and np.isnan(b.collapse_time))))
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--step-g", type=float, default=0.02)
+    parser.add_argument("--durations", default="0.4,0.5,0.6,0.7")
+    args = parser.parse_args(argv)
+    arch = oppenheim()
+    durations = [float(x) for x in args.durations.split(",")]
+    amplitudes = np.round(np.arange(0.2, 0.8 + 1e-9, args.step_g), 10)
+    for settings in (SKIP, FULL):  # JIT (cached after the first run)
+        block_outcome(arch, oppenheim_pulse(-0.5 * GRAVITY, 0.5), settings)
+
+    print(f"Oppenheim's arch, Oppenheim's pulse, t_p = {args.durations} s x "
+          f"{amplitudes[0]:g}-{amplitudes[-1]:g} g by {args.step_g:g} g, median of "
+          f"{args.repeat} interleaved runs [ms per analysis]")
+    print(f"  {'t_p':>4} {'n':>3} {'skips':>7} {'none':>7} {'ratio':>6} {'same':>5}   "
+          + " ".join(f"{p:>7}" for p in PHASES) + "   (steps solved per analysis, with the "
+          "skips | without)")
+    rows = []
+    for tp in durations:
+        per = []
+        for a in amplitudes:
+            motion = oppenheim_pulse(-a * GRAVITY, tp)
+            with_skip, phases = outcome_with_phases(arch, motion, SKIP)
+            without, every = outcome_with_phases(arch, motion, FULL)
+            t_skip, t_full = [], []
+            for _ in range(args.repeat):  # interleaved
+                t_skip.append(timed(arch, motion, SKIP))
+                t_full.append(timed(arch, motion, FULL))
+            per.append({"tp": tp, "a": a, "status": with_skip.status.label,
+                        "skip": statistics.median(t_skip), "full": statistics.median(t_full),
+                        "same": same(with_skip, without),
+                        "phases": np.array([phases[p] for p in PHASES]),
+                        "every": np.array([every[p] for p in PHASES])})
+        rows += per
+        skip = np.mean([r["skip"] for r in per])
+        full = np.mean([r["full"] for r in per])
+        phases = np.mean([r["phases"] for r in per], axis=0)
+        every = np.mean([r["every"] for r in per], axis=0)
+        print(f"  {tp:>4g} {len(per):>3} {1e3 * skip:>7.2f} {1e3 * full:>7.2f} "
+              f"{full / skip:>6.2f} {sum(r['same'] for r in per):>5}   "
+              + " ".join(f"{p:>7.0f}" for p in phases) + "  | "
+              + " ".join(f"{p:.0f}" for p in every))
+    skip = np.array([r["skip"] for r in rows])
+    full = np.array([r["full"] for r in rows])
+    phases = np.array([r["phases"] for r in rows])
+    solved = phases.sum(axis=1)
+    per_step = skip.sum() / solved.sum()
+    counts = {s: sum(r["status"] == s for r in rows) for s in ("rest", "recovery", "collapse")}
+    print(f"  all  {len(rows)} ({', '.join(f'{n} {s}' for s, n in counts.items())}): mean "
+          f"{1e3 * skip.mean():.2f} ms with the skips, {1e3 * full.mean():.2f} ms without "
+          f"(ratio of the sums {full.sum() / skip.sum():.2f}; medians {1e3 * np.median(skip):.2f}"
+          f" and {1e3 * np.median(full):.2f} ms); outcomes the same in "
+          f"{sum(r['same'] for r in rows)} of {len(rows)}")
+    share = phases.sum(axis=0) / solved.sum()
+    print("  steps solved by phase, share of all: "
+          + ", ".join(f"{p} {100 * s:.1f} %" for p, s in zip(PHASES, share, strict=True))
+          + f"; {1e6 * per_step:.2f} us per step solved")
+    recovery = np.array([r["status"] == "recovery" for r in rows])
+    ideal = solved - np.where(recovery, phases[:, 2] + phases[:, 3], 0)
+    print(f"  bound on an earlier decision of the recoveries (each decided at the end of the "
+          f"pulse): {ideal.mean():.0f} steps solved per analysis instead of "
+          f"{solved.mean():.0f}, about {1e3 * per_step * ideal.mean():.2f} ms per analysis at "
+          f"{1e6 * per_step:.2f} us per step; the pulse phase alone {phases[:, 1].mean():.0f} "
+          f"steps, {1e3 * per_step * phases[:, 1].mean():.2f} ms")
+    collapse = np.array([r["status"] == "collapse" for r in rows])
+    both = ideal - np.where(collapse, phases[:, 2], 0)
+    print(f"  and if every collapse were decided at the end of the pulse too (which would change "
+          f"the collapse times that studies record): {both.mean():.0f} steps, about "
+          f"{1e3 * per_step * both.mean():.2f} ms per analysis")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
