@@ -4,6 +4,8 @@ status, times of collapse and decision, and steps, over pulses at rest, near the
 motion and of collapse; and the count of the steps solved by phase adds up to the steps taken.
 """
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -13,13 +15,15 @@ from archquake.ground_motion import STEP, GroundMotion, oppenheim_pulse, rectang
 from archquake.rigid_blocks import BlockSettings, rectangular_block
 from archquake.rigid_blocks.dynamics import PHASES, outcome_with_phases
 
+DEFAULT = BlockSettings()
 
-def same_outcome(structure, motion, settings=BlockSettings(), late=0.0):
+
+def same_outcome(structure, motion, settings=DEFAULT, late=0.0):
     """The outcome with the skips and its phases, and the phases without; ``late``: the
     tolerance of a decision after a long rocking [s] (0: the same step)."""
     skip, phases = outcome_with_phases(structure, motion, settings)
     full, every = outcome_with_phases(structure, motion,
-                                      BlockSettings(**{**settings.__dict__, "skip_rest": False}))
+                                      replace(settings, skip_rest=False))
     assert skip.status == full.status
     assert skip.decided == full.decided
     assert skip.closed == full.closed
