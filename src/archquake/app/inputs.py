@@ -79,8 +79,10 @@ def structure_from_spec(spec: dict):
 
     Returns
     -------
-    (BlockArch, BlockArch)
-        ``(nominal, structure)`` (:meth:`~archquake.geometry.StructureSpec.arches`).
+    (BlockArch, BlockArch) or (BlockAssembly, BlockAssembly)
+        ``(nominal, structure)`` (:meth:`~archquake.geometry.StructureSpec.arches`): a
+        :class:`~archquake.geometry.BlockAssembly` for several spans, several rings or a file
+        of one (:func:`is_assembly`).
 
     Raises
     ------
@@ -95,22 +97,54 @@ def structure_from_spec(spec: dict):
     if voussoirs not in (None, "") and _number(voussoirs) > LIMITS["blocks"]:
         raise ValueError(f"voussoirs must be at most {LIMITS['blocks']} on this page (the "
                          f"command line takes more), got {voussoirs}")
-    spans = data.get("spans") if isinstance(data, dict) else None
-    if spans not in (None, "", 1, "1"):
-        raise ValueError(f"spans: several spans are analysed by the command line's limit only, "
-                         f"not on this page, got {spans!r}")
     try:
         nominal, structure = StructureSpec.from_dict(data).arches()
     except ValueError as exc:
         raise ValueError(_file_message(str(exc), file)) from None
-    if hasattr(structure, "interfaces"):  # an arch of several rings, a wall, a drawing
-        raise ValueError("this page analyses an arch (a chain of voussoirs); a block assembly "
-                         "(an arch of several rings, or a file of one) is analysed by "
-                         "'archquake limit'")
-    if structure.n_voussoirs > LIMITS["blocks"]:
-        raise ValueError(f"the structure has {structure.n_voussoirs} blocks (voussoirs and pier "
-                         f"courses); this page takes at most {LIMITS['blocks']}")
+    blocks = structure.n_blocks if is_assembly(structure) else structure.n_voussoirs
+    if blocks > LIMITS["blocks"]:
+        raise ValueError(f"the structure has {blocks} blocks (voussoirs and pier courses); "
+                         f"this page takes at most {LIMITS['blocks']}")
     return nominal, structure
+
+
+ASSEMBLY_UNAVAILABLE = {
+    "four-link": "the four-link model is the four-hinge mechanism of one chain of voussoirs; "
+                 "a structure of several spans or rings is a block assembly: its time history "
+                 "is the rigid blocks' (archquake rigid-blocks --spans 3 --piers 3,6 on the "
+                 "command line)",
+    "check": "the code check (Circolare 2019 §C8.7.1) takes the four-hinge mechanism of one "
+             "chain of voussoirs, which a structure of several spans or rings (a block "
+             "assembly) does not have",
+    "domain": "the failure domain is not available for several spans or rings on this page: "
+              "the four-link model needs one chain of voussoirs, and the rigid blocks' domain of "
+              "an assembly takes many minutes (run single motions with archquake rigid-blocks "
+              "--spans 3 --piers 3,6, or the time history above)",
+    "assess": "the assessment report is not available for several spans or rings: it is made "
+              "of the four-link model's studies and the code check of one chain of voussoirs",
+}
+"""What the page says of its parts that need one chain of voussoirs when the structure is a block
+assembly (several spans, several rings, a file of one), by part: the four-link time history, the
+code check, the failure domain and the assessment report."""
+
+
+def is_assembly(structure) -> bool:
+    """Whether ``structure`` is a :class:`~archquake.geometry.BlockAssembly` (several spans,
+    several rings, a file of one) rather than one chain of voussoirs."""
+    return hasattr(structure, "interfaces") and hasattr(structure, "polygons")
+
+
+def refuse_assembly(structure, part: str) -> None:
+    """Refuse, with the page's words (:data:`ASSEMBLY_UNAVAILABLE`), a part that needs one chain
+    of voussoirs for a block assembly.
+
+    Raises
+    ------
+    ValueError
+        When ``structure`` is a block assembly.
+    """
+    if is_assembly(structure):
+        raise ValueError(ASSEMBLY_UNAVAILABLE[part])
 
 
 def _number(value) -> float:
@@ -412,7 +446,7 @@ def check_geometry_file(entry: dict):
 
     Returns
     -------
-    BlockArch
+    BlockArch or BlockAssembly
 
     Raises
     ------
@@ -451,6 +485,7 @@ def check_record_file(entry: dict) -> dict:
             "samples": int(motion.times.size), "pga_g": pga, "warnings": said}
 
 
-__all__ = ["LIMITS", "SITE_FIELDS", "Uploads", "check_geometry_file", "check_record_file",
-           "motion_and_warnings", "motion_from_spec", "site_from_spec", "structure_from_spec",
-           "suites"]
+__all__ = ["ASSEMBLY_UNAVAILABLE", "LIMITS", "SITE_FIELDS", "Uploads", "check_geometry_file",
+           "check_record_file",
+           "is_assembly", "motion_and_warnings", "motion_from_spec", "refuse_assembly",
+           "site_from_spec", "structure_from_spec", "suites"]

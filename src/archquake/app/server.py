@@ -277,17 +277,28 @@ def structure_answer(spec: dict) -> dict:
         ``structure`` (:func:`~archquake.app.views.structure_view`), and ``limit``
         (:func:`~archquake.app.views.limit_view`) or, when the structure cannot stand or never
         collapses, ``verdict`` (``"cannot stand"`` or ``"never collapses"``) and ``message``
-        (the library's, which names the part).
+        (the library's, which names the part). A block assembly (several spans or rings) is
+        analysed as ``archquake limit`` analyses it
+        (:func:`archquake.limit_analysis.assembly_limits`, both directions, both friction
+        laws when an interface can slide; ``limit`` is then
+        :func:`~archquake.app.views.assembly_limit_view`), and ``unavailable`` says which
+        parts of the page need one chain of voussoirs, and why
+        (:data:`~archquake.app.inputs.ASSEMBLY_UNAVAILABLE`).
     """
     from ..errors import CannotStandError, NeverCollapsesError
-    from ..limit_analysis import both_directions
-    from .inputs import structure_from_spec
-    from .views import json_ready, limit_view, structure_view
+    from ..limit_analysis import assembly_limits, both_directions
+    from .inputs import ASSEMBLY_UNAVAILABLE, is_assembly, structure_from_spec
+    from .views import assembly_limit_view, json_ready, limit_view, structure_view
 
     _, structure = structure_from_spec(spec)
     out = {"structure": structure_view(structure), "limit": None}
+    if is_assembly(structure):
+        out["unavailable"] = ASSEMBLY_UNAVAILABLE
     try:
-        out["limit"] = limit_view(both_directions(structure))
+        if is_assembly(structure):
+            out["limit"] = assembly_limit_view(structure, assembly_limits(structure))
+        else:
+            out["limit"] = limit_view(both_directions(structure))
     except CannotStandError as exc:
         out.update(verdict="cannot stand", message=str(exc))
     except NeverCollapsesError as exc:
@@ -311,7 +322,8 @@ def check_answer(spec: dict, site: dict) -> dict:
         ``description`` of the structure, ``confidence_factor`` [-], and ``check``
         (:func:`~archquake.app.views.check_view`) or, when the structure cannot stand, never
         collapses or has no mechanism the check can take, ``verdict`` (``"cannot stand"``,
-        ``"never collapses"`` or ``"not checked"``) and ``message`` (the library's).
+        ``"never collapses"`` or ``"not checked"``) and ``message`` (the library's); for a
+        block assembly (several spans or rings) ``"not available"`` and why.
 
     Raises
     ------
@@ -322,11 +334,15 @@ def check_answer(spec: dict, site: dict) -> dict:
     from ..geometry.structure import describe_arch
     from ..limit_analysis import both_directions
     from ..site.local_mechanism import check_local_mechanism
-    from .inputs import site_from_spec, structure_from_spec
-    from .views import check_view, json_ready
+    from .inputs import ASSEMBLY_UNAVAILABLE, is_assembly, site_from_spec, structure_from_spec
+    from .views import check_view, describe_assembly, json_ready
 
     actions, fc = site_from_spec(site)
     _, structure = structure_from_spec(spec)
+    if is_assembly(structure):
+        return {"description": describe_assembly(structure), "confidence_factor": fc,
+                "check": None, "verdict": "not available",
+                "message": ASSEMBLY_UNAVAILABLE["check"]}
     out = {"description": describe_arch(structure), "confidence_factor": fc, "check": None}
     try:
         limit = both_directions(structure)
@@ -344,19 +360,33 @@ def check_answer(spec: dict, site: dict) -> dict:
 
 def limit_figure(spec: dict) -> bytes:
     """PNG of both mechanisms of the structure (:func:`archquake.plotting.plot_limit_analysis`,
-    as ``archquake limit --plot`` draws them)."""
-    from ..limit_analysis import both_directions
-    from .inputs import structure_from_spec
+    or :func:`archquake.plotting.plot_assembly_limit` for a block assembly, every friction
+    law's, as ``archquake limit --plot`` draws them)."""
+    from ..limit_analysis import assembly_limits, both_directions
+    from .inputs import is_assembly, structure_from_spec
     from .views import pyplot
 
     plt = pyplot()
-    from ..plotting import plot_limit_analysis
+    from ..plotting import plot_assembly_limit, plot_limit_analysis
 
     _, structure = structure_from_spec(spec)
+    if is_assembly(structure):
+        results = assembly_limits(structure)
+        laws = list(next(iter(results.values())))
+        fig, axes = plt.subplots(len(laws), 2, figsize=(13, 4.6 * len(laws)),
+                                 constrained_layout=True, squeeze=False)
+        for column, laws_of in enumerate(results.values()):
+            for row, law in enumerate(laws):
+                plot_assembly_limit(laws_of[law], axes[row, column])
+        return _png(plt, fig)
     results = both_directions(structure)
     fig, axes = plt.subplots(1, 2, figsize=(13, 5.0), constrained_layout=True)
     for ax, result in zip(axes, results, strict=True):
         plot_limit_analysis(result, ax)
+    return _png(plt, fig)
+
+
+def _png(plt, fig) -> bytes:
     buffer = io.BytesIO()
     fig.savefig(buffer, format="png", dpi=110)
     plt.close(fig)
@@ -495,9 +525,11 @@ def create_app(workdir: str | Path | None = None, *, hosts=LOOPBACK_NAMES,
 
     def _check(kind: str, spec: dict) -> None:
         """Refuse bad input before a worker is started (the worker checks it again)."""
-        from .inputs import motion_from_spec, structure_from_spec
+        from .inputs import motion_from_spec, refuse_assembly, structure_from_spec
 
-        structure_from_spec(spec["structure"])
+        _, structure = structure_from_spec(spec["structure"])
+        if kind in ("domain", "assess"):  # they need one chain of voussoirs
+            refuse_assembly(structure, kind)
         model_settings(spec)
         if kind == "simulate":
             motion_from_spec(spec.get("motion") or {})

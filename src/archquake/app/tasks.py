@@ -24,7 +24,14 @@ from dataclasses import replace
 from pathlib import Path
 
 from . import views
-from .inputs import LIMITS, motion_and_warnings, structure_from_spec
+from .inputs import (
+    ASSEMBLY_UNAVAILABLE,
+    LIMITS,
+    is_assembly,
+    motion_and_warnings,
+    refuse_assembly,
+    structure_from_spec,
+)
 
 DOMAIN_DEFAULTS = {"durations": "0.1:1.0:0.1", "amplitudes": "0.05:1.5:0.05",
                    "direction": "l", "motion": "oppenheim", "resolution": 0.01,
@@ -66,9 +73,14 @@ def model_settings(spec: dict) -> dict:
 
 def models_of(spec: dict, structure, nominal) -> dict:
     """Both models of the structure with the page's settings (:func:`model_settings`):
-    ``{name: model, or the message why it cannot be built}``."""
+    ``{name: model, or the message why it cannot be built}``; a block assembly (several spans
+    or rings) has the rigid blocks only (the four-link model is one chain's,
+    :data:`~archquake.app.inputs.ASSEMBLY_UNAVAILABLE`)."""
     out = {}
     for name, model in model_settings(spec).items():
+        if name == "four-link" and is_assembly(structure):
+            out[name] = ASSEMBLY_UNAVAILABLE["four-link"]
+            continue
         try:
             out[name] = model.build(structure, nominal)
         except ValueError as exc:  # cannot stand, not a four-link mechanism, ...
@@ -96,7 +108,9 @@ def simulate(spec: dict, report) -> dict:
         frames [s] and their
         rate ``fps`` [1/s] (:func:`~archquake.app.views.frame_rate`), and per model
         (``"four-link"``, ``"rigid-blocks"``) its view (:func:`~archquake.app.views.four_link_view`,
-        :func:`~archquake.app.views.rigid_block_view`) or ``{"error": message}``.
+        :func:`~archquake.app.views.rigid_block_view`) or ``{"error": message}`` (the
+        four-link model's for a block assembly: several spans or rings are the rigid
+        blocks' only).
     """
     nominal, structure = structure_from_spec(spec.get("structure") or {})
     motion, said = motion_and_warnings(spec.get("motion") or {})
@@ -119,7 +133,8 @@ def simulate(spec: dict, report) -> dict:
             out[name] = {"error": f"{exc}"}
     ends = [float(h.t[-1]) if name == "four-link" else float(h.times[-1])
             for name, (_, h) in histories.items()]
-    rate = views.frame_rate(views.animation_end(*ends), structure.n_voussoirs)
+    blocks = structure.n_blocks if is_assembly(structure) else structure.n_voussoirs
+    rate = views.frame_rate(views.animation_end(*ends), blocks)
     times = views.frame_times(*ends, rate=rate)
     out["fps"], out["times"] = rate, views.rounded(times, 4)
     for name, (model, history) in histories.items():
@@ -228,6 +243,7 @@ def failure_domain(spec: dict, report) -> dict:
 
     settings = _domain_settings(spec)
     nominal, structure = structure_from_spec(spec.get("structure") or {})
+    refuse_assembly(structure, "domain")
     models = models_of(spec, structure, nominal)
     durations = settings["durations"]
     total = len(durations) * len(models)
@@ -324,6 +340,7 @@ def assessment(spec: dict, report) -> dict:
         ``verdict`` and ``files`` of the report.
     """
     _, structure = structure_from_spec(spec.get("structure") or {})
+    refuse_assembly(structure, "assess")
     workdir = Path(spec["workdir"])
     name = f"assessment-{spec['job']}"
     report(0, 1, "assessment report (a few minutes)")

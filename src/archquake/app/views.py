@@ -22,6 +22,7 @@ A, link CD about D, link BC carried by B; the blocks outside A..D stay still.
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 
@@ -81,8 +82,9 @@ def structure_view(structure) -> dict:
 
     Parameters
     ----------
-    structure : BlockArch
-        An arch of any kind or a :class:`~archquake.geometry.Structure`.
+    structure : BlockArch or BlockAssembly
+        An arch of any kind or a :class:`~archquake.geometry.Structure`; a block assembly is
+        drawn by :func:`assembly_view`.
 
     Returns
     -------
@@ -95,6 +97,8 @@ def structure_view(structure) -> dict:
     """
     from ..geometry.structure import describe_arch
 
+    if hasattr(structure, "interfaces") and hasattr(structure, "polygons"):
+        return assembly_view(structure)
     n = structure.n_voussoirs
     blocks = [structure.outline(i, points=16) for i in range(n)]
     kinds = list(getattr(structure, "block_kinds", ("voussoir",) * n))
@@ -148,6 +152,229 @@ def limit_view(results) -> dict:
                             "pressure_points": rounded(r.thrust_line.points * flip, 4)}
     k_l, k_r = out["l"]["k"], out["r"]["k"]
     return {"k_l": k_l, "k_r": k_r, "k": min(k_l, k_r), **out}
+
+
+# ------------------------------------------------------------------------------ block assemblies
+DIRECTIONS = {"+x": "l", "-x": "r"}
+"""The page's name of each direction of :func:`archquake.limit_analysis.assembly_limits`: the
+forces toward +x are Mech-l's, toward -x Mech-r's (both drawn on the structure as it is: an
+assembly's analysis is not mirrored)."""
+
+DISPLACEMENT = 0.06
+"""Largest displacement of a block corner in a drawn mechanism, as a fraction of the
+structure's size [-] (as :func:`archquake.plotting.plot_assembly_limit` draws it)."""
+
+_GROUP = re.compile(r"^(span|ring) (\d+)")
+
+
+def block_groups(assembly) -> tuple[str | None, list]:
+    """The spans or rings of an assembly's blocks, read from their names
+    (:func:`archquake.geometry.bridge.multi_span`: ``"span 2 voussoir 3"``, spans from 1;
+    :func:`archquake.geometry.multi_ring`: ``"ring 0, voussoir 4"``, ring 0 the intrados one).
+
+    Returns
+    -------
+    (str or None, list)
+        ``"span"``, ``"ring"`` or None (neither), and per block its span or ring counted from 1
+        (ring 1 the intrados ring), None for a pier course or a block of neither.
+    """
+    names = tuple(getattr(assembly, "names", None) or ())
+    found = [_GROUP.match(str(n)) for n in names] or [None] * assembly.n_blocks
+    kinds = {m.group(1) for m in found if m}
+    if len(kinds) != 1:
+        return None, [None] * assembly.n_blocks
+    kind = kinds.pop()
+    first = 0 if kind == "span" else 1  # spans are named from 1, rings from 0
+    return kind, [int(m.group(2)) + first if m else None for m in found]
+
+
+def describe_assembly(assembly) -> str:
+    """One line on a block assembly: its spans or rings, blocks and interfaces."""
+    kind, groups = block_groups(assembly)
+    count = len({g for g in groups if g is not None})
+    interfaces = int(np.asarray(assembly.interfaces.a).size)
+    whole = f"{assembly.n_blocks} blocks and {interfaces} interfaces"
+    if kind == "span":
+        return (f"a bridge of {count} spans on {count + 1} piers: a block assembly of {whole} "
+                f"(no interface slides)")
+    if kind == "ring":
+        ring = np.asarray(assembly.interfaces.kind) == "ring"
+        mu = np.asarray(assembly.interfaces.friction, dtype=float)[ring]
+        slides = ("the rings do not slide on each other" if not np.isfinite(mu).any()
+                  else f"friction {float(mu.min()):g} between the rings")
+        return (f"an arch of {count} ring{'' if count == 1 else 's'}: a block assembly of "
+                f"{whole} ({slides})")
+    return f"a block assembly of {whole}"
+
+
+def assembly_view(assembly) -> dict:
+    """The blocks of a block assembly as the page draws them (the keys of
+    :func:`structure_view`).
+
+    Parameters
+    ----------
+    assembly : BlockAssembly
+        Several spans, several rings, or any assembly.
+
+    Returns
+    -------
+    dict
+        ``assembly`` True, ``blocks`` (outline of every block [m]), ``kinds`` (``"pier"`` for
+        a pier course, else ``"voussoir"``), ``fill`` None, ``ground`` (the foundation
+        interfaces [m]), ``bounds`` ``[xmin, xmax, ymin, ymax]`` [m], ``group`` (``"span"``,
+        ``"ring"`` or None) and ``groups`` (each block's span or ring from 1, or None:
+        :func:`block_groups`), ``description``.
+    """
+    from ..geometry.assembly import GROUND
+
+    blocks = [np.asarray(p, dtype=float) for p in assembly.polygons]
+    names = tuple(getattr(assembly, "names", None) or ())
+    kinds = ["pier" if str(n).startswith("pier") else "voussoir" for n in names] or \
+        ["voussoir"] * len(blocks)
+    faces = assembly.interfaces
+    ground = np.asarray(faces.a) == GROUND
+    p0, p1 = np.asarray(faces.p0, dtype=float), np.asarray(faces.p1, dtype=float)
+    points = np.concatenate(blocks)
+    kind, groups = block_groups(assembly)
+    return {"assembly": True, "blocks": [rounded(b, 4) for b in blocks], "kinds": kinds,
+            "fill": None,
+            "ground": [rounded([a, b], 4) for a, b in zip(p0[ground], p1[ground], strict=True)],
+            "bounds": [float(points[:, 0].min()), float(points[:, 0].max()),
+                       float(points[:, 1].min()), float(points[:, 1].max())],
+            "group": kind, "groups": groups, "description": describe_assembly(assembly)}
+
+
+def _moving_groups(result, groups: list) -> list[int]:
+    """The spans or rings (from 1) with a block that moves in the mechanism of ``result``."""
+    from ..geometry.bridge import moving_blocks
+
+    if not math.isfinite(result.load_multiplier):
+        return []
+    return sorted({groups[j] for j in moving_blocks(result) if groups[j] is not None})
+
+
+def assembly_mechanism_view(result, groups: list) -> dict:
+    """One direction's collapse of an assembly under one friction law, as the page draws it.
+
+    Parameters
+    ----------
+    result : AssemblyLimit
+        :func:`archquake.limit_analysis.assembly_limit`.
+    groups : list
+        Every block's span or ring (:func:`block_groups`).
+
+    Returns
+    -------
+    dict
+        ``law``, ``k`` [-] and ``tilt`` [deg] (None: no collapse), ``converged``; the mechanism:
+        ``displaced`` (``{"block", "outline"}``: every block that moves, displaced by its
+        collapse velocity so that the fastest corner moves :data:`DISPLACEMENT` of the
+        structure's size [m]), ``interfaces`` (``{"p0", "p1", "state", "hinge"}`` of every
+        interface that rocks, slides or separates; ``hinge`` the end that stays closed of one
+        that rocks, else None [m]), ``pressure_points`` of the loaded interfaces [m],
+        ``moving`` (the spans or rings, from 1, whose blocks move), and the length of ring
+        interface that opens (rocks or separates, without sliding) and that slides, ``ring_opens_m`` and
+        ``ring_slides_m`` [m] (0 without rings).
+    """
+    c = result.contacts
+    corners = np.concatenate([np.asarray(o, dtype=float) for o in c.outlines])
+    scale = DISPLACEMENT * float(max(np.ptp(corners[:, 0]), np.ptp(corners[:, 1])) or 1.0)
+    k = float(result.load_multiplier)
+    displaced = []
+    if math.isfinite(k):
+        for j, outline in enumerate(c.outlines):
+            outline = np.asarray(outline, dtype=float)
+            moved = outline + scale * result.velocity_at(j, outline)
+            if np.max(np.abs(moved - outline)) > 1e-3 * scale:
+                displaced.append({"block": j, "outline": rounded(moved, 4)})
+    interfaces = []
+    for i, state in enumerate(result.state):
+        if state == "closed" or not math.isfinite(k):
+            continue
+        hinge = None
+        if "rocks" in state:
+            end = c.p0[i] if result.opening[i, 0] < result.opening[i, 1] else c.p1[i]
+            hinge = rounded(end, 4)
+        interfaces.append({"p0": rounded(c.p0[i], 4), "p1": rounded(c.p1[i], 4),
+                           "state": str(state), "kind": str(c.kind[i]), "hinge": hinge})
+    normal = np.asarray(result.normal, dtype=float)
+    loaded = np.isfinite(result.pressure[:, 0]) & (normal > 1e-9 * max(float(normal.max(
+        initial=0.0)), 1e-300))
+    ring = np.asarray(c.kind) == "ring"
+    length = np.hypot(*(c.p1 - c.p0).T)
+    state = np.asarray(result.state).astype(str)
+    opens = ring & np.isin(state, ("rocks", "separates"))  # as archquake limit sums them
+    slides = ring & (np.char.find(state, "slides") >= 0)
+    return {"law": result.law, "k": finite(k), "tilt": finite(result.tilt) if math.isfinite(k)
+            else None, "converged": bool(result.converged), "displaced": displaced,
+            "interfaces": interfaces, "pressure_points": rounded(result.pressure[loaded], 4),
+            "moving": _moving_groups(result, groups),
+            "ring_opens_m": float(length[opens].sum()) if math.isfinite(k) else 0.0,
+            "ring_slides_m": float(length[slides].sum()) if math.isfinite(k) else 0.0}
+
+
+def governing(laws: dict):
+    """Of one direction's results by law, the one that governs: the non-associative law's when
+    friction is given (slip without opening, the physical one), else the only one (as
+    ``archquake limit`` takes it)."""
+    return laws.get("non-associative") or next(iter(laws.values()))
+
+
+def assembly_limit_view(assembly, results) -> dict:
+    """Both directions' collapse of a block assembly, under each friction law, as the page shows
+    it.
+
+    Parameters
+    ----------
+    assembly : BlockAssembly
+        The structure.
+    results : dict
+        :func:`archquake.limit_analysis.assembly_limits` of it: ``{"+x": {law: AssemblyLimit},
+        "-x": ...}``.
+
+    Returns
+    -------
+    dict
+        ``assembly`` True; ``k_l``, ``k_r`` (the governing law's multiplier toward +x and -x,
+        :func:`governing`) and ``k`` = the least [-] (None: no collapse); ``group``
+        (``"span"``, ``"ring"`` or None); per direction (``"l"`` for +x, ``"r"`` for -x,
+        :data:`DIRECTIONS`): ``direction`` (``"+x"``/``"-x"``), ``laws`` (every law's
+        :func:`assembly_mechanism_view`, the governing one first); and ``first``: the sentence
+        saying which spans or rings move first, at the least k.
+    """
+    group, groups = block_groups(assembly)
+    out = {"assembly": True, "group": group}
+    ks = {}
+    for direction, laws in results.items():
+        main = governing(laws)
+        ordered = [main] + [r for r in laws.values() if r is not main]
+        name = DIRECTIONS[direction]
+        out[name] = {"direction": direction,
+                     "laws": [assembly_mechanism_view(r, groups) for r in ordered]}
+        ks[name] = float(main.load_multiplier)
+    k = min(ks.values())
+    out.update(k_l=finite(ks["l"]), k_r=finite(ks["r"]), k=finite(k))
+    out["first"] = _first_sentence(out, group, k)
+    return out
+
+
+def _first_sentence(out: dict, group: str | None, k: float) -> str:
+    if not math.isfinite(k):
+        return "no horizontal load makes it collapse"
+    parts = []
+    for name in ("l", "r"):
+        main = out[name]["laws"][0]
+        if main["k"] is None or main["k"] > k * (1 + 1e-6):
+            continue
+        moving = main["moving"]
+        what = (f"{group}{'' if len(moving) == 1 else 's'} "
+                f"{', '.join(str(m) for m in moving)}" if group and moving else "the blocks")
+        verb = "moves" if group and len(moving) == 1 else "move"
+        toward = "toward +x (Mech-l)" if name == "l" else "toward -x (Mech-r)"
+        parts.append(f"{what} {verb} first {toward}")
+    where = {"span": " (spans from the left)", "ring": " (ring 1 the intrados ring)"}
+    return (f"at k = {k:.4f} ({math.degrees(math.atan(k)):.2f} deg of tilt): "
+            f"{'; '.join(parts)}{where.get(group, '')}")
 
 
 # ------------------------------------------------------------------------------ the code check
@@ -425,8 +652,9 @@ def rigid_block_view(history, times) -> dict:
                                                                history.crown_drop)}
 
 
-__all__ = ["FRAME_RATE", "MAX_ANIMATION_TIME", "MAX_BLOCK_FRAMES", "animation_end",
-           "block_motion", "block_outcome", "check_view", "finite", "frame_rate",
-           "four_link_motion", "four_link_outcome", "four_link_view", "frame_times", "json_ready",
-           "limit_state_verdict", "limit_view", "mechanism_motion", "motion_view",
-           "rigid_block_view", "rounded", "structure_view"]
+__all__ = ["DIRECTIONS", "DISPLACEMENT", "FRAME_RATE", "MAX_ANIMATION_TIME", "MAX_BLOCK_FRAMES",
+           "animation_end", "assembly_limit_view", "assembly_mechanism_view", "assembly_view",
+           "block_groups", "block_motion", "block_outcome", "check_view", "describe_assembly",
+           "finite", "four_link_motion", "four_link_outcome", "four_link_view", "frame_rate",
+           "frame_times", "governing", "json_ready", "limit_state_verdict", "limit_view",
+           "mechanism_motion", "motion_view", "rigid_block_view", "rounded", "structure_view"]

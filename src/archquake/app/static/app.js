@@ -6,7 +6,7 @@ const $ = (id) => document.getElementById(id);
 const SVG = "http://www.w3.org/2000/svg";
 const state = {
   options: null, geometry: null, record: null, structure: null, structureRequest: null,
-  shake: null, domain: null, assess: null, anim: null, checkRequest: null,
+  shake: null, domain: null, assess: null, anim: null, checkRequest: null, unavailable: null,
 };
 
 // ---------------------------------------------------------------------------- the API
@@ -72,6 +72,17 @@ function structureSpec() {
   }
   if ($("piers-on").checked) {
     spec.piers = [value("pier-width"), value("pier-height"), value("pier-courses")].join(",");
+  }
+  const spans = value("spans");
+  if (spans !== "" && spans !== "1") {
+    spec.spans = number("spans");
+    spec.pier_middle = [value("middle-width"), value("middle-height"), value("middle-courses")].join(",");
+  }
+  const rings = value("rings");
+  if (rings !== "" && rings !== "1") {
+    spec.rings = number("rings");
+    if (value("ring-bond") !== "aligned") spec.ring_bond = value("ring-bond");
+    if (value("ring-friction") !== "") spec.ring_friction = number("ring-friction");
   }
   if ($("fill-on").checked) {
     spec.fill_cover = number("fill-cover");
@@ -163,7 +174,51 @@ function drawBlocks(world, structure, blocks = structure.blocks) {
   return { polygons, columns };
 }
 
+// The bounds of the structure grown to hold the displaced blocks of both directions' mechanisms.
+function assemblyBounds(answer) {
+  let [x0, x1, y0, y1] = answer.structure.bounds;
+  for (const direction of ["l", "r"]) {
+    const limit = answer.limit && answer.limit[direction];
+    if (!limit) continue;
+    for (const d of limit.laws[0].displaced) {
+      for (const [x, y] of d.outline) {
+        x0 = Math.min(x0, x); x1 = Math.max(x1, x); y0 = Math.min(y0, y); y1 = Math.max(y1, y);
+      }
+    }
+  }
+  return [x0, x1, y0, y1];
+}
+
+// A block assembly's mechanism (the governing friction law's), as plot_assembly_limit draws it:
+// the blocks, the displaced ones dashed, the interfaces that move coloured by what they do, the
+// hinges and the pressure points.
+function drawAssemblyMechanism(svg, answer, direction) {
+  const s = answer.structure;
+  const { world, scale } = scene(svg, assemblyBounds(answer), 0.04);
+  drawBlocks(world, s);
+  const limit = answer.limit && answer.limit[direction];
+  if (!limit) return;
+  const law = limit.laws[0];
+  for (const d of law.displaced) {
+    el("polygon", { points: pointsText(d.outline), class: "displaced", "data-block": d.block }, world);
+  }
+  const classOf = { rocks: "rocks", slides: "slides", "rocks and slides": "both", separates: "separates" };
+  for (const f of law.interfaces) {
+    el("line", { x1: f.p0[0], y1: f.p0[1], x2: f.p1[0], y2: f.p1[1],
+                 class: `iface ${classOf[f.state] || "rocks"}` }, world);
+  }
+  for (const p of law.pressure_points) {
+    el("circle", { cx: p[0], cy: p[1], r: 2 * scale, class: "point dark" }, world);
+  }
+  for (const f of law.interfaces) {
+    // a ring interface is many short chords: its hinges would hide it (the table says how
+    // much of it opens and slides)
+    if (f.hinge && f.kind !== "ring") el("circle", { cx: f.hinge[0], cy: f.hinge[1], r: 5 * scale, class: "hinge" }, world);
+  }
+}
+
 function drawMechanism(svg, answer, direction) {
+  if (answer.structure.assembly) { drawAssemblyMechanism(svg, answer, direction); return; }
   const s = answer.structure;
   const { world, text, scale } = scene(svg, s.bounds);
   drawBlocks(world, s);
@@ -202,6 +257,52 @@ function showStructure(answer) {
   }
   drawMechanism($("svg-l"), answer, "l");
   drawMechanism($("svg-r"), answer, "r");
+  showAssembly(answer);
+}
+
+// For a block assembly: the legend of its drawing, every direction and law's k and tilt, which
+// spans or rings move first, and the parts of the page that need one chain of voussoirs.
+function showAssembly(answer) {
+  const assembly = Boolean(answer && answer.structure.assembly);
+  $("legend-chain").hidden = assembly;
+  $("legend-assembly").hidden = !assembly;
+  const limit = assembly ? answer.limit : null;
+  $("assembly-first").hidden = !limit;
+  $("assembly-laws").hidden = !limit;
+  if (limit) {
+    $("assembly-first").textContent = `${limit.first[0].toUpperCase()}${limit.first.slice(1)}`;
+    const what = limit.group ? `${limit.group}s that move` : "";
+    const rings = limit.group === "ring";
+    const rows = [];
+    for (const direction of ["l", "r"]) {
+      for (const [i, law] of limit[direction].laws.entries()) {
+        rows.push([`${MECH[direction]} (${limit[direction].direction})`,
+                   `${law.law}${i === 0 && limit[direction].laws.length > 1 ? " (governs)" : ""}`,
+                   fixed(law.k, 4), fixed(law.tilt, 2),
+                   ...(what ? [law.moving.join(", ") || "–"] : []),
+                   ...(rings ? [fixed(law.ring_opens_m, 2), fixed(law.ring_slides_m, 2)] : []),
+                   law.converged ? "" : "did not converge"]);
+      }
+    }
+    tableOf($("assembly-laws"),
+      "Limit analysis of the block assembly (archquake limit): k = tan(tilt) of a tilting table",
+      ["direction", "friction law", "k [-]", "tilt [deg]", ...(what ? [what] : []),
+       ...(rings ? ["ring interfaces open [m]", "slide [m]"] : []), ""], rows);
+  }
+  const unavailable = (answer && answer.unavailable) || null;
+  $("shake-note").hidden = !unavailable;
+  $("shake-note").textContent = unavailable
+    ? `Several spans or rings: ${unavailable["four-link"]}. Shake it runs the rigid blocks only.` : "";
+  const was = state.unavailable;
+  state.unavailable = unavailable;
+  if (!state.domain && (unavailable || was)) {
+    $("domain-start").disabled = Boolean(unavailable);
+    $("domain-status").textContent = unavailable ? `Not available: ${unavailable.domain}` : "not computed";
+  }
+  if (!state.assess && (unavailable || was)) {
+    $("assess").disabled = Boolean(unavailable);
+    $("assess-status").textContent = unavailable ? `Not available: ${unavailable.assess}` : "";
+  }
 }
 
 // ---------------------------------------------------------------------------- live structure
@@ -219,6 +320,7 @@ function clearStructure(note) {
   $("description").textContent = note;
   $("svg-l").replaceChildren();
   $("svg-r").replaceChildren();
+  showAssembly(null);
 }
 
 const fromFile = () => document.querySelector("input[name=source]:checked").value === "file";
@@ -832,6 +934,12 @@ function fillSelect(select, values, selected) {
   }));
 }
 
+function showSpanRingFields() {
+  const spans = value("spans"), rings = value("rings");
+  $("middle-pier").hidden = spans === "" || spans === "1";
+  $("ring-fields").hidden = rings === "" || rings === "1";
+}
+
 function showShapeFields() {
   const circular = value("shape") === "circular";
   $("given-by-label").hidden = !circular;
@@ -908,7 +1016,8 @@ async function init() {
   $("restitution").placeholder = options.restitution; $("friction").value = options.friction;
   $("domain-durations").value = options.domain.durations;
   $("domain-amplitudes").value = options.domain.amplitudes;
-  showShapeFields(); showPulseParams(); showMotionSource();
+  showShapeFields(); showPulseParams(); showMotionSource(); showSpanRingFields();
+  for (const id of ["spans", "rings"]) $(id).addEventListener("input", showSpanRingFields);
 
   document.querySelectorAll("#by-shape input, #by-shape select, details input, details select")
     .forEach((input) => input.addEventListener("input", structureChanged));
