@@ -128,6 +128,37 @@ def test_thin_arch_cannot_stand(page):
     assert text(page, "#k-value") == "–"
 
 
+def test_three_spans_draw_the_bridge_its_mechanism_and_k(page):
+    """Spans set to 3 on piers 3 m wide, 6 m high (two courses, the page's default, for the end
+    and the middle piers): the page draws 3 x 7 voussoirs and 4 x 2 pier courses, the displaced
+    blocks of the mechanism, and the k of ``archquake limit`` for the same bridge; the parts
+    that need one chain of voussoirs say so."""
+    expected = cli_json("limit", "--spans", "3", "--piers", "3,6,2")["k"]
+    page.click("details summary")
+    page.check("#piers-on")
+    page.fill("#pier-width", "3")
+    page.fill("#pier-height", "6")
+    page.fill("#spans", "3")
+    page.wait_for_function(
+        f"document.getElementById('k-value').textContent === '{expected:.4f}'", timeout=60_000)
+    assert page.locator("#svg-l polygon.block").count() == 3 * 7 + 4 * 2
+    assert page.locator("#svg-l polygon.block.pier").count() == 4 * 2
+    assert page.locator("#svg-l polygon.displaced").count() > 0
+    assert page.locator("#svg-l circle.hinge").count() == 4
+    assert text(page, "#assembly-first").startswith(f"At k = {expected:.4f}")
+    assert "span 3 moves first" in text(page, "#assembly-first")
+    assert page.locator("#assembly-laws tr").count() == 3  # the heading, +x and -x
+    page.wait_for_function("document.getElementById('check-verdicts').textContent"
+                           ".startsWith('Not available: the code check')", timeout=30_000)
+    assert not page.locator("#domain-start").is_enabled()
+    assert text(page, "#domain-status").startswith("Not available: ")
+    assert text(page, "#message") == ""
+    page.fill("#spans", "1")  # back to one arch: the notes go
+    page.wait_for_function("document.getElementById('domain-start').disabled === false",
+                           timeout=60_000)
+    assert page.locator("#svg-l polygon.displaced").count() == 0
+
+
 def test_bad_geometry_file_gets_the_command_lines_message(page, tmp_path):
     path = tmp_path / "bad.json"
     path.write_text(BAD_GEOMETRY)

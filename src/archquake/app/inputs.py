@@ -98,7 +98,9 @@ def structure_from_spec(spec: dict):
         raise ValueError(f"voussoirs must be at most {LIMITS['blocks']} on this page (the "
                          f"command line takes more), got {voussoirs}")
     try:
-        nominal, structure = StructureSpec.from_dict(data).arches()
+        described = StructureSpec.from_dict(data)
+        _check_copies(described)
+        nominal, structure = described.arches()
     except ValueError as exc:
         raise ValueError(_file_message(str(exc), file)) from None
     blocks = structure.n_blocks if is_assembly(structure) else structure.n_voussoirs
@@ -145,6 +147,18 @@ def refuse_assembly(structure, part: str) -> None:
     """
     if is_assembly(structure):
         raise ValueError(ASSEMBLY_UNAVAILABLE[part])
+
+
+def _check_copies(spec) -> None:
+    """Refuse, before it is built, a structure of more spans or rings than the page takes: at
+    least a voussoir of every ring of every span is a block (``LIMITS["blocks"]``)."""
+    voussoirs = spec.voussoirs or 7
+    for name in ("spans", "rings"):
+        copies = getattr(spec, name) or 1
+        if copies * voussoirs > LIMITS["blocks"]:
+            raise ValueError(f"{name} {copies} of {voussoirs} voussoirs make more than "
+                             f"{LIMITS['blocks']} blocks, the most this page takes (the command "
+                             f"line takes more)")
 
 
 def _number(value) -> float:
