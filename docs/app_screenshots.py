@@ -2,7 +2,7 @@
 Chromium (``make app-screenshots``).
 
 Starts ``archquake app`` on a free port, drives the page as a user would (the default arch, a
-pointed arch on piers under fill, the code check of a thinner arch, a pulse that collapses it, a
+pointed arch on piers under fill, a bridge of three spans, the code check of a thinner arch, a pulse that collapses it, a
 failure domain, a refused file) and writes ``app-*.png`` into the folder given (default
 ``docs/user_guide/images``).
 """
@@ -81,6 +81,19 @@ def take(out: Path) -> list[Path]:
                            ".includes('pointed')")
             page.wait_for_timeout(500)
             shot("structure", "#structure-panel")
+            # three spans of Oppenheim's arch on piers, the mechanism of each direction
+            page.reload()
+            wait_for(page, "document.getElementById('k-value').textContent !== '–'")
+            page.click("details summary")
+            page.check("#piers-on")
+            page.fill("#pier-width", "3")
+            page.fill("#pier-height", "6")
+            page.fill("#spans", "3")
+            wait_for(page, "document.getElementById('description').textContent"
+                           ".includes('3 spans') && document.getElementById('assembly-first')"
+                           ".textContent !== ''")
+            page.wait_for_timeout(500)
+            shot("spans", "#structure-panel")
             # the code check of Oppenheim's arch 1.0 m thick, at SLV and SLC
             page.reload()
             wait_for(page, "document.getElementById('k-value').textContent !== '–'")

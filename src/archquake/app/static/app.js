@@ -194,7 +194,11 @@ function assemblyBounds(answer) {
 // hinges and the pressure points.
 function drawAssemblyMechanism(svg, answer, direction) {
   const s = answer.structure;
-  const { world, scale } = scene(svg, assemblyBounds(answer), 0.04);
+  const bounds = assemblyBounds(answer);
+  // a wide structure (a bridge) gets a lower drawing, not a band of empty space
+  const aspect = (bounds[3] - bounds[2]) / Math.max(bounds[1] - bounds[0], 1e-9);
+  svg.style.height = `${Math.round(Math.max(150, Math.min(300, 1.1 * svg.clientWidth * aspect)))}px`;
+  const { world, scale } = scene(svg, bounds, 0.04);
   drawBlocks(world, s);
   const limit = answer.limit && answer.limit[direction];
   if (!limit) return;
@@ -219,6 +223,7 @@ function drawAssemblyMechanism(svg, answer, direction) {
 
 function drawMechanism(svg, answer, direction) {
   if (answer.structure.assembly) { drawAssemblyMechanism(svg, answer, direction); return; }
+  svg.style.height = "";
   const s = answer.structure;
   const { world, text, scale } = scene(svg, s.bounds);
   drawBlocks(world, s);
@@ -292,7 +297,8 @@ function showAssembly(answer) {
   const unavailable = (answer && answer.unavailable) || null;
   $("shake-note").hidden = !unavailable;
   $("shake-note").textContent = unavailable
-    ? `Several spans or rings: ${unavailable["four-link"]}. Shake it runs the rigid blocks only.` : "";
+    ? "Several spans or rings: \u201cShake it\u201d runs the rigid blocks alone on the whole " +
+      "assembly; the four-link model is the mechanism of one chain of voussoirs." : "";
   const was = state.unavailable;
   state.unavailable = unavailable;
   if (!state.domain && (unavailable || was)) {
@@ -318,8 +324,7 @@ function clearStructure(note) {
   setK(null);
   $("verdict").hidden = true;
   $("description").textContent = note;
-  $("svg-l").replaceChildren();
-  $("svg-r").replaceChildren();
+  for (const id of ["svg-l", "svg-r"]) { $(id).replaceChildren(); $(id).style.height = ""; }
   showAssembly(null);
 }
 
