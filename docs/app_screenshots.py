@@ -2,9 +2,9 @@
 Chromium (``make app-screenshots``).
 
 Starts ``archquake app`` on a free port, drives the page as a user would (the default arch, a
-pointed arch on piers under fill, a bridge of three spans, the code check of a thinner arch, a pulse that collapses it, a
-failure domain, a refused file) and writes ``app-*.png`` into the folder given (default
-``docs/user_guide/images``).
+pointed arch on piers under fill, a bridge of three spans, the code check of a thinner arch, a
+pulse that collapses it, a failure domain, a refused file) and writes ``app-*.png`` into the
+folder given (default ``docs/user_guide/images``).
 """
 
 from __future__ import annotations

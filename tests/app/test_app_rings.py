@@ -170,3 +170,20 @@ def test_time_history_of_a_bridge_is_the_rigid_blocks_only():
         MotionSpec.from_dict(motion).build())
     assert view["outcome"]["status"] == outcome.status.label
     assert len(view["blocks"]) == bridge.n_blocks == len(view["frames"][0])
+
+
+def test_figure_of_rings_with_friction_has_a_row_per_law(client):
+    """"figure (PNG)" draws every law's mechanism of both directions, as ``archquake limit
+    --plot`` does: two rows (associative, non-associative) of two panels with ring friction, so
+    the image is about twice as tall as the one row of the bridge without friction."""
+    import io
+
+    from PIL import Image
+
+    sizes = []
+    for structure in (BRIDGE, {"rings": 2, "ring_friction": 0.5}):
+        answer = client.post("/api/figure", json={"structure": structure})
+        assert answer.status_code == 200 and answer.headers["content-type"] == "image/png"
+        sizes.append(Image.open(io.BytesIO(answer.content)).size)
+    (w1, h1), (w2, h2) = sizes
+    assert w1 == w2 and h2 == pytest.approx(2 * h1, rel=0.05)

@@ -273,8 +273,8 @@ def assembly_mechanism_view(result, groups: list) -> dict:
         interface that rocks, slides or separates; ``hinge`` the end that stays closed of one
         that rocks, else None [m]), ``pressure_points`` of the loaded interfaces [m],
         ``moving`` (the spans or rings, from 1, whose blocks move), and the length of ring
-        interface that opens (rocks or separates, without sliding) and that slides, ``ring_opens_m`` and
-        ``ring_slides_m`` [m] (0 without rings).
+        interface that opens (rocks or separates, without sliding) and that slides,
+        ``ring_opens_m`` and ``ring_slides_m`` [m] (0 without rings).
     """
     c = result.contacts
     corners = np.concatenate([np.asarray(o, dtype=float) for o in c.outlines])
