@@ -1,14 +1,15 @@
 """A large four-link fragility study on a local Dask cluster whose scheduler and workers are
 separate processes (as on a real cluster), beside the serial run of the same study.
 
-Run: ``python benchmarks/dask_study.py`` (100,000 arches: the serial run alone takes about
-an hour and a half at the 17 arches/s measured on a shared two-processor machine), ``--quick`` (10,000 arches) or ``--arches N``. It starts ``dask scheduler`` and
-``dask worker ADDRESS --nworkers 2 --nthreads 1`` as subprocesses, runs
-:func:`archquake.studies.fragility.run_fragility` of Oppenheim's arch (epsilon 0.10, seed 1,
-one pulse duration and two amplitudes: the cheapest four-link study, four analyses an arch) with
+Run: ``python benchmarks/dask_study.py`` (100,000 arches: the serial run alone takes about an
+hour and a half at the 17 arches/s measured on a shared two-processor machine), ``--quick``
+(10,000 arches) or ``--arches N``. It starts ``dask scheduler`` and ``dask worker ADDRESS
+--nworkers 2 --nthreads 1`` as subprocesses, runs
+:func:`archquake.studies.fragility.run_fragility` of Oppenheim's arch (epsilon 0.10, seed 1, one
+pulse duration and two amplitudes: the cheapest four-link study, four analyses an arch) with
 ``scheduler=ADDRESS``, then the same study serially, prints the throughput of each (arches/s,
 and per Dask worker), and checks that the two tables are equal, value for value. The repeated
-runs alternate serial and Dask (``--repeats``) and the ratio is the median's.
+runs alternate Dask and serial (``--repeats``) and the ratio is the medians'.
 """
 
 from __future__ import annotations
@@ -88,7 +89,8 @@ def stop_cluster(processes: list[subprocess.Popen]) -> None:
 
 
 def study(arches: int) -> FragilitySettings:
-    """The study: ``arches`` irregular Oppenheim arches, one pulse duration (t_p = 0.5 s) at 0.40 g and 0.45 g."""
+    """The study: ``arches`` irregular Oppenheim arches under one pulse duration (t_p = 0.5 s)
+    at 0.40 g and 0.45 g."""
     return FragilitySettings(nominal=oppenheim(), sample_size=arches, epsilon=0.10,
                              durations=(0.5,), amplitudes_g=(0.40, 0.45), seed=1,
                              limit_sample_size=1)
