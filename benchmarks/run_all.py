@@ -5,7 +5,7 @@
 Each script prints its own side-by-side figures; this runner adds the wall time and the exit
 status of each and a summary at the end. A failing benchmark does not stop the others; the exit
 status is 1 if any failed. The scripts are found by name (every ``*.py`` here but this one), so a
-new benchmark is run without being registered.
+new benchmark is run without being registered; the longest take the arguments of :data:`ARGUMENTS`.
 """
 
 from __future__ import annotations
@@ -17,6 +17,11 @@ import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
+
+ARGUMENTS = {"dask_study": ["--quick"], "assess_command": ["--quick"]}
+"""The arguments of the scripts whose defaults take an hour or more (the 100,000-arch study on
+Dask, the default assessment): the runner takes their quick forms, which print the same
+figures on a smaller study; run the scripts by hand for the full ones."""
 
 
 def benchmark_scripts() -> list[Path]:
@@ -41,7 +46,8 @@ def main(argv: list[str] | None = None) -> int:
     for script in scripts:
         print(f"\n=== {script.name} ===", flush=True)
         start = time.perf_counter()
-        status = subprocess.call([sys.executable, str(script)], cwd=HERE.parent)
+        status = subprocess.call([sys.executable, str(script), *ARGUMENTS.get(script.stem, [])],
+                                 cwd=HERE.parent)
         summary.append((script.name, status, time.perf_counter() - start))
     print("\n=== summary ===")
     for name, status, seconds in summary:
