@@ -39,8 +39,21 @@ course 2"``, spans and piers counted from 1 and 0 left to right, voussoirs and c
 arches' springings on the piers ``"bed"``, the piers' bases (and fixed springings)
 ``"foundation"``.
 
-Not yet: fill over the arches (the fill is no block of an assembly; an arch carrying one is
-refused).
+**Fill** (``fill``, a :class:`~archquake.geometry.Fill` without a passive reaction): one level
+surface over the whole bridge, :math:`d` (the cover) above the arches' crown. Over every span
+it is the single arch's fill, column by column over the voussoirs
+(:func:`~archquake.geometry.fill.fill_columns`, the same columns as an arch on piers under that
+fill, moved span by span); over every intermediate pier, the spandrel fill between the two
+arches is one more column, the rectangle from the pier's level top between the two extrados
+springing points up to the surface, carried by the pier's top course. Beyond the end
+springings the fill rests on the abutments and is ignored, as for one arch. A block and its
+column are one body (:class:`FilledAssembly`): their weight acts through their centroid, the
+horizontal load as the fill's inertia model says, so the limit analysis of one span under fill
+is that of the arch on piers under fill, and the rigid-block model carries the fill as mass.
+
+**Arches of several rings** (:func:`~archquake.geometry.multi_ring`) span the same way: every
+ring rests on the seat of its springing, and the fill lies on the top faces of the extrados
+ring's blocks.
 
 References
 ----------
@@ -67,18 +80,25 @@ from __future__ import annotations
 
 import math
 import re
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from .assembly import ARC_POINTS, BlockAssembly
-from .blocks import BlockArch
-from .piers import Pier, middle_pier_blocks
+from ..constants import GRAVITY
+from .assembly import ARC_POINTS, GROUND, BlockAssembly
+from .blocks import BlockArch, frozen_array
+from .fill import Fill, carry_fill, fill_columns, fill_horizontal_loads
+from .loads import BlockLoads
+from .mass import Segment, polygon_mass_properties
+from .piers import Pier, middle_pier_blocks, pier_blocks
 from .structure import Structure
 
 MAX_SPANS = 100
 """Most spans of :func:`multi_span` [-]."""
 
 _SPAN_NAME = re.compile(r"span (\d+) ")
+_RING_NAME = re.compile(r"(?:span \d+ )?ring (\d+),")
+_FLIP = np.array([-1.0, 1.0])
 
 
 def _check_spans(spans) -> int:
@@ -95,17 +115,276 @@ def _support(p_in: np.ndarray, p_out: np.ndarray, normal: np.ndarray, side: floa
     return np.array([p_in, p_out, p_out + d, p_in + d])
 
 
-def multi_span(arch: BlockArch, spans: int, *, end_piers=(None, None),
-               middle_pier: Pier | None = None, friction=None,
-               points: int = ARC_POINTS) -> BlockAssembly:
+@dataclass(frozen=True, eq=False)
+class FilledAssembly:
+    r"""A block assembly under a level fill: the masonry blocks, and the fill columns some of
+    them carry (:func:`multi_span` with ``fill``; the model of :mod:`archquake.geometry.fill`).
+
+    Every carrying block and its column are one rigid body (mass, centroid and moment of
+    inertia by :func:`~archquake.geometry.fill.carry_fill`); its loads for the limit analysis
+    (:attr:`loads`) are the weight of both through their centroid and the horizontal load the
+    fill's inertia model gives (:func:`~archquake.geometry.fill.fill_horizontal_loads`). The
+    assembly reads as a :class:`~archquake.geometry.BlockAssembly` (``polygons``,
+    ``interfaces``, ``friction``, ``names``, ...), with the fill's mass in ``mass``,
+    ``centroid`` and ``inertia``: the rigid-block model carries it so (the ``"centroid"``
+    model).
+
+    Attributes
+    ----------
+    blocks : BlockAssembly
+        The masonry.
+    fill : Fill
+        The fill (no passive reaction: an assembly's limit analysis takes none).
+    fill_masses : array of float, shape (nb,)
+        Mass of the column every block carries [kg/m] (0: none).
+    fill_centroids : array of float, shape (nb, 2)
+        Its centroid [m].
+    fill_inertias : array of float, shape (nb,)
+        Its polar moment of inertia about its centroid [kg m].
+    extrados_y : array of float, shape (nb,)
+        Height of the block's top below the column's centroid [m] (the ``"extrados"`` model's
+        line).
+    carriers : array of int
+        The blocks that carry a column.
+    level : float
+        Height of the fill's surface [m].
+    outlines : tuple of arrays
+        Closed outline of every column [m], for drawing (one per carrier, in its order).
+    """
+
+    blocks: BlockAssembly
+    fill: Fill
+    fill_masses: np.ndarray
+    fill_centroids: np.ndarray
+    fill_inertias: np.ndarray
+    extrados_y: np.ndarray
+    carriers: np.ndarray
+    level: float
+    outlines: tuple
+    _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+
+    def __post_init__(self):
+        if self.fill.has_passive:
+            raise ValueError("fill: the limit analysis of an assembly takes no passive reaction "
+                             "of a fill (a bounded unknown force, not a contact): give a fill "
+                             "without friction_angle and mobilisation")
+        b = self.blocks
+        mass, centroid, inertia = (np.array(v, dtype=float) for v in (b.mass, b.centroid,
+                                                                       b.inertia))
+        horizontal, horizontal_y = mass * GRAVITY, centroid[:, 1].copy()
+        c = np.asarray(self.carriers, dtype=np.int64)
+        m, g, j = carry_fill(mass[c], centroid[c], inertia[c], self.fill_masses[c],
+                             self.fill_centroids[c], self.fill_inertias[c])
+        horizontal[c], horizontal_y[c] = fill_horizontal_loads(
+            mass[c], centroid[c], self.fill_masses[c], self.fill_centroids[c],
+            self.extrados_y[c], self.fill.inertia)
+        mass[c], centroid[c], inertia[c] = m, g, j
+        for name, value in (("mass", mass), ("centroid", centroid), ("inertia", inertia)):
+            value.setflags(write=False)
+            self._cache[name] = value
+        self._cache["loads"] = BlockLoads(mass * GRAVITY, centroid[:, 0], horizontal,
+                                          horizontal_y)
+
+    # the masonry's geometry, as a BlockAssembly gives it
+    @property
+    def polygons(self) -> tuple:
+        """Every block's outline, counter-clockwise [m]."""
+        return self.blocks.polygons
+
+    @property
+    def supports(self) -> tuple:
+        """The fixed bodies [m]."""
+        return self.blocks.supports
+
+    @property
+    def density(self) -> np.ndarray:
+        """Density of the masonry of every block [kg/m^3]."""
+        return self.blocks.density
+
+    @property
+    def friction(self):
+        """The masonry's friction (:class:`~archquake.geometry.BlockAssembly`)."""
+        return self.blocks.friction
+
+    @property
+    def tolerance(self) -> float:
+        """Contact tolerance [m]."""
+        return self.blocks.tolerance
+
+    @property
+    def kinds(self) -> tuple:
+        """The interface kinds given body pair by body pair."""
+        return self.blocks.kinds
+
+    @property
+    def names(self) -> tuple:
+        """Every block's name."""
+        return self.blocks.names
+
+    @property
+    def n_blocks(self) -> int:
+        """Number of blocks [-]."""
+        return self.blocks.n_blocks
+
+    @property
+    def size(self) -> float:
+        """Larger extent of the blocks [m]."""
+        return self.blocks.size
+
+    @property
+    def interfaces(self):
+        """The masonry's interfaces (the fill is no block)."""
+        return self.blocks.interfaces
+
+    def block_name(self, i: int) -> str:
+        """How block ``i`` is named in messages."""
+        return self.blocks.block_name(i)
+
+    # block and column together
+    @property
+    def mass(self) -> np.ndarray:
+        """Mass of every block with the column it carries [kg/m], shape (nb,)."""
+        return self._cache["mass"]
+
+    @property
+    def centroid(self) -> np.ndarray:
+        """Centroid of every block with its column [m], shape (nb, 2)."""
+        return self._cache["centroid"]
+
+    @property
+    def inertia(self) -> np.ndarray:
+        """Polar moment of inertia of every block with its column about their centroid
+        [kg m], shape (nb,)."""
+        return self._cache["inertia"]
+
+    @property
+    def weight(self) -> np.ndarray:
+        """Weight of every block with its column [N/m], shape (nb,)."""
+        return self.mass * GRAVITY
+
+    @property
+    def loads(self) -> BlockLoads:
+        """Loads of the limit analysis: weights through the centroids of block and column,
+        horizontal loads as the fill's inertia model says (see the class)."""
+        return self._cache["loads"]
+
+    @property
+    def fill_weight(self) -> float:
+        """Weight of all the fill the blocks carry [N/m]."""
+        return float(np.sum(self.fill_masses)) * GRAVITY
+
+    def with_friction(self, friction) -> FilledAssembly:
+        """The same assembly and fill with another friction of the masonry's interfaces."""
+        return replace(self, blocks=self.blocks.with_friction(friction))
+
+    def describe(self) -> str:
+        """One line: blocks and fill."""
+        return (f"{self.n_blocks} blocks carrying {self.carriers.size} fill columns; "
+                f"{self.fill.describe()}")
+
+
+@dataclass(frozen=True)
+class _Span:
+    """What :func:`multi_span` reads of the arch of one span (in the arch's own frame)."""
+
+    voussoirs: list       # polygons, counter-clockwise [m]
+    names: list           # every voussoir's name
+    kinds: list           # (i, j, kind) between voussoirs, local indices
+    left: np.ndarray      # left springing joint (intrados end, extrados end) [m]
+    right: np.ndarray     # right springing joint [m]
+    on_left: list         # voussoirs resting on the left springing
+    on_right: list        # and on the right one
+    friction: object      # the arch's own friction (a ring arch's), or None
+    extrados: object      # what fill_columns reads: n_voussoirs, extrados(i), joints
+    carriers: list        # the voussoirs under fill (local indices, extrados order)
+
+
+class _FreeFaces:
+    """The top faces of the extrados ring's blocks of an arch of several rings, as
+    :func:`~archquake.geometry.fill.fill_columns` reads an arch: ``n_voussoirs``,
+    ``extrados(i)`` (chords, left to right) and ``joints`` (the two springing joints)."""
+
+    def __init__(self, faces: list, left: np.ndarray, right: np.ndarray):
+        self._faces = faces
+        self.n_voussoirs = len(faces)
+        self.joints = np.array([left, right], dtype=float)
+
+    def extrados(self, i: int) -> list:
+        return self._faces[i]
+
+
+def _free_chain(polygon: np.ndarray, p0: np.ndarray, p1: np.ndarray, tol: float) -> list:
+    """The edges of ``polygon`` on no interface (segments ``p0``-``p1``), as Segments left to
+    right: a ring arch's extrados face of a block of its outer ring."""
+    start, end = polygon, np.roll(polygon, -1, axis=0)
+    mid = 0.5 * (start + end)
+    d = p1 - p0
+    length2 = np.maximum(np.sum(d * d, axis=1), 1e-300)
+    t = np.clip(np.einsum("kmi,mi->km", mid[:, None, :] - p0[None], d) / length2, 0.0, 1.0)
+    near = p0[None] + t[..., None] * d[None]
+    free = np.hypot(*(mid[:, None, :] - near).transpose(2, 0, 1)).min(axis=1) > tol
+    k = np.flatnonzero(free & ~np.roll(free, 1))
+    if k.size != 1:
+        raise ValueError("a block of the outer ring has no single free top face to carry fill")
+    order = [(int(k[0]) + m) % len(free) for m in range(int(free.sum()))]
+    # a counter-clockwise outline runs along its top from right to left
+    return [Segment(tuple(end[e]), tuple(start[e])) for e in reversed(order)]
+
+
+def _span_of(arch, points: int) -> _Span:
+    """The voussoirs, springings and extrados of the arch of a span."""
+    if isinstance(arch, BlockArch):
+        n = arch.n_voussoirs
+        return _Span([np.asarray(arch.outline(i, points), dtype=float)[:-1] for i in range(n)],
+                     [f"voussoir {i + 1}" for i in range(n)],
+                     [(i, i + 1, "bed") for i in range(n - 1)],
+                     np.asarray(arch.joints[0], dtype=float),
+                     np.asarray(arch.joints[-1], dtype=float), [0], [n - 1], None, arch,
+                     list(range(n)))
+    faces = arch.interfaces
+    if len(arch.supports) != 2 or not arch.names:
+        raise ValueError("arch must be a BlockArch or an arch of several rings (multi_ring): "
+                         "named blocks on two springing supports")
+    left, right = (np.asarray(s[:2], dtype=float) for s in arch.supports)
+    ground = np.flatnonzero(faces.a == GROUND)
+    middle = 0.5 * (left[0, 0] + right[0, 0])
+    at_left = faces.p0[ground, 0] < middle
+    rings = [int(_RING_NAME.match(name).group(1)) for name in arch.names]
+    outer = [i for i, r in enumerate(rings) if r == max(rings)]
+    tol = arch.tolerance
+    chains = []
+    for i in outer:
+        mine = (faces.a == i) | (faces.b == i)
+        chains.append(_free_chain(arch.polygons[i], faces.p0[mine], faces.p1[mine], tol))
+    order = np.argsort([c[0].start[0] for c in chains], kind="stable")
+    return _Span([np.asarray(p, dtype=float) for p in arch.polygons], list(arch.names),
+                 [tuple(k) for k in arch.kinds],
+                 left, right, sorted({int(b) for b in faces.b[ground[at_left]]}),
+                 sorted({int(b) for b in faces.b[ground[~at_left]]}), arch.friction,
+                 _FreeFaces([chains[k] for k in order], left, right),
+                 [outer[k] for k in order])
+
+
+def _normal(joint: np.ndarray) -> np.ndarray:
+    """The unit normal of a joint whose tangent (intrados end to extrados end) it is turned by
+    +90 degrees."""
+    t = (joint[1] - joint[0]) / float(np.hypot(*(joint[1] - joint[0])))
+    return np.array([t[1], -t[0]])
+
+
+def multi_span(arch, spans: int, *, end_piers=(None, None),
+               middle_pier: Pier | None = None, friction=None, fill: Fill | None = None,
+               points: int = ARC_POINTS):
     r"""``spans`` equal arches in a row on ``spans + 1`` piers, as a block assembly (see the
-    module).
+    module), under a fill if given.
 
     Parameters
     ----------
-    arch : BlockArch
-        The arch of every span, on fixed springings and without fill (circular, shaped or
-        surveyed); its density is the masonry's, piers included [kg/m^3].
+    arch : BlockArch or BlockAssembly
+        The arch of every span, on fixed springings and without fill: a
+        :class:`~archquake.geometry.BlockArch` (circular, shaped or surveyed) or an arch of
+        several rings (:func:`~archquake.geometry.multi_ring`); its density is the masonry's,
+        piers included [kg/m^3].
     spans : int
         Number of arches, in [1, :data:`MAX_SPANS`].
     end_piers : (Pier or None, Pier or None), default (None, None)
@@ -116,31 +395,42 @@ def multi_span(arch: BlockArch, spans: int, *, end_piers=(None, None),
         springing points each carries [m], ``height`` from the ground up to them [m], its
         courses. Needed with two spans or more.
     friction : None, float or dict
-        Coulomb coefficient of the interfaces [-] (:class:`~archquake.geometry.BlockAssembly`).
+        Coulomb coefficient of the interfaces [-] (:class:`~archquake.geometry.BlockAssembly`);
+        None: a ring arch's own (its ring interfaces'), else none slides.
+    fill : Fill, optional
+        A level fill over the whole bridge (see the module), without a passive reaction.
     points : int, default 24
         Points on each curved face of a voussoir (:func:`~archquake.geometry.assembly.from_arch`).
 
     Returns
     -------
-    BlockAssembly
-        Named blocks (``"pier 0 course 1"``, ``"span 1 voussoir 1"``, ...).
+    BlockAssembly or FilledAssembly
+        Named blocks (``"pier 0 course 1"``, ``"span 1 voussoir 1"``, ``"span 2 ring 1,
+        voussoir 3"``, ...); with ``fill`` a :class:`FilledAssembly`.
 
     Raises
     ------
     ValueError
-        Naming the parameter: an arch that is not a BlockArch, is on piers already or carries
-        fill; spans out of range; end piers not a pair of Pier or None, or one that does not fit
-        its springing; no intermediate pier with two spans or more, or one that is not
-        rectangular, whose springings are not at one height, or narrower than its two seats
-        (the message gives the width needed).
+        Naming the parameter: an arch that is not a BlockArch or an arch of rings, is on piers
+        already or carries fill; spans out of range; end piers not a pair of Pier or None, or
+        one that does not fit its springing; no intermediate pier with two spans or more, or one
+        that is not rectangular, whose springings are not at one height, or narrower than its
+        two seats (the message gives the width needed); a fill that is not a Fill, or has a
+        passive reaction.
     """
     if isinstance(arch, Structure):
         what = "carries fill" if arch.fill is not None else "is on piers already"
         raise ValueError(f"arch must be an arch on fixed springings: this one {what} (multi_span "
-                         "puts the arch on its piers; fill over several spans is not modelled "
-                         "yet)")
-    if not isinstance(arch, BlockArch):
-        raise ValueError(f"arch must be a BlockArch, got {type(arch).__name__}")
+                         "puts the arch on its piers and under the fill of its fill argument)")
+    if not isinstance(arch, BlockArch | BlockAssembly):
+        raise ValueError(f"arch must be a BlockArch or an arch of rings (BlockAssembly), got "
+                         f"{type(arch).__name__}")
+    if fill is not None and not isinstance(fill, Fill):
+        raise ValueError(f"fill must be a Fill or None, got {type(fill).__name__}")
+    if fill is not None and fill.has_passive:
+        raise ValueError("fill: several spans take no passive reaction of the fill (the limit "
+                         "analysis of an assembly has none): give a fill without friction_angle "
+                         "and mobilisation")
     spans = _check_spans(spans)
     try:
         left, right = end_piers
@@ -153,18 +443,44 @@ def multi_span(arch: BlockArch, spans: int, *, end_piers=(None, None),
     if spans > 1 and not isinstance(middle_pier, Pier):
         raise ValueError(f"middle_pier must be a Pier with {spans} spans (the piers between "
                          f"them), got {type(middle_pier).__name__}")
-    ends = Structure(arch, left, right)  # the end piers where an arch on piers has them
-    n_left, n_arch, n_right = ends.n_left, arch.n_voussoirs, ends.n_right
-    voussoirs = [np.asarray(arch.outline(i, points), dtype=float)[:-1] for i in range(n_arch)]
-    joints, normals = ends.joints, ends.joint_normals
+    span = _span_of(arch, points)
+    density = arch.density if isinstance(arch, BlockArch) else float(arch.density[0])
+    if friction is None:
+        friction = span.friction
+    if isinstance(arch, BlockArch):  # the end piers and supports of the arch on piers
+        ends = Structure(arch, left, right)
+        n_left, n_right = ends.n_left, ends.n_right
+        left_courses = [ends.outline(i)[:-1] for i in range(n_left)]
+        last = n_left + arch.n_voussoirs
+        right_courses = [ends.outline(i)[:-1] for i in range(last, last + n_right)]
+        first_support = _support(*ends.joints[0], ends.joint_normals[0], -1.0)
+        last_joint, last_normal = ends.joints[-1], ends.joint_normals[-1]
+    else:  # the same rules (Structure's) on the springing joints of the ring arch
+        left_courses, right_courses = [], []
+        first_support, last_joint = arch.supports[0], None
+        if left is not None:
+            try:
+                left_courses, joints = pier_blocks(left, span.left)
+            except ValueError as exc:
+                raise ValueError(f"left pier: {exc}") from exc
+            first_support = _support(*joints[0], _normal(joints[0]), -1.0)
+        if right is not None:
+            try:
+                courses, joints = pier_blocks(right, span.right * _FLIP)
+            except ValueError as exc:
+                raise ValueError(f"right pier: {exc}") from exc
+            right_courses = [(p * _FLIP)[::-1] for p in courses][::-1]
+            last_joint = (joints[0] * _FLIP)[::-1]
+            last_normal = _normal(last_joint)
+        n_left, n_right = len(left_courses), len(right_courses)
     pitch = 0.0
     middle = []
     if spans > 1:
-        chord = float(arch.joints[-1, 0, 0] - arch.joints[0, 0, 0])
+        chord = float(span.right[0, 0] - span.left[0, 0])
         pitch = chord + middle_pier.width
         shift = np.array([pitch, 0.0])
         try:
-            middle = middle_pier_blocks(middle_pier, arch.joints[-1], arch.joints[0] + shift)
+            middle = middle_pier_blocks(middle_pier, span.right, span.left + shift)
         except ValueError as exc:
             raise ValueError(f"middle_pier: {exc}") from exc
 
@@ -172,10 +488,10 @@ def multi_span(arch: BlockArch, spans: int, *, end_piers=(None, None),
         return polygon if k == 0 else polygon + np.array([k * pitch, 0.0])
 
     polygons, names, kinds = [], [], []
+    starts, middle_tops = [], []
 
     def add(blocks, labels, chain: bool) -> range:
-        """Append blocks; ``chain``: consecutive ones rest on each other (pier courses,
-        voussoirs)."""
+        """Append blocks; ``chain``: consecutive ones rest on each other (pier courses)."""
         start = len(polygons)
         polygons.extend(blocks)
         names.extend(labels)
@@ -183,39 +499,84 @@ def multi_span(arch: BlockArch, spans: int, *, end_piers=(None, None),
             kinds.extend((i, i + 1, "bed") for i in range(start, len(polygons) - 1))
         return range(start, len(polygons))
 
-    pier = add([ends.outline(i)[:-1] for i in range(n_left)],
-               [f"pier 0 course {c + 1}" for c in range(n_left)], True)
+    pier = add(left_courses, [f"pier 0 course {c + 1}" for c in range(n_left)], True)
     seat = pier[-1] if pier else None  # the block under the next arch's left springing
     for k in range(spans):
-        span = add([moved(v, k) for v in voussoirs],
-                   [f"span {k + 1} voussoir {i + 1}" for i in range(n_arch)], True)
+        here = add([moved(v, k) for v in span.voussoirs],
+                   [f"span {k + 1} {name}" for name in span.names], False)
+        starts.append(here.start)
+        kinds.extend((here.start + i, here.start + j, kind) for i, j, kind in span.kinds)
         if seat is not None:
-            kinds.append((seat, span[0], "bed"))
+            kinds.extend((seat, here.start + i, "bed") for i in span.on_left)
         if k < spans - 1:
             pier = add([moved(p, k) for p in middle],
                        [f"pier {k + 1} course {c + 1}" for c in range(len(middle))], True)
+            middle_tops.append(pier[-1])
         else:
-            last = n_left + n_arch
-            pier = add([moved(ends.outline(i)[:-1], k) for i in range(last, last + n_right)],
+            pier = add([moved(p, k) for p in right_courses],
                        [f"pier {spans} course {n_right - c}" for c in range(n_right)], True)
         seat = None
         if pier:
             top = pier[-1] if k < spans - 1 else pier[0]  # the right end pier runs top down
-            kinds.append((span[-1], top, "bed"))
+            kinds.extend((here.start + i, top, "bed") for i in span.on_right)
             seat = top
 
-    supports = [_support(*joints[0], normals[0], -1.0)]
+    supports = [moved(first_support, 0)]
     for k in range(spans - 1):
         base = middle[0]
         x0, x1 = float(base[:, 0].min()), float(base[:, 0].max())
         y = float(base[:, 1].min())
         width = x1 - x0
         supports.append(moved(np.array([(x0, y), (x0, y - width), (x1, y - width), (x1, y)]), k))
-    end = joints[-1] if spans == 1 else joints[-1] + np.array([(spans - 1) * pitch, 0.0])
-    supports.append(_support(*end, normals[-1], 1.0))
+    if last_joint is None:  # a ring arch on a fixed right springing: its own support
+        supports.append(moved(arch.supports[1], spans - 1))
+    else:
+        end = last_joint if spans == 1 else last_joint + np.array([(spans - 1) * pitch, 0.0])
+        supports.append(_support(*end, last_normal, 1.0))
+    blocks = BlockAssembly(tuple(polygons), density, tuple(supports), friction,
+                           kinds=tuple(kinds), names=tuple(names))
+    if fill is None:
+        return blocks
+    return _filled(blocks, fill, span, starts, middle_tops, pitch)
 
-    return BlockAssembly(tuple(polygons), arch.density, tuple(supports), friction,
-                         kinds=tuple(kinds), names=tuple(names))
+
+def _filled(blocks: BlockAssembly, fill: Fill, span: _Span, starts: list, middle_tops: list,
+            pitch: float) -> FilledAssembly:
+    """The fill over every span's voussoirs (the columns of the single arch,
+    :func:`~archquake.geometry.fill.fill_columns`, moved span by span) and over every
+    intermediate pier (a rectangle from its level top between the two extrados springing points
+    up to the fill's surface)."""
+    nb = blocks.n_blocks
+    columns = fill_columns(span.extrados, fill)
+    mass, centroid, inertia = np.zeros(nb), np.zeros((nb, 2)), np.zeros(nb)
+    below = np.zeros(nb)
+    carriers, outlines = [], []
+    local = np.asarray(span.carriers)
+    for k, start in enumerate(starts):
+        shift = np.array([k * pitch, 0.0])
+        index = start + local
+        mass[index] = columns.masses
+        centroid[index] = columns.centroids + shift
+        inertia[index] = columns.inertias
+        below[index] = columns.extrados_points[:, 1]
+        carriers.extend(index.tolist())
+        outlines.extend(o + shift for o in columns.outlines)
+    level = columns.level
+    for k, top in enumerate(middle_tops):
+        shift = np.array([k * pitch, 0.0])
+        e_right, e_left = span.right[1] + shift, span.left[1] + shift + np.array([pitch, 0.0])
+        column = np.array([e_right, e_left, (e_left[0], level), (e_right[0], level)])
+        _, m, c, j = polygon_mass_properties([column], np.array([fill.density]))
+        mass[top], centroid[top], inertia[top] = m[0], c[0], j[0]
+        below[top] = 0.5 * (e_right[1] + e_left[1])
+        carriers.append(top)
+        outlines.append(np.vstack((column, column[:1])))
+    order = np.argsort(carriers, kind="stable")
+    index = np.asarray(carriers, dtype=np.int64)[order]
+    index.setflags(write=False)
+    return FilledAssembly(blocks, fill, frozen_array(mass), frozen_array(centroid),
+                          frozen_array(inertia), frozen_array(below), index, level,
+                          tuple(outlines[i] for i in order))
 
 
 def spans_of(assembly: BlockAssembly, blocks) -> list[int]:
@@ -226,6 +587,19 @@ def spans_of(assembly: BlockAssembly, blocks) -> list[int]:
     for i in blocks:
         name = assembly.names[int(i)] if assembly.names else ""
         match = _SPAN_NAME.match(name)
+        if match:
+            out.add(int(match.group(1)))
+    return sorted(out)
+
+
+def rings_of(assembly, blocks) -> list[int]:
+    """The rings (0 the intrados ring) of the blocks among ``blocks`` (block indices) of an arch
+    of several rings (:func:`~archquake.geometry.multi_ring`) or a bridge of them
+    (:func:`multi_span`), read from the blocks' names; piers belong to no ring."""
+    out = set()
+    for i in blocks:
+        name = assembly.names[int(i)] if assembly.names else ""
+        match = _RING_NAME.match(name)
         if match:
             out.add(int(match.group(1)))
     return sorted(out)
@@ -243,4 +617,5 @@ def moving_blocks(result, tolerance: float = 1e-6) -> list[int]:
     return moving
 
 
-__all__ = ["MAX_SPANS", "moving_blocks", "multi_span", "spans_of"]
+__all__ = ["MAX_SPANS", "FilledAssembly", "moving_blocks", "multi_span", "rings_of",
+           "spans_of"]

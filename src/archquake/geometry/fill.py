@@ -370,6 +370,73 @@ def fill_columns(arch: BlockArch, fill: Fill) -> FillColumns:
                        tuple(outlines))
 
 
+def carry_fill(masses, centroids, inertias, fill_masses, fill_centroids, fill_inertias):
+    r"""Blocks and the fill columns they carry as one rigid body each (the ``"centroid"``
+    model: the column moves with its block).
+
+    .. math::
+
+        m = m_b + m_f, \qquad \mathbf g = \frac{m_b \mathbf c_b + m_f \mathbf c_f}{m},
+        \qquad J = J_b + m_b |\mathbf c_b - \mathbf g|^2 + J_f + m_f |\mathbf c_f - \mathbf g|^2
+
+    (parallel axes).
+
+    Parameters
+    ----------
+    masses, centroids, inertias : arrays, shapes (n,), (n, 2), (n,)
+        Every block's mass [kg/m], centroid [m] and polar moment about it [kg m].
+    fill_masses, fill_centroids, fill_inertias : arrays, same shapes
+        The same of the column each carries (:class:`FillColumns`).
+
+    Returns
+    -------
+    masses, centroids, inertias : arrays
+        Of block and column together [kg/m, m, kg m].
+    """
+    m, c, inertia = masses, centroids, inertias
+    mf, cf, jf = fill_masses, fill_centroids, fill_inertias
+    total = m + mf
+    g = (m[:, None] * c + mf[:, None] * cf) / total[:, None]
+    inertia = (inertia + m * np.sum((c - g) ** 2, axis=1) + jf
+               + mf * np.sum((cf - g) ** 2, axis=1))
+    return total, g, inertia
+
+
+def fill_horizontal_loads(masses, centroids, fill_masses, fill_centroids, extrados_y,
+                          inertia: str):
+    r"""Horizontal load per unit multiplier of blocks carrying fill columns, and the height of
+    its line, as the fill's inertia model says (see the module).
+
+    Parameters
+    ----------
+    masses, centroids : arrays, shapes (n,), (n, 2)
+        The blocks' own mass [kg/m] and centroid [m].
+    fill_masses, fill_centroids : arrays, shapes (n,), (n, 2)
+        The columns' [kg/m, m].
+    extrados_y : array, shape (n,)
+        Height of the block's extrados below the column's centroid [m].
+    inertia : {"none", "centroid", "extrados"}
+        The fill's inertia model.
+
+    Returns
+    -------
+    horizontal : array, shape (n,)
+        :math:`H_i` [N/m]: :math:`m_b g` (none), :math:`(m_b + m_f) g` (centroid, extrados).
+    horizontal_y : array, shape (n,)
+        :math:`b_i` [m]: :math:`y_{c,b}` (none), the centroid of block and column (centroid),
+        :math:`(m_b y_{c,b} + m_f y_e)/(m_b + m_f)` (extrados).
+    """
+    m, c, mf = masses, centroids, fill_masses
+    if inertia == "none":
+        return m * GRAVITY, c[:, 1].copy()
+    if inertia == "extrados":
+        return (m + mf) * GRAVITY, (m * c[:, 1] + mf * extrados_y) / (m + mf)
+    if inertia == "centroid":
+        total, g, _ = carry_fill(m, c, np.zeros_like(m), mf, fill_centroids, np.zeros_like(m))
+        return total * GRAVITY, g[:, 1]
+    raise ValueError(f"fill inertia must be one of {FILL_INERTIA_MODELS}, got {inertia!r}")
+
+
 def check_dynamic_fill(structure) -> None:
     """Refuse a structure whose fill is not carried as mass (inertia other than
     :data:`DYNAMIC_FILL_INERTIA`) in a dynamic model.
@@ -399,4 +466,5 @@ def check_dynamic_fill(structure) -> None:
 
 
 __all__ = ["DEFAULT_FILL_INERTIA", "DYNAMIC_FILL_INERTIA", "FILL_INERTIA_MODELS", "Fill",
-           "FillColumns", "check_dynamic_fill", "fill_columns"]
+           "FillColumns", "carry_fill", "check_dynamic_fill", "fill_columns",
+           "fill_horizontal_loads"]

@@ -428,10 +428,10 @@ class StructureSpec:
         if self.pier_middle is None and self.piers is None:
             raise DescriptionError(f"{{spans}} {self.spans} needs the piers between the spans: "
                                    "give {pier_middle} (or {piers}, which gives all the piers)")
-        fill = self._given("fill_cover", "fill_density", "fill_inertia", "fill_passive")
-        if fill:
-            raise DescriptionError(f"{{spans}} {self.spans}: fill over several spans is not "
-                                   f"modelled yet; leave out {', '.join(fill)}")
+        if self.fill_passive is not None:
+            raise DescriptionError(f"{{spans}} {self.spans}: the limit analysis of several spans "
+                                   "takes no passive reaction of the fill; leave out "
+                                   "{fill_passive}")
         if self.epsilon is not None:
             raise DescriptionError(f"{{spans}} {self.spans}: an irregular draw ({{epsilon}}) of "
                                    "several spans is not modelled yet")
@@ -449,7 +449,7 @@ class StructureSpec:
         middle = Pier(*(self.pier_middle if self.pier_middle is not None else self.piers))
         try:
             return multi_span(arch, self.spans, end_piers=(self.pier("left"), self.pier("right")),
-                              middle_pier=middle)
+                              middle_pier=middle, fill=self.fill())
         except ValueError as exc:
             text = str(exc).removeprefix("middle_pier: ")
             name = "pier_middle" if self.pier_middle is not None else "piers"

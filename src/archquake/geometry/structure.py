@@ -33,9 +33,8 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from .._equality import value_equality
-from ..constants import GRAVITY
 from .blocks import BlockArch
-from .fill import Fill, FillColumns, fill_columns
+from .fill import Fill, FillColumns, carry_fill, fill_columns, fill_horizontal_loads
 from .loads import BlockLoads
 from .mass import polygon_properties
 from .piers import Pier, pier_blocks
@@ -216,12 +215,8 @@ class Structure(BlockArch):
         m, c, inertia = self.arch.masses, self.arch.centroids, self.arch.inertias
         columns = self.fill_columns
         if columns is not None:  # voussoir and column, one rigid body
-            mf, cf, jf = columns.masses, columns.centroids, columns.inertias
-            total = m + mf
-            g = (m[:, None] * c + mf[:, None] * cf) / total[:, None]
-            inertia = (inertia + m * np.sum((c - g) ** 2, axis=1) + jf
-                       + mf * np.sum((cf - g) ** 2, axis=1))
-            m, c = total, g
+            m, c, inertia = carry_fill(m, c, inertia, columns.masses, columns.centroids,
+                                       columns.inertias)
         masses[blocks.start:blocks.stop] = m
         centroids[blocks.start:blocks.stop] = c
         inertias[blocks.start:blocks.stop] = inertia
@@ -237,15 +232,10 @@ class Structure(BlockArch):
         blocks = slice(self.arch_blocks.start, self.arch_blocks.stop)
         horizontal = base.horizontal.copy()
         horizontal_y = base.horizontal_y.copy()
-        m, c = self.arch.masses, self.arch.centroids
-        mf = columns.masses
-        if self.fill.inertia == "none":
-            horizontal[blocks] = m * GRAVITY
-            horizontal_y[blocks] = c[:, 1]
-        elif self.fill.inertia == "extrados":
-            y = columns.extrados_points[:, 1]
-            horizontal[blocks] = (m + mf) * GRAVITY
-            horizontal_y[blocks] = (m * c[:, 1] + mf * y) / (m + mf)
+        if self.fill.inertia != "centroid":  # the centroid's: the base's, block and column
+            horizontal[blocks], horizontal_y[blocks] = fill_horizontal_loads(
+                self.arch.masses, self.arch.centroids, columns.masses, columns.centroids,
+                columns.extrados_points[:, 1], self.fill.inertia)
         n = self.n_voussoirs
         passive, passive_y, sign = np.zeros(n), np.zeros(n), np.zeros(n)
         passive[blocks], passive_y[blocks], sign[blocks] = (columns.passive, columns.passive_y,

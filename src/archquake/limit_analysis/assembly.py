@@ -193,24 +193,42 @@ def contacts_of(structure, friction=None) -> Contacts:
 
 
 def _assembly_contacts(assembly) -> Contacts:
+    """An assembly's interfaces; its blocks' loads: their weights through their centroids, or
+    the loads it gives (``loads``: an assembly under fill,
+    :class:`~archquake.geometry.bridge.FilledAssembly`, whose blocks carry the fill's columns as
+    a chain's voussoirs do)."""
     faces = assembly.interfaces
-    weight = np.asarray(assembly.mass, dtype=float) * GRAVITY
-    centroid = np.asarray(assembly.centroid, dtype=float)
+    loads = getattr(assembly, "loads", None)
+    if loads is None:
+        weight = np.asarray(assembly.mass, dtype=float) * GRAVITY
+        centroid = np.asarray(assembly.centroid, dtype=float)
+        vertical, vertical_x = weight, centroid[:, 0].copy()
+        horizontal, horizontal_y = weight, centroid[:, 1].copy()
+    else:
+        _refuse_passive(loads)
+        vertical, vertical_x = loads.vertical, loads.vertical_x
+        horizontal, horizontal_y = loads.horizontal, loads.horizontal_y
     return Contacts(
         n_blocks=int(assembly.n_blocks), a=np.asarray(faces.a, dtype=np.int64),
         b=np.asarray(faces.b, dtype=np.int64), p0=np.asarray(faces.p0, dtype=float),
         p1=np.asarray(faces.p1, dtype=float), normal=np.asarray(faces.normal, dtype=float),
         friction=np.asarray(faces.friction, dtype=float), kind=np.asarray(faces.kind),
-        vertical=weight, vertical_x=centroid[:, 0].copy(), horizontal=weight,
-        horizontal_y=centroid[:, 1].copy(), outlines=tuple(assembly.polygons))
+        vertical=np.asarray(vertical, dtype=float),
+        vertical_x=np.asarray(vertical_x, dtype=float),
+        horizontal=np.asarray(horizontal, dtype=float),
+        horizontal_y=np.asarray(horizontal_y, dtype=float), outlines=tuple(assembly.polygons))
+
+
+def _refuse_passive(loads) -> None:
+    if np.any((loads.passive_sign != 0) & (loads.passive > 0)):
+        raise ValueError("the limit analysis of an assembly takes no passive reaction of a fill "
+                         "(a bounded unknown force, not a contact): leave out --fill-passive")
 
 
 def _chain_contacts(arch) -> Contacts:
     n = arch.n_voussoirs
     loads = arch.loads
-    if np.any(loads.passive_sign != 0):
-        raise ValueError("the limit analysis of an assembly takes no passive reaction of a fill "
-                         "(a bounded unknown force, not a contact): leave out --fill-passive")
+    _refuse_passive(loads)
     joints = np.asarray(arch.joints, dtype=float)
     a = np.arange(-1, n)
     b = np.arange(0, n + 1)

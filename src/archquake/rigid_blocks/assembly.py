@@ -406,6 +406,7 @@ def from_block_assembly(blocks, *, thickness: float | None = None) -> Assembly:
     ValueError
         If an attribute is missing, or the data do not make a valid :class:`Assembly`.
     """
+    check_dynamic_fill(blocks)  # an assembly under fill carries it as mass
     try:
         polygons = [np.asarray(p, dtype=float) for p in blocks.polygons]
         masses, centroids = blocks.mass, blocks.centroid
