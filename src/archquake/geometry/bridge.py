@@ -323,10 +323,16 @@ def _free_chain(polygon: np.ndarray, p0: np.ndarray, p1: np.ndarray, tol: float)
     t = np.clip(np.einsum("kmi,mi->km", mid[:, None, :] - p0[None], d) / length2, 0.0, 1.0)
     near = p0[None] + t[..., None] * d[None]
     free = np.hypot(*(mid[:, None, :] - near).transpose(2, 0, 1)).min(axis=1) > tol
-    k = np.flatnonzero(free & ~np.roll(free, 1))
-    if k.size != 1:
-        raise ValueError("a block of the outer ring has no single free top face to carry fill")
-    order = [(int(k[0]) + m) % len(free) for m in range(int(free.sum()))]
+    firsts = np.flatnonzero(free & ~np.roll(free, 1))
+    if firsts.size == 0:
+        raise ValueError("a block of the outer ring has no free top face to carry fill")
+    chains = []
+    for first in firsts:  # the runs of free edges; the extrados is the highest (one ring: the
+        run = [int(first)]  # intrados is free too)
+        while free[(run[-1] + 1) % len(free)] and len(run) < len(free):
+            run.append((run[-1] + 1) % len(free))
+        chains.append(run)
+    order = max(chains, key=lambda run: float(np.mean(mid[run, 1])))
     # a counter-clockwise outline runs along its top from right to left
     return [Segment(tuple(end[e]), tuple(start[e])) for e in reversed(order)]
 
@@ -345,10 +351,11 @@ def _span_of(arch, points: int) -> _Span:
     if len(arch.supports) != 2 or not arch.names:
         raise ValueError("arch must be a BlockArch or an arch of several rings (multi_ring): "
                          "named blocks on two springing supports")
-    left, right = (np.asarray(s[:2], dtype=float) for s in arch.supports)
     ground = np.flatnonzero(faces.a == GROUND)
-    middle = 0.5 * (left[0, 0] + right[0, 0])
+    middle = float(np.mean(np.concatenate((faces.p0[ground, 0], faces.p1[ground, 0]))))
     at_left = faces.p0[ground, 0] < middle
+    left = _springing(faces.p0[ground[at_left]], faces.p1[ground[at_left]], inward=1.0)
+    right = _springing(faces.p0[ground[~at_left]], faces.p1[ground[~at_left]], inward=-1.0)
     rings = [int(_RING_NAME.match(name).group(1)) for name in arch.names]
     outer = [i for i, r in enumerate(rings) if r == max(rings)]
     tol = arch.tolerance
@@ -363,6 +370,17 @@ def _span_of(arch, points: int) -> _Span:
                  sorted({int(b) for b in faces.b[ground[~at_left]]}), arch.friction,
                  _FreeFaces([chains[k] for k in order], left, right),
                  [outer[k] for k in order])
+
+
+def _springing(p0: np.ndarray, p1: np.ndarray, inward: float) -> np.ndarray:
+    """The springing joint (intrados end, extrados end) [m] that the foundation interfaces
+    ``p0``-``p1`` of one springing cover: its two farthest points, the intrados end the one
+    toward midspan (``inward`` +1: toward +x, the left springing)."""
+    points = np.concatenate((p0, p1))
+    gap = np.hypot(*(points[:, None, :] - points[None, :, :]).transpose(2, 0, 1))
+    i, j = np.unravel_index(int(np.argmax(gap)), gap.shape)
+    a, b = points[i], points[j]
+    return np.array([a, b] if inward * (a[0] - b[0]) > 0 else [b, a])
 
 
 def _normal(joint: np.ndarray) -> np.ndarray:
@@ -470,7 +488,7 @@ def multi_span(arch, spans: int, *, end_piers=(None, None),
             except ValueError as exc:
                 raise ValueError(f"right pier: {exc}") from exc
             right_courses = [(p * _FLIP)[::-1] for p in courses][::-1]
-            last_joint = (joints[0] * _FLIP)[::-1]
+            last_joint = joints[0] * _FLIP
             last_normal = _normal(last_joint)
         n_left, n_right = len(left_courses), len(right_courses)
     pitch = 0.0
