@@ -103,6 +103,7 @@ from .assembly import (
     Contacts,
     assembly_limit,
     assembly_limits,
+    assembly_min_thickness,
     assembly_stands,
     contacts_of,
 )
@@ -131,7 +132,8 @@ __all__ = [
     "LP_TOLERANCE", "MAX_ENUMERATED_VOUSSOIRS", "MAX_PIER_XTOL", "METHODS",
     "AssemblyLimit", "Contacts", "GeometricSafetyFactor", "LimitAnalysis", "LimitSample",
     "Standing", "ThrustLine",
-    "assembly_limit", "assembly_limits", "assembly_stands", "both_directions", "contacts_of",
+    "assembly_limit", "assembly_limits", "assembly_min_thickness", "assembly_stands",
+    "both_directions", "contacts_of",
     "friction_margin", "geometric_safety_factor", "limit_analysis",
     "limit_sample", "load_multipliers", "load_multipliers_of", "min_pier_width",
     "min_thickness", "self_weight_margin", "shaped_min_thickness", "standing",

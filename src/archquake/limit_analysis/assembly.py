@@ -653,3 +653,68 @@ def assembly_stands(structure, *, friction=None) -> bool:
     if res.status not in (0, 2):
         raise _failure(res, "self-weight")
     return res.status == 0
+
+
+def assembly_min_thickness(build, low: float, high: float, *, rtol: float = 1e-6) -> float:
+    r"""The least thickness at which the assembly ``build(thickness)`` stands under its own
+    weight (:func:`assembly_stands`), by bisection: an arch of several rings
+    (:func:`~archquake.geometry.multi_ring`) with all its rings scaled together.
+
+    Bisection assumes that an arch that stands at a thickness stands at every larger one in
+    ``[low, high]`` (a thicker arch holds the thinner one's thrust lines: Heyman's safe
+    theorem for one ring, and the same for rings whose interfaces the thicker arch's
+    rings also offer).
+
+    Parameters
+    ----------
+    build : callable
+        ``thickness [m] -> BlockAssembly``.
+    low, high : float
+        The bracket [m], ``0 < low < high``: the arch must stand at ``high``.
+    rtol : float, default 1e-6
+        Width of the final bracket relative to its upper end [-].
+
+    Below the minimum, with friction at the ring interfaces, the self-weight program is
+    infeasible and can be so badly conditioned that HiGHS returns no verdict: such a thickness
+    counts as not standing. The thickness returned always stands (an optimal solution of the
+    program proves it), so it is never below the minimum; a failure above the minimum could
+    only make it larger.
+
+    Returns
+    -------
+    float
+        The thickness [m] (the upper end of the final bracket, at which it stands); ``low``
+        when it stands there already.
+
+    Raises
+    ------
+    NoThicknessError
+        When it does not stand at ``high`` (e.g. rings that slide on each other with too little
+        friction to act together).
+    ValueError
+        For a bracket out of order.
+    """
+    from ..errors import NoThicknessError
+
+    if not (0 < low < high and math.isfinite(high)):
+        raise ValueError(f"the bracket must have 0 < low < high [m], got {low!r}, {high!r}")
+    def stands(thickness: float) -> bool:
+        try:
+            return assembly_stands(build(thickness))
+        except ValueError as exc:  # HiGHS could not solve it: counted as not standing
+            if "cannot be solved" in str(exc):
+                return False
+            raise
+
+    if not stands(high):
+        raise NoThicknessError(f"the arch does not stand under its own weight at any thickness "
+                               f"up to {high:.6g} m")
+    if stands(low):
+        return low
+    while high - low > rtol * high:
+        middle = 0.5 * (low + high)
+        if stands(middle):
+            high = middle
+        else:
+            low = middle
+    return high
