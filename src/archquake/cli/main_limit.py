@@ -276,8 +276,10 @@ def _describe(structure, args=None) -> str:
 
             n = len(spans_of(structure, range(structure.n_blocks)))
             spans = f"{n} spans on {n + 1} piers, "
+        fill = getattr(structure, "fill", None)
         return (f"{spans}a block assembly of {structure.n_blocks} blocks and "
-                f"{structure.interfaces.a.size} interfaces")
+                f"{structure.interfaces.a.size} interfaces"
+                + ("" if fill is None else f", under a {fill.describe()}"))
     return describe_arch(structure)
 
 
