@@ -77,7 +77,10 @@ def test_plot_of_the_rings(tmp_path, capsys):
     (["domain", "--rings", "2", "--ring-bond", "staggered"], "--rings, --ring-bond: an arch"),
     (["limit", "--rings", "2", "--min-pier-width", "--piers", ",3"], "--rings"),
     (["limit", "--ring-friction", "0.3"], "--ring-friction: give --rings"),
-    (["limit", "--rings", "2", "--piers", "1,3"], "cannot be combined with --piers"),
+    (["limit", "--rings", "2", "--piers", "1,3"], "--piers: left pier: pier width must be at "
+                                                  "least the horizontal extent"),
+    (["limit", "--rings", "2", "--fill-cover", "0.5", "--fill-passive", "30,0.3"],
+     "takes no passive reaction of the fill; leave out --fill-passive"),
     (["limit", "--rings", "2", "--shape", "pointed", "--span", "10", "--rise", "8"],
      "a pointed arch's crown is a corner: give another --shape"),
     (["limit", "--rings", "2", "--faces", "flat"], "cannot be combined with --faces"),

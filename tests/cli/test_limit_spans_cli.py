@@ -125,3 +125,18 @@ def test_fill_over_several_spans_from_the_command_line(capsys):
     assert main(["rigid-blocks", "--piers", "3,6", "--spans", "3", *fill, "--amplitude",
                  f"{0.1 * three['k']:.4f}", "--json"]) == 0
     assert '"outcome": "rest"' in capsys.readouterr().out
+
+
+def test_spans_of_rings_on_piers_under_fill(capsys):
+    # two aligned rings that cannot slide act as the one-ring arch (cut into the same radial
+    # joints): on Oppenheim's piers the single span's k is the chain program's 0.1439 to the
+    # chords' error; three spans under fill carry the rings' names and spans
+    out = _json(["limit", "--rings", "2", "--piers", "3,6"], capsys)
+    single = min(load_multipliers(Structure(oppenheim(), Pier(3.0, 6.0), Pier(3.0, 6.0))))
+    assert out["k"] == pytest.approx(single, rel=1e-3)
+    out = _json(["limit", "--rings", "2", "--spans", "3", "--piers", "3,6", "--fill-cover",
+                 "0.5", "--ring-friction", "0.6"], capsys)
+    assert out["rings"]["count"] == 2
+    assert "span 2 ring 1, voussoir 3" in out["rings"]["blocks"]
+    plus = out["directions"]["+x"]["associative"]
+    assert plus["spans_moving"] == [3]

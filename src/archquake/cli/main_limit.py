@@ -249,23 +249,25 @@ def _rings_json(args: argparse.Namespace, structure, results) -> dict:
         return {}
     import numpy as np
 
-    ring_of = np.array([int(name.split(",")[0].split()[1]) for name in structure.names])
+    from ..geometry.bridge import rings_of
+
     moving = {}
     for direction, laws in results.items():
         moving[direction] = {}
         for law, r in laws.items():
             speed = np.abs(r.velocities).max(axis=1)
             moves = speed > 1e-6 * max(float(speed.max()), 1e-300)
-            moving[direction][law] = sorted({int(m) for m in ring_of[moves]})
+            moving[direction][law] = rings_of(structure, np.flatnonzero(moves))
+    count = len(rings_of(structure, range(structure.n_blocks)))
     return {"ring_friction": args.ring_friction,
-            "rings": {"count": int(ring_of.max()) + 1, "bond": args.ring_bond or "aligned",
+            "rings": {"count": count, "bond": args.ring_bond or "aligned",
                       "blocks": [structure.names[i] for i in range(structure.n_blocks)],
                       "moving_rings": moving}}
 
 
 def _describe(structure, args=None) -> str:
     rings = getattr(args, "rings", None)
-    if rings is not None:
+    if rings is not None and not any(n.startswith("pier ") for n in structure.names):
         return (f"an arch of {rings} {args.ring_bond or 'aligned'} ring"
                 f"{'' if rings == 1 else 's'} ({structure.n_blocks} blocks, "
                 f"{structure.interfaces.a.size} interfaces)")
@@ -275,7 +277,9 @@ def _describe(structure, args=None) -> str:
             from ..geometry.bridge import spans_of
 
             n = len(spans_of(structure, range(structure.n_blocks)))
-            spans = f"{n} spans on {n + 1} piers, "
+            spans = f"{n} span{'s' if n > 1 else ''} on {n + 1} piers, "
+            if rings is not None:
+                spans += (f"each an arch of {rings} {args.ring_bond or 'aligned'} rings, ")
         fill = getattr(structure, "fill", None)
         return (f"{spans}a block assembly of {structure.n_blocks} blocks and "
                 f"{structure.interfaces.a.size} interfaces"

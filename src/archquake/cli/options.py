@@ -335,7 +335,9 @@ def add_ring_options(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--rings", type=int, metavar="N",
                        help="cut the arch of the shape options (not a pointed one) into N "
                             "concentric rings of equal thickness that can separate (a "
-                            "multi-ring brick arch), on fixed springings")
+                            "multi-ring brick arch), on fixed springings or on the piers and "
+                            "under the fill of the options above (with --spans: a bridge of "
+                            "them)")
     group.add_argument("--ring-bond", choices=RING_BONDS,
                        help="joints of adjacent rings on the same radial lines (aligned) or "
                             "offset by half a voussoir, with half voussoirs at the springings "

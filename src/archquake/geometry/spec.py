@@ -442,13 +442,15 @@ class StructureSpec:
         from .piers import Pier
         from .structure import Structure
 
-        if isinstance(arch, Structure) or hasattr(arch, "interfaces"):
+        if isinstance(arch, Structure) or (hasattr(arch, "interfaces") and self.rings is None):
             what = "a structure" if isinstance(arch, Structure) else "a block assembly"
             raise DescriptionError(f"{{spans}} puts copies of one arch on piers; the geometry "
                                    f"file describes {what} already")
-        middle = Pier(*(self.pier_middle if self.pier_middle is not None else self.piers))
+        given = self.pier_middle if self.pier_middle is not None else self.piers
+        middle = None if given is None else Pier(*given)
         try:
-            return multi_span(arch, self.spans, end_piers=(self.pier("left"), self.pier("right")),
+            return multi_span(arch, self.spans or 1,
+                              end_piers=(self.pier("left"), self.pier("right")),
                               middle_pier=middle, fill=self.fill())
         except ValueError as exc:
             text = str(exc).removeprefix("middle_pier: ")
@@ -533,11 +535,14 @@ class StructureSpec:
             if not self.ring_friction >= 0:
                 raise DescriptionError(f"{{ring_friction}} must be a Coulomb coefficient >= 0, "
                                        f"got {self.ring_friction:g}")
-        other = self._given("geometry", "faces", *STRUCTURE_FIELDS, "epsilon")
+        if self.fill_passive is not None:
+            raise DescriptionError("{rings}: the limit analysis of an arch of rings takes no "
+                                   "passive reaction of the fill; leave out {fill_passive}")
+        other = self._given("geometry", "faces", "epsilon")
         if other:
             raise DescriptionError(f"{{rings}} cuts the arch of the shape fields into rings "
-                                   f"with curved faces, on fixed springings; it cannot be "
-                                   f"combined with {', '.join(other)}")
+                                   f"with curved faces; it cannot be combined with "
+                                   f"{', '.join(other)}")
         if self.shape == "pointed":
             raise DescriptionError("{rings} cuts an arch of a smooth centreline into rings; a "
                                    "pointed arch's crown is a corner: give another {shape}")
@@ -578,7 +583,9 @@ class StructureSpec:
             value it refuses, or the geometry file's.
         """
         if self.rings is not None:
-            return self._rings()
+            if not self._given(*STRUCTURE_FIELDS, "spans"):
+                return self._rings()
+            return self._bridge(self._rings())  # rings on piers, under fill: spans of them
         if (self.spans or 1) > 1:
             return self._bridge(self._arch())
         return self._on_piers(self._arch())
