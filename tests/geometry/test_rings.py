@@ -142,8 +142,11 @@ def test_a_description_builds_the_rings():
     assert built == direct
     with pytest.raises(DescriptionError, match="ring_bond must be one of"):
         StructureSpec(rings=2, ring_bond="english")
-    with pytest.raises(DescriptionError, match="cannot be combined with fill_cover"):
-        StructureSpec(rings=2, fill_cover=1.0)
+    with pytest.raises(DescriptionError, match="cannot be combined with faces"):
+        StructureSpec(rings=2, faces="flat")
+    # under fill: the rings on fixed springings in a bridge of one span
+    filled = StructureSpec(rings=2, fill_cover=1.0).build()
+    assert filled.fill.cover == 1.0 and filled.blocks.n_blocks == 14
 
 
 def test_a_circle_by_span_and_rise_is_the_circle_by_radius_and_embrace():
