@@ -27,6 +27,15 @@ def test_high_friction_gives_heymans_multipliers(capsys):
             assert len(entry["rocking"]) == 4 and entry["sliding"] == []
 
 
+def test_infinite_friction_is_heymans_one_law_in_words_too(capsys):
+    # mu = inf: nothing can slide, so the two laws are one ("no sliding") and the last line says
+    # Heyman's k, the frictionless chain program's, not "under the non-associative law"
+    assert main(["limit", "--friction", "inf"]) == 0
+    last = capsys.readouterr().out.strip().splitlines()[-1]
+    k = min(load_multipliers(archquake.oppenheim()))
+    assert last == f"k = {k:.4f}: the least of the two directions (Heyman: no sliding)"
+
+
 def test_low_friction_slides_and_lowers_k(capsys, tmp_path):
     out = _json(["limit", "--friction", "0.35", "--plot", str(tmp_path / "f.png")], capsys)
     plus = out["directions"]["+x"]["non-associative"]

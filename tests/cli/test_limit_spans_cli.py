@@ -99,16 +99,6 @@ def test_the_rigid_blocks_take_several_spans(capsys):
     assert '"outcome": "rest"' in capsys.readouterr().out
 
 
-def test_the_page_refuses_several_spans_by_name():
-    from archquake.app.inputs import structure_from_spec
-
-    with pytest.raises(ValueError, match="spans: several spans are analysed by the command "
-                                         "line's limit only"):
-        structure_from_spec({"spans": 3, "piers": "3,6"})
-    _, structure = structure_from_spec({"spans": 1, "piers": "3,6"})
-    assert isinstance(structure, Structure)
-
-
 def test_fill_over_several_spans_from_the_command_line(capsys):
     # one span with fill is the single arch on piers with fill (its chain program); three spans
     # under the same fill never stand more than one (a span among others has the same arch and

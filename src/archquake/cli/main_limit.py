@@ -212,7 +212,8 @@ def _with_friction(args: argparse.Namespace, structure) -> int:
             print(f"{direction:<10} {'rigid blocks':<16} {k_text} {tilt} {'':>4}  "
                   f"{_listed(onset.rocking_joints)} / {_listed(onset.sliding_joints)}  "
                   f"(ramp, +/- {onset.error:.1e})")
-    if args.friction is None and getattr(args, "ring_friction", None) is None:
+    if {law for laws in results.values() for law in laws} == {"no sliding"}:
+        # no friction given, or mu = inf everywhere: the two laws are one
         print(f"k = {k:.4f}: the least of the two directions (Heyman: no sliding)")
     else:
         print(f"k = {k:.4f}: the least of the two directions under the non-associative law "
