@@ -1,0 +1,258 @@
+r"""The linear systems of the contact problem solved in the blocks' velocities: 3 unknowns a
+block instead of 2 a contact, for walls, whose impulses outnumber the blocks' velocities.
+
+With the rows ``H_s`` that the states of the active-set method hold (normal and tangential of a
+sticking contact, normal of a sliding one), the directions ``H_g`` of their impulses (the
+normal plus :math:`\sigma\mu` times the tangent for a sliding contact) and the compliance
+``R`` (diagonal: :data:`~.contact_problem.REGULARISATION` times the diagonal of ``W``), the
+system of the impulses :math:`(H_s M^{-1} H_g^T + R)\,p = r` is, by the Sherman-Morrison-Woodbury
+identity [1]_,
+
+.. math::
+
+    K\,\Delta v = H_g^T R^{-1} r, \qquad K = M + H_g^T R^{-1} H_s, \qquad
+    p = R^{-1} (r - H_s \Delta v),
+
+a band system of ``3 nb`` unknowns (the blocks renumbered to narrow it). The difference
+:math:`r - H_s \Delta v` cancels to the compliance, so that ``p`` is first good to about
+:math:`\epsilon / \rho` relative only; it is refined iteratively [2]_ on the residual of the
+impulses' own system, computed from ``H`` and ``M`` (no Delassus matrix), until the
+componentwise backward error no longer halves (LAPACK's rule, ``xGERFS``). Measured on a wall of
+195 blocks (``benchmarks/rigid_block_wall_block_space.py``): two refinements, after which the
+velocity changes agree with the band solver's to 1e-13 and the impulses to 2e-7, as closely as
+LAPACK's dense solve agrees with it (the statically indeterminate part of the impulses is fixed
+only by the compliance and known to :math:`\epsilon / \rho` by any solver).
+
+Not yet the driver's path: :func:`solve_states` solves one system of given states.
+
+References
+----------
+.. [1] G. H. Golub, C. F. Van Loan, "Matrix computations", 4th ed., Johns Hopkins (2013),
+   Sect. 2.1.4 (the Sherman-Morrison-Woodbury formula), Sect. 4.3 (band elimination).
+.. [2] N. J. Higham, "Accuracy and stability of numerical algorithms", 2nd ed., SIAM (2002),
+   Ch. 12 (iterative refinement in fixed precision).
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+REFINEMENTS = 5
+"""Largest number of refinements of a solve [-] (LAPACK's ``ITMAX``)."""
+
+
+@numba.njit(cache=True)
+def _lu_factor(ab, n, kl):
+    """Gaussian elimination without pivoting of the band ``ab`` (``A[i, j]`` at
+    ``ab[i, j - i + kl]``, ``2 kl + 1`` columns), in place: ``L``'s multipliers below, ``U``
+    above, ``1 / U_kk`` on the diagonal. False at a pivot that is not larger than 1e-14 times
+    the row's diagonal before the elimination. Unsigned indices, as in
+    :func:`~.band.band_lu_solve` (numba then vectorises the updates)."""
+    scale = np.empty(n)
+    for k in range(n):
+        scale[k] = abs(ab[k, kl])
+    ukl = np.uint64(kl)
+    for k in range(n):
+        uk = np.uint64(k)
+        pivot = ab[uk, ukl]
+        if not abs(pivot) > 1e-14 * scale[uk]:
+            return False
+        inverse = 1.0 / pivot
+        ab[uk, ukl] = inverse
+        for s in range(1, min(kl, n - 1 - k) + 1):
+            us = np.uint64(s)
+            ui = uk + us
+            f = ab[ui, ukl - us] * inverse
+            ab[ui, ukl - us] = f
+            if f != 0.0:
+                for t in range(1, kl + 1):
+                    ut = np.uint64(t)
+                    ab[ui, ukl - us + ut] -= f * ab[uk, ukl + ut]
+    return True
+
+
+@numba.njit(cache=True)
+def _lu_substitute(ab, b, n, kl):
+    """Solve with the factors of :func:`_lu_factor`, ``b`` overwritten by ``x``."""
+    for k in range(n):
+        for s in range(1, min(kl, n - 1 - k) + 1):
+            b[k + s] -= ab[k + s, kl - s] * b[k]
+    for k in range(n - 1, -1, -1):
+        x = b[k]
+        for t in range(1, min(kl, n - 1 - k) + 1):
+            x -= ab[k, kl + t] * b[k + t]
+        b[k] = x * ab[k, kl]
+
+
+@numba.njit(cache=True, inline="always")
+def _rows(jac, c, state, mu, srow, grow, u):
+    """Write the rows held (``srow``) and the impulses' directions (``grow``; 12 entries: body
+    a, body b) of the unknowns of contact ``c`` in its ``state`` from row ``u`` on; returns
+    their number (2 for a sticking contact, 1 for a sliding one)."""
+    if state == 1:
+        for k in range(2):
+            for j in range(3):
+                srow[u + k, j] = grow[u + k, j] = jac[c, 3 * k + j]
+                srow[u + k, 6 + j] = grow[u + k, 6 + j] = jac[c, 6 + 3 * k + j]
+        return 2
+    sigma = mu[c] if state == 2 else -mu[c]
+    for j in range(3):
+        srow[u, j] = jac[c, j]
+        srow[u, 6 + j] = jac[c, 6 + j]
+        grow[u, j] = jac[c, j] + sigma * jac[c, 3 + j]
+        grow[u, 6 + j] = jac[c, 6 + j] + sigma * jac[c, 9 + j]
+    return 1
+
+
+@numba.njit(cache=True)
+def solve_states(v_free, inv_mass, contact_bodies, jac, state, mu, compliance, position, kb):
+    r"""Impulses and velocity changes of the active-set system of given states, in the blocks'
+    velocities (module docstring).
+
+    Parameters
+    ----------
+    v_free : array (nb, 3)
+        Free velocities [m/s, m/s, rad/s].
+    inv_mass : array (nb, >= 2)
+        Inverse masses [m/kg] and inertias [1/(kg m)].
+    contact_bodies : array of int (nc, 2)
+        Bodies of every contact (-1: the ground).
+    jac : array (nc, 12)
+        Jacobian rows (:func:`~.contacts.contact_geometry`).
+    state : array of int (nc,)
+        -1 inactive, 0 open, 1 stick, 2 and 3 slide with ``P_t = +mu P_n`` and ``-mu P_n``.
+    mu : array (nc,)
+        Friction coefficients [-].
+    compliance : array (nc, 2)
+        The compliance of the normal and tangential rows of every contact [m/kg].
+    position : array of int (nb,)
+        Position of every block in the band of ``K`` [-].
+    kb : int
+        Half-bandwidth of ``K``: 3 times the largest distance of two touching blocks' positions,
+        plus 2 [-].
+
+    Returns
+    -------
+    impulse : array (nc, 2)
+        ``(P_n, P_t)`` [N s/m].
+    dv : array (nb, 3)
+        :math:`M^{-1} H^T P` [m/s, m/s, rad/s].
+    refinements : int
+        Refinements made; -1 if ``K`` had a small pivot (nothing solved).
+    backward_error : float
+        The last componentwise backward error of the impulses' system [-].
+    """
+    nb, nc = v_free.shape[0], contact_bodies.shape[0]
+    n = 3 * nb
+    ab = np.zeros((n, 2 * kb + 1))
+    for i in range(nb):
+        for j in range(3):
+            ab[3 * position[i] + j, kb] = 1.0 / inv_mass[i, 0 if j < 2 else 1]
+    # the unknowns: contact, its rows and directions, compliance and right-hand side
+    count = 0
+    for c in range(nc):
+        count += 2 if state[c] == 1 else (1 if state[c] >= 2 else 0)
+    owner = np.zeros(count, dtype=np.int64)
+    srow = np.zeros((count, 12))
+    grow = np.zeros((count, 12))
+    rd = np.zeros(count)
+    r = np.zeros(count)
+    u = 0
+    for c in range(nc):
+        if state[c] <= 0:
+            continue
+        k = _rows(jac, c, state[c], mu, srow, grow, u)
+        for e in range(k):
+            owner[u] = c
+            rd[u] = compliance[c, e]
+            for side in range(2):
+                body = contact_bodies[c, side]
+                if body >= 0:
+                    for j in range(3):
+                        r[u] -= srow[u, 6 * side + j] * v_free[body, j]
+            u += 1
+    for e in range(count):  # K += g^T s / rd, block by block
+        c = owner[e]
+        for sa in range(2):
+            ba = contact_bodies[c, sa]
+            if ba < 0:
+                continue
+            for sb in range(2):
+                bb = contact_bodies[c, sb]
+                if bb < 0:
+                    continue
+                for ja in range(3):
+                    row = 3 * position[ba] + ja
+                    ga = grow[e, 6 * sa + ja] / rd[e]
+                    for jb in range(3):
+                        col = 3 * position[bb] + jb
+                        ab[row, col - row + kb] += ga * srow[e, 6 * sb + jb]
+    if not _lu_factor(ab, n, kb):
+        return np.zeros((nc, 2)), np.zeros((nb, 3)), -1, np.inf
+    p = np.zeros(count)
+    rhs = r.copy()
+    last = np.inf
+    berr = np.inf
+    refinements = -1
+    y = np.zeros((nb, 3))
+    dv = np.zeros(n)
+    while True:
+        # the Woodbury solve of the right-hand side rhs: p += R^-1 (rhs - H_s K^-1 H_g^T R^-1 rhs)
+        dv[:] = 0.0
+        for e in range(count):
+            c = owner[e]
+            for side in range(2):
+                body = contact_bodies[c, side]
+                if body >= 0:
+                    for j in range(3):
+                        dv[3 * position[body] + j] += grow[e, 6 * side + j] * rhs[e] / rd[e]
+        _lu_substitute(ab, dv, n, kb)
+        for e in range(count):
+            c = owner[e]
+            hs = 0.0
+            for side in range(2):
+                body = contact_bodies[c, side]
+                if body >= 0:
+                    for j in range(3):
+                        hs += srow[e, 6 * side + j] * dv[3 * position[body] + j]
+            p[e] += (rhs[e] - hs) / rd[e]
+        refinements += 1
+        # the residual of the impulses' system and its backward error
+        y[:] = 0.0
+        ya = np.zeros((nb, 3))
+        for e in range(count):
+            c = owner[e]
+            for side in range(2):
+                body = contact_bodies[c, side]
+                if body >= 0:
+                    for j in range(3):
+                        w = inv_mass[body, 0 if j < 2 else 1]
+                        y[body, j] += w * grow[e, 6 * side + j] * p[e]
+                        ya[body, j] += w * abs(grow[e, 6 * side + j] * p[e])
+        berr = 0.0
+        for e in range(count):
+            c = owner[e]
+            ap = rd[e] * p[e]
+            size = abs(r[e]) + abs(ap)
+            for side in range(2):
+                body = contact_bodies[c, side]
+                if body >= 0:
+                    for j in range(3):
+                        ap += srow[e, 6 * side + j] * y[body, j]
+                        size += abs(srow[e, 6 * side + j]) * ya[body, j]
+            rhs[e] = r[e] - ap
+            if size > 0.0:
+                berr = max(berr, abs(rhs[e]) / size)
+        if not (berr > 2.2e-16 and 2.0 * berr <= last and refinements < REFINEMENTS):
+            break
+        last = berr
+    impulse = np.zeros((nc, 2))
+    for e in range(count):
+        c = owner[e]
+        if state[c] == 1:
+            impulse[c, 0 if e == 0 or owner[e - 1] != c else 1] = p[e]
+        else:
+            impulse[c, 0] = p[e]
+            impulse[c, 1] = (mu[c] if state[c] == 2 else -mu[c]) * p[e]
+    return impulse, y, refinements, berr

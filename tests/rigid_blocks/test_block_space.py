@@ -1,0 +1,110 @@
+"""The contact problem's systems solved in the blocks' velocities
+(:mod:`archquake.rigid_blocks.block_space`) against a dense solve of the impulses' system and a
+block at rest, whose impulses carry its weight."""
+
+import numpy as np
+import pytest
+
+from archquake.geometry import GRAVITY
+from archquake.geometry.assembly import wall as geometry_wall
+from archquake.rigid_blocks import from_block_assembly, rectangular_block
+from archquake.rigid_blocks.block_space import solve_states
+from archquake.rigid_blocks.contact_problem import REGULARISATION
+from archquake.rigid_blocks.contacts import contact_geometry
+from archquake.rigid_blocks.dynamics import contact_arrays
+
+
+def problem(assembly, h=1e-3, ag=0.0):
+    """The first step's arrays at rest: free velocities of the weight and of ``-m ag``."""
+    arrays = contact_arrays(assembly)
+    bodies, contacts, cb = arrays["bodies"], arrays["contacts"], arrays["contact_bodies"]
+    nb, nc = bodies.shape[0], contacts.shape[0]
+    gap, slip, valid, jac = np.zeros(nc), np.zeros(nc), np.zeros(nc, bool), np.zeros((nc, 12))
+    contact_geometry(np.zeros((nb, 3)), bodies, contacts, cb, np.empty((nb, 2)), gap, slip,
+                     valid, jac)
+    inv_mass = np.column_stack([1 / bodies[:, 0], 1 / bodies[:, 1]])
+    v_free = np.zeros((nb, 3))
+    v_free[:, 0] = -ag * h
+    v_free[:, 1] = -GRAVITY * h
+    big_h = np.zeros((2 * nc, 3 * nb))
+    for c in range(nc):
+        for side, first in ((0, 0), (1, 6)):
+            body = cb[c, side]
+            if body >= 0:
+                big_h[2 * c, 3 * body:3 * body + 3] = jac[c, first:first + 3]
+                big_h[2 * c + 1, 3 * body:3 * body + 3] = jac[c, first + 3:first + 6]
+    minv = np.repeat(inv_mass, (2, 1), axis=1).reshape(-1)
+    diag_w = np.einsum("ij,j,ij->i", big_h, minv, big_h)
+    return dict(nb=nb, cb=cb, jac=jac, inv_mass=inv_mass, v_free=v_free, big_h=big_h,
+                minv=minv, compliance=REGULARISATION * diag_w.reshape(-1, 2), bodies=bodies)
+
+
+def dense_solution(p, state, mu):
+    """The states' system of the impulses (open: 0; stick: u = -R P; slide: u_n = -R_n P_n,
+    P_t = sigma mu P_n) solved densely by LAPACK: the velocity change M^-1 H^T P."""
+    nc = state.size
+    big_h, minv = p["big_h"], p["minv"]
+    w = big_h @ (minv[:, None] * big_h.T)
+    a = w + np.diag(p["compliance"].reshape(-1))
+    rhs = -big_h @ p["v_free"].reshape(-1)
+    for c in range(nc):
+        n, t = 2 * c, 2 * c + 1
+        if state[c] <= 0:
+            for r in (n, t):
+                a[r, :] = 0.0
+                a[:, r] = 0.0
+                a[r, r] = 1.0
+                rhs[r] = 0.0
+        elif state[c] >= 2:
+            a[t, :] = 0.0
+            a[t, t] = 1.0
+            a[t, n] = -mu[c] if state[c] == 2 else mu[c]
+            rhs[t] = 0.0
+    impulses = np.linalg.solve(a, rhs)
+    return (minv * (big_h.T @ impulses)).reshape(-1, 3), impulses.reshape(-1, 2)
+
+
+def test_a_block_at_rest_carries_its_weight():
+    """A block on the ground, both ends sticking: the impulses cancel the free velocity, the
+    normal ones sum to the weight's impulse m g h and the tangential ones to none (no ground
+    acceleration); by symmetry each end carries half."""
+    p = problem(rectangular_block(0.4, 2.0))
+    nc = p["cb"].shape[0]
+    state = np.ones(nc, dtype=np.int64)
+    mu = np.full(nc, 0.6)
+    impulse, dv, refinements, berr = solve_states(
+        p["v_free"], p["inv_mass"], p["cb"], p["jac"], state, mu, p["compliance"],
+        np.zeros(1, dtype=np.int64), 2)
+    weight = p["bodies"][0, 0] * GRAVITY * 1e-3
+    assert refinements >= 0 and berr < 1e-15
+    assert impulse[:, 0].sum() == pytest.approx(weight, rel=1e-8)  # the compliance: 1e-9
+    assert impulse[:, 0] == pytest.approx([weight / 2, weight / 2], rel=1e-8)
+    assert np.abs(impulse[:, 1]).max() < 1e-12 * weight
+    assert np.abs(p["v_free"] + dv).max() < 1e-9 * GRAVITY * 1e-3
+
+
+@pytest.mark.parametrize("slide", [False, True])
+def test_a_wall_matches_a_dense_solve(slide):
+    """A wall of 3 courses of 4 blocks under 0.3 g, every contact sticking (or every fourth
+    sliding, another open): the velocity changes equal LAPACK's dense solve of the impulses'
+    system to round-off, the impulses to the compliance's resolution."""
+    p = problem(from_block_assembly(geometry_wall(3, 4, 0.4, 0.2, friction=0.6)),
+                ag=0.3 * GRAVITY)
+    nc = p["cb"].shape[0]
+    state = np.ones(nc, dtype=np.int64)
+    if slide:
+        state[::4] = 2
+        state[1::7] = 0
+    mu = np.full(nc, 0.6)
+    position = np.arange(p["nb"])
+    cb = p["cb"][(p["cb"] >= 0).all(axis=1)]
+    kb = 3 * int(np.abs(cb[:, 0] - cb[:, 1]).max()) + 2
+    impulse, dv, refinements, berr = solve_states(
+        p["v_free"], p["inv_mass"], p["cb"], p["jac"], state, mu, p["compliance"], position, kb)
+    dv_dense, impulse_dense = dense_solution(p, state, mu)
+    assert 0 <= refinements <= 5 and berr < 1e-14
+    assert np.abs(dv - dv_dense).max() < 1e-13 * np.abs(dv_dense).max()
+    assert np.abs(impulse - impulse_dense).max() < 1e-5 * np.abs(impulse_dense).max()
+    if slide:
+        assert impulse[::4, 1] == pytest.approx(0.6 * impulse[::4, 0], rel=1e-14)
+        assert np.all(impulse[1::7][state[1::7] == 0] == 0.0)
