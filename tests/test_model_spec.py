@@ -133,3 +133,23 @@ def test_model_spec_takes_a_spec_a_name_or_nothing():
     assert model_spec(None) == ModelSpec()
     with pytest.raises(ValueError, match="model must be a ModelSpec"):
         model_spec(3)
+
+
+@pytest.mark.parametrize(("kwargs", "match"), [
+    ({"friction": -0.1}, "friction"), ({"time_step": 0.0}, "time_step"),
+    ({"coarse_factor": 0}, "coarse_factor")])
+def test_the_four_link_spec_still_checks_the_block_settings_it_is_given(kwargs, match):
+    # the check is skipped only for the defaults, which are valid
+    with pytest.raises(ValueError, match=match):
+        ModelSpec("four-link", **kwargs)
+
+
+def test_the_four_link_spec_with_defaults_does_not_import_the_rigid_blocks():
+    import subprocess
+    import sys
+
+    code = ("import sys; from archquake.models import ModelSpec; ModelSpec('four-link'); "
+            "print('archquake.rigid_blocks' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.strip()
+    assert out == "False"

@@ -183,7 +183,12 @@ class ModelSpec:
 
         object.__setattr__(self, "name", check_model(self.name))
         object.__setattr__(self, "restitution", check_restitution_model(self.restitution))
-        _ = self.block_settings  # checks the friction, the time step and the coarse factor
+        if self.name != "four-link" or (self.friction, self.time_step, self.coarse_factor) != (
+                DEFAULT_FRICTION, None, DEFAULT_COARSE_FACTOR):
+            # checks the friction, the time step and the coarse factor; the defaults are valid,
+            # so the four-link model with them does not import the rigid blocks (a second of
+            # a four-link command's start)
+            _ = self.block_settings
 
     @property
     def model_class(self) -> type:
