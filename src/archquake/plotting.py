@@ -937,6 +937,29 @@ _STATE_STYLE = {
 }
 
 
+def plot_assembly_limits(results):
+    """Every direction's and friction law's collapse of an assembly, one panel each: the
+    directions side by side, the laws one row each (:func:`plot_assembly_limit`).
+
+    Parameters
+    ----------
+    results : dict
+        Direction -> law -> AssemblyLimit (:func:`archquake.limit_analysis.assembly_limits`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn.
+    """
+    laws = list(next(iter(results.values())))
+    fig, axes = plt.subplots(len(laws), len(results), figsize=(6.5 * len(results),
+                             4.6 * len(laws)), constrained_layout=True, squeeze=False)
+    for column, laws_of in enumerate(results.values()):
+        for row, law in enumerate(laws):
+            plot_assembly_limit(laws_of[law], axes[row, column])
+    return fig
+
+
 def plot_assembly_limit(result, ax=None, *, displacement: float | None = None):
     """An assembly at collapse: its blocks, the mechanism and the state of every interface.
 

@@ -367,18 +367,11 @@ def limit_figure(spec: dict) -> bytes:
     from .views import pyplot
 
     plt = pyplot()
-    from ..plotting import plot_assembly_limit, plot_limit_analysis
+    from ..plotting import plot_assembly_limits, plot_limit_analysis
 
     _, structure = structure_from_spec(spec)
     if is_assembly(structure):
-        results = assembly_limits(structure)
-        laws = list(next(iter(results.values())))
-        fig, axes = plt.subplots(len(laws), 2, figsize=(13, 4.6 * len(laws)),
-                                 constrained_layout=True, squeeze=False)
-        for column, laws_of in enumerate(results.values()):
-            for row, law in enumerate(laws):
-                plot_assembly_limit(laws_of[law], axes[row, column])
-        return _png(plt, fig)
+        return _png(plt, plot_assembly_limits(assembly_limits(structure)))
     results = both_directions(structure)
     fig, axes = plt.subplots(1, 2, figsize=(13, 5.0), constrained_layout=True)
     for ax, result in zip(axes, results, strict=True):

@@ -329,13 +329,7 @@ def _listed(interfaces) -> str:
 def _plot_friction(args: argparse.Namespace, results) -> None:
     from .output import pyplot, save_figure
 
-    plt = pyplot()
-    from ..plotting import plot_assembly_limit
+    pyplot()
+    from ..plotting import plot_assembly_limits
 
-    laws = list(next(iter(results.values())))
-    fig, axes = plt.subplots(len(laws), 2, figsize=(13, 4.6 * len(laws)),
-                             constrained_layout=True, squeeze=False)
-    for column, laws_of in enumerate(results.values()):
-        for row, law in enumerate(laws):
-            plot_assembly_limit(laws_of[law], axes[row, column])
-    save_figure(fig, args.plot)
+    save_figure(plot_assembly_limits(results), args.plot)
