@@ -453,12 +453,18 @@ def create_app(workdir: str | Path | None = None, *, hosts=LOOPBACK_NAMES,
 
     @asynccontextmanager
     async def lifespan(app):
+        warm_up = threading.Thread(target=_warm_up, args=(read_suites,),
+                                   name="archquake-app-warm-up", daemon=True)
         if warm:
-            threading.Thread(target=_warm_up, args=(read_suites,), name="archquake-app-warm-up",
-                             daemon=True).start()
+            warm_up.start()
         try:
             yield
         finally:
+            if warm_up.is_alive():
+                # a thread left inside the record files' HDF5 library at exit holds its lock,
+                # and the interpreter's finalisation then waits on it for ever (Ctrl-C during
+                # the warm-up): the reading ends first
+                await run_in_threadpool(warm_up.join, WARM_UP_TIMEOUT)
             await run_in_threadpool(jobs.shutdown)
             if own:
                 shutil.rmtree(folder, ignore_errors=True)
@@ -598,6 +604,11 @@ def delete_job_files(folder: Path, job_id: str) -> None:
     zip and the folder it was made in), once the job is forgotten or cancelled."""
     (folder / f"assessment-{job_id}.zip").unlink(missing_ok=True)
     shutil.rmtree(folder / f"assessment-{job_id}", ignore_errors=True)
+
+
+WARM_UP_TIMEOUT = 120.0
+"""Longest wait for the warm-up (the fork server, the limit analysis's import, the record
+suites' names) to end when the server stops [s]."""
 
 
 def _warm_up(read_suites) -> None:
