@@ -56,9 +56,9 @@ def test_a_small_study_on_workers_runs_here_with_the_same_results(monkeypatch):
     assert here.metadata["backend"] == "serial"
     pd.testing.assert_frame_equal(here.table, serial.table)
     np.testing.assert_array_equal(here.probability, serial.probability)
-    from archquake.studies import fragility
+    from archquake.studies import strategies
 
-    monkeypatch.setattr(fragility, "pool_pays", lambda seconds, workers: True)
+    monkeypatch.setattr(strategies, "pool_pays", lambda seconds, workers: True)
     pooled = run_fragility(settings, workers=2, **FAST)
     assert pooled.metadata["backend"] == "processes"
     pd.testing.assert_frame_equal(pooled.table, serial.table)

@@ -129,7 +129,7 @@ from .fits import (
     probability_of_failure,
     rising_part,
 )
-from .strategies import DEFAULT_STRIDE, pool_pays, study_seconds
+from .strategies import DEFAULT_STRIDE, study_seconds, workers_that_pay
 from .undecided import undecided_count, undecided_summary
 
 # ---------------------------------------------------------------------------------------------
@@ -1105,10 +1105,8 @@ def run_fragility(
                       "epsilon": settings.epsilon, "limit_method": settings.limit_method}
     limit_plan = StudyPlan(limit_settings, settings.seed, settings.limit_sample_size,
                            check_integer("limit_chunk_size", limit_chunk_size))
-    if backend is None and pool is None and workers is not None and scheduler is None:
-        check_integer("workers", workers)
-        if not pool_pays(_serial_seconds(settings), workers):
-            workers = None  # fewer seconds of work than starting the workers would save
+    workers = workers_that_pay(_serial_seconds(settings), workers, backend=backend,
+                               scheduler=scheduler, pool=pool)
     backend = default_backend(backend, workers, scheduler, pool)
     out = None if out_dir is None else Path(out_dir)
     limit_dir = None if out is None else out / LIMIT_DIRECTORY

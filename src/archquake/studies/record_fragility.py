@@ -1091,7 +1091,7 @@ def run_record_fragility(
     """
     from ..execution import StudyPlan, run_study
     from ..results_io import atomic_path, save_study, write_csv
-    from .strategies import pool_pays, study_seconds
+    from .strategies import study_seconds, workers_that_pay
 
     if not isinstance(settings, RecordFragilitySettings):
         raise ValueError(f"settings must be RecordFragilitySettings, got "
@@ -1107,13 +1107,10 @@ def run_record_fragility(
         _check_resume(out, settings)
     plan = StudyPlan(settings.to_dict(), settings.seed, settings.sample_size + 1,
                      check_integer("chunk_size", chunk_size))
-    if backend is None and pool is None and workers is not None and scheduler is None:
-        check_integer("workers", workers)
-        arches = settings.sample_size + 1  # and the nominal arch
-        analyses = arches * len(settings.suite) * len(settings.levels) * 2
-        if not pool_pays(study_seconds(settings.model.name, "record", arches, analyses),
-                         workers):
-            workers = None  # fewer seconds of work than starting the workers would save
+    arches = settings.sample_size + 1  # and the nominal arch
+    analyses = arches * len(settings.suite) * len(settings.levels) * 2
+    workers = workers_that_pay(study_seconds(settings.model.name, "record", arches, analyses),
+                               workers, backend=backend, scheduler=scheduler, pool=pool)
     table = run_study(record_fragility_task, plan, out, backend=backend, workers=workers,
                       scheduler=scheduler, pool=pool, resume=resume, progress=progress,
                       save=False)  # saved below, with the summary

@@ -56,6 +56,7 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
+from ..checks import check_integer
 from ..defaults import DEFAULT_STRIDE, SEARCHES
 
 
@@ -427,6 +428,42 @@ def pool_pays(seconds: float, workers: int) -> bool:
     return workers > 1 and POOL_START_SECONDS + seconds / workers < seconds
 
 
+def workers_that_pay(seconds: float, workers, *, backend=None, scheduler=None,
+                     pool=None):
+    """The worker processes a study starts: ``workers``, or None (the calling process) when
+    the caller chose no backend, pool or cluster and the study's estimated ``seconds`` of work
+    end sooner in this process than on fresh workers (:func:`pool_pays`).
+
+    Parameters
+    ----------
+    seconds : float
+        Estimated serial time of the study [s] (:func:`study_seconds`).
+    workers : int or None
+        The worker processes asked for [-].
+    backend, scheduler, pool : optional
+        What the caller gave :func:`archquake.execution.run_study`: any of them keeps
+        ``workers`` as given.
+
+    Returns
+    -------
+    int or None
+
+    Raises
+    ------
+    ValueError
+        For ``workers`` not an integer >= 1.
+
+    Examples
+    --------
+    >>> workers_that_pay(5.0, 2), workers_that_pay(7.0, 2), workers_that_pay(5.0, 2, pool=0)
+    (None, 2, 2)
+    """
+    if backend is None and pool is None and workers is not None and scheduler is None:
+        if not pool_pays(seconds, check_integer("workers", workers)):
+            return None  # fewer seconds of work than starting the workers would save
+    return workers
+
+
 def _keys(out: dict) -> np.ndarray:
     """Outcome keys of a model's ``outcomes``: status code x 1000 + the half cycle of a collapse
     (0 for a model that does not count half cycles)."""
@@ -438,4 +475,5 @@ def _keys(out: dict) -> np.ndarray:
 __all__ = ["ANALYSIS_SECONDS", "ARCH_SECONDS", "DEFAULT_STRIDE", "POOL_START_SECONDS",
            "SEARCHES", "change_hints", "check_search", "check_stride",
            "coarse_indices", "excitation_end", "pool_pays", "pulse_grid_outcomes",
-           "search_caveat", "search_grid", "smooth_outcomes", "study_seconds"]
+           "search_caveat", "search_grid", "smooth_outcomes", "study_seconds",
+           "workers_that_pay"]
