@@ -59,6 +59,13 @@ class NeverCollapsesError(ValueError):
     inside it for every k, so no ground acceleration sets it in motion."""
 
 
+class UnsolvedProgramError(ValueError):
+    """HiGHS ended a limit analysis's linear program without an answer (neither optimal,
+    infeasible nor unbounded: numerical difficulties or a limit reached): the structure's
+    geometry is too degenerate to analyse, or, below a minimum thickness, the program is
+    infeasible and too badly conditioned to say so."""
+
+
 class StudyWarning(UserWarning):
     """Something in a study directory was repaired, e.g. a damaged checkpoint recomputed."""
 

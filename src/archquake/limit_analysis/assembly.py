@@ -74,6 +74,7 @@ from scipy.optimize import linprog
 from scipy.sparse import coo_array
 
 from ..constants import GRAVITY
+from ..errors import UnsolvedProgramError
 
 GROUND = -1
 """Body index of the ground [-]."""
@@ -511,8 +512,8 @@ def _result(c, prog, res, direction, law, iterations, converged, k=None) -> Asse
                          slip=slip, state=state, contacts=c, origin=prog.origin)
 
 
-def _failure(res, what: str) -> ValueError:
-    return ValueError(f"the {what} linear program of this assembly cannot be solved "
+def _failure(res, what: str) -> UnsolvedProgramError:
+    return UnsolvedProgramError(f"the {what} linear program of this assembly cannot be solved "
                       f"({res.message.strip()}): its geometry is degenerate")
 
 
@@ -698,13 +699,12 @@ def assembly_min_thickness(build, low: float, high: float, *, rtol: float = 1e-6
 
     if not (0 < low < high and math.isfinite(high)):
         raise ValueError(f"the bracket must have 0 < low < high [m], got {low!r}, {high!r}")
+
     def stands(thickness: float) -> bool:
         try:
             return assembly_stands(build(thickness))
-        except ValueError as exc:  # HiGHS could not solve it: counted as not standing
-            if "cannot be solved" in str(exc):
-                return False
-            raise
+        except UnsolvedProgramError:  # HiGHS could not solve it: counted as not standing
+            return False
 
     if not stands(high):
         raise NoThicknessError(f"the arch does not stand under its own weight at any thickness "

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import linprog
 
+from ..errors import UnsolvedProgramError
 from ..geometry import BlockArch, Structure
 from .results import DIRECTIONS, ThrustLine
 
@@ -221,11 +222,12 @@ def is_strut(arch: BlockArch) -> bool:
                 - 1e-9 * arch.length_scale)
 
 
-def lp_failure(res, arch: BlockArch) -> ValueError:
+def lp_failure(res, arch: BlockArch) -> UnsolvedProgramError:
     """The error of a linear program that HiGHS ends without an answer (neither optimal,
     infeasible nor unbounded: numerical difficulties or a limit reached) for an arch that is
     not a strut (:func:`is_strut`): its geometry is too degenerate to analyse."""
-    return ValueError(f"the limit-analysis linear program of this arch cannot be solved "
+    return UnsolvedProgramError(
+        f"the limit-analysis linear program of this arch cannot be solved "
                       f"({str(res.message).strip()}): its geometry is degenerate (nearly flat, "
                       "or very large beside its thickness?)")
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
-from ..errors import CannotStandError
+from ..errors import CannotStandError, UnsolvedProgramError
 from ..geometry import BlockArch, Structure
 from .equilibrium import is_strut, original_arch, scaled_arrays, solve_lp
 
@@ -70,7 +70,8 @@ def self_weight_margin(arch: BlockArch) -> float:
     if res.status == 3 or (res.status != 0 and is_strut(arch)):
         return math.inf
     if res.status != 0:
-        raise ValueError(f"the self-weight linear program of this arch cannot be solved "
+        raise UnsolvedProgramError(
+            f"the self-weight linear program of this arch cannot be solved "
                          f"({res.message.strip()}): its geometry is degenerate (a nearly flat "
                          "arch?)")
     return float(res.x[-1])
