@@ -185,60 +185,15 @@ class FilledAssembly:
         self._cache["loads"] = BlockLoads(mass * GRAVITY, centroid[:, 0], horizontal,
                                           horizontal_y)
 
-    # the masonry's geometry, as a BlockAssembly gives it
-    @property
-    def polygons(self) -> tuple:
-        """Every block's outline, counter-clockwise [m]."""
-        return self.blocks.polygons
+    _MASONRY = ("polygons", "supports", "density", "friction", "tolerance", "kinds", "names",
+                "n_blocks", "size", "interfaces", "block_name")
+    """What the assembly reads of its masonry, as a :class:`~archquake.geometry.BlockAssembly`
+    gives it (the fill is no block: the interfaces are the masonry's)."""
 
-    @property
-    def supports(self) -> tuple:
-        """The fixed bodies [m]."""
-        return self.blocks.supports
-
-    @property
-    def density(self) -> np.ndarray:
-        """Density of the masonry of every block [kg/m^3]."""
-        return self.blocks.density
-
-    @property
-    def friction(self):
-        """The masonry's friction (:class:`~archquake.geometry.BlockAssembly`)."""
-        return self.blocks.friction
-
-    @property
-    def tolerance(self) -> float:
-        """Contact tolerance [m]."""
-        return self.blocks.tolerance
-
-    @property
-    def kinds(self) -> tuple:
-        """The interface kinds given body pair by body pair."""
-        return self.blocks.kinds
-
-    @property
-    def names(self) -> tuple:
-        """Every block's name."""
-        return self.blocks.names
-
-    @property
-    def n_blocks(self) -> int:
-        """Number of blocks [-]."""
-        return self.blocks.n_blocks
-
-    @property
-    def size(self) -> float:
-        """Larger extent of the blocks [m]."""
-        return self.blocks.size
-
-    @property
-    def interfaces(self):
-        """The masonry's interfaces (the fill is no block)."""
-        return self.blocks.interfaces
-
-    def block_name(self, i: int) -> str:
-        """How block ``i`` is named in messages."""
-        return self.blocks.block_name(i)
+    def __getattr__(self, name: str):
+        if name in FilledAssembly._MASONRY:
+            return getattr(self.blocks, name)
+        raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
 
     # block and column together
     @property
