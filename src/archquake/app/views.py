@@ -22,7 +22,6 @@ A, link CD about D, link BC carried by B; the blocks outside A..D stay still.
 from __future__ import annotations
 
 import math
-import re
 
 import numpy as np
 
@@ -164,13 +163,12 @@ DISPLACEMENT = 0.06
 """Largest displacement of a block corner in a drawn mechanism, as a fraction of the
 structure's size [-] (as :func:`archquake.plotting.plot_assembly_limit` draws it)."""
 
-_GROUP = re.compile(r"^(span|ring) (\d+)")
-
-
 def block_groups(assembly) -> tuple[str | None, list]:
-    """The spans or rings of an assembly's blocks, read from their names
-    (:func:`archquake.geometry.bridge.multi_span`: ``"span 2 voussoir 3"``, spans from 1;
-    :func:`archquake.geometry.multi_ring`: ``"ring 0, voussoir 4"``, ring 0 the intrados one).
+    """The spans or rings of an assembly's blocks, read from their names by the builders' own
+    readers (:func:`archquake.geometry.bridge.spans_of` and
+    :func:`~archquake.geometry.bridge.rings_of`: :func:`~archquake.geometry.bridge.multi_span`
+    names ``"span 2 voussoir 3"``, spans from 1;
+    :func:`archquake.geometry.multi_ring` ``"ring 0, voussoir 4"``, ring 0 the intrados one).
 
     Returns
     -------
@@ -178,14 +176,16 @@ def block_groups(assembly) -> tuple[str | None, list]:
         ``"span"``, ``"ring"`` or None (neither), and per block its span or ring counted from 1
         (ring 1 the intrados ring), None for a pier course or a block of neither.
     """
-    names = tuple(getattr(assembly, "names", None) or ())
-    found = [_GROUP.match(str(n)) for n in names] or [None] * assembly.n_blocks
-    kinds = {m.group(1) for m in found if m}
-    if len(kinds) != 1:
-        return None, [None] * assembly.n_blocks
-    kind = kinds.pop()
-    first = 0 if kind == "span" else 1  # spans are named from 1, rings from 0
-    return kind, [int(m.group(2)) + first if m else None for m in found]
+    from ..geometry.bridge import rings_of, spans_of
+
+    n = assembly.n_blocks
+    spans = [next(iter(spans_of(assembly, [i])), None) for i in range(n)]
+    if any(g is not None for g in spans):
+        return "span", spans
+    rings = [next(iter(rings_of(assembly, [i])), None) for i in range(n)]
+    if any(g is not None for g in rings):
+        return "ring", [None if g is None else g + 1 for g in rings]
+    return None, [None] * n
 
 
 def describe_assembly(assembly) -> str:
