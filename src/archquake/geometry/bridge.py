@@ -556,26 +556,21 @@ def spans_of(assembly: BlockAssembly, blocks) -> list[int]:
     """The spans (counted from 1) of the voussoirs among ``blocks`` (block indices) of an
     assembly built by :func:`multi_span` (read from the blocks' names); piers belong to no
     span."""
-    out = set()
-    for i in blocks:
-        name = assembly.names[int(i)] if assembly.names else ""
-        match = _SPAN_NAME.match(name)
-        if match:
-            out.add(int(match.group(1)))
-    return sorted(out)
+    return _numbered(assembly, blocks, _SPAN_NAME)
 
 
 def rings_of(assembly, blocks) -> list[int]:
     """The rings (0 the intrados ring) of the blocks among ``blocks`` (block indices) of an arch
     of several rings (:func:`~archquake.geometry.multi_ring`) or a bridge of them
     (:func:`multi_span`), read from the blocks' names; piers belong to no ring."""
-    out = set()
-    for i in blocks:
-        name = assembly.names[int(i)] if assembly.names else ""
-        match = _RING_NAME.match(name)
-        if match:
-            out.add(int(match.group(1)))
-    return sorted(out)
+    return _numbered(assembly, blocks, _RING_NAME)
+
+
+def _numbered(assembly, blocks, pattern: re.Pattern) -> list[int]:
+    """The numbers that ``pattern`` reads from the names of ``blocks``, sorted, each once."""
+    names = assembly.names
+    found = (pattern.match(names[int(i)] if names else "") for i in blocks)
+    return sorted({int(match.group(1)) for match in found if match})
 
 
 def moving_blocks(result, tolerance: float = 1e-6) -> list[int]:
