@@ -5,13 +5,26 @@ block at rest, whose impulses carry its weight."""
 import numpy as np
 import pytest
 
+from archquake import oppenheim
 from archquake.geometry import GRAVITY
 from archquake.geometry.assembly import wall as geometry_wall
-from archquake.rigid_blocks import from_block_assembly, rectangular_block
-from archquake.rigid_blocks.block_space import solve_states
-from archquake.rigid_blocks.contact_problem import REGULARISATION
+from archquake.ground_motion import sine_pulse
+from archquake.rigid_blocks import (
+    BlockSettings,
+    from_arch,
+    from_block_assembly,
+    rectangular_block,
+    simulate_blocks,
+)
+from archquake.rigid_blocks.block_space import block_band, solve_active_set_blocks, solve_states
+from archquake.rigid_blocks.contact_problem import (
+    REGULARISATION,
+    SWITCH_VELOCITY,
+    incidence,
+    solve_active_set,
+)
 from archquake.rigid_blocks.contacts import contact_geometry
-from archquake.rigid_blocks.dynamics import contact_arrays
+from archquake.rigid_blocks.dynamics import contact_arrays, contact_unknowns
 
 
 def problem(assembly, h=1e-3, ag=0.0):
@@ -108,3 +121,93 @@ def test_a_wall_matches_a_dense_solve(slide):
     if slide:
         assert impulse[::4, 1] == pytest.approx(0.6 * impulse[::4, 0], rel=1e-14)
         assert np.all(impulse[1::7][state[1::7] == 0] == 0.0)
+
+
+def band_problem(cb, nb):
+    """The work arrays of the band solver of the impulses (the driver's)."""
+    nc = cb.shape[0]
+    pointer, incident, half = incidence(cb, nb)
+    kl = 2 * half + 1
+    return (np.zeros(nc, dtype=np.int64), np.zeros(nc, dtype=np.int64), pointer, incident, kl,
+            np.zeros((2 * nc, kl + 1)), np.zeros((2 * nc, 3 * kl + 1)), np.zeros(2 * nc),
+            np.zeros(2 * nc), np.zeros(2 * nc), np.zeros((nc, 12)))
+
+
+@pytest.mark.parametrize("ag", [0.3, 0.5])
+def test_the_active_set_method_in_the_blocks_velocities_equals_the_band_solvers(ag):
+    """A wall's first step under a ground acceleration (contacts open, stick and slide: the head
+    joints carry little normal force): the active-set method with its systems in the blocks'
+    velocities ends on the states of the band solver of the impulses, with the same velocities
+    to round-off and the same impulses to the compliance's resolution."""
+    p = problem(from_block_assembly(geometry_wall(4, 6, 0.4, 0.2, friction=0.6)),
+                ag=ag * GRAVITY)
+    cb, nb = p["cb"], p["nb"]
+    nc = cb.shape[0]
+    inv_mass = np.column_stack([p["inv_mass"], np.sqrt(p["inv_mass"])])
+    mu = np.full(nc, 0.6)
+    active = np.ones(nc, dtype=bool)
+    p_tol = 1e-12 * p["bodies"][:, 0].mean() * GRAVITY * 1e-3
+    u_tol = SWITCH_VELOCITY * GRAVITY * 1e-3
+    results = []
+    for blocks in (False, True):
+        v, impulse = p["v_free"].copy(), np.zeros((nc, 2))
+        state = -np.ones(nc, dtype=np.int64)
+        if blocks:
+            position, kb = block_band(cb, nb)
+            solves, converged = solve_active_set_blocks(
+                v, inv_mass, cb, p["jac"], active, impulse, state, mu, p_tol, u_tol, position,
+                kb, 60)
+        else:
+            solves, converged = solve_active_set(v, inv_mass, cb, p["jac"], active, impulse,
+                                                 state, mu, p_tol, u_tol,
+                                                 band_problem(cb, nb), 60)
+        assert converged
+        results.append((v, impulse, state, solves))
+    (v0, p0, s0, n0), (v1, p1, s1, n1) = results
+    assert np.array_equal(s0, s1) and n0 == n1
+    assert np.any(s0 == 0) and np.any(s0 == 1) and np.any(s0 >= 2)  # every state's rows
+    assert np.abs(v1 - v0).max() < 1e-12 * np.abs(p["v_free"]).max()
+    assert np.abs(p1 - p0).max() < 1e-5 * np.abs(p0).max()
+
+
+def test_the_blocks_band_is_a_permutation_that_narrows_a_wall():
+    """Reverse Cuthill-McKee renumbers a wall's blocks to a narrower band than the builder's
+    course-by-course numbering; the half-bandwidth is 3 times the largest distance of two
+    touching blocks' positions, plus 2; an arch keeps its own numbering."""
+    wall = from_block_assembly(geometry_wall(10, 19, 0.4, 0.2, friction=0.6))
+    cb = contact_arrays(wall)["contact_bodies"]
+    position, kb = block_band(cb, wall.n_blocks)
+    assert sorted(position) == list(range(wall.n_blocks))
+    pairs = cb[(cb >= 0).all(axis=1)]
+    assert kb == 3 * np.abs(position[pairs[:, 0]] - position[pairs[:, 1]]).max() + 2
+    natural = 3 * np.abs(pairs[:, 0] - pairs[:, 1]).max() + 2
+    assert kb < natural
+    arch = from_arch(oppenheim())
+    position, kb = block_band(contact_arrays(arch)["contact_bodies"], arch.n_blocks)
+    assert list(position) == list(range(arch.n_blocks)) and kb == 5
+
+
+def test_a_wall_moves_alike_in_either_unknowns_and_an_arch_keeps_the_impulses():
+    """A wall of 4 courses of 12 blocks under a sine pulse of 0.7 g, 0.5 s (its bed joints slide
+    and its blocks rock): the same motion to round-off whether the contact problems are solved
+    in the impulses or in the blocks' velocities (``BlockSettings.unknowns``), the choice
+    ``auto`` takes the velocities; an arch keeps the impulses."""
+    wall = from_block_assembly(geometry_wall(4, 12, 0.4, 0.2, friction=0.6))
+    motion = sine_pulse(0.7 * GRAVITY, 0.5)
+    runs = [simulate_blocks(wall, motion, BlockSettings(friction=0.6, unknowns=unknowns),
+                            t_end=0.2, record_every=10)
+            for unknowns in ("impulses", "velocities")]
+    a, b = runs
+    assert a.outcome.steps == b.outcome.steps
+    assert a.outcome.fallback_steps == b.outcome.fallback_steps
+    moved = np.abs(a.displacements[-1]).max()
+    assert moved > 1e-4  # it moved
+    assert np.abs(a.displacements - b.displacements).max() < 1e-9 * moved
+    assert np.abs(a.rotations - b.rotations).max() < 1e-9 * moved / 0.2  # blocks 0.2 m high
+    assert contact_unknowns(wall)[0].size == wall.n_blocks
+    assert contact_unknowns(from_arch(oppenheim()))[0].size == 0
+
+
+def test_the_unknowns_are_named():
+    with pytest.raises(ValueError, match="unknowns must be one of auto, impulses, velocities"):
+        BlockSettings(unknowns="blocks")

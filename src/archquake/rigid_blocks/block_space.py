@@ -23,7 +23,12 @@ velocity changes agree with the band solver's to 1e-13 and the impulses to 2e-7,
 LAPACK's dense solve agrees with it (the statically indeterminate part of the impulses is fixed
 only by the compliance and known to :math:`\epsilon / \rho` by any solver).
 
-Not yet the driver's path: :func:`solve_states` solves one system of given states.
+The driver takes this path where it needs fewer operations than the impulses' band
+(:func:`~archquake.rigid_blocks.dynamics.contact_unknowns`): :func:`solve_active_set_blocks` is
+the active-set method of :func:`~.contact_problem.solve_active_set` (the same states, tests and
+compliance) with each system solved by :func:`solve_states`; the blocks are numbered by
+:func:`block_band`. On the 195-block wall under a 0.3 g pulse a whole analysis runs 5.4 times
+faster (``benchmarks/rigid_block_wall.py --all``).
 
 References
 ----------
@@ -37,6 +42,9 @@ from __future__ import annotations
 
 import numba
 import numpy as np
+
+from .contact_problem import REGULARISATION, SINGLE_SWITCH_AFTER, switched_state
+from .contacts import delassus_block, relative_velocity
 
 REFINEMENTS = 5
 """Largest number of refinements of a solve [-] (LAPACK's ``ITMAX``)."""
@@ -256,3 +264,133 @@ def solve_states(v_free, inv_mass, contact_bodies, jac, state, mu, compliance, p
             impulse[c, 0] = p[e]
             impulse[c, 1] = (mu[c] if state[c] == 2 else -mu[c]) * p[e]
     return impulse, y, refinements, berr
+
+
+@numba.njit(cache=True)
+def solve_active_set_blocks(v, inv_mass, contact_bodies, jac, active, impulse, state, mu, p_tol,
+                            u_tol, position, kb, max_solves):
+    r"""The contact problem of a step by the active-set method of
+    :func:`~.contact_problem.solve_active_set`, each system of its states solved in the blocks'
+    velocities (:func:`solve_states`); ``v`` enters free.
+
+    The same states, switching tests (:func:`~.contact_problem.switched_state`), compliance
+    (:data:`~.contact_problem.REGULARISATION` times the diagonal of ``W``) and rule of one switch
+    a solve after :data:`~.contact_problem.SINGLE_SWITCH_AFTER` solves; the velocities of the
+    tests are those of the blocks after the solve, :math:`H (v^f + \Delta v)`, which are
+    :math:`u^f + W P` without assembling ``W``. On convergence the impulses are written to
+    ``impulse`` and ``v`` is the velocity at the end of the step; otherwise (``max_solves``
+    solves, or a small pivot of ``K``) ``v`` and ``impulse`` are unchanged and the states are the
+    last ones tried, for the caller's fallback (Lemke's algorithm on the assembled problem).
+
+    Parameters
+    ----------
+    v, inv_mass, contact_bodies, jac, active, impulse, state, mu, p_tol, u_tol
+        As for :func:`~.contact_problem.solve_active_set`.
+    position : array of int (nb,)
+        Position of every block in the band of ``K`` [-] (:func:`solve_states`).
+    kb : int
+        Half-bandwidth of ``K`` [-] (:func:`solve_states`).
+    max_solves : int
+        Largest number of linear solves [-].
+
+    Returns
+    -------
+    solves : int
+        Linear solves made (0 if no contact is active).
+    converged : bool
+        Whether a consistent set of states was found.
+    """
+    nc = contact_bodies.shape[0]
+    compliance = np.zeros((nc, 2))
+    m = 0
+    for c in range(nc):
+        if active[c]:
+            m += 1
+            if state[c] < 0:  # newly active: guess that it sticks
+                state[c] = 1
+            wnn, _, wtt = delassus_block(inv_mass, contact_bodies[c, 0], contact_bodies[c, 1],
+                                         jac, c)
+            compliance[c, 0] = REGULARISATION * wnn
+            compliance[c, 1] = REGULARISATION * wtt
+        else:
+            state[c] = -1
+            impulse[c, 0] = 0.0
+            impulse[c, 1] = 0.0
+    if m == 0:
+        return 0, True
+    solves = 0
+    after = np.empty_like(v)
+    while solves < max_solves:
+        p, dv, refinements, _ = solve_states(v, inv_mass, contact_bodies, jac, state, mu,
+                                             compliance, position, kb)
+        if refinements < 0:  # a small pivot of K
+            return solves, False
+        solves += 1
+        for i in range(v.shape[0]):
+            for j in range(3):
+                after[i, j] = v[i, j] + dv[i, j]
+        changed = False
+        for c in range(nc):
+            st = state[c]
+            if st < 0:
+                continue
+            u = 0.0
+            if st != 1:
+                un, ut = relative_velocity(after, contact_bodies[c, 0], contact_bodies[c, 1],
+                                           jac, c)
+                u = un if st == 0 else ut
+            new = switched_state(st, p[c, 0], p[c, 1], mu[c], p_tol, u_tol, u)
+            if new != st and not (changed and solves > SINGLE_SWITCH_AFTER):
+                state[c] = new
+                changed = True
+        if not changed:
+            v[:] = after
+            impulse[:] = p
+            return solves, True
+    return solves, False
+
+
+def block_band(contact_bodies: np.ndarray, nb: int) -> tuple[np.ndarray, int]:
+    """The blocks' positions in the band of ``K`` (:func:`solve_states`), renumbered by reverse
+    Cuthill-McKee [3]_ where that narrows the band, and its half-bandwidth.
+
+    Parameters
+    ----------
+    contact_bodies : array of int (nc, 2)
+        Bodies of every contact (-1: the ground).
+    nb : int
+        Number of blocks.
+
+    Returns
+    -------
+    position : array of int (nb,)
+        Position of every block [-].
+    kb : int
+        Half-bandwidth of ``K``: 3 times the largest distance of two touching blocks'
+        positions, plus 2 [-].
+
+    References
+    ----------
+    .. [3] A. George, J. W. H. Liu, "Computer solution of large sparse positive definite
+       systems", Prentice-Hall (1981), Sec. 4.3.
+    """
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.csgraph import reverse_cuthill_mckee
+
+    pairs = contact_bodies[(contact_bodies >= 0).all(axis=1)]
+
+    def half(position):
+        if pairs.size == 0:
+            return 2
+        return 3 * int(np.abs(position[pairs[:, 0]] - position[pairs[:, 1]]).max()) + 2
+
+    natural = np.arange(nb, dtype=np.int64)
+    graph = csr_matrix((np.ones(2 * len(pairs)),
+                        (np.r_[pairs[:, 0], pairs[:, 1]], np.r_[pairs[:, 1], pairs[:, 0]])),
+                       shape=(nb, nb))
+    order = np.asarray(reverse_cuthill_mckee(graph, symmetric_mode=True), dtype=np.int64)
+    renumbered = np.empty(nb, dtype=np.int64)
+    renumbered[order] = natural
+    best = renumbered if half(renumbered) < half(natural) else natural
+    return best, half(best)
+

@@ -31,7 +31,11 @@ assembly, a wall, has its joints renumbered by reverse Cuthill-McKee to narrow t
 assembled block by block and solved in band storage, by Cholesky's factorisation when no
 contact slides (the system is then symmetric positive definite), else by Gaussian elimination
 (:func:`~.band.band_cholesky_solve`, :func:`~.band.band_lu_solve`, :func:`~.band.band_solve`):
-a step costs time and memory linear in the number of blocks.
+a step costs time and memory linear in the number of blocks. Where the contacts outnumber the
+blocks in a wide band (a wall), the same method solves each system in the blocks' velocities
+instead (:func:`~archquake.rigid_blocks.block_space.solve_active_set_blocks`, chosen by
+:func:`~archquake.rigid_blocks.dynamics.contact_unknowns`), and a step it gives up on is handed
+to Lemke's algorithm on the assembled ``W`` as here.
 
 The active-set method has no guarantee of convergence: its states can cycle (measured on
 Oppenheim's arch cut into 50 voussoirs under its pulse: at 79 of 4,000 steps, at the onset of
@@ -465,33 +469,41 @@ def _row_velocity(r, size, kl, wband, uf, impulses):
 
 
 @numba.njit(cache=True, inline="always")
+def switched_state(st, pn, pt, mu, p_tol, u_tol, u):
+    """The state of an active contact that its impulses ``(pn, pt)`` and velocity ``u`` call
+    for, from its state ``st`` (:func:`solve_active_set`: the switching tests, the one rule of
+    both linear systems, :mod:`~archquake.rigid_blocks.block_space`): ``u`` is the normal
+    velocity of an open contact, the tangential velocity of a sliding one, unused for a sticking
+    one (it has ``u = 0`` up to the compliance)."""
+    if st == 0:
+        return 1 if u < -u_tol else 0
+    if pn < -p_tol:
+        return 0
+    if st == 1:
+        if abs(pt) > mu * pn + p_tol:
+            return 2 if pt > 0.0 else 3
+        return 1
+    if st == 2:
+        return 1 if u > u_tol else 2
+    return 1 if u < -u_tol else 3
+
+
+@numba.njit(cache=True, inline="always")
 def _switch_states(m, idx, state, mu, p_tol, u_tol, kl, wband, uf, impulses, solves):
     """Switch the states that the impulses ``impulses`` (rows ``2 i``, ``2 i + 1`` of the
-    ``i``-th active contact) contradict (:func:`solve_active_set`); after
+    ``i``-th active contact) contradict (:func:`switched_state`); after
     :data:`SINGLE_SWITCH_AFTER` solves only the first. The velocities ``u = u^f + W P`` are
     computed where a test needs them: the normal one of an open contact, the tangential one of
-    a sliding contact (a sticking one has ``u = 0`` up to the compliance). Returns whether any
-    state changed."""
+    a sliding contact. Returns whether any state changed."""
     size = 2 * m
     changed = False
     for i in range(m):
         c = idx[i]
-        pn, pt = impulses[2 * i], impulses[2 * i + 1]
         st = state[c]
-        new = st
-        if st == 0:
-            if _row_velocity(2 * i, size, kl, wband, uf, impulses) < -u_tol:
-                new = 1
-        elif pn < -p_tol:
-            new = 0
-        elif st == 1:
-            if abs(pt) > mu[c] * pn + p_tol:
-                new = 2 if pt > 0.0 else 3
-        elif st == 2:
-            if _row_velocity(2 * i + 1, size, kl, wband, uf, impulses) > u_tol:
-                new = 1
-        elif _row_velocity(2 * i + 1, size, kl, wband, uf, impulses) < -u_tol:
-            new = 1
+        u = 0.0
+        if st != 1:
+            u = _row_velocity(2 * i + (0 if st == 0 else 1), size, kl, wband, uf, impulses)
+        new = switched_state(st, impulses[2 * i], impulses[2 * i + 1], mu[c], p_tol, u_tol, u)
         if new != st and not (changed and solves > SINGLE_SWITCH_AFTER):
             state[c] = new
             changed = True

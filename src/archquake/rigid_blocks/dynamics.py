@@ -114,7 +114,9 @@ from ..ground_motion import LINEAR, STEP, GroundMotion
 from ..status import Status
 from . import solver
 from .assembly import GROUND, STICK_FRICTION, Assembly, from_arch, from_block_assembly
-from .contact_problem import ACTIVE_SET_SOLVES
+from .band import ARCH_BANDWIDTH
+from .block_space import block_band
+from .contact_problem import ACTIVE_SET_SOLVES, incidence
 from .contacts import CONTACT_FIELDS
 
 MAX_BLOCKS = 100
@@ -134,8 +136,10 @@ analysis of 100 blocks."""
 MAX_ASSEMBLY_BLOCKS = 400
 r"""Largest number of blocks of an :class:`Assembly` given as such (a wall, any planar set of
 blocks) [-]. Its joints are renumbered to a small bandwidth (:func:`joint_order`), so a step
-costs what the bandwidth allows: a wall in running bond of 200 blocks and about 400 joints runs
-at rest in milliseconds per step and moving in tens (``benchmarks/rigid_block_wall.py``). An
+costs what the bandwidth allows, and where its contacts outnumber its blocks the contact
+problem is solved in the blocks' velocities (:func:`contact_unknowns`): a wall in running bond
+of 195 blocks and 546 joints runs 12 simulated seconds a minute under a 0.3 g pulse
+(``benchmarks/rigid_block_wall.py``; far slower where its joints start to slide at once). An
 arch's voussoirs stay limited to :data:`MAX_BLOCKS` (a chain that rocks as a mechanism: many
 joints change state at once)."""
 
@@ -157,6 +161,13 @@ rest, and its turning points last longer. For the arches of a few metres of the 
 PULSE_STEPS = 20
 """Fewest steps in the shortest piece of a pulse (the time scale of an analytic pulse, the
 shortest piece of a piecewise-constant one) [-]."""
+
+UNKNOWNS = ("auto", "impulses", "velocities")
+"""The unknowns of the contact problem's linear systems (:class:`BlockSettings`, ``unknowns``)."""
+
+BLOCK_SPACE_GAIN = 2.0
+"""Factor [-] by which the blocks' velocities must need fewer operations a factorisation than
+the impulses to be chosen (:func:`contact_unknowns`)."""
 
 PHASES = ("still", "pulse", "free", "window")
 """The phases of an analysis in which :func:`outcome_with_phases` counts the steps solved."""
@@ -235,6 +246,15 @@ class BlockSettings:
         rest (:func:`archquake.rigid_blocks.solver.steady_steps`). False takes every step: the
         same outcome, its times and maxima, the check of the skip
         (``benchmarks/rigid_block_savings.py`` times both).
+    unknowns : str
+        The unknowns of the linear systems of the contact problem (the same states, tests and
+        solution to the compliance's resolution): ``"impulses"``, two a contact, in a band of
+        ``W`` (:func:`~archquake.rigid_blocks.contact_problem.solve_active_set`), or
+        ``"velocities"``, three a block
+        (:func:`~archquake.rigid_blocks.block_space.solve_active_set_blocks`), cheaper where
+        contacts outnumber blocks in a wide band (walls, rings); ``"auto"`` (the default)
+        chooses the one of fewer operations (:func:`contact_unknowns`): arches and arches on
+        piers keep the impulses, bit for bit.
 
     Raises
     ------
@@ -285,15 +305,19 @@ class BlockSettings:
     coarse_factor: int = DEFAULT_COARSE_FACTOR
     active_set_solves: int = ACTIVE_SET_SOLVES
     skip_rest: bool = True
+    unknowns: str = "auto"
 
     def __post_init__(self):
         if not isinstance(self.skip_rest, bool | np.bool_):
             raise ValueError(f"skip_rest must be True or False, got {self.skip_rest!r}")
+        if self.unknowns not in UNKNOWNS:
+            raise ValueError(f"unknowns must be one of {', '.join(UNKNOWNS)}, "
+                             f"got {self.unknowns!r}")
         for f in fields(self):
             value = getattr(self, f.name)
             if f.name == "time_step" and value is None:  # chosen from the structure
                 continue
-            if f.name == "skip_rest":
+            if f.name in ("skip_rest", "unknowns"):
                 continue
             if isinstance(value, bool) or not isinstance(value, (int, float)):
                 raise ValueError(f"{f.name} must be a number, got {value!r}")
@@ -594,6 +618,37 @@ def joint_order(assembly: Assembly) -> np.ndarray:
         order.setflags(write=False)
         assembly._cache["joint_order"] = order
     return assembly._cache["joint_order"]
+
+
+def contact_unknowns(assembly: Assembly, unknowns: str = "auto",
+                     reorder: bool = True) -> tuple[np.ndarray, int]:
+    r"""The blocks' band of the contact problem in the blocks' velocities, ``(position, kb)``
+    (:func:`~archquake.rigid_blocks.block_space.block_band`), or an empty ``position`` to solve
+    it in the impulses (:class:`BlockSettings`, ``unknowns``).
+
+    ``"auto"`` counts the operations of a factorisation of each band (``n k^2``: ``2 nc``
+    impulses of half-bandwidth ``kl``, :func:`~archquake.rigid_blocks.contact_problem.incidence`,
+    against ``3 nb`` velocities of half-bandwidth ``kb``) and takes the velocities where they
+    are fewer by :data:`BLOCK_SPACE_GAIN` (the refinement of the impulses costs a solve or two
+    more). An arch, whose band in the impulses is :data:`~.band.ARCH_BANDWIDTH` wide, keeps
+    the impulses.
+    """
+    arrays = contact_arrays(assembly, reorder)
+    contact_bodies = arrays["contact_bodies"]
+    nb = assembly.n_blocks
+    none = (np.zeros(0, dtype=np.int64), 0)
+    if unknowns == "impulses":
+        return none
+    position, kb = block_band(contact_bodies, nb)
+    if unknowns == "velocities":
+        return position, kb
+    _, _, half = incidence(contact_bodies, nb)
+    kl = 2 * half + 1
+    if kl <= ARCH_BANDWIDTH:
+        return none
+    impulses = 2 * contact_bodies.shape[0] * kl**2
+    velocities = 3 * nb * kb**2
+    return (position, kb) if velocities * BLOCK_SPACE_GAIN < impulses else none
 
 
 def contact_arrays(assembly: Assembly, reorder: bool = True) -> dict[str, np.ndarray]:
@@ -938,7 +993,8 @@ def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None,
         coarse_factor=coarse, active_set_solves=settings.active_set_solves,
         skip_rest=1.0 if settings.skip_rest else 0.0)
     summary, records = solver.run(arrays["bodies"], arrays["contacts"], arrays["contact_bodies"],
-                                  q0, v0, int(kind), params, times, values, packed)
+                                  q0, v0, int(kind), params, times, values, packed,
+                                  contact_unknowns(assembly, settings.unknowns, reorder))
     s = dict(zip(solver.SUMMARY_FIELDS, summary.tolist(), strict=True))
     status = int(s["status"])
     decided = bool(s["decided"]) and s["unconverged_steps"] == 0
@@ -1098,6 +1154,7 @@ def simulate_blocks(structure, motion: GroundMotion | None,
 __all__ = ["CONTACT_STEP_FRACTION", "GROUND", "MAX_ASSEMBLY_BLOCKS", "MAX_BLOCKS",
            "OPEN_REST_PERIODS", "PULSE_STEPS", "REST_PERIODS", "SETTLE_PERIODS", "BlockHistory",
            "BlockOutcome", "BlockSettings", "block_outcome", "check_size", "check_time_step",
-           "contact_arrays", "joint_half_bandwidth", "joint_order", "observation_windows",
+           "contact_arrays", "contact_unknowns", "joint_half_bandwidth", "joint_order",
+           "observation_windows",
            "resolved_settings", "simulate_blocks", "structure_time_step", "study_time_step",
            "time_step_for"]

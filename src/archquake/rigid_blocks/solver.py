@@ -189,6 +189,7 @@ import numba
 import numpy as np
 
 from ..ground_motion import HARMONIC, STEP, analytic_duration, evaluate
+from .block_space import solve_active_set_blocks
 from .contact_problem import (
     SWITCH_VELOCITY,
     incidence,
@@ -636,9 +637,9 @@ def steady_steps(step, h, ag, kind, params, times, values, settings, rest_count,
 # The driver
 # ---------------------------------------------------------------------------------------------
 
-
 @numba.njit(cache=True)
-def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, settings):
+def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, settings,
+        blocks_band):
     r"""Integrate the blocks from ``(q0, v0)`` under the ground motion; decide the outcome.
 
     One loop of the driver is one step, in the phases of the module docstring ("The driver").
@@ -675,6 +676,12 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     kind, params, times, values
         The compiled ground motion (``GroundMotion.compiled()``; accelerations [m/s^2], times
         [s]).
+    blocks_band : tuple
+        ``(position, kb)``: to solve the contact problems in the blocks' velocities
+        (:func:`~.block_space.solve_active_set_blocks`), the blocks' positions in the band and
+        its half-bandwidth (:func:`~.block_space.block_band`); an empty ``position`` solves them
+        in the impulses (:func:`~.contact_problem.solve_active_set`). Either way a step where
+        the active-set method gives up is solved by Lemke's algorithm.
     settings : array
         The settings vector (:data:`SETTINGS_FIELDS`, :func:`pack_settings`). With
         ``record_stride > 0``, the first state at or after every ``record_stride``-th step
@@ -712,6 +719,7 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     coarse = max(1, int(settings[S_COARSE_FACTOR]))
     active_set_solves = int(settings[S_ACTIVE_SET_SOLVES])
     skip_rest = settings[S_SKIP_REST] != 0.0
+    in_blocks = blocks_band[0].size > 0
     mean_mass = bodies[:, BODY_MASS].mean()
     inv_mass = np.empty((nb, 4))  # 1/m, 1/I, their square roots
     for i in range(nb):
@@ -824,12 +832,20 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
             _active_set(gap, valid, v_old, contact_bodies, contacts, jac, theta, hs, carried,
                         active)
             # -------- 8. the contact problem
-            sweeps, converged = solve_active_set(v, inv_mass, contact_bodies, jac, active,
-                                                 impulse, state, mu, p_tol, u_tol, problem,
-                                                 active_set_solves)
+            if in_blocks:
+                sweeps, converged = solve_active_set_blocks(
+                    v, inv_mass, contact_bodies, jac, active, impulse, state, mu, p_tol, u_tol,
+                    blocks_band[0], blocks_band[1], active_set_solves)
+            else:
+                sweeps, converged = solve_active_set(v, inv_mass, contact_bodies, jac, active,
+                                                     impulse, state, mu, p_tol, u_tol, problem,
+                                                     active_set_solves)
             direct = converged
             if not converged and m == 1:  # fall back to Lemke's algorithm
                 fallbacks += 0 if decided else 1
+                if in_blocks:  # the assembled problem that Lemke's algorithm reads
+                    solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse, state,
+                                     mu, p_tol, u_tol, problem, 0)
                 pivots, converged = solve_lemke(v, inv_mass, contact_bodies, jac, active,
                                                 impulse, state, mu, p_tol, u_tol, problem)
                 sweeps += pivots
