@@ -93,7 +93,7 @@ def _lu_substitute(ab, b, n, kl):
         b[k] = x * ab[k, kl]
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True)
 def _rows(jac, c, state, mu, srow, grow, u):
     """Write the rows held (``srow``) and the impulses' directions (``grow``; 12 entries: body
     a, body b) of the unknowns of contact ``c`` in its ``state`` from row ``u`` on; returns
