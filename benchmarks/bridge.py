@@ -11,19 +11,22 @@ middle piers 2 m wide, 4 m high, of three courses: 63 blocks. Fill 0.5 m over th
 
 - limit analysis: ``assembly_limit`` in both directions (associative), median of the repeats;
 - rigid blocks: ``simulate_blocks`` under a sine pulse of 0.03 g and 0.5 s for the first
-  ``--window`` seconds (per-step cost, JIT excluded), median of the repeats; with ``--full``,
+  ``--window`` seconds (per-step cost, JIT excluded), median of the repeats, and the filled
+  bridge with its contact problems in the blocks' velocities against the impulses
+  (``BlockSettings.unknowns``); with ``--full``,
   also one whole pulse analysis (``block_outcome``, to its decided outcome) of the filled bridge.
 
 The fill adds no unknowns to either model (it rides on its blocks), so the ratios measure that
 it costs nothing; the absolute figures are those of the user guide's page "Bridges".
 
-Measured (2 shared cores, ``--repeats 3``): limit analysis 0.026 s filled, 0.029 s bare (ratio
-0.91; k = 0.0583 and 0.0499); rigid blocks 134 ms a step filled, 16.5 ms bare (ratio 8.1, 61
-steps). A second run with ``--full``, the machine busier: 0.027 s and 0.032 s (0.82), 399 and
-48.6 ms a step (8.2), and the whole pulse analysis of the filled bridge, 720 steps to the
-decision of rest, 203 s. The limit analysis is well within 0.2 s; the rigid blocks are far
-from 1 s, and the fill makes every step's contact problem about eight times dearer (heavier
-blocks on the same contacts: the cost is the contact solver's, not the geometry's).
+Measured (2 shared cores, ``--repeats 1``): limit analysis 0.075 s filled, 0.067 s bare (ratio
+1.12; k = 0.0583 and 0.0499); rigid blocks 98.7 ms a step filled, 28.9 ms bare (ratio 3.4, 61
+steps); the filled bridge's contact problems in the blocks' velocities (its default) 107 ms a
+step with 7 steps solved by Lemke's algorithm, in the impulses 185 ms and 14 (ratio 1.72). The
+whole pulse analysis of the filled bridge (``--full``): rest after 720 steps, 81 s (203 s before
+the velocities; 384 of its steps by Lemke's algorithm, where the active-set method cycles). The
+limit analysis is well within 0.2 s; the rigid blocks are far from 1 s: the steps that fall
+back to Lemke's dense tableau dominate.
 """
 
 from __future__ import annotations
@@ -41,7 +44,12 @@ from archquake.geometry import GRAVITY, Fill, Pier, multi_ring  # noqa: E402
 from archquake.geometry.bridge import multi_span  # noqa: E402
 from archquake.ground_motion import sine_pulse  # noqa: E402
 from archquake.limit_analysis import assembly_limit  # noqa: E402
-from archquake.rigid_blocks import block_outcome, from_block_assembly, simulate_blocks  # noqa: E402
+from archquake.rigid_blocks import (  # noqa: E402
+    BlockSettings,
+    block_outcome,
+    from_block_assembly,
+    simulate_blocks,
+)
 
 
 def bridge(fill: bool):
@@ -93,6 +101,18 @@ def main(argv=None) -> int:
     print(f"rigid blocks, {args.window:g} s of the pulse ({steps['filled']} steps): filled "
           f"{1e3 * r['filled']:.1f} ms/step, bare {1e3 * r['bare']:.1f} ms/step; ratio "
           f"{r['filled'] / r['bare']:.2f}")
+    impulses = BlockSettings(unknowns="impulses")
+    runs = {}
+    for _ in range(args.repeats):  # the filled bridge's contact problems in either unknowns
+        for name, settings in (("velocities", None), ("impulses", impulses)):
+            dt, h = timed(lambda s=settings: simulate_blocks(
+                blocks["filled"], pulse, s, t_end=args.window, record_every=10**6))
+            runs.setdefault(name, []).append((dt / h.outcome.steps, h.outcome.fallback_steps))
+    cost = {name: statistics.median(x for x, _ in v) for name, v in runs.items()}
+    print(f"filled, the contact problems in the blocks' velocities (the default here) "
+          f"{1e3 * cost['velocities']:.1f} ms/step, {runs['velocities'][0][1]} steps by "
+          f"Lemke's algorithm; in the impulses {1e3 * cost['impulses']:.1f} ms/step, "
+          f"{runs['impulses'][0][1]}; ratio {cost['impulses'] / cost['velocities']:.2f}")
     if args.full:
         dt, outcome = timed(lambda: block_outcome(blocks["filled"], pulse))
         print(f"whole pulse analysis of the filled bridge: {outcome.status.label} after "

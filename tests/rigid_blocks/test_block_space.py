@@ -2,12 +2,15 @@
 (:mod:`archquake.rigid_blocks.block_space`) against a dense solve of the impulses' system and a
 block at rest, whose impulses carry its weight."""
 
+import math
+
 import numpy as np
 import pytest
 
 from archquake import oppenheim
-from archquake.geometry import GRAVITY
+from archquake.geometry import GRAVITY, Fill, Pier, multi_ring
 from archquake.geometry.assembly import wall as geometry_wall
+from archquake.geometry.bridge import multi_span
 from archquake.ground_motion import sine_pulse
 from archquake.rigid_blocks import (
     BlockSettings,
@@ -16,14 +19,19 @@ from archquake.rigid_blocks import (
     rectangular_block,
     simulate_blocks,
 )
-from archquake.rigid_blocks.block_space import block_band, solve_active_set_blocks, solve_states
+from archquake.rigid_blocks.block_space import (
+    AUGMENTED_SOLVES,
+    block_band,
+    solve_active_set_blocks,
+    solve_states,
+)
 from archquake.rigid_blocks.contact_problem import (
     REGULARISATION,
     SWITCH_VELOCITY,
     incidence,
     solve_active_set,
 )
-from archquake.rigid_blocks.contacts import contact_geometry
+from archquake.rigid_blocks.contacts import contact_geometry, relative_velocity
 from archquake.rigid_blocks.dynamics import contact_arrays, contact_unknowns
 
 
@@ -199,7 +207,9 @@ def test_a_wall_moves_alike_in_either_unknowns_and_an_arch_keeps_the_impulses():
             for unknowns in ("impulses", "velocities")]
     a, b = runs
     assert a.outcome.steps == b.outcome.steps
-    assert a.outcome.fallback_steps == b.outcome.fallback_steps
+    # where the switching tests cycle (2 steps here) the augmented states settle them (in the
+    # velocities); in the impulses Lemke's algorithm solves them
+    assert a.outcome.fallback_steps == 2 and b.outcome.fallback_steps == 0
     moved = np.abs(a.displacements[-1]).max()
     assert moved > 1e-4  # it moved
     assert np.abs(a.displacements - b.displacements).max() < 1e-9 * moved
@@ -211,3 +221,44 @@ def test_a_wall_moves_alike_in_either_unknowns_and_an_arch_keeps_the_impulses():
 def test_the_unknowns_are_named():
     with pytest.raises(ValueError, match="unknowns must be one of auto, impulses, velocities"):
         BlockSettings(unknowns="blocks")
+
+
+def test_where_the_switching_tests_cycle_the_augmented_states_end_on_coulombs_law():
+    """The first step of a three-span bridge of two staggered rings under fill, at rest (the
+    benchmark's, ``benchmarks/bridge.py``): the switching tests cycle through the first phase's
+    60 solves, and the second phase (the augmented Lagrangian's states) ends on states that
+    the tests accept; its impulses and velocities obey the contact law contact by contact:
+    no pull, friction inside its cone, an open contact not closing, a sticking one still to
+    the compliance, a sliding one moving against its friction."""
+    ring = multi_ring(5.0, math.pi, 0.6, rings=2, voussoirs=8, bond="staggered",
+                      arc_error=0.5, ring_friction=0.6)
+    bridge = from_block_assembly(multi_span(ring, 3, end_piers=(Pier(1.5, 4.0, 3),) * 2,
+                                            middle_pier=Pier(2.0, 4.0, 3),
+                                            fill=Fill(0.5, 1800.0)))
+    h = 1e-3
+    p = problem(bridge, h=h)
+    cb, nb, jac = p["cb"], p["nb"], p["jac"]
+    nc = cb.shape[0]
+    mu = contact_arrays(bridge)["contacts"][:, -1].copy()
+    mu[np.isnan(mu)] = 0.6
+    inv_mass = np.column_stack([p["inv_mass"], np.sqrt(p["inv_mass"])])
+    position, kb = block_band(cb, nb)
+    p_tol = 1e-12 * p["bodies"][:, 0].mean() * GRAVITY * h
+    u_tol = SWITCH_VELOCITY * GRAVITY * h
+    v, impulse = p["v_free"].copy(), np.zeros((nc, 2))
+    state = -np.ones(nc, dtype=np.int64)
+    solves, converged = solve_active_set_blocks(v, inv_mass, cb, jac, np.ones(nc, bool),
+                                                impulse, state, mu, p_tol, u_tol, position,
+                                                kb, 60)
+    assert converged and 60 < solves <= 60 + AUGMENTED_SOLVES
+    u = np.array([relative_velocity(v, cb[c, 0], cb[c, 1], jac, c) for c in range(nc)])
+    pn, pt = impulse[:, 0], impulse[:, 1]
+    scale = p["bodies"][:, 0].max() * GRAVITY * h
+    assert np.all(pn >= -p_tol)
+    assert np.all(np.abs(pt) <= mu * pn + p_tol)
+    assert np.all(u[state == 0, 0] >= -u_tol)
+    held = state == 1
+    assert np.abs(u[held]).max() < 1e-6 * GRAVITY * h  # the compliance's velocities
+    sliding = state >= 2
+    assert np.all(np.sign(pt[sliding]) * u[sliding, 1] <= u_tol)
+    assert np.all(np.isin(state, (0, 1, 2, 3))) and impulse[:, 0].max() > scale * 1e-3
