@@ -375,7 +375,7 @@ def solve_active_set_blocks(v, inv_mass, contact_bodies, jac, active, impulse, s
             impulse[:] = p
             return solves, True
         if augmented and not changed:  # a fixed point of the augmented states that the
-            return solves, False       # tests contradict (not observed)
+            return solves, False       # tests contradict: Lemke's algorithm decides
         if not augmented and solves >= max_solves:  # the second phase, from the first
             augmented = True                         # states
             state[:] = initial
