@@ -209,6 +209,7 @@ def solve_states(v_free, inv_mass, contact_bodies, jac, state, mu, compliance, p
     berr = np.inf
     refinements = -1
     y = np.zeros((nb, 3))
+    ya = np.zeros((nb, 3))
     dv = np.zeros(n)
     while True:
         # the Woodbury solve of the right-hand side rhs: p += R^-1 (rhs - H_s K^-1 H_g^T R^-1 rhs)
@@ -233,7 +234,7 @@ def solve_states(v_free, inv_mass, contact_bodies, jac, state, mu, compliance, p
         refinements += 1
         # the residual of the impulses' system and its backward error
         y[:] = 0.0
-        ya = np.zeros((nb, 3))
+        ya[:] = 0.0
         for e in range(count):
             c = owner[e]
             for side in range(2):

@@ -631,21 +631,28 @@ def contact_unknowns(assembly: Assembly, unknowns: str = "auto",
     against ``3 nb`` velocities of half-bandwidth ``kb``) and takes the velocities where they
     are fewer by :data:`BLOCK_SPACE_GAIN` (the refinement of the impulses costs a solve or two
     more). An arch, whose band in the impulses is :data:`~.band.ARCH_BANDWIDTH` wide, keeps
-    the impulses.
+    the impulses. Computed once and cached on the assembly.
     """
-    arrays = contact_arrays(assembly, reorder)
-    contact_bodies = arrays["contact_bodies"]
+    key = ("contact_unknowns", unknowns, reorder)
+    if key not in assembly._cache:
+        assembly._cache[key] = _contact_unknowns(assembly, unknowns, reorder)
+    return assembly._cache[key]
+
+
+def _contact_unknowns(assembly: Assembly, unknowns: str, reorder: bool):
+    """:func:`contact_unknowns`, computed (it caches it on the assembly)."""
+    contact_bodies = contact_arrays(assembly, reorder)["contact_bodies"]
     nb = assembly.n_blocks
     none = (np.zeros(0, dtype=np.int64), 0)
     if unknowns == "impulses":
         return none
-    position, kb = block_band(contact_bodies, nb)
     if unknowns == "velocities":
-        return position, kb
+        return block_band(contact_bodies, nb)
     _, _, half = incidence(contact_bodies, nb)
     kl = 2 * half + 1
     if kl <= ARCH_BANDWIDTH:
         return none
+    position, kb = block_band(contact_bodies, nb)
     impulses = 2 * contact_bodies.shape[0] * kl**2
     velocities = 3 * nb * kb**2
     return (position, kb) if velocities * BLOCK_SPACE_GAIN < impulses else none
