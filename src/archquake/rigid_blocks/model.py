@@ -94,7 +94,10 @@ class RigidBlockModel:
     def load_multipliers(self) -> tuple[float, float]:
         """``(k_l, k_r)``: the limit analysis' load multipliers of the structure [-] (the
         accelerations, in g, at which it starts to move toward +x and -x; the rigid-block
-        model starts to move there too, within its friction)."""
+        model starts to move there too, within its friction): Heyman's for an arch, and for
+        a block assembly (several spans, rings, a drawing) the static program of
+        :func:`archquake.limit_analysis.assembly_limit` with its interfaces' own friction
+        (those without any do not slide)."""
         cache = self._cache
         if "load_multipliers" not in cache:
             from ..limit_analysis import load_multipliers
@@ -102,7 +105,15 @@ class RigidBlockModel:
             if isinstance(self.structure, Assembly):
                 raise ValueError("the load multipliers need an arch (a BlockArch), not an "
                                  "Assembly")
-            cache["load_multipliers"] = tuple(float(k) for k in load_multipliers(self.structure))
+            if hasattr(self.structure, "interfaces"):  # a BlockAssembly: its own friction
+                from ..limit_analysis import assembly_limit
+
+                cache["load_multipliers"] = tuple(
+                    float(assembly_limit(self.structure, d).load_multiplier)
+                    for d in ("+x", "-x"))
+            else:
+                cache["load_multipliers"] = tuple(float(k) for k in
+                                                  load_multipliers(self.structure))
         return cache["load_multipliers"]
 
     def check_motion(self, motion) -> float:

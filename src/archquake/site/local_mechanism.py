@@ -279,10 +279,31 @@ def participation(result, confidence_factor: float = 1.0) -> Participation:
     """
     from ..limit_analysis import virtual_displacements
 
+    if hasattr(result, "contacts"):  # the mechanism of a block assembly
+        return _assembly_participation(result, confidence_factor)
     loads = result.arch.loads
     return participation_of(result.load_multiplier, loads.vertical, loads.horizontal,
                             virtual_displacements(result), result.direction,
                             confidence_factor)
+
+
+def _assembly_participation(result, confidence_factor: float) -> Participation:
+    r"""The equivalent oscillator of the mechanism of an
+    :class:`~archquake.limit_analysis.AssemblyLimit` (several spans, rings, a drawing): the
+    horizontal virtual displacement of block :math:`j`'s load is that of its velocity at the
+    height :math:`b_j` of its horizontal load, :math:`u_j - \omega_j (b_j - y_0)` (a rigid
+    body's horizontal velocity does not depend on the abscissa); the blocks that do not move
+    (:func:`archquake.geometry.bridge.moving_blocks`) have none."""
+    from ..geometry.bridge import moving_blocks
+
+    c = result.contacts
+    points = np.column_stack((c.vertical_x, c.horizontal_y))
+    dx = np.zeros(c.n_blocks)
+    for j in moving_blocks(result):
+        # a moving block whose load point moves only vertically still counts in the weights
+        dx[j] = float(result.velocity_at(j, points[j:j + 1])[0, 0]) or 1e-300
+    return participation_of(result.load_multiplier, c.vertical, c.horizontal, dx,
+                            result.direction, confidence_factor)
 
 
 # ------------------------------------------------------------------------------ capacity curve
@@ -839,6 +860,29 @@ def _spectrum_dict(spectrum) -> Any:
     return to_dict() if callable(to_dict) else str(spectrum)
 
 
+def assembly_directions(structure, friction=None) -> tuple:
+    """The governing collapse of a block assembly toward +x and -x: the non-associative law
+    where an interface can slide (the physical one), else Heyman's
+    (:func:`archquake.limit_analysis.assembly_limits`).
+
+    Parameters
+    ----------
+    structure : BlockAssembly
+    friction : None, float or dict, optional
+        Coulomb coefficient of the interfaces over their own [-]
+        (:meth:`~archquake.limit_analysis.assembly.Contacts.with_friction`).
+
+    Returns
+    -------
+    (AssemblyLimit, AssemblyLimit)
+    """
+    from ..limit_analysis import assembly_limits
+
+    results = assembly_limits(structure, friction=friction)
+    return tuple(max(laws.values(), key=lambda r: r.law == "non-associative")
+                 for laws in results.values())
+
+
 def check_local_mechanism(structure: BlockArch, actions, *, confidence_factor: float = 1.0,
                           behaviour_factor: float = BEHAVIOUR_FACTOR, limit=None,
                           points: int = 201, elevation: Elevation | None = None
@@ -848,8 +892,10 @@ def check_local_mechanism(structure: BlockArch, actions, *, confidence_factor: f
 
     Parameters
     ----------
-    structure : BlockArch
-        Any arch or structure of :mod:`archquake.geometry`.
+    structure : BlockArch or BlockAssembly
+        Any arch or structure of :mod:`archquake.geometry`; or a block assembly (several
+        spans, rings, a drawing), whose mechanism has the linear check only (its note says
+        why).
     actions : SiteAction or iterable of SiteAction
         The site's action at SLV and/or SLC; the linear check needs SLV.
     confidence_factor : float
@@ -857,7 +903,8 @@ def check_local_mechanism(structure: BlockArch, actions, *, confidence_factor: f
     behaviour_factor : float
         :math:`q` of the linear check (default 2.0).
     limit : pair of LimitAnalysis, optional
-        :func:`archquake.limit_analysis.both_directions` of the structure, if at hand.
+        :func:`archquake.limit_analysis.both_directions` of the structure, if at hand (of an
+        assembly: a pair of AssemblyLimit, default :func:`assembly_directions`).
     points : int
         Points of each capacity curve.
     elevation : Elevation, optional
@@ -886,8 +933,9 @@ def check_local_mechanism(structure: BlockArch, actions, *, confidence_factor: f
     behaviour_factor = float(behaviour_factor)
     if not math.isfinite(behaviour_factor) or behaviour_factor < 1.0:
         raise ValueError(f"behaviour_factor must be >= 1, got {behaviour_factor}")
+    assembly = hasattr(structure, "interfaces")
     if limit is None:
-        limit = both_directions(structure)
+        limit = assembly_directions(structure) if assembly else both_directions(structure)
     parts = tuple(participation(r, confidence_factor) for r in limit)
     notes = []
     linear = []
@@ -908,6 +956,11 @@ def check_local_mechanism(structure: BlockArch, actions, *, confidence_factor: f
     curves: tuple[CapacityCurve, ...] = ()
     nonlinear = []
     try:
+        if assembly:
+            raise ValueError("the collapse mechanism of a block assembly is not traced in its "
+                             "displaced configuration (its capacity curve needs the "
+                             "kinematics of a four-link chain); the linear check stands by "
+                             "itself, and the rigid-block model is the dynamic check")
         mechs = mechanisms(structure, limit)
     except ValueError as exc:  # a two-block mechanism, or fill that is no mass
         notes.append(f"the nonlinear check was not made: {exc}")

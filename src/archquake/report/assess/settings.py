@@ -64,13 +64,23 @@ def arch_extent(structure) -> float:
 
     Parameters
     ----------
-    structure : BlockArch
-        An arch or a :class:`~archquake.geometry.Structure`.
+    structure : BlockArch or BlockAssembly
+        An arch or a :class:`~archquake.geometry.Structure`; or a block assembly: of several
+        spans (:func:`~archquake.geometry.bridge.multi_span`), the first span's voussoirs; else
+        its voussoirs (an arch of several rings), else all its blocks.
 
     Returns
     -------
     float
     """
+    if not hasattr(structure, "n_voussoirs") and hasattr(structure, "polygons"):
+        pairs = list(zip(structure.polygons, structure.names or ("",) * structure.n_blocks,
+                         strict=True))
+        chosen = ([p for p, name in pairs if name.startswith("span 1 ")]
+                  or [p for p, name in pairs if "voussoir" in name]
+                  or [p for p, _ in pairs])
+        return float(np.ptp(np.concatenate([np.asarray(p, dtype=float)[:, 0]
+                                            for p in chosen])))
     arch = getattr(structure, "arch", structure)
     xs = np.concatenate([arch.outline(i, 8)[:, 0] for i in range(arch.n_voussoirs)])
     return float(np.ptp(xs))
