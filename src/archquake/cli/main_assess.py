@@ -64,6 +64,11 @@ def run(args: argparse.Namespace) -> int:
     """Assess the structure of the options into ``--out``."""
     from ..report.assess import AssessmentSettings, assess
 
+    if _assembly_options(args):
+        with options.naming_options():
+            structure = options.structure_spec(args, draw=False, spans=True).nominal()
+        if hasattr(structure, "interfaces"):
+            return _assembly(args, structure)
     structure = options.nominal_arch_from_args(args)
     changes = {"epsilon": args.epsilon, "seed": args.seed, "restitution": args.restitution,
                "friction": args.friction, "sa_period": args.sa_period}
@@ -95,4 +100,43 @@ def run(args: argparse.Namespace) -> int:
           f"results.json, {figures} figure{'s' if figures != 1 else ''}"
           + (f", {nrml} NRML file{'s' if nrml != 1 else ''}" if nrml else "")
           + f") in {total:.1f} s")
+    return 0
+
+
+def _assembly_options(args: argparse.Namespace) -> bool:
+    """Whether the options describe a block assembly: several spans, rings, or a --geometry
+    file (which may hold one)."""
+    return bool(getattr(args, "rings", None) or (getattr(args, "spans", None) or 1) > 1
+                or getattr(args, "geometry", None))
+
+
+def _assembly(args: argparse.Namespace, structure) -> int:
+    """``assess`` of a block assembly (:mod:`archquake.report.assess.assembly`)."""
+    from ..defaults import DEFAULT_EPSILON
+    from ..report.assess import AssessmentSettings, assess
+
+    refused = options.given(args, "records", "suite", "sa_period")
+    if args.epsilon != DEFAULT_EPSILON:  # the sample's default is no request
+        refused.append("--epsilon")
+    if refused:
+        raise ValueError(f"{', '.join(refused)}: the assessment of a block assembly (several "
+                         "spans, rings, a drawing) runs no irregular or record study")
+    settings = (AssessmentSettings.quick_settings if args.quick else AssessmentSettings)(
+        friction=args.friction)
+    site = None
+    if args.site is not None or args.code is not None:
+        site = options.site_spec(args)
+    command = None
+    if getattr(args, "argv", None) is not None:
+        command = shlex.join(["archquake", *args.argv])
+    result = assess(structure, out_dir=args.out, progress=not args.no_progress,
+                    resume=args.resume, settings=settings, command=command, site=site)
+    print(result.verdict)
+    if result.results.get("site"):
+        from ..report.assess.site import verdict_text
+
+        print(verdict_text(result.results["site"]))
+    print(f"report written to {result.directory / 'report.html'} (also report.md, "
+          f"results.json, {len(result.files) - 3} figure) in "
+          f"{result.results['timings']['total']:.1f} s")
     return 0

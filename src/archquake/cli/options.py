@@ -328,10 +328,11 @@ def add_structure_options(parser: argparse.ArgumentParser) -> None:
 def add_ring_options(parser: argparse.ArgumentParser) -> None:
     """``--rings``, ``--ring-bond`` and ``--ring-friction``: the circular arch of the shape
     options cut into rings that can separate (:func:`archquake.geometry.multi_ring`); only
-    ``limit`` analyses one (:func:`refuse_rings`)."""
+    ``limit``, ``rigid-blocks`` and ``assess`` analyse one (:func:`refuse_rings`)."""
     from ..defaults import RING_BONDS
 
-    group = parser.add_argument_group("rings (limit only; default: one ring, the arch)")
+    group = parser.add_argument_group("rings (limit, rigid-blocks and assess; default: one "
+                                      "ring, the arch)")
     group.add_argument("--rings", type=int, metavar="N",
                        help="cut the arch of the shape options (not a pointed one) into N "
                             "concentric rings of equal thickness that can separate (a "
@@ -350,12 +351,13 @@ def add_ring_options(parser: argparse.ArgumentParser) -> None:
 
 def refuse_rings(args: argparse.Namespace) -> None:
     """Refuse ``--rings`` (and its options) naming them: an arch of several rings is a block
-    assembly, which only ``limit`` analyses."""
+    assembly, which only ``limit``, ``rigid-blocks`` and ``assess`` analyse."""
     present = given(args, "rings", "ring_bond", "ring_friction") if hasattr(args, "rings") \
         else []
     if present:
         raise ValueError(f"{', '.join(present)}: an arch of several rings is a block assembly, "
-                         "which limit analyses; this command does not")
+                         "which limit, rigid-blocks and assess analyse; this command does "
+                         "not")
 
 
 def shape_spec(args: argparse.Namespace):
@@ -368,7 +370,7 @@ def shape_spec(args: argparse.Namespace):
         return StructureSpec(**{k: v for k, v in values.items() if v is not None})
 
 
-SPANS_COMMANDS = ("limit",)
+SPANS_COMMANDS = ("limit", "rigid-blocks", "assess")
 """The commands that take several spans (``--spans`` of 2 or more)."""
 
 
@@ -399,7 +401,8 @@ def structure_spec(args: argparse.Namespace, *, draw: bool = True, spans: bool =
     names += SPAN_FIELDS
     if not spans and getattr(args, "spans", None) not in (None, 1):
         raise ValueError(f"--spans {args.spans} builds several arches on shared piers: "
-                         f"{SPANS_COMMANDS[0]} analyses them, this command does not (yet)")
+                         f"{', '.join(SPANS_COMMANDS[:-1])} and {SPANS_COMMANDS[-1]} analyse "
+                         "them, this command does not")
     if draw:
         names += ("epsilon", "seed")
     values = {name: getattr(args, name, None) for name in names}

@@ -127,6 +127,10 @@ class Assessment:
         """The verdict in words (the report's first paragraph), after the warning on the
         undecided rigid-block analyses when there are too many
         (:func:`~archquake.report.assess.text.undecided_warning_text`)."""
+        if "left_out" in self.results:  # a block assembly's assessment
+            from .assembly import verdict_text
+
+            return verdict_text(self.results)
         warning = text.undecided_warning_text(self.results)
         return text.verdict_text(self.results) if warning is None else (
             f"{warning}\n{text.verdict_text(self.results)}")
@@ -367,9 +371,12 @@ def assess(structure=None, *, records=None, suite: str | None = None,
 
     Parameters
     ----------
-    structure : BlockArch, optional
+    structure : BlockArch or BlockAssembly, optional
         An arch (circular, shaped, surveyed) or a :class:`~archquake.geometry.Structure` (on
-        piers, under fill); default Oppenheim's arch (:func:`archquake.oppenheim`).
+        piers, under fill); default Oppenheim's arch (:func:`archquake.oppenheim`). A block
+        assembly (several spans, an arch of several rings, a drawing) has the assessment of
+        :mod:`archquake.report.assess.assembly` (its limit analysis, the rigid-block model's
+        check of it and the code's linear check at a site).
     records : str, Path, sequence of them, or RecordSuite, optional
         Record files and folders of the record-based fragility (PEER .AT2, CSV in g, ESM .ASC).
     suite : str, optional
@@ -428,9 +435,10 @@ def assess(structure=None, *, records=None, suite: str | None = None,
     if not isinstance(out_dir, str | os.PathLike) or not str(out_dir).strip():
         raise ValueError(f"out_dir must name a directory (str or os.PathLike), got {out_dir!r}")
     structure = oppenheim() if structure is None else structure
-    if not isinstance(structure, BlockArch):
-        raise ValueError(f"structure must be an arch or a Structure (archquake.geometry), got "
-                         f"{type(structure).__name__}")
+    assembly = hasattr(structure, "interfaces") and hasattr(structure, "polygons")
+    if not (isinstance(structure, BlockArch) or assembly):
+        raise ValueError(f"structure must be an arch, a Structure or a block assembly "
+                         f"(archquake.geometry), got {type(structure).__name__}")
     if settings is None:
         options = {"epsilon": AssessmentSettings().epsilon if epsilon is None else epsilon,
                    "sa_period": sa_period}
@@ -438,6 +446,18 @@ def assess(structure=None, *, records=None, suite: str | None = None,
                     else AssessmentSettings(**options))
     elif epsilon is not None or sa_period is not None or quick:
         raise ValueError("give epsilon, sa_period and quick in settings, or settings not at all")
+    if assembly:  # several spans, rings, a drawing: the limit analysis and the rigid blocks
+        from ...site.spec import SiteSpec
+        from .assembly import assess_assembly
+
+        if records is not None or suite is not None:
+            raise ValueError("records and suite: the assessment of a block assembly runs no "
+                             "record study (archquake.report.assess.assembly.LEFT_OUT)")
+        if site is not None and not isinstance(site, SiteSpec):
+            raise ValueError(f"site must be a SiteSpec (archquake.site.spec), got "
+                             f"{type(site).__name__}")
+        return assess_assembly(structure, settings=settings, out_dir=out_dir,
+                               progress=progress, resume=resume, command=command, site=site)
     check_before_writing(structure, settings)
     out = Path(out_dir)
     timings: dict[str, float] = {}

@@ -168,7 +168,7 @@ def verdict_text(site: dict) -> str:
 def check_rows(site: dict) -> list[list[str]]:
     """One row per check: limit state, route, direction, capacity, demand, ratio, verdict,
     a_g at which it holds."""
-    names = {"l": "Mech-l", "r": "Mech-r"}
+    names = {"l": "Mech-l", "r": "Mech-r", "+x": "toward +x", "-x": "toward -x"}
     rows = []
     check = site["check"]
     for c in check["linear"]:

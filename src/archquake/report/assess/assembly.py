@@ -1,0 +1,471 @@
+"""The assessment of a block assembly: several spans on shared piers, an arch of several rings,
+a drawing (``archquake assess --spans N`` or ``--rings N``; :func:`assess_assembly`).
+
+What the assessment of one chain of voussoirs does (:mod:`archquake.report.assess.assessment`)
+rests on the four-link model of that chain and on thousands of analyses; an assembly has
+neither: its collapse may be a mechanism of one span among several, or rings that separate or
+slide, and the rigid-block model is its only dynamic model. Its report therefore holds:
+
+1. the limit analysis both ways, with the friction the rigid-block model gives its joints (the
+   interfaces' own, else the assessment's ``friction``) under both friction laws, the
+   non-associative one governing, and Heyman's (nothing slides) beside it; which span and which
+   ring moves first, and how (interfaces that rock, slide, rings that open or slide), on the
+   first screen and in the figure (:func:`archquake.plotting.plot_assembly_limit`);
+2. the rigid-block model's check of that collapse multiplier: a horizontal acceleration
+   :data:`ACTIVATION_MARGIN` below it (held for :data:`ACTIVATION_DURATION` times the time
+   scale of the structure) must leave the blocks at rest, one as far above it must set them
+   moving (the measure: the largest joint opening or slip, against
+   :data:`ACTIVATION_THRESHOLD` of the thickness);
+3. at a site (``site``), the code check of the mechanism by the linear route of Circolare 2019
+   §C8.7.1.2.1 (:func:`archquake.site.local_mechanism.check_local_mechanism`, whose
+   participating mass comes from the assembly's collapse velocities);
+
+and says what it leaves out and why: the failure domain and fragility under pulses and
+records, the irregular draws and the code's dynamic route and risk (each needs hundreds of
+rigid-block analyses, a minute or more each on these structures: the number measured is in
+the report).
+"""
+
+from __future__ import annotations
+
+import math
+import shlex
+import time
+from pathlib import Path
+
+import numpy as np
+
+from ..._version import __version__
+from ...constants import GRAVITY
+from ..render import Bullets, Document, Paragraph, Section, Table, environment, jsonable
+
+ACTIVATION_MARGIN = 0.1
+"""The rigid-block check loads the structure at (1 -/+ this) times its collapse multiplier
+[-]."""
+
+ACTIVATION_DURATION = 0.3
+"""How long each load of the check is held, times the structure's time scale
+(:func:`~archquake.report.assess.settings.time_scale`; 0.3 s for Oppenheim's arch) [s]."""
+
+ACTIVATION_THRESHOLD = 1e-3
+"""The blocks move when a joint opens or slips by more than this fraction of the thickness
+[-] (rigid blocks below their collapse multiplier move by round-off only)."""
+
+LEFT_OUT = (
+    "the four-link model: the structure is not one chain of voussoirs between two springings, "
+    "so its mechanism is not a four-hinge mechanism of one chain; the rigid-block model is its "
+    "dynamic model",
+    "the failure domain and the fragility under pulses and records, and the irregular "
+    "structures: each needs hundreds of rigid-block analyses; run one with archquake "
+    "rigid-blocks and the same structure options (--amplitude/--duration for a pulse, --record "
+    "FILE for a record)",
+    "at a site, the nonlinear route of the code check, its dynamic route and the annual risk "
+    "(the capacity curve needs a four-link chain; the other two, the rigid-block analyses "
+    "above)",
+)
+"""What the assessment of an assembly does not do, and why (the report lists it)."""
+
+
+def _friction(structure, friction: float):
+    """The interfaces' Coulomb coefficients as the rigid-block model sees them: their own, else
+    ``friction``."""
+    from ...limit_analysis.assembly import contacts_of
+
+    contacts = contacts_of(structure)
+    own = np.asarray(contacts.friction, dtype=float)
+    return contacts.with_friction(np.where(np.isfinite(own), own, friction))
+
+
+def _names(structure, blocks) -> dict:
+    """The spans and rings of ``blocks`` (block indices)."""
+    from ...geometry.bridge import rings_of, spans_of
+
+    return {"spans": spans_of(structure, blocks), "rings": rings_of(structure, blocks)}
+
+
+def _how(result) -> dict:
+    """How a collapse moves: the interfaces that rock, slide, separate, and the length of ring
+    interface that opens and slides [m]."""
+    c = result.contacts
+    state = np.asarray(result.state, dtype=str)
+    ring = c.kind == "ring"
+    length = np.hypot(*(c.p1 - c.p0).T)
+    opens = ring & np.isin(state, ("rocks", "separates"))
+    slides = ring & (np.char.find(state, "slides") >= 0)
+    return {"rocking": [i for i in result.interfaces_that("rocks") if not ring[i]],
+            "sliding": [i for i in result.interfaces_that("slides") if not ring[i]],
+            "ring_opens_m": float(length[opens].sum()),
+            "ring_slides_m": float(length[slides].sum())}
+
+
+def _entry(structure, result) -> dict:
+    from ...geometry.bridge import moving_blocks
+
+    k = result.load_multiplier
+    moving = moving_blocks(result)
+    return {"direction": result.direction, "law": result.law,
+            "k": k if math.isfinite(k) else None,
+            "tilt_deg": result.tilt if math.isfinite(k) else None,
+            "converged": result.converged, "moving_blocks": moving,
+            **_names(structure, moving), **_how(result)}
+
+
+def limit_part(structure, friction: float) -> tuple[dict, dict, tuple]:
+    """The limit analysis of the assessment (module docstring, 1).
+
+    Returns
+    -------
+    summary : dict
+        JSON-ready: ``laws`` (direction -> law -> entry), ``governing`` (the entries of the
+        governing law of each direction), ``heyman`` (k of each direction, nothing sliding),
+        ``k``, ``direction``.
+    results : dict
+        Direction -> law -> AssemblyLimit (for the figure).
+    governing : (AssemblyLimit, AssemblyLimit)
+        Toward +x and -x.
+    """
+    from ...limit_analysis import assembly_limits
+    from ...site.local_mechanism import assembly_directions
+
+    contacts = _friction(structure, friction)
+    results = assembly_limits(contacts)
+    governing = assembly_directions(contacts)
+    heyman = assembly_directions(contacts.with_friction(math.inf))
+    first = min(governing, key=lambda r: r.load_multiplier)
+    summary = {"laws": {d: {law: _entry(structure, r) for law, r in laws.items()}
+                        for d, laws in results.items()},
+               "governing": [_entry(structure, r) for r in governing],
+               "heyman": {r.direction: r.load_multiplier for r in heyman},
+               "k": first.load_multiplier, "direction": first.direction}
+    return summary, results, governing
+
+
+def activation_part(structure, k: float, direction: str, friction: float) -> dict:
+    """The rigid-block model's check of the collapse multiplier ``k`` toward ``direction``
+    (module docstring, 2).
+
+    Returns
+    -------
+    dict
+        JSON-ready: the duration [s], the threshold [m] and, below and above ``k``, the
+        factor, the acceleration [g], the outcome, the largest opening and slip [m], whether
+        the blocks moved, the time steps and those left to Lemke's algorithm, and the seconds
+        it took.
+    """
+    from ...ground_motion.pulses import rectangular_pulse
+    from ...rigid_blocks import BlockSettings, RigidBlockModel
+    from .settings import time_scale
+
+    model = RigidBlockModel(structure, BlockSettings(friction=friction))
+    duration = round(ACTIVATION_DURATION * time_scale(structure), 3)
+    threshold = ACTIVATION_THRESHOLD * model.assembly.thickness
+    sign = 1.0 if direction == "+x" else -1.0
+    runs = []
+    for factor in (1.0 - ACTIVATION_MARGIN, 1.0 + ACTIVATION_MARGIN):
+        t0 = time.perf_counter()
+        # a ground acceleration -a loads every block with +a m toward +x
+        outcome = model.outcome(rectangular_pulse(-sign * factor * k * GRAVITY, duration))
+        measure = max(outcome.max_opening, outcome.max_slip)
+        runs.append({"factor": factor, "acceleration_g": factor * k,
+                     "status": outcome.status.label, "max_opening_m": outcome.max_opening,
+                     "max_slip_m": outcome.max_slip, "moves": bool(measure > threshold),
+                     "decided": outcome.decided, "steps": outcome.steps,
+                     "lemke_steps": outcome.fallback_steps,
+                     "seconds": time.perf_counter() - t0})
+    below, above = runs
+    return {"direction": direction, "k": k, "duration_s": duration, "threshold_m": threshold,
+            "friction": friction, "time_step_s": model.settings.time_step, "runs": runs,
+            "agrees": (not below["moves"]) and above["moves"]}
+
+
+# ------------------------------------------------------------------------------ words
+def _listed(values, what: str) -> str:
+    values = list(values)
+    if not values:
+        return ""
+    return f"{what}{'s' if len(values) > 1 else ''} {', '.join(str(v) for v in values)}"
+
+
+def mechanism_words(entry: dict) -> str:
+    """Which span and ring move in a collapse, and how, in words."""
+    where = [w for w in (_listed(entry["spans"], "span"),
+                         _listed([r + 1 for r in entry["rings"]], "ring")) if w]
+    how = []
+    if entry["rocking"]:
+        how.append(f"{len(entry['rocking'])} interface{'s' if len(entry['rocking']) > 1 else ''}"
+                   " rock")
+    if entry["sliding"]:
+        how.append(f"{len(entry['sliding'])} interface{'s' if len(entry['sliding']) > 1 else ''}"
+                   " slide")
+    if entry["ring_opens_m"] > 0:
+        how.append(f"the rings separate over {entry['ring_opens_m']:.2f} m")
+    if entry["ring_slides_m"] > 0:
+        how.append(f"the rings slide on each other over {entry['ring_slides_m']:.2f} m")
+    blocks = len(entry["moving_blocks"])
+    text = (" and ".join(where) + ": " if where else "") + (
+        f"{blocks} block{'s' if blocks != 1 else ''} move")
+    return text + (f" ({'; '.join(how)})" if how else "")
+
+
+def verdict_text(results: dict) -> str:
+    """The first screen's verdict."""
+    limit = results["limit"]
+    if limit is None:
+        return f"VERDICT: CANNOT STAND. {results['cannot_stand']}"
+    k = limit["k"]
+    entry = next(e for e in limit["governing"] if e["direction"] == limit["direction"])
+    other = next(e for e in limit["governing"] if e["direction"] != limit["direction"])
+    text = (f"VERDICT: STANDS. It starts to collapse under a horizontal acceleration of "
+            f"{k:.4f} g toward {limit['direction']} ({entry['law']}; {other['k']:.4f} g "
+            f"toward {other['direction']}). What fails first: {mechanism_words(entry)}.")
+    act = results.get("rigid_blocks")
+    if act:
+        below, above = act["runs"]
+        if act["agrees"]:
+            text += (f" The rigid-block model agrees: at rest under {below['acceleration_g']:.4f}"
+                     f" g, moving under {above['acceleration_g']:.4f} g.")
+        else:
+            text += (f" The rigid-block model does NOT confirm it: under "
+                     f"{below['acceleration_g']:.4f} g its blocks "
+                     f"{'move' if below['moves'] else 'stay at rest'}, under "
+                     f"{above['acceleration_g']:.4f} g they "
+                     f"{'move' if above['moves'] else 'stay at rest'} (section 2).")
+    return text
+
+
+def limit_rows(results: dict) -> list[list[str]]:
+    """One row per direction and law."""
+    rows = []
+    for direction, laws in results["limit"]["laws"].items():
+        for law, e in laws.items():
+            rows.append([direction, law, "-" if e["k"] is None else f"{e['k']:.4f}",
+                         "-" if e["tilt_deg"] is None else f"{e['tilt_deg']:.2f}",
+                         mechanism_words(e), "yes" if e["converged"] else "NO"])
+        rows.append([direction, "Heyman (nothing slides)",
+                     f"{results['limit']['heyman'][direction]:.4f}", "", "", ""])
+    return rows
+
+
+def activation_rows(results: dict) -> list[list[str]]:
+    act = results["rigid_blocks"]
+    return [[f"{r['factor']:.2f} k = {r['acceleration_g']:.4f} g", r["status"],
+             f"{r['max_opening_m']:.3g}", f"{r['max_slip_m']:.3g}",
+             "moves" if r["moves"] else "at rest", f"{r['steps']}", f"{r['lemke_steps']}",
+             f"{r['seconds']:.1f}"] for r in act["runs"]]
+
+
+def activation_text(results: dict) -> str:
+    act = results["rigid_blocks"]
+    return (f"The rigid-block model (every block rigid, Coulomb friction {act['friction']:g} "
+            f"where an interface has none of its own, time step {act['time_step_s']:.3g} s) "
+            f"under a horizontal ground acceleration held for {act['duration_s']:g} s, "
+            f"{100 * ACTIVATION_MARGIN:g} % below and above the collapse multiplier toward "
+            f"{act['direction']}: below it the blocks must stay at rest, above it they must "
+            f"move (a joint opening or slipping by more than {act['threshold_m']:.3g} m, "
+            f"{ACTIVATION_THRESHOLD:g} of the thickness). Steps left to Lemke's algorithm are "
+            "those where the active-set method of the contact problem did not settle: they are "
+            "decided exactly, at a higher cost.")
+
+
+# ------------------------------------------------------------------------------ driver
+def assembly_name(structure) -> str:
+    """A short name of an assembly: its spans and rings (read from the blocks' names), fill,
+    and blocks."""
+    from ...geometry.bridge import rings_of, spans_of
+
+    every = range(structure.n_blocks)
+    spans, rings = len(spans_of(structure, every)), len(rings_of(structure, every))
+    parts = []
+    if spans:
+        parts.append(f"{spans} span{'s' if spans > 1 else ''} on {spans + 1} piers")
+    if rings:
+        parts.append(f"arches of {rings} ring{'s' if rings > 1 else ''}" if spans
+                     else f"an arch of {rings} ring{'s' if rings > 1 else ''}")
+    if getattr(structure, "fill", None) is not None:
+        parts.append("under fill")
+    name = ", ".join(parts) if parts else "a block assembly"
+    return f"{name} ({structure.n_blocks} blocks)"
+
+
+
+def _regenerate(command: str | None, out: Path) -> str:
+    if not command:
+        return ("archquake.report.assess.assess with the same structure and settings, "
+                f"out_dir={str(out)!r}, resume=True")
+    words = shlex.split(command)
+    if "--resume" not in words:
+        words.append("--resume")
+    return shlex.join(words)
+
+
+def assess_assembly(structure, *, settings, out_dir, progress: bool = True,
+                    resume: bool = False, command: str | None = None, site=None):
+    """Assess a block assembly (module docstring); :func:`~archquake.report.assess.assess`
+    calls it for one.
+
+    Parameters
+    ----------
+    structure : BlockAssembly
+        Several spans (:func:`~archquake.geometry.bridge.multi_span`), an arch of several rings
+        (:func:`~archquake.geometry.multi_ring`), or any assembly.
+    settings : AssessmentSettings
+        Its ``friction`` is that of the interfaces without their own; its sizes of studies do
+        not apply.
+    out_dir : str or Path
+    progress : bool
+    resume : bool
+        The assessment is computed again (it keeps no parts), into the same directory.
+    command : str, optional
+        The command line that ran it.
+    site : SiteSpec, optional
+        The site of the code check.
+
+    Returns
+    -------
+    Assessment
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from ...errors import CannotStandError
+    from ...plotting import plot_assembly_limits
+    from ..render import save, write_html, write_markdown
+    from ..running import Steps
+    from .assessment import STYLE, TITLE, Assessment, prepare_directory
+
+    t_start = time.perf_counter()
+    out = Path(out_dir)
+    data = structure.to_dict() if hasattr(structure, "to_dict") else {
+        "polygons": [np.asarray(p).tolist() for p in structure.polygons],
+        "names": list(structure.names or ()), "kind": type(structure).__name__}
+    record = {"archquake": __version__, "structure": data, "settings": settings.to_dict(),
+              "suite": {"kind": "none"}}
+    if site is not None:
+        record["site"] = site.to_dict()
+    prepare_directory(out, record, resume)
+    results: dict = {
+        "structure": {"name": assembly_name(structure), "kind": type(structure).__name__,
+                      "blocks": structure.n_blocks,
+                      "interfaces": int(len(structure.interfaces.a))},
+        "settings": settings.to_dict(),
+        "command": {"given": command, "regenerate": _regenerate(command, out), "note": ""},
+        "left_out": list(LEFT_OUT)}
+    steps = Steps(3 + (site is not None), progress=progress, desc="assess")
+    timings = {}
+    figures = {}
+    try:
+        with steps("limit analysis"):
+            try:
+                summary, laws, governing = limit_part(structure, settings.friction)
+            except CannotStandError as exc:
+                summary, laws, governing = None, None, None
+                results["cannot_stand"] = str(exc)
+            results["limit"] = summary
+        if summary is not None:
+            with steps("rigid-block check of the limit"):
+                results["rigid_blocks"] = activation_part(structure, summary["k"],
+                                                          summary["direction"],
+                                                          settings.friction)
+        if site is not None and summary is not None:
+            from ...site.local_mechanism import check_local_mechanism
+
+            with steps("code check at the site"):
+                check = check_local_mechanism(structure, site.actions(),
+                                              confidence_factor=site.fc, limit=governing)
+                results["site"] = {
+                    "site": site.to_dict(), "describe": site.describe(),
+                    "check": check.to_dict(),
+                    "dynamic": {"skipped": "an assembly's dynamic route needs seven record "
+                                           "analyses of the rigid-block model (see what this "
+                                           "assessment leaves out)"},
+                    "risk": {"skipped": "no record-based fragility of an assembly (see what "
+                                        "this assessment leaves out)"}}
+        with steps("figures"):
+            if laws is not None:
+                from .. import render
+
+                fig = plot_assembly_limits(laws)
+                name = save(fig, out, "fig1_collapse.png")
+                figures["collapse"] = render.Figure(
+                    name, "Fig. 1", "The collapse of the structure toward +x (left) and -x "
+                    "(right), one row per friction law: the blocks (grey), the mechanism's "
+                    "displaced blocks (red outline), interfaces that rock (red, the hinge a "
+                    "dot), slide (blue), both (purple) or separate (orange), the pressure "
+                    "points of the loaded interfaces (black).", None)
+        timings.update(steps.timings)
+        timings["total"] = time.perf_counter() - t_start
+        results["timings"] = timings
+        results["environment"] = environment()
+        with steps("report"):
+            results["figures"] = {k: {"file": f.file, "label": f.label, "caption": f.caption}
+                                  for k, f in figures.items()}
+            results["files"] = ["report.html", "report.md", "results.json",
+                                *(f.file for f in figures.values())]
+            from ...results_io import write_json
+
+            write_json(out / "results.json", jsonable(results))
+            document = Document(TITLE, f"Seismic assessment of {results['structure']['name']}",
+                                _sections(results, figures), verdicts=False, style=STYLE)
+            write_html(out / "report.html", document)
+            write_markdown(out / "report.md", document)
+    finally:
+        steps.close()
+    results["verdict"] = {"stands": results["limit"] is not None}
+    return Assessment(results, out, tuple(results["files"]))
+
+
+def _sections(results: dict, figures: dict) -> list[Section]:
+    from . import site as site_words
+
+    stands = results["limit"] is not None
+    summary = [Paragraph(verdict_text(results), "verdict" if stands else "verdict cannot")]
+    if results.get("site"):
+        summary.append(Paragraph(site_words.verdict_text(results["site"]), "verdict"))
+    if results["settings"].get("quick"):
+        summary.append(Paragraph("QUICK RUN: the settings of a smoke test (they change none of "
+                                 "an assembly's parts).", "note"))
+    summary.append(Paragraph("This assessment of a block assembly leaves out, and why:",
+                             "note"))
+    summary.append(Bullets(results["left_out"]))
+    out = [Section("Summary", summary)]
+    s = results["structure"]
+    blocks = [Paragraph(f"The structure: {s['name']}, {s['interfaces']} "
+                        "interfaces. Limit analysis of the block assembly (the static linear "
+                        "program; non-associative friction by Gilbert et al.'s iteration), "
+                        "with the friction the rigid-block model gives the interfaces: each "
+                        "interface's own, else "
+                        f"{results['settings']['friction']:g}.")]
+    if stands:
+        blocks.append(Table(["direction", "law", "k [-]", "tilt [deg]", "what moves",
+                             "converged"], limit_rows(results)))
+        blocks.append(figures["collapse"])
+    else:
+        blocks.append(Paragraph(results["cannot_stand"]))
+    out.append(Section("1. The structure and its collapse", blocks))
+    if results.get("rigid_blocks"):
+        out.append(Section("2. The rigid-block model's check of the collapse", [
+            Paragraph(activation_text(results)),
+            Table(["horizontal acceleration", "outcome", "largest opening [m]",
+                   "largest slip [m]", "the blocks", "steps", "by Lemke", "wall time [s]"],
+                  activation_rows(results))]))
+    if results.get("site"):
+        site = results["site"]
+        out.append(Section("3. Is it safe here? The code check at the site", [
+            Paragraph(site_words.check_text(site)),
+            Table(["limit state", "route", "mechanism", "capacity", "demand",
+                   "capacity / demand", "verdict", "holds up to a_g"],
+                  site_words.check_rows(site)),
+            Paragraph(site_words.dynamic_text(site)), Paragraph(site_words.risk_text(site))]))
+    env = results["environment"]
+    out.append(Section("Run, versions and settings", [
+        Table(["part", "wall time [s]"], [[k, f"{v:.2f}"] for k, v in
+                                          results["timings"].items()]),
+        Paragraph("Versions: " + ", ".join(f"{k} {v}" for k, v in env.items()) + "."),
+        Paragraph("To regenerate this report:"),
+        Bullets([results["command"]["regenerate"]])]))
+    return out
+
+
+__all__ = ["ACTIVATION_DURATION", "ACTIVATION_MARGIN", "ACTIVATION_THRESHOLD", "LEFT_OUT",
+           "activation_part", "assembly_name", "assess_assembly", "limit_part", "mechanism_words",
+           "verdict_text"]

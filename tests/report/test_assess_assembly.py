@@ -1,0 +1,144 @@
+"""``archquake assess`` of a block assembly (several spans, an arch of several rings): its
+limit analysis, the rigid-block model's check of it and the code's linear check, each against
+an independent value (the chain's own analysis, the single span on piers, the Circolare's
+formulas)."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from archquake.cli import main
+from archquake.geometry.spec import StructureSpec
+from archquake.limit_analysis import assembly_limit, limit_analysis
+from archquake.reference_arches import oppenheim
+from archquake.report.assess import AssessmentSettings, assess
+from archquake.report.assess.assembly import LEFT_OUT, limit_part
+from archquake.rigid_blocks import RigidBlockModel
+from archquake.site.local_mechanism import (
+    SiteAction,
+    check_local_mechanism,
+    participation,
+)
+from archquake.site.spectra import ec8_spectrum
+
+
+def _bridge():
+    return StructureSpec(spans=3, piers="3,6").nominal()
+
+
+@pytest.fixture(scope="module")
+def bridge_report(tmp_path_factory):
+    out = tmp_path_factory.mktemp("assess_spans") / "report"
+    assert main(["assess", "--spans", "3", "--piers", "3,6", "--code", "ec8", "--agr", "0.2",
+                 "--out", str(out), "--no-progress"]) == 0
+    return out, json.loads((out / "results.json").read_text())
+
+
+@pytest.mark.parametrize("structure", [oppenheim(),
+                                       StructureSpec(piers="1.5,4", fill_cover=0.5).nominal()],
+                         ids=["Oppenheim", "on piers under fill"])
+def test_an_assemblys_participation_is_the_chains(structure):
+    """The equivalent oscillator (M*, e*) of the assembly program's collapse velocities equals
+    that of the chain's limit analysis and virtual displacements, to round-off."""
+    for chain, way in (("l", "+x"), ("r", "-x")):
+        p_chain = participation(limit_analysis(structure, chain))
+        p_assembly = participation(assembly_limit(structure, way))
+        assert p_assembly.alpha0 == pytest.approx(p_chain.alpha0, rel=1e-12)
+        assert p_assembly.participating_mass == pytest.approx(p_chain.participating_mass,
+                                                              rel=1e-12)
+        assert p_assembly.mass_fraction == pytest.approx(p_chain.mass_fraction, rel=1e-12)
+        assert p_assembly.moving_weight == pytest.approx(p_chain.moving_weight, rel=1e-12)
+
+
+def test_the_linear_check_of_an_assembly_follows_the_circolare():
+    """a0* = alpha0 g / (e* FC) against a_g S / q, the nonlinear route declined by name."""
+    structure = _bridge()
+    action = SiteAction.of("SLV", ec8_spectrum(0.2, soil="B"))
+    check = check_local_mechanism(structure, action, confidence_factor=1.35)
+    assert not check.nonlinear and "not traced in its displaced configuration" in check.notes[0]
+    for p, linear in zip(check.participations, check.linear, strict=True):
+        assert 0.0 < p.mass_fraction <= 1.0
+        assert linear.capacity == pytest.approx(p.alpha0 / (p.mass_fraction * 1.35),
+                                                rel=1e-12)
+        assert linear.demand == pytest.approx(action.spectrum.pga / 2.0, rel=1e-12)
+        assert linear.passes == (linear.capacity >= linear.demand)
+
+
+def test_the_end_span_fails_first_as_the_single_span_on_its_piers():
+    """Toward +x the last span moves, toward -x the first, at the multiplier of one such arch
+    on the same piers (the shared piers are as stiff as an end pier: within 1e-3)."""
+    summary, _, governing = limit_part(_bridge(), 0.8)
+    one = assembly_limit(StructureSpec(piers="3,6").nominal(), "+x", friction=0.8,
+                         law="non-associative").load_multiplier
+    by_way = {e["direction"]: e for e in summary["governing"]}
+    assert by_way["+x"]["spans"] == [3] and by_way["-x"]["spans"] == [1]
+    for r in governing:
+        assert r.load_multiplier == pytest.approx(one, rel=1e-3)
+    assert summary["k"] == min(r.load_multiplier for r in governing)
+
+
+def test_the_report_of_three_spans(bridge_report):
+    out, results = bridge_report
+    text = (out / "report.md").read_text()
+    k = results["limit"]["k"]
+    assert results["limit"]["direction"] in ("+x", "-x")
+    # the first screen says which span fails first, and how; the rigid blocks confirm k
+    first = text.split("## 1.")[0]
+    assert f"{k:.4f} g" in first and ("span 1:" in first or "span 3:" in first)
+    act = results["rigid_blocks"]
+    below, above = act["runs"]
+    assert act["agrees"] and not below["moves"] and above["moves"]
+    assert below["max_opening_m"] < 1e-9 and above["max_opening_m"] > act["threshold_m"]
+    assert below["acceleration_g"] == pytest.approx(0.9 * k)
+    assert "The rigid-block model agrees" in first
+    # the site: the linear route only, the others declined with the reason
+    site = results["site"]
+    assert site["check"]["linear"] and not site["check"]["nonlinear"]
+    assert "skipped" in site["dynamic"] and "skipped" in site["risk"]
+    assert "CODE CHECK AT THE SITE" in first
+    for item in LEFT_OUT:
+        assert item in text
+    assert (out / "fig1_collapse.png").stat().st_size > 20_000
+    assert results["command"]["regenerate"].endswith("--resume")
+
+
+def test_the_rigid_block_model_of_an_assembly_has_its_load_multipliers():
+    structure = _bridge()
+    model = RigidBlockModel(structure)
+    k = model.load_multipliers
+    assert k == pytest.approx((assembly_limit(structure, "+x").load_multiplier,
+                               assembly_limit(structure, "-x").load_multiplier), rel=1e-12)
+    assert all(math.isfinite(v) and v > 0 for v in k)
+
+
+@pytest.mark.parametrize(("argv", "message"), [
+    (["--spans", "3", "--piers", "3,6", "--records", "x.AT2"], "--records: the assessment of a "
+                                                                "block assembly"),
+    (["--rings", "2", "--epsilon", "0.2"], "--epsilon: the assessment of a block assembly"),
+    (["--rings", "2", "--sa-period", "0.5"], "--sa-period"),
+])
+def test_what_an_assemblys_assessment_refuses(argv, message, capsys, tmp_path):
+    assert main(["assess", *argv, "--out", str(tmp_path / "x"), "--no-progress"]) == 2
+    assert message in capsys.readouterr().err
+    assert not (tmp_path / "x").exists()
+
+
+def test_the_library_refuses_records_for_an_assembly(tmp_path):
+    with pytest.raises(ValueError, match="runs no record study"):
+        assess(_bridge(), suite="fema-p695-near-field-pulse", out_dir=tmp_path / "x",
+               settings=AssessmentSettings.quick_settings())
+
+
+def test_heyman_beside_the_friction_laws():
+    """With friction 0.8 the two rings slide on each other before they hinge: the governing
+    multiplier is below Heyman's (nothing slides), which is the one-ring arch's."""
+    rings = StructureSpec(rings=2).nominal()
+    summary, _, _ = limit_part(rings, 0.8)
+    heyman = summary["heyman"]["+x"]
+    assert heyman == pytest.approx(limit_analysis(oppenheim(), "l").load_multiplier, rel=1e-3)
+    assert summary["k"] < heyman
+    entry = summary["governing"][0]
+    assert entry["law"] == "non-associative" and entry["ring_slides_m"] > 0
+    assert np.isfinite(summary["k"])
