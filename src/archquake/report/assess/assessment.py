@@ -448,15 +448,13 @@ def assess(structure=None, *, records=None, suite: str | None = None,
         raise ValueError("give epsilon, sa_period and quick in settings, or settings not at all")
     if assembly:  # several spans, rings, a drawing: the limit analysis and the rigid blocks
         from ...site.spec import SiteSpec
-        from .assembly import assess_assembly
-
         if records is not None or suite is not None:
             raise ValueError("records and suite: the assessment of a block assembly runs no "
                              "record study (archquake.report.assess.assembly.LEFT_OUT)")
         if site is not None and not isinstance(site, SiteSpec):
             raise ValueError(f"site must be a SiteSpec (archquake.site.spec), got "
                              f"{type(site).__name__}")
-        return assess_assembly(structure, settings=settings, out_dir=out_dir,
+        return _assess_assembly(structure, settings=settings, out_dir=out_dir,
                                progress=progress, resume=resume, command=command, site=site)
     check_before_writing(structure, settings)
     out = Path(out_dir)
@@ -510,6 +508,134 @@ def assess(structure=None, *, records=None, suite: str | None = None,
     finally:
         steps.close()
     return Assessment(results, out, files)
+
+
+# ------------------------------------------------------------------------------ assemblies
+def _regenerate(command: str | None, out: Path) -> str:
+    if not command:
+        return ("archquake.report.assess.assess with the same structure and settings, "
+                f"out_dir={str(out)!r}, resume=True")
+    words = shlex.split(command)
+    if "--resume" not in words:
+        words.append("--resume")
+    return shlex.join(words)
+
+
+def _assess_assembly(structure, *, settings, out_dir, progress: bool = True,
+                    resume: bool = False, command: str | None = None, site=None):
+    """Assess a block assembly (:mod:`archquake.report.assess.assembly`): :func:`assess` of
+    one.
+
+    Parameters
+    ----------
+    structure : BlockAssembly
+        Several spans (:func:`~archquake.geometry.bridge.multi_span`), an arch of several rings
+        (:func:`~archquake.geometry.multi_ring`), or any assembly.
+    settings : AssessmentSettings
+        Its ``friction`` is that of the interfaces without their own; its sizes of studies do
+        not apply.
+    out_dir : str or Path
+    progress : bool
+    resume : bool
+        The assessment is computed again (it keeps no parts), into the same directory.
+    command : str, optional
+        The command line that ran it.
+    site : SiteSpec, optional
+        The site of the code check.
+
+    Returns
+    -------
+    Assessment
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from ...errors import CannotStandError
+    from ...plotting import plot_assembly_limits
+    from ..render import save, write_html, write_markdown
+    from ..running import Steps
+    from .assembly import LEFT_OUT, activation_part, assembly_name, limit_part, sections
+
+    t_start = time.perf_counter()
+    out = Path(out_dir)
+    data = structure.to_dict() if hasattr(structure, "to_dict") else {
+        "polygons": [np.asarray(p).tolist() for p in structure.polygons],
+        "names": list(structure.names or ()), "kind": type(structure).__name__}
+    record = {"archquake": __version__, "structure": data, "settings": settings.to_dict(),
+              "suite": {"kind": "none"}}
+    if site is not None:
+        record["site"] = site.to_dict()
+    prepare_directory(out, record, resume)
+    results: dict = {
+        "structure": {"name": assembly_name(structure), "kind": type(structure).__name__,
+                      "blocks": structure.n_blocks,
+                      "interfaces": int(len(structure.interfaces.a))},
+        "settings": settings.to_dict(),
+        "command": {"given": command, "regenerate": _regenerate(command, out), "note": ""},
+        "left_out": list(LEFT_OUT)}
+    steps = Steps(3 + (site is not None), progress=progress, desc="assess")
+    timings = {}
+    figures = {}
+    try:
+        with steps("limit analysis"):
+            try:
+                summary, laws, governing = limit_part(structure, settings.friction)
+            except CannotStandError as exc:
+                summary, laws, governing = None, None, None
+                results["cannot_stand"] = str(exc)
+            results["limit"] = summary
+        if summary is not None:
+            with steps("rigid-block check of the limit"):
+                results["rigid_blocks"] = activation_part(structure, summary["k"],
+                                                          summary["direction"],
+                                                          settings.friction)
+        if site is not None and summary is not None:
+            from ...site.local_mechanism import check_local_mechanism
+
+            with steps("code check at the site"):
+                check = check_local_mechanism(structure, site.actions(),
+                                              confidence_factor=site.fc, limit=governing)
+                results["site"] = {
+                    "site": site.to_dict(), "describe": site.describe(),
+                    "check": check.to_dict(),
+                    "dynamic": {"skipped": "an assembly's dynamic route needs seven record "
+                                           "analyses of the rigid-block model (see what this "
+                                           "assessment leaves out)"},
+                    "risk": {"skipped": "no record-based fragility of an assembly (see what "
+                                        "this assessment leaves out)"}}
+        with steps("figures"):
+            if laws is not None:
+                from .. import render
+
+                fig = plot_assembly_limits(laws)
+                name = save(fig, out, "fig1_collapse.png")
+                figures["collapse"] = render.Figure(
+                    name, "Fig. 1", "The collapse of the structure toward +x (left) and -x "
+                    "(right), one row per friction law: the blocks (grey), the mechanism's "
+                    "displaced blocks (red outline), interfaces that rock (red, the hinge a "
+                    "dot), slide (blue), both (purple) or separate (orange), the pressure "
+                    "points of the loaded interfaces (black).", None)
+        timings.update(steps.timings)
+        timings["total"] = time.perf_counter() - t_start
+        results["timings"] = timings
+        results["environment"] = environment()
+        with steps("report"):
+            results["figures"] = {k: {"file": f.file, "label": f.label, "caption": f.caption}
+                                  for k, f in figures.items()}
+            results["files"] = ["report.html", "report.md", "results.json",
+                                *(f.file for f in figures.values())]
+            from ...results_io import write_json
+
+            write_json(out / "results.json", jsonable(results))
+            document = Document(TITLE, f"Seismic assessment of {results['structure']['name']}",
+                                sections(results, figures), verdicts=False, style=STYLE)
+            write_html(out / "report.html", document)
+            write_markdown(out / "report.md", document)
+    finally:
+        steps.close()
+    results["verdict"] = {"stands": results["limit"] is not None}
+    return Assessment(results, out, tuple(results["files"]))
+
 
 
 def structure_name(structure) -> str:
