@@ -141,16 +141,43 @@ def test_more_rings_than_the_page_takes_are_refused_before_they_are_built(client
 def test_parts_that_need_one_chain_say_why_not(client):
     answer = post(client, {"structure": BRIDGE}).json()
     assert answer["unavailable"] == ASSEMBLY_UNAVAILABLE
+    assert set(ASSEMBLY_UNAVAILABLE) == {"four-link", "domain"}
     assert "archquake rigid-blocks --spans 3 --piers 3,6" in answer["unavailable"]["four-link"]
-    check = check_answer(BRIDGE, SITE)
-    assert check["verdict"] == "not available" and check["check"] is None
-    assert check["message"] == ASSEMBLY_UNAVAILABLE["check"]
-    for kind in ("domain", "assess"):
-        refused = client.post(f"/api/jobs/{kind}", json={"structure": BRIDGE})
-        assert refused.status_code == 400
-        assert refused.json()["error"] == ASSEMBLY_UNAVAILABLE[kind]
+    refused = client.post("/api/jobs/domain", json={"structure": BRIDGE})
+    assert refused.status_code == 400
+    assert refused.json()["error"] == ASSEMBLY_UNAVAILABLE["domain"]
     # a single arch has none of these notes
     assert "unavailable" not in post(client, {"structure": {}}).json()
+
+
+def test_the_code_check_of_a_bridge_is_the_librarys_linear_route():
+    """The page's check of a block assembly is the library's (the linear route, the
+    nonlinear one declined with its reason), with the assembly's own friction."""
+    from archquake.app.inputs import site_from_spec
+    from archquake.site.local_mechanism import check_local_mechanism
+
+    answer = check_answer(BRIDGE, SITE)
+    actions, fc = site_from_spec(SITE)
+    _, bridge = structure_from_spec(BRIDGE)
+    library = check_local_mechanism(bridge, actions, confidence_factor=fc).to_dict()
+    check = answer["check"]
+    assert check["linear"] and not check["nonlinear"]
+    for mine, theirs in zip(check["linear"], library["linear"], strict=True):
+        assert mine["direction"] == theirs["direction"] in ("+x", "-x")
+        assert mine["a0_star_g"] == pytest.approx(theirs["a0_star_g"], rel=1e-12)
+    assert any("not traced in its displaced configuration" in n for n in check["notes"])
+
+
+def test_the_assessment_of_a_bridge_is_the_assemblys(tmp_path):
+    """The page's report of several spans is the library's assessment of an assembly: its
+    verdict names the span that fails first."""
+    from archquake.app.tasks import assessment_report
+
+    _, bridge = structure_from_spec(BRIDGE)
+    summary = assessment_report(bridge, tmp_path / "report")
+    assert summary["verdict"].startswith("VERDICT: STANDS.")
+    assert "span 1:" in summary["verdict"] or "span 3:" in summary["verdict"]
+    assert "fig1_collapse.png" in summary["files"]
 
 
 def test_time_history_of_a_bridge_is_the_rigid_blocks_only():

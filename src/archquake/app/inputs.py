@@ -115,19 +115,15 @@ ASSEMBLY_UNAVAILABLE = {
                  "a structure of several spans or rings is a block assembly: its time history "
                  "is the rigid blocks' (archquake rigid-blocks --spans 3 --piers 3,6 on the "
                  "command line)",
-    "check": "the code check (Circolare 2019 §C8.7.1) takes the four-hinge mechanism of one "
-             "chain of voussoirs, which a structure of several spans or rings (a block "
-             "assembly) does not have",
     "domain": "the failure domain is not available for several spans or rings on this page: "
               "the four-link model needs one chain of voussoirs, and the rigid blocks' domain of "
               "an assembly takes many minutes (run single motions with archquake rigid-blocks "
               "--spans 3 --piers 3,6, or the time history above)",
-    "assess": "the assessment report is not available for several spans or rings: it is made "
-              "of the four-link model's studies and the code check of one chain of voussoirs",
 }
 """What the page says of its parts that need one chain of voussoirs when the structure is a block
-assembly (several spans, several rings, a file of one), by part: the four-link time history, the
-code check, the failure domain and the assessment report."""
+assembly (several spans, several rings, a file of one), by part: the four-link time history and
+the failure domain (the code check takes the linear route alone, and the assessment report is
+that of :mod:`archquake.report.assess.assembly`)."""
 
 
 def is_assembly(structure) -> bool:

@@ -322,8 +322,8 @@ def check_answer(spec: dict, site: dict) -> dict:
         ``description`` of the structure, ``confidence_factor`` [-], and ``check``
         (:func:`~archquake.app.views.check_view`) or, when the structure cannot stand, never
         collapses or has no mechanism the check can take, ``verdict`` (``"cannot stand"``,
-        ``"never collapses"`` or ``"not checked"``) and ``message`` (the library's); for a
-        block assembly (several spans or rings) ``"not available"`` and why.
+        ``"never collapses"`` or ``"not checked"``) and ``message`` (the library's). A block
+        assembly (several spans or rings) has the linear route alone (its note says why).
 
     Raises
     ------
@@ -334,18 +334,16 @@ def check_answer(spec: dict, site: dict) -> dict:
     from ..geometry.structure import describe_arch
     from ..limit_analysis import both_directions
     from ..site.local_mechanism import check_local_mechanism
-    from .inputs import ASSEMBLY_UNAVAILABLE, is_assembly, site_from_spec, structure_from_spec
+    from .inputs import is_assembly, site_from_spec, structure_from_spec
     from .views import check_view, describe_assembly, json_ready
 
     actions, fc = site_from_spec(site)
     _, structure = structure_from_spec(spec)
-    if is_assembly(structure):
-        return {"description": describe_assembly(structure), "confidence_factor": fc,
-                "check": None, "verdict": "not available",
-                "message": ASSEMBLY_UNAVAILABLE["check"]}
-    out = {"description": describe_arch(structure), "confidence_factor": fc, "check": None}
+    assembly = is_assembly(structure)
+    out = {"description": describe_assembly(structure) if assembly else describe_arch(structure),
+           "confidence_factor": fc, "check": None}
     try:
-        limit = both_directions(structure)
+        limit = None if assembly else both_directions(structure)
         check = check_local_mechanism(structure, actions, confidence_factor=fc, limit=limit)
     except CannotStandError as exc:
         out.update(verdict="cannot stand", message=str(exc))
@@ -527,7 +525,7 @@ def create_app(workdir: str | Path | None = None, *, hosts=LOOPBACK_NAMES,
         from .inputs import motion_from_spec, refuse_assembly, structure_from_spec
 
         _, structure = structure_from_spec(spec["structure"])
-        if kind in ("domain", "assess"):  # they need one chain of voussoirs
+        if kind == "domain":  # it needs one chain of voussoirs
             refuse_assembly(structure, kind)
         model_settings(spec)
         if kind == "simulate":

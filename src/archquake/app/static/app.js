@@ -306,8 +306,9 @@ function showAssembly(answer) {
     $("domain-status").textContent = unavailable ? `Not available: ${unavailable.domain}` : "not computed";
   }
   if (!state.assess && (unavailable || was)) {
-    $("assess").disabled = Boolean(unavailable);
-    $("assess-status").textContent = unavailable ? `Not available: ${unavailable.assess}` : "";
+    $("assess").disabled = Boolean(unavailable && unavailable.assess);
+    $("assess-status").textContent = unavailable && unavailable.assess
+      ? `Not available: ${unavailable.assess}` : "";
   }
 }
 
@@ -355,7 +356,7 @@ async function updateStructure() {
 }
 
 // ---------------------------------------------------------------------------- the code check
-const MECH = { l: "Mech-l", r: "Mech-r" };
+const MECH = { l: "Mech-l", r: "Mech-r", "+x": "toward +x", "-x": "toward -x" };
 const COLOURS = { l: "#1f77b4", r: "#ff7f0e" };
 let checkTimer = null;
 function checkChanged() {
