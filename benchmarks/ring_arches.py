@@ -1,10 +1,12 @@
 """Arches of several rings: k against arc_error (one ring against the chain program), k by
-rings, bond and ring friction for Oppenheim's arch, and the cost of three rings of 20 voussoirs.
+rings, bond and ring friction for Oppenheim's arch, and the cost of three rings of 20 voussoirs;
+with ``--rigid-blocks``, the rigid-block model's failure acceleration of two rings under
+Oppenheim's pulse against arc_error, with its cost and the steps left to Lemke's algorithm.
 
-    python benchmarks/ring_arches.py [--quick]
+    python benchmarks/ring_arches.py [--quick] [--rigid-blocks]
 
 The tables of the user guide's page "Bridges: several rings". ``--quick`` skips the
-non-associative iterations (about a minute of the two).
+non-associative iterations (about a minute of the two); ``--rigid-blocks`` takes a few minutes.
 """
 
 from __future__ import annotations
@@ -74,14 +76,47 @@ def cost(quick: bool) -> None:
         print(text)
 
 
+def rigid_blocks() -> None:
+    """The failure acceleration of two aligned rings of Oppenheim's arch (friction 0.8 at
+    every joint) under Oppenheim's pulse, by bisection to 0.01 g, against arc_error."""
+    from archquake.constants import GRAVITY
+    from archquake.ground_motion import oppenheim_pulse
+    from archquake.rigid_blocks import BlockSettings, RigidBlockModel
+
+    durations = (0.2, 0.5)
+    print("\ntwo aligned rings of Oppenheim's arch, friction 0.8 at every joint: the rigid-block "
+          "failure acceleration [g] under Oppenheim's pulse (bisection to 0.01 g)")
+    print(f"{'arc_error/t':>12} {'interfaces':>10}" + "".join(
+        f"{f't_p = {tp:g} s':>14} {'Lemke/steps':>13} {'time [s]':>9}" for tp in durations))
+    for fraction in (0.05, 0.02, 0.01, 0.005, 0.002, 0.001):
+        arch = multi_ring(10.0, ALPHA, 1.5, rings=2, voussoirs=7, arc_error=fraction * 1.5)
+        model = RigidBlockModel(arch, BlockSettings(friction=0.8))
+        row = f"{fraction:12g} {arch.interfaces.n_interfaces:10d}"
+        for tp in durations:
+            lo, hi, lemke, steps = 0.2, 1.5, 0, 0
+            t0 = time.perf_counter()
+            while hi - lo > 0.01:
+                mid = 0.5 * (lo + hi)
+                outcome = model.outcome(oppenheim_pulse(-mid * GRAVITY, tp))
+                lemke, steps = lemke + outcome.fallback_steps, steps + outcome.steps
+                lo, hi = (lo, mid) if outcome.collapsed else (mid, hi)
+            row += (f"{0.5 * (lo + hi):14.3f} {f'{lemke}/{steps}':>13} "
+                    f"{time.perf_counter() - t0:9.1f}")
+        print(row, flush=True)
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true",
                         help="the associative program only")
+    parser.add_argument("--rigid-blocks", action="store_true",
+                        help="also the rigid-block failure acceleration against arc_error")
     args = parser.parse_args(argv)
     convergence()
     by_friction(args.quick)
     cost(args.quick)
+    if args.rigid_blocks:
+        rigid_blocks()
     return 0
 
 
