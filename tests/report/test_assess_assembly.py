@@ -32,7 +32,7 @@ def _bridge():
 def bridge_report(tmp_path_factory):
     out = tmp_path_factory.mktemp("assess_spans") / "report"
     assert main(["assess", "--spans", "3", "--piers", "3,6", "--code", "ec8", "--agr", "0.2",
-                 "--out", str(out), "--no-progress"]) == 0
+                 "--quick", "--out", str(out), "--no-progress"]) == 0
     return out, json.loads((out / "results.json").read_text())
 
 
@@ -93,6 +93,13 @@ def test_the_report_of_three_spans(bridge_report):
     assert below["max_opening_m"] < 1e-9 and above["max_opening_m"] > act["threshold_m"]
     assert below["acceleration_g"] == pytest.approx(0.9 * k)
     assert "The rigid-block model agrees" in first
+    # the rigid blocks' failure domain under pulses: below k nothing moves, at any duration
+    domain = results["domain"]
+    assert domain["rows"] and (out / "fig2_failure_domain.png").is_file()
+    for row in domain["rows"]:
+        assert abs(row["moves_from_g"] - k) <= domain["resolution_g"]
+        assert row["collapse_from_g"] > k and not row["undecided"]
+    assert "## 3. Failure domain under pulses (rigid blocks)" in text
     # the site: the linear route only, the others declined with the reason
     site = results["site"]
     assert site["check"]["linear"] and not site["check"]["nonlinear"]
@@ -142,3 +149,19 @@ def test_heyman_beside_the_friction_laws():
     entry = summary["governing"][0]
     assert entry["law"] == "non-associative" and entry["ring_slides_m"] > 0
     assert np.isfinite(summary["k"])
+
+
+def test_a_failure_domain_beyond_the_budget_is_skipped_with_its_estimate():
+    """The rigid blocks' domain is estimated from the check's analyses before it runs: an
+    assembly whose analysis takes 100 s is not scanned, and the report says how long it would
+    take."""
+    from archquake.report.assess.assembly import DOMAIN_ANALYSES, DOMAIN_BUDGET, domain_part
+
+    settings = AssessmentSettings.quick_settings()
+    structure = _bridge()
+    summary, domain = domain_part(structure, 0.14, "+x", settings,
+                                  {"runs": [{"seconds": 0.01}, {"seconds": 100.0}]})
+    durations = len(settings.pulse_durations(structure))
+    assert domain is None and summary["estimate_s"] == durations * DOMAIN_ANALYSES * 100.0
+    assert summary["estimate_s"] > DOMAIN_BUDGET
+    assert f"about {summary['estimate_s'] / 60:.0f} minutes" in summary["skipped"]

@@ -136,7 +136,8 @@ def _assembly(args: argparse.Namespace, structure) -> int:
         from ..report.assess.site import verdict_text
 
         print(verdict_text(result.results["site"]))
+    figures = len(result.files) - 3
     print(f"report written to {result.directory / 'report.html'} (also report.md, "
-          f"results.json, {len(result.files) - 3} figure) in "
+          f"results.json, {figures} figure{'' if figures == 1 else 's'}) in "
           f"{result.results['timings']['total']:.1f} s")
     return 0

@@ -16,15 +16,16 @@ slide, and the rigid-block model is its only dynamic model. Its report therefore
    :data:`ACTIVATION_MARGIN` below it (held for :data:`ACTIVATION_DURATION` times the time
    scale of the structure) must leave the blocks at rest, one as far above it must set them
    moving (the measure: the largest joint opening or slip, against
-   :data:`ACTIVATION_THRESHOLD` of the thickness);
+   :data:`ACTIVATION_THRESHOLD` of the thickness); and, where its estimated cost is within
+   :data:`DOMAIN_BUDGET`, the rigid-block failure domain under Oppenheim's pulse on the
+   durations and scan of the assessment's settings (below k the blocks must not move);
 3. at a site (``site``), the code check of the mechanism by the linear route of Circolare 2019
    §C8.7.1.2.1 (:func:`archquake.site.local_mechanism.check_local_mechanism`, whose
    participating mass comes from the assembly's collapse velocities);
 
-and says what it leaves out and why: the failure domain and fragility under pulses and
-records, the irregular draws and the code's dynamic route and risk (each needs hundreds of
-rigid-block analyses, a minute or more each on these structures: the number measured is in
-the report).
+and says what it leaves out and why: the fragility under pulses and records, the irregular
+draws and the code's dynamic route and risk (each needs hundreds or thousands of rigid-block
+analyses, up to a minute each on these structures).
 """
 
 from __future__ import annotations
@@ -49,14 +50,22 @@ ACTIVATION_THRESHOLD = 1e-3
 """The blocks move when a joint opens or slips by more than this fraction of the thickness
 [-] (rigid blocks below their collapse multiplier move by round-off only)."""
 
+DOMAIN_BUDGET = 300.0
+"""The rigid-block failure domain under pulses is computed when its estimated cost is at most
+this [s]: :data:`DOMAIN_ANALYSES` analyses a duration, each as long as the longer run of the
+rigid-block check (whose held load lasts about as long as a pulse and the motion after it)."""
+
+DOMAIN_ANALYSES = 25
+"""Analyses a duration of the failure domain's scan and bisections, for its cost estimate [-]
+(measured: 19 durations of three spans took 470 analyses)."""
+
 LEFT_OUT = (
     "the four-link model: the structure is not one chain of voussoirs between two springings, "
     "so its mechanism is not a four-hinge mechanism of one chain; the rigid-block model is its "
     "dynamic model",
-    "the failure domain and the fragility under pulses and records, and the irregular "
-    "structures: each needs hundreds of rigid-block analyses; run one with archquake "
-    "rigid-blocks and the same structure options (--amplitude/--duration for a pulse, --record "
-    "FILE for a record)",
+    "the fragility under pulses and records and the irregular structures: each needs "
+    "thousands of rigid-block analyses; run one with archquake rigid-blocks and the same "
+    "structure options (--amplitude/--duration for a pulse, --record FILE for a record)",
     "at a site, the nonlinear route of the code check, its dynamic route and the annual risk "
     "(the capacity curve needs a four-link chain; the other two, the rigid-block analyses "
     "above)",
@@ -176,6 +185,48 @@ def activation_part(structure, k: float, direction: str, friction: float) -> dic
             "agrees": (not below["moves"]) and above["moves"]}
 
 
+def domain_part(structure, k: float, direction: str, settings, activation: dict):
+    """The rigid-block failure domain under Oppenheim's pulse toward ``direction`` on the
+    assessment's durations and scan, when its estimated cost is within :data:`DOMAIN_BUDGET`
+    (module docstring, 2).
+
+    Returns
+    -------
+    summary : dict
+        JSON-ready: ``estimate_s``; either ``skipped`` (why) or the domain's rows (duration,
+        the amplitude where the blocks first move and the lowest that collapses [g]), its
+        ``domain`` (:meth:`~archquake.studies.failure_domain.FailureDomain.to_dict`) and
+        ``seconds``.
+    domain : FailureDomain or None
+    """
+    from .parts import pulse_grid, rigid_block_domain
+
+    durations = settings.pulse_durations(structure)
+    per_run = max(r["seconds"] for r in activation["runs"])
+    estimate = len(durations) * DOMAIN_ANALYSES * per_run
+    out = {"estimate_s": estimate, "durations": list(durations)}
+    if estimate > DOMAIN_BUDGET:
+        out["skipped"] = (f"its {len(durations)} pulse durations would take about "
+                          f"{estimate / 60:.0f} minutes of rigid-block analyses (an analysis of "
+                          f"this structure about {per_run:.1f} s; the budget is "
+                          f"{DOMAIN_BUDGET / 60:.0f} minutes)")
+        return out, None
+    t0 = time.perf_counter()
+    grid = pulse_grid(k, settings)
+    domain = rigid_block_domain(structure, durations, grid, "l" if direction == "+x" else "r",
+                                settings.domain_resolution_g, settings.friction)
+    rows = []
+    for sl in domain.slices:
+        first = next((iv.start for iv in sl.intervals if iv.status != "rest"), math.nan)
+        rows.append({"duration": sl.duration, "moves_from_g": first,
+                     "collapse_from_g": sl.failure_acceleration_g,
+                     "bound": sl.failure_acceleration_bound,
+                     "undecided": [list(b) for b in sl.undecided_bands_g]})
+    out.update(rows=rows, domain=domain.to_dict(), seconds=time.perf_counter() - t0,
+               resolution_g=settings.domain_resolution_g, direction=direction)
+    return out, domain
+
+
 # ------------------------------------------------------------------------------ words
 def _listed(values, what: str) -> str:
     values = list(values)
@@ -228,6 +279,11 @@ def verdict_text(results: dict) -> str:
                      f"{'move' if below['moves'] else 'stay at rest'}, under "
                      f"{above['acceleration_g']:.4f} g they "
                      f"{'move' if above['moves'] else 'stay at rest'} (section 2).")
+    rows = (results.get("domain") or {}).get("rows")
+    if rows:
+        text += (f" Under Oppenheim's pulse (rigid blocks) it collapses from "
+                 f"{_g(rows[-1]['collapse_from_g'])} g at t_p = {rows[-1]['duration']:g} s and "
+                 f"from {_g(rows[0]['collapse_from_g'])} g at t_p = {rows[0]['duration']:g} s.")
     return text
 
 
@@ -242,6 +298,38 @@ def limit_rows(results: dict) -> list[list[str]]:
         rows.append([direction, "Heyman (nothing slides)",
                      f"{results['limit']['heyman'][direction]:.4f}", "", "", ""])
     return rows
+
+
+def _g(value) -> str:
+    return "-" if value is None or not math.isfinite(value) else f"{value:.3f}"
+
+
+def domain_rows(results: dict) -> list[list[str]]:
+    """One row per pulse duration of the rigid-block failure domain."""
+    return [[f"{r['duration']:g}", _g(r["moves_from_g"]),
+             _g(r["collapse_from_g"]) + (" (beyond the scan)" if r["bound"] == "lower" else
+                                         " (at most)" if r["bound"] == "upper" else ""),
+             ", ".join(f"{a:.3f}-{b:.3f}" for a, b in r["undecided"]) or "none"]
+            for r in results["domain"]["rows"]]
+
+
+def domain_text(results: dict) -> str:
+    d = results["domain"]
+    if "skipped" in d:
+        return (f"The rigid-block failure domain under Oppenheim's pulse was not computed: "
+                f"{d['skipped']}.")
+    rows = d["rows"]
+    return (f"The rigid-block model's failure domain under Oppenheim's pulse (a pulse of "
+            f"amplitude a for t_p pushing toward {d['direction']}, then half of it back for "
+            f"2 t_p), each boundary bisected to {d['resolution_g']:g} g, in "
+            f"{d['seconds']:.0f} s: from t_p = {rows[0]['duration']:g} s to "
+            f"{rows[-1]['duration']:g} s the lowest amplitude that collapses the structure "
+            f"falls from {_g(rows[0]['collapse_from_g'])} g to "
+            f"{_g(rows[-1]['collapse_from_g'])} g. Below the collapse multiplier k = "
+            f"{results['limit']['k']:.4f} the blocks must not move at any duration: they first "
+            f"move at {min(r['moves_from_g'] for r in rows):.3f}-"
+            f"{max(r['moves_from_g'] for r in rows):.3f} g (each boundary to "
+            f"{d['resolution_g']:g} g).")
 
 
 def activation_rows(results: dict) -> list[list[str]]:
@@ -322,9 +410,15 @@ def sections(results: dict, figures: dict) -> list[Section]:
             Table(["horizontal acceleration", "outcome", "largest opening [m]",
                    "largest slip [m]", "the blocks", "steps", "by Lemke", "wall time [s]"],
                   activation_rows(results))]))
+    if results.get("domain"):
+        blocks = [Paragraph(domain_text(results))]
+        if "rows" in results["domain"]:
+            blocks += [Table(["t_p [s]", "the blocks move from [g]", "collapse from [g]",
+                              "undecided [g]"], domain_rows(results)), figures["domain"]]
+        out.append(Section("3. Failure domain under pulses (rigid blocks)", blocks))
     if results.get("site"):
         site = results["site"]
-        out.append(Section("3. Is it safe here? The code check at the site", [
+        out.append(Section("4. Is it safe here? The code check at the site", [
             Paragraph(site_words.check_text(site)),
             Table(["limit state", "route", "mechanism", "capacity", "demand",
                    "capacity / demand", "verdict", "holds up to a_g"],
@@ -341,5 +435,6 @@ def sections(results: dict, figures: dict) -> list[Section]:
 
 
 __all__ = ["ACTIVATION_DURATION", "ACTIVATION_MARGIN", "ACTIVATION_THRESHOLD", "LEFT_OUT",
-           "activation_part", "assembly_name", "limit_part", "mechanism_words", "sections",
+           "DOMAIN_ANALYSES", "DOMAIN_BUDGET", "activation_part", "assembly_name", "domain_part",
+           "limit_part", "mechanism_words", "sections",
            "verdict_text"]

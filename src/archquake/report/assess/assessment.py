@@ -554,7 +554,14 @@ def _assess_assembly(structure, *, settings, out_dir, progress: bool = True,
     from ...plotting import plot_assembly_limits
     from ..render import save, write_html, write_markdown
     from ..running import Steps
-    from .assembly import LEFT_OUT, activation_part, assembly_name, limit_part, sections
+    from .assembly import (
+        LEFT_OUT,
+        activation_part,
+        assembly_name,
+        domain_part,
+        limit_part,
+        sections,
+    )
 
     t_start = time.perf_counter()
     out = Path(out_dir)
@@ -573,9 +580,10 @@ def _assess_assembly(structure, *, settings, out_dir, progress: bool = True,
         "settings": settings.to_dict(),
         "command": {"given": command, "regenerate": _regenerate(command, out), "note": ""},
         "left_out": list(LEFT_OUT)}
-    steps = Steps(3 + (site is not None), progress=progress, desc="assess")
+    steps = Steps(4 + (site is not None), progress=progress, desc="assess")
     timings = {}
     figures = {}
+    domain = None
     try:
         with steps("limit analysis"):
             try:
@@ -589,6 +597,10 @@ def _assess_assembly(structure, *, settings, out_dir, progress: bool = True,
                 results["rigid_blocks"] = activation_part(structure, summary["k"],
                                                           summary["direction"],
                                                           settings.friction)
+            with steps("failure domain under pulses (rigid blocks)"):
+                results["domain"], domain = domain_part(structure, summary["k"],
+                                                        summary["direction"], settings,
+                                                        results["rigid_blocks"])
         if site is not None and summary is not None:
             from ...site.local_mechanism import check_local_mechanism
 
@@ -615,6 +627,20 @@ def _assess_assembly(structure, *, settings, out_dir, progress: bool = True,
                     "displaced blocks (red outline), interfaces that rock (red, the hinge a "
                     "dot), slide (blue), both (purple) or separate (orange), the pressure "
                     "points of the loaded interfaces (black).", None)
+            if domain is not None:
+                import matplotlib.pyplot as plt
+
+                from ...plotting import plot_failure_domain
+
+                fig, ax = plt.subplots(figsize=(7.5, 5.0), constrained_layout=True)
+                plot_failure_domain(domain, ax)
+                ax.set_title(f"Rigid blocks: Oppenheim's pulse, the first pushing toward "
+                             f"{results['domain']['direction']}")  # not an arch's Mech-l/r
+                figures["domain"] = render.Figure(
+                    save(fig, out, "fig2_failure_domain.png"), "Fig. 2",
+                    "The rigid-block model's failure domain under Oppenheim's pulse: no "
+                    "motion, recovery and collapse over the pulse duration t_p and amplitude; "
+                    "dashed: the collapse multiplier k of the limit analysis.", None)
         timings.update(steps.timings)
         timings["total"] = time.perf_counter() - t_start
         results["timings"] = timings
