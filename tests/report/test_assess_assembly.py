@@ -90,6 +90,7 @@ def test_the_report_of_three_spans(bridge_report):
     act = results["rigid_blocks"]
     below, above = act["runs"]
     assert act["agrees"] and not below["moves"] and above["moves"]
+    assert below["status"] == "rest" and above["status"] != "rest"
     assert below["max_opening_m"] < 1e-9 and above["max_opening_m"] > act["threshold_m"]
     assert below["acceleration_g"] == pytest.approx(0.9 * k)
     assert "The rigid-block model agrees" in first
@@ -165,3 +166,17 @@ def test_a_failure_domain_beyond_the_budget_is_skipped_with_its_estimate():
     assert domain is None and summary["estimate_s"] == durations * DOMAIN_ANALYSES * 100.0
     assert summary["estimate_s"] > DOMAIN_BUDGET
     assert f"about {summary['estimate_s'] / 60:.0f} minutes" in summary["skipped"]
+
+
+def test_ring_friction_keeps_the_other_interfaces_friction_of_the_command_line(tmp_path):
+    """With --ring-friction the assembly gives its own friction (the other interfaces do not
+    slide); assess's --friction is then the other interfaces', as for limit: the same k."""
+    from archquake.limit_analysis import assembly_limits
+
+    rings = StructureSpec(rings=2, ring_friction=0.6).nominal()
+    summary, _, _ = limit_part(rings.with_friction({**rings.friction, "bed": 0.7,
+                                                    "foundation": 0.7}), 0.8)
+    expected = assembly_limits(rings, friction={"bed": 0.7, "foundation": 0.7})
+    k = min(r.load_multiplier for laws in expected.values() for r in laws.values()
+            if r.law == "non-associative")
+    assert summary["k"] == pytest.approx(k, rel=1e-9)

@@ -123,6 +123,13 @@ def _assembly(args: argparse.Namespace, structure) -> int:
                          "spans, rings, a drawing) runs no irregular or record study")
     settings = (AssessmentSettings.quick_settings if args.quick else AssessmentSettings)(
         friction=args.friction)
+    if args.friction is not None and getattr(structure, "friction", None) is not None:
+        # the rings' own friction given (--ring-friction): --friction is the other interfaces'
+        # (as for limit), which the structure says do not slide
+        own = structure.friction
+        if isinstance(own, dict):
+            structure = structure.with_friction(
+                {**own, **{kind: args.friction for kind in own if kind != "ring"}})
     site = None
     if args.site is not None or args.code is not None:
         site = options.site_spec(args)

@@ -8,15 +8,16 @@ neither: its collapse may be a mechanism of one span among several, or rings tha
 slide, and the rigid-block model is its only dynamic model. Its report therefore holds:
 
 1. the limit analysis both ways, with the friction the rigid-block model gives its joints (the
-   interfaces' own, else the assessment's ``friction``) under both friction laws, the
+   assessment's ``friction`` at every interface of an assembly that gives none, else the
+   assembly's own) under both friction laws, the
    non-associative one governing, and Heyman's (nothing slides) beside it; which span and which
    ring moves first, and how (interfaces that rock, slide, rings that open or slide), on the
    first screen and in the figure (:func:`archquake.plotting.plot_assembly_limit`);
 2. the rigid-block model's check of that collapse multiplier: a horizontal acceleration
    :data:`ACTIVATION_MARGIN` below it (held for :data:`ACTIVATION_DURATION` times the time
    scale of the structure) must leave the blocks at rest, one as far above it must set them
-   moving (the measure: the largest joint opening or slip, against
-   :data:`ACTIVATION_THRESHOLD` of the thickness); and, where its estimated cost is within
+   moving (the model's own test: a structure that never opens or slips a joint by more than
+   ``moved_opening`` of its length scale, 1e-5, is at rest); and, where its estimated cost is within
    :data:`DOMAIN_BUDGET`, the rigid-block failure domain under Oppenheim's pulse on the
    durations and scan of the assessment's settings (below k the blocks must not move);
 3. at a site (``site``), the code check of the mechanism by the linear route of Circolare 2019
@@ -46,10 +47,6 @@ ACTIVATION_DURATION = 0.3
 """How long each load of the check is held, times the structure's time scale
 (:func:`~archquake.report.assess.settings.time_scale`; 0.3 s for Oppenheim's arch) [s]."""
 
-ACTIVATION_THRESHOLD = 1e-3
-"""The blocks move when a joint opens or slips by more than this fraction of the thickness
-[-] (rigid blocks below their collapse multiplier move by round-off only)."""
-
 DOMAIN_BUDGET = 300.0
 """The rigid-block failure domain under pulses is computed when its estimated cost is at most
 this [s]: :data:`DOMAIN_ANALYSES` analyses a duration, each as long as the longer run of the
@@ -74,13 +71,16 @@ LEFT_OUT = (
 
 
 def _friction(structure, friction: float):
-    """The interfaces' Coulomb coefficients as the rigid-block model sees them: their own, else
-    ``friction``."""
+    """The interfaces' Coulomb coefficients as the rigid-block model sees them
+    (:func:`~archquake.rigid_blocks.from_block_assembly`): ``friction`` at every interface of
+    an assembly that gives none, else the assembly's own (an infinite one: the interface does
+    not slide)."""
     from ...limit_analysis.assembly import contacts_of
 
     contacts = contacts_of(structure)
-    own = np.asarray(contacts.friction, dtype=float)
-    return contacts.with_friction(np.where(np.isfinite(own), own, friction))
+    if getattr(structure, "friction", None) is None:
+        return contacts.with_friction(friction)
+    return contacts
 
 
 def _names(structure, blocks) -> dict:
@@ -165,17 +165,17 @@ def activation_part(structure, k: float, direction: str, friction: float) -> dic
 
     model = RigidBlockModel(structure, BlockSettings(friction=friction))
     duration = round(ACTIVATION_DURATION * time_scale(structure), 3)
-    threshold = ACTIVATION_THRESHOLD * model.assembly.thickness
+    threshold = model.settings.moved_opening * model.assembly.thickness
     sign = 1.0 if direction == "+x" else -1.0
     runs = []
     for factor in (1.0 - ACTIVATION_MARGIN, 1.0 + ACTIVATION_MARGIN):
         t0 = time.perf_counter()
         # a ground acceleration -a loads every block with +a m toward +x
         outcome = model.outcome(rectangular_pulse(-sign * factor * k * GRAVITY, duration))
-        measure = max(outcome.max_opening, outcome.max_slip)
         runs.append({"factor": factor, "acceleration_g": factor * k,
                      "status": outcome.status.label, "max_opening_m": outcome.max_opening,
-                     "max_slip_m": outcome.max_slip, "moves": bool(measure > threshold),
+                     "max_slip_m": outcome.max_slip,
+                     "moves": outcome.status.label != "rest",
                      "decided": outcome.decided, "steps": outcome.steps,
                      "lemke_steps": outcome.fallback_steps,
                      "seconds": time.perf_counter() - t0})
@@ -343,14 +343,14 @@ def activation_rows(results: dict) -> list[list[str]]:
 def activation_text(results: dict) -> str:
     act = results["rigid_blocks"]
     return (f"The rigid-block model (every block rigid, Coulomb friction {act['friction']:g} "
-            f"where an interface has none of its own, time step {act['time_step_s']:.3g} s) "
+            f"where the structure gives none, time step {act['time_step_s']:.3g} s) "
             f"under a horizontal ground acceleration held for {act['duration_s']:g} s, "
             f"{100 * ACTIVATION_MARGIN:g} % below and above the collapse multiplier toward "
             f"{act['direction']}: below it the blocks must stay at rest, above it they must "
-            f"move (a joint opening or slipping by more than {act['threshold_m']:.3g} m, "
-            f"{ACTIVATION_THRESHOLD:g} of the thickness). Steps left to Lemke's algorithm are "
-            "those where the active-set method of the contact problem did not settle: they are "
-            "decided exactly, at a higher cost.")
+            f"move (the model's outcome: at rest when no joint ever opens or slips by more "
+            f"than {act['threshold_m']:.3g} m, 1e-5 of the structure's length scale). Steps "
+            "left to Lemke's algorithm are those where the active-set method of the contact "
+            "problem did not settle: they are decided exactly, at a higher cost.")
 
 
 # ------------------------------------------------------------------------------ driver
@@ -394,9 +394,10 @@ def sections(results: dict, figures: dict) -> list[Section]:
     blocks = [Paragraph(f"The structure: {s['name']}, {s['interfaces']} "
                         "interfaces. Limit analysis of the block assembly (the static linear "
                         "program; non-associative friction by Gilbert et al.'s iteration), "
-                        "with the friction the rigid-block model gives the interfaces: each "
-                        "interface's own, else "
-                        f"{results['settings']['friction']:g}.")]
+                        "with the friction the rigid-block model gives the interfaces: "
+                        f"{results['settings']['friction']:g} at every interface where the "
+                        "structure gives none, else its own (infinite: the interface does not "
+                        "slide).")]
     if stands:
         blocks.append(Table(["direction", "law", "k [-]", "tilt [deg]", "what moves",
                              "converged"], limit_rows(results)))
@@ -434,7 +435,7 @@ def sections(results: dict, figures: dict) -> list[Section]:
     return out
 
 
-__all__ = ["ACTIVATION_DURATION", "ACTIVATION_MARGIN", "ACTIVATION_THRESHOLD", "LEFT_OUT",
+__all__ = ["ACTIVATION_DURATION", "ACTIVATION_MARGIN", "LEFT_OUT",
            "DOMAIN_ANALYSES", "DOMAIN_BUDGET", "activation_part", "assembly_name", "domain_part",
            "limit_part", "mechanism_words", "sections",
            "verdict_text"]
