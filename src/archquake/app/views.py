@@ -300,24 +300,21 @@ def assembly_mechanism_view(result, groups: list) -> dict:
     normal = np.asarray(result.normal, dtype=float)
     loaded = np.isfinite(result.pressure[:, 0]) & (normal > 1e-9 * max(float(normal.max(
         initial=0.0)), 1e-300))
-    ring = np.asarray(c.kind) == "ring"
-    length = np.hypot(*(c.p1 - c.p0).T)
-    state = np.asarray(result.state).astype(str)
-    opens = ring & np.isin(state, ("rocks", "separates"))  # as archquake limit sums them
-    slides = ring & (np.char.find(state, "slides") >= 0)
+    opens, slides = result.ring_lengths() if math.isfinite(k) else (0.0, 0.0)
     return {"law": result.law, "k": finite(k), "tilt": finite(result.tilt) if math.isfinite(k)
             else None, "converged": bool(result.converged), "displaced": displaced,
             "interfaces": interfaces, "pressure_points": rounded(result.pressure[loaded], 4),
             "moving": _moving_groups(result, groups),
-            "ring_opens_m": float(length[opens].sum()) if math.isfinite(k) else 0.0,
-            "ring_slides_m": float(length[slides].sum()) if math.isfinite(k) else 0.0}
+            "ring_opens_m": opens, "ring_slides_m": slides}
 
 
 def governing(laws: dict):
     """Of one direction's results by law, the one that governs: the non-associative law's when
     friction is given (slip without opening, the physical one), else the only one (as
-    ``archquake limit`` takes it)."""
-    return laws.get("non-associative") or next(iter(laws.values()))
+    ``archquake limit`` takes it: :func:`archquake.limit_analysis.governing_law`)."""
+    from ..limit_analysis import governing_law
+
+    return governing_law(laws)
 
 
 def assembly_limit_view(assembly, results) -> dict:

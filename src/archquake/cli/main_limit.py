@@ -154,7 +154,7 @@ def _plot(args: argparse.Namespace, results) -> None:
 def _with_friction(args: argparse.Namespace, structure) -> int:
     """``limit --friction MU``: both directions under each friction law."""
 
-    from ..limit_analysis import assembly_limits
+    from ..limit_analysis import assembly_limits, governing_law
 
     if args.method != "static":
         raise ValueError("--friction and block assemblies take the static method (the linear "
@@ -163,8 +163,7 @@ def _with_friction(args: argparse.Namespace, structure) -> int:
     friction = _friction_of(args)
     with options.analysing(args):
         results = assembly_limits(structure, friction=friction)
-    governing = {d: max(laws.values(), key=lambda r: r.law == "non-associative")
-                 for d, laws in results.items()}
+    governing = {d: governing_law(laws) for d, laws in results.items()}
     k = min(r.load_multiplier for r in governing.values())
     ramp = None
     if args.arbiter:
@@ -305,21 +304,15 @@ def _spans_moving(structure, result):
 def _moving(result) -> str:
     """The interfaces that rock and slide; the chords of ring interfaces (an arch of several
     rings) summed as the length of ring interface that opens and slides."""
-    import numpy as np
-
     ring = result.contacts.kind == "ring"
     if not ring.any():
         return (f"{_listed(result.interfaces_that('rocks'))} / "
                 f"{_listed(result.interfaces_that('slides'))}")
-    c = result.contacts
-    length = np.hypot(*(c.p1 - c.p0).T)
-    state = np.asarray(result.state).astype(str)
-    opens = ring & np.isin(state, ("rocks", "separates"))
-    slides = ring & (np.char.find(state, "slides") >= 0)
+    opens, slides = result.ring_lengths()
     rocks = [i for i in result.interfaces_that("rocks") if not ring[i]]
     other = [i for i in result.interfaces_that("slides") if not ring[i]]
     return (f"{_listed(rocks)} / {_listed(other)}; rings open over "
-            f"{length[opens].sum():.3g} m, slide over {length[slides].sum():.3g} m")
+            f"{opens:.3g} m, slide over {slides:.3g} m")
 
 
 def _listed(interfaces) -> str:

@@ -433,6 +433,17 @@ class AssemblyLimit:
         p = np.asarray(points, dtype=float) - self.origin
         return np.column_stack((u - w * p[:, 1], v + w * p[:, 0]))
 
+    def ring_lengths(self) -> tuple[float, float]:
+        """The length of ring interface (an arch of several rings) that opens (rocks or
+        separates, without sliding) and that slides [m], the chords summed; 0 without rings."""
+        c = self.contacts
+        ring = np.asarray(c.kind) == "ring"
+        length = np.hypot(*(c.p1 - c.p0).T)
+        state = np.asarray(self.state).astype(str)
+        opens = ring & np.isin(state, ("rocks", "separates"))
+        slides = ring & (np.char.find(state, "slides") >= 0)
+        return float(length[opens].sum()), float(length[slides].sum())
+
     def interfaces_that(self, state: str) -> list[int]:
         """The interfaces whose state contains ``state`` (``"rocks"``, ``"slides"``, ...)."""
         return [i for i, s in enumerate(self.state) if state in s]
@@ -641,6 +652,13 @@ def assembly_limits(structure, *, friction=None) -> dict[str, dict[str, Assembly
             result = assembly_limit(c, direction, law=law)
             out[direction][result.law] = result
     return out
+
+
+def governing_law(laws: dict) -> AssemblyLimit:
+    """Of one direction's results by law (:func:`assembly_limits`), the one that governs: the
+    non-associative law's where an interface can slide (slip without opening, the physical
+    one), else the only one."""
+    return laws.get("non-associative") or next(iter(laws.values()))
 
 
 def assembly_stands(structure, *, friction=None) -> bool:

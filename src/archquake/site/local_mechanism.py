@@ -876,11 +876,10 @@ def assembly_directions(structure, friction=None) -> tuple:
     -------
     (AssemblyLimit, AssemblyLimit)
     """
-    from ..limit_analysis import assembly_limits
+    from ..limit_analysis import assembly_limits, governing_law
 
-    results = assembly_limits(structure, friction=friction)
-    return tuple(max(laws.values(), key=lambda r: r.law == "non-associative")
-                 for laws in results.values())
+    return tuple(governing_law(laws) for laws in
+                 assembly_limits(structure, friction=friction).values())
 
 
 def check_local_mechanism(structure: BlockArch, actions, *, confidence_factor: float = 1.0,

@@ -34,8 +34,6 @@ from __future__ import annotations
 import math
 import time
 
-import numpy as np
-
 from ...constants import GRAVITY
 from ..render import Bullets, Paragraph, Section, Table
 
@@ -93,16 +91,11 @@ def _names(structure, blocks) -> dict:
 def _how(result) -> dict:
     """How a collapse moves: the interfaces that rock, slide, separate, and the length of ring
     interface that opens and slides [m]."""
-    c = result.contacts
-    state = np.asarray(result.state, dtype=str)
-    ring = c.kind == "ring"
-    length = np.hypot(*(c.p1 - c.p0).T)
-    opens = ring & np.isin(state, ("rocks", "separates"))
-    slides = ring & (np.char.find(state, "slides") >= 0)
+    ring = result.contacts.kind == "ring"
+    opens, slides = result.ring_lengths()
     return {"rocking": [i for i in result.interfaces_that("rocks") if not ring[i]],
             "sliding": [i for i in result.interfaces_that("slides") if not ring[i]],
-            "ring_opens_m": float(length[opens].sum()),
-            "ring_slides_m": float(length[slides].sum())}
+            "ring_opens_m": opens, "ring_slides_m": slides}
 
 
 def _entry(structure, result) -> dict:
@@ -131,12 +124,12 @@ def limit_part(structure, friction: float) -> tuple[dict, dict, tuple]:
     governing : (AssemblyLimit, AssemblyLimit)
         Toward +x and -x.
     """
-    from ...limit_analysis import assembly_limits
+    from ...limit_analysis import assembly_limits, governing_law
     from ...site.local_mechanism import assembly_directions
 
     contacts = _friction(structure, friction)
-    results = assembly_limits(contacts)
-    governing = assembly_directions(contacts)
+    results = assembly_limits(contacts)  # the non-associative iteration once
+    governing = tuple(governing_law(laws) for laws in results.values())
     heyman = assembly_directions(contacts.with_friction(math.inf))
     first = min(governing, key=lambda r: r.load_multiplier)
     summary = {"laws": {d: {law: _entry(structure, r) for law, r in laws.items()}
