@@ -126,6 +126,10 @@ def test_the_rigid_block_model_of_an_assembly_has_its_load_multipliers():
                                                                 "block assembly"),
     (["--rings", "2", "--epsilon", "0.2"], "--epsilon: the assessment of a block assembly"),
     (["--rings", "2", "--sa-period", "0.5"], "--sa-period"),
+    (["--spans", "3", "--piers", "3,6", "--knowledge-level", "LC2"],
+     "the site's options need --site FILE or --code"),
+    (["--rings", "0"], "--rings must be an integer >= 1, got 0"),
+    (["--spans", "0"], "--spans must be an integer in [1, 100], got 0"),
 ])
 def test_what_an_assemblys_assessment_refuses(argv, message, capsys, tmp_path):
     assert main(["assess", *argv, "--out", str(tmp_path / "x"), "--no-progress"]) == 2

@@ -75,19 +75,32 @@ def run(args: argparse.Namespace) -> int:
     settings = (AssessmentSettings.quick_settings(**changes) if args.quick
                 else AssessmentSettings(**changes))
     records = options.suite_from_args(args)
-    site = None
+    result = assess(structure, records=records, out_dir=args.out,
+                    progress=not args.no_progress, resume=args.resume, settings=settings,
+                    command=_command(args), site=_site(args))
+    return _print(result)
+
+
+def _site(args: argparse.Namespace):
+    """The site of the site options, or None; its options without a site are refused."""
     if args.site is not None or args.code is not None:
-        site = options.site_spec(args)
-    elif options.given(args, "knowledge_level", "confidence_factor", *sorted(
+        return options.site_spec(args)
+    if options.given(args, "knowledge_level", "confidence_factor", *sorted(
             {n for names in options.CODE_OPTIONS.values() for n in names})):
         raise ValueError("the site's options need --site FILE or --code (a site to check the "
                          "structure at)")
-    command = None
-    if getattr(args, "argv", None) is not None:
-        command = shlex.join(["archquake", *args.argv])
-    result = assess(structure, records=records, out_dir=args.out,
-                    progress=not args.no_progress, resume=args.resume, settings=settings,
-                    command=command, site=site)
+    return None
+
+
+def _command(args: argparse.Namespace) -> str | None:
+    """The command line that ran the assessment, for the report."""
+    if getattr(args, "argv", None) is None:
+        return None
+    return shlex.join(["archquake", *args.argv])
+
+
+def _print(result) -> int:
+    """The verdict, the site's and where the report is."""
     total = result.results["timings"]["total"]
     figures = sum(f.endswith(".png") for f in result.files)
     nrml = sum(f.endswith(".xml") for f in result.files)
@@ -106,8 +119,9 @@ def run(args: argparse.Namespace) -> int:
 def _assembly_options(args: argparse.Namespace) -> bool:
     """Whether the options describe a block assembly: several spans, rings, or a --geometry
     file (which may hold one)."""
-    return bool(getattr(args, "rings", None) or (getattr(args, "spans", None) or 1) > 1
-                or getattr(args, "geometry", None))
+    return (getattr(args, "rings", None) is not None
+            or getattr(args, "spans", None) not in (None, 1)
+            or bool(getattr(args, "geometry", None)))
 
 
 def _assembly(args: argparse.Namespace, structure) -> int:
@@ -123,28 +137,13 @@ def _assembly(args: argparse.Namespace, structure) -> int:
                          "spans, rings, a drawing) runs no irregular or record study")
     settings = (AssessmentSettings.quick_settings if args.quick else AssessmentSettings)(
         friction=args.friction)
-    if args.friction is not None and getattr(structure, "friction", None) is not None:
-        # the rings' own friction given (--ring-friction): --friction is the other interfaces'
-        # (as for limit), which the structure says do not slide
-        own = structure.friction
-        if isinstance(own, dict):
-            structure = structure.with_friction(
-                {**own, **{kind: args.friction for kind in own if kind != "ring"}})
-    site = None
-    if args.site is not None or args.code is not None:
-        site = options.site_spec(args)
-    command = None
-    if getattr(args, "argv", None) is not None:
-        command = shlex.join(["archquake", *args.argv])
+    own = getattr(structure, "friction", None)
+    if isinstance(own, dict):
+        # the rings' own friction given (--ring-friction), the other interfaces' none (they
+        # do not slide): --friction is theirs, as the rigid blocks' at every other joint
+        structure = structure.with_friction(
+            {**own, **{kind: args.friction for kind in own if kind != "ring"}})
     result = assess(structure, out_dir=args.out, progress=not args.no_progress,
-                    resume=args.resume, settings=settings, command=command, site=site)
-    print(result.verdict)
-    if result.results.get("site"):
-        from ..report.assess.site import verdict_text
-
-        print(verdict_text(result.results["site"]))
-    figures = len(result.files) - 3
-    print(f"report written to {result.directory / 'report.html'} (also report.md, "
-          f"results.json, {figures} figure{'' if figures == 1 else 's'}) in "
-          f"{result.results['timings']['total']:.1f} s")
-    return 0
+                    resume=args.resume, settings=settings, command=_command(args),
+                    site=_site(args))
+    return _print(result)

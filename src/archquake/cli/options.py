@@ -399,7 +399,7 @@ def structure_spec(args: argparse.Namespace, *, draw: bool = True, spans: bool =
 
     names = SHAPE_FIELDS + ("geometry", "units") + STRUCTURE_FIELDS + RING_FIELDS + ("density",)
     names += SPAN_FIELDS
-    if not spans and getattr(args, "spans", None) not in (None, 1):
+    if not spans and (getattr(args, "spans", None) or 1) > 1:  # 0 or less: refused below
         raise ValueError(f"--spans {args.spans} builds several arches on shared piers: "
                          f"{', '.join(SPANS_COMMANDS[:-1])} and {SPANS_COMMANDS[-1]} analyse "
                          "them, this command does not")
