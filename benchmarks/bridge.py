@@ -19,14 +19,15 @@ middle piers 2 m wide, 4 m high, of three courses: 63 blocks. Fill 0.5 m over th
 The fill adds no unknowns to either model (it rides on its blocks), so the ratios measure that
 it costs nothing; the absolute figures are those of the user guide's page "Bridges".
 
-Measured (2 shared cores, ``--repeats 1``): limit analysis 0.075 s filled, 0.067 s bare (ratio
-1.12; k = 0.0583 and 0.0499); rigid blocks 98.7 ms a step filled, 28.9 ms bare (ratio 3.4, 61
-steps); the filled bridge's contact problems in the blocks' velocities (its default) 107 ms a
-step with 7 steps solved by Lemke's algorithm, in the impulses 185 ms and 14 (ratio 1.72). The
-whole pulse analysis of the filled bridge (``--full``): rest after 720 steps, 81 s (203 s before
-the velocities; 384 of its steps by Lemke's algorithm, where the active-set method cycles). The
-limit analysis is well within 0.2 s; the rigid blocks are far from 1 s: the steps that fall
-back to Lemke's dense tableau dominate.
+Measured (2 shared cores, ``--repeats 1``; its rings are one chord a face, so the rigid blocks'
+arcs change nothing here): limit analysis 0.075 s filled, 0.067 s bare (ratio 1.12; k = 0.0583 and
+0.0499); rigid blocks 98.7 ms a step filled, 28.9 ms bare (ratio 3.4, 61 steps); the filled
+bridge's contact problems in the blocks' velocities (its default) 107 ms a step with 7 steps solved
+by Lemke's algorithm, in the impulses 185 ms and 14 (ratio 1.72). The whole pulse analysis of the
+filled bridge (``--full``): rest after 720 steps, 81 s (203 s before the velocities; 384 of its
+steps by Lemke's algorithm, where the active-set method cycles). The limit analysis is well within
+0.2 s; the rigid blocks are far from 1 s: the steps that fall back to Lemke's dense tableau
+dominate.
 """
 
 from __future__ import annotations

@@ -52,7 +52,7 @@ from archquake.rigid_blocks.contact_problem import (  # noqa: E402
     incidence,
     solve_active_set,
 )
-from archquake.rigid_blocks.contacts import contact_geometry  # noqa: E402
+from archquake.rigid_blocks.contacts import FRICTION, contact_geometry  # noqa: E402
 from archquake.rigid_blocks.dynamics import contact_arrays, time_step_for  # noqa: E402
 
 
@@ -72,7 +72,7 @@ def first_step(courses: int, blocks: int):
     v_free = np.zeros((nb, 3))
     v_free[:, 0] = -0.3 * GRAVITY * h
     v_free[:, 1] = -GRAVITY * h
-    mu = np.where(np.isnan(contacts[:, -1]), 0.6, contacts[:, -1])
+    mu = np.where(np.isnan(contacts[:, FRICTION]), 0.6, contacts[:, FRICTION])
     pointer, incident, half = incidence(cb, nb)
     kl = 2 * half + 1
     work = (np.zeros(nc, dtype=np.int64), np.zeros(nc, dtype=np.int64), pointer, incident, kl,

@@ -78,31 +78,37 @@ def cost(quick: bool) -> None:
 
 def rigid_blocks() -> None:
     """The failure acceleration of two aligned rings of Oppenheim's arch (friction 0.8 at
-    every joint) under Oppenheim's pulse, by bisection to 0.01 g, against arc_error."""
+    every joint) under Oppenheim's pulse, by bisection to 0.01 g, against arc_error: with the
+    ring interfaces as arcs (the default, one curved joint a pair of voussoirs) and as their
+    chords (``from_block_assembly(arcs=False)``), side by side."""
     from archquake.constants import GRAVITY
     from archquake.ground_motion import oppenheim_pulse
-    from archquake.rigid_blocks import BlockSettings, RigidBlockModel
+    from archquake.rigid_blocks import BlockSettings, RigidBlockModel, from_block_assembly
 
     durations = (0.2, 0.5)
     print("\ntwo aligned rings of Oppenheim's arch, friction 0.8 at every joint: the rigid-block "
-          "failure acceleration [g] under Oppenheim's pulse (bisection to 0.01 g)")
-    print(f"{'arc_error/t':>12} {'interfaces':>10}" + "".join(
+          "failure acceleration [g] under Oppenheim's pulse (bisection to 0.01 g), the ring "
+          "interfaces as arcs and as chords")
+    print(f"{'arc_error/t':>12} {'interfaces':>10} {'joints':>6}" + "".join(
         f"{f't_p = {tp:g} s':>14} {'Lemke/steps':>13} {'time [s]':>9}" for tp in durations))
     for fraction in (0.05, 0.02, 0.01, 0.005, 0.002, 0.001):
         arch = multi_ring(10.0, ALPHA, 1.5, rings=2, voussoirs=7, arc_error=fraction * 1.5)
-        model = RigidBlockModel(arch, BlockSettings(friction=0.8))
-        row = f"{fraction:12g} {arch.interfaces.n_interfaces:10d}"
-        for tp in durations:
-            lo, hi, lemke, steps = 0.2, 1.5, 0, 0
-            t0 = time.perf_counter()
-            while hi - lo > 0.01:
-                mid = 0.5 * (lo + hi)
-                outcome = model.outcome(oppenheim_pulse(-mid * GRAVITY, tp))
-                lemke, steps = lemke + outcome.fallback_steps, steps + outcome.steps
-                lo, hi = (lo, mid) if outcome.collapsed else (mid, hi)
-            row += (f"{0.5 * (lo + hi):14.3f} {f'{lemke}/{steps}':>13} "
-                    f"{time.perf_counter() - t0:9.1f}")
-        print(row, flush=True)
+        for arcs in (True, False):
+            assembly = from_block_assembly(arch, arcs=arcs)
+            model = RigidBlockModel(assembly, BlockSettings(friction=0.8))
+            row = (f"{fraction:12g} {arch.interfaces.n_interfaces:10d} "
+                   f"{assembly.n_joints:6d}")
+            for tp in durations:
+                lo, hi, lemke, steps = 0.2, 1.5, 0, 0
+                t0 = time.perf_counter()
+                while hi - lo > 0.01:
+                    mid = 0.5 * (lo + hi)
+                    outcome = model.outcome(oppenheim_pulse(-mid * GRAVITY, tp))
+                    lemke, steps = lemke + outcome.fallback_steps, steps + outcome.steps
+                    lo, hi = (lo, mid) if outcome.collapsed else (mid, hi)
+                row += (f"{0.5 * (lo + hi):14.3f} {f'{lemke}/{steps}':>13} "
+                        f"{time.perf_counter() - t0:9.1f}")
+            print(row + ("  arcs" if arcs else "  chords"), flush=True)
 
 
 def main(argv=None) -> int:

@@ -31,7 +31,7 @@ from archquake.rigid_blocks.contact_problem import (
     incidence,
     solve_active_set,
 )
-from archquake.rigid_blocks.contacts import contact_geometry, relative_velocity
+from archquake.rigid_blocks.contacts import FRICTION, contact_geometry, relative_velocity
 from archquake.rigid_blocks.dynamics import contact_arrays, contact_unknowns
 
 
@@ -239,7 +239,7 @@ def test_where_the_switching_tests_cycle_the_augmented_states_end_on_coulombs_la
     p = problem(bridge, h=h)
     cb, nb, jac = p["cb"], p["nb"], p["jac"]
     nc = cb.shape[0]
-    mu = contact_arrays(bridge)["contacts"][:, -1].copy()
+    mu = contact_arrays(bridge)["contacts"][:, FRICTION].copy()
     mu[np.isnan(mu)] = 0.6
     inv_mass = np.column_stack([p["inv_mass"], np.sqrt(p["inv_mass"])])
     position, kb = block_band(cb, nb)

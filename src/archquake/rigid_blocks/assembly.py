@@ -56,6 +56,17 @@ joint's length [-]: a corner that slides a little past the end of the opposite f
 contact (the exact contact there, the other corner on this face, differs to second order)."""
 
 
+def _arc_lengths(chords: np.ndarray, curvature: np.ndarray) -> np.ndarray:
+    """Lengths of the minor arcs of signed curvature ``curvature`` [1/m] over ``chords`` [m]
+    (the chord where the curvature is 0) [m]."""
+    kappa = np.abs(curvature)
+    curved = kappa > 0
+    out = np.array(chords, dtype=float, copy=True)
+    k = kappa[curved]
+    out[curved] = 2.0 * np.arcsin(np.minimum(0.5 * k * chords[curved], 1.0)) / k
+    return out
+
+
 def _frozen(array, dtype=float) -> np.ndarray:
     """A contiguous, read-only copy (or view) of ``array`` as ``dtype``."""
     arr = np.ascontiguousarray(array, dtype=dtype)
@@ -102,6 +113,12 @@ class Assembly:
         Coulomb coefficient of every joint [-], >= 0 (``inf``: the joint cannot slide, solved
         as :data:`STICK_FRICTION`); None (the default): every joint takes the analysis's
         ``BlockSettings.friction``. Where given, it is used instead of the settings'.
+    curvature : array of float, shape (nj,), optional
+        Signed curvature of the face of body ``a_j`` along every joint [1/m]: 0 for a flat
+        joint (the default for all), > 0 where that face is an arc of a circle whose centre
+        lies inside ``a_j`` (convex), < 0 where it lies on the side of ``b_j`` (concave). A
+        curved joint is the minor arc through its two end points; its face extents are arc
+        lengths (:mod:`archquake.rigid_blocks.contacts`, "Curved faces").
 
     Raises
     ------
@@ -110,7 +127,8 @@ class Assembly:
         non-finite entry, a joint pairs a body with itself or an index outside
         ``GROUND .. nb - 1``, a joint has length 0, a normal is not perpendicular to its joint
         (to 1e-9 in the cosine), a face does not contain its joint, the crown block is not a
-        block, the thickness is not finite and > 0, or a friction coefficient is nan or < 0.
+        block, the thickness is not finite and > 0, a friction coefficient is nan or < 0, or a
+        curvature is not finite or too large for its joint (radius at most half the chord).
 
     Notes
     -----
@@ -138,6 +156,7 @@ class Assembly:
     thickness: float = 1.0
     name: str = ""
     friction: np.ndarray | None = None
+    curvature: np.ndarray | None = None
     _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False, hash=False)
 
     def __post_init__(self):
@@ -184,6 +203,17 @@ class Assembly:
         # orient the ends so that t = n turned by +90 degrees: t = (-n_y, n_x)
         flip = tangents[:, 0] * -normals[:, 1] + tangents[:, 1] * normals[:, 0] < 0
         points[flip] = points[flip][:, ::-1]
+        if self.curvature is None:
+            curvature = np.zeros(nj)
+        else:
+            curvature = np.array(np.broadcast_to(np.asarray(self.curvature, dtype=float), (nj,))
+                                 if np.ndim(self.curvature) == 0 else self.curvature, dtype=float)
+            if (curvature.shape != (nj,) or not np.all(np.isfinite(curvature))
+                    or np.any(0.5 * np.abs(curvature) * lengths >= 1.0)):
+                raise ValueError(f"curvature must be {nj} finite numbers [1/m], each with a "
+                                 f"radius over half its joint's length, got "
+                                 f"{np.asarray(self.curvature).tolist()}")
+        lengths = _arc_lengths(lengths, curvature)
         if self.face_extents is None:
             faces = np.column_stack((-FACE_EXTENSION * lengths, (1 + FACE_EXTENSION) * lengths))
         else:
@@ -205,7 +235,8 @@ class Assembly:
                             ("inertias", inertias), ("joint_bodies", _frozen(bodies, np.int64)),
                             ("joint_points", _frozen(points)),
                             ("joint_normals", _frozen(normals)),
-                            ("face_extents", _frozen(faces))):
+                            ("face_extents", _frozen(faces)),
+                            ("curvature", _frozen(curvature))):
             object.__setattr__(self, name, value)
         object.__setattr__(self, "outlines", tuple(_frozen(o) for o in self.outlines))
         object.__setattr__(self, "crown", (int(crown_block), _frozen(crown_point)))
@@ -250,6 +281,27 @@ class Assembly:
     def joint_lengths(self) -> np.ndarray:
         """Length of every joint [m]."""
         return np.linalg.norm(self.joint_points[:, 1] - self.joint_points[:, 0], axis=1)
+
+    @property
+    def arc_lengths(self) -> np.ndarray:
+        """Length of every joint's face along its arc [m] (its chord where it is flat)."""
+        return _arc_lengths(self.joint_lengths, self.curvature)
+
+    def end_normals(self) -> np.ndarray:
+        """The normal of the face of body ``a_j`` at each end of every joint, shape (nj, 2, 2)
+        [-]: the joint's normal where it is flat, the radial one (out of the centre where the
+        face is convex, into it where concave) where it is curved."""
+        normals = np.repeat(self.joint_normals[:, None, :], 2, axis=1)
+        curved = self.curvature != 0
+        if curved.any():
+            points, kappa = self.joint_points[curved], self.curvature[curved]
+            side, radius = np.sign(kappa), 1.0 / np.abs(kappa)
+            half = 0.5 * self.joint_lengths[curved]
+            middle = points.mean(axis=1)
+            offset = side * np.sqrt(radius**2 - half**2)
+            centre = middle - offset[:, None] * self.joint_normals[curved]
+            normals[curved] = (side / radius)[:, None, None] * (points - centre[:, None, :])
+        return normals
 
 
 def from_arch(arch: BlockArch) -> Assembly:
@@ -361,7 +413,7 @@ def rectangular_block(width: float, height: float, density: float = 2000.0) -> A
     )
 
 
-def from_block_assembly(blocks, *, thickness: float | None = None) -> Assembly:
+def from_block_assembly(blocks, *, thickness: float | None = None, arcs: bool = True) -> Assembly:
     r"""The rigid-block model of a general block assembly (a wall, a stack, any planar set of
     blocks on fixed supports).
 
@@ -369,9 +421,11 @@ def from_block_assembly(blocks, *, thickness: float | None = None) -> Assembly:
     ``polygons`` (every block's outline [m]), ``mass`` [kg/m], ``centroid`` [m], ``inertia``
     [kg m], and its ``interfaces``: ``a``, ``b`` (bodies, ``-1`` for a support), ``p0``,
     ``p1`` (ends [m]), ``normal`` (from a into b [-]) and ``friction`` (Coulomb coefficient
-    of every interface [-], ``inf``: no sliding). Interface ``j`` becomes joint ``j`` (the
-    solver renumbers the joints for a small bandwidth and gives every result back in this
-    order: :func:`archquake.rigid_blocks.dynamics.joint_order`).
+    of every interface [-], ``inf``: no sliding), and ``kind``. Interface ``j`` becomes joint
+    ``j`` (the solver renumbers the joints for a small bandwidth and gives every result back in
+    this order: :func:`archquake.rigid_blocks.dynamics.joint_order`), but for the chords of a
+    ring interface between two blocks, which become one curved joint where they lie on a
+    circle (:func:`curved_joints`).
 
     Two choices that an arch makes by its shape are made here for any assembly:
 
@@ -393,11 +447,15 @@ def from_block_assembly(blocks, *, thickness: float | None = None) -> Assembly:
         The assembly (or any object with the attributes above).
     thickness : float, optional
         Length scale [m], > 0 (default: above).
+    arcs : bool
+        Make the chains of ring chords on a circle curved joints (:func:`curved_joints`); False
+        keeps every chord a joint of its own (to compare the two).
 
     Returns
     -------
     Assembly
-        ``n_blocks`` blocks and one joint per interface, with the interfaces' friction
+        ``n_blocks`` blocks and one joint per interface (per chain of ring chords on a circle),
+        with the interfaces' friction
         (:attr:`Assembly.friction`), or none where the assembly gives none (its ``friction``
         None): the model's settings then give it.
 
@@ -430,6 +488,10 @@ def from_block_assembly(blocks, *, thickness: float | None = None) -> Assembly:
     if thickness is None:
         sides = [min(np.ptp(p[:, 0]), np.ptp(p[:, 1])) for p in polygons]
         thickness = float(np.median(sides))
+    kinds = np.asarray(getattr(interfaces, "kind", np.full(a.size, "")))
+    joints = curved_joints(a, b, p0, p1, np.asarray(normals, dtype=float),
+                           np.asarray(friction, dtype=float), (kinds == "ring") & arcs)
+    a, b, p0, p1, normals, friction, curvature = joints
     points = np.stack((p0, p1), axis=1) if p0.size else np.zeros((0, 2, 2))
     return Assembly(
         masses=masses, centroids=centroids, inertias=inertias,
@@ -437,5 +499,135 @@ def from_block_assembly(blocks, *, thickness: float | None = None) -> Assembly:
         outlines=tuple(np.vstack((p, p[:1])) for p in polygons),
         crown=(crown, (centroids[crown, 0], tops[crown])), thickness=thickness,
         friction=None if getattr(blocks, "friction", 0.0) is None else friction,
-        name=f"assembly of {len(polygons)} blocks and {a.size} interfaces",
+        curvature=curvature,
+        name=f"assembly of {len(polygons)} blocks and {interfaces.a.size} interfaces",
     )
+
+
+CIRCLE_TOLERANCE = 1e-3
+"""Largest distance of a chain of chords' corners from the circle through its ends and its
+middle corner, relative to the chain's chord, for the chain to be taken as an arc of that
+circle by :func:`curved_joints` [-]."""
+
+MAX_CHORD_TURN = math.radians(30.0)
+"""Largest turn of the normal between two consecutive chords of a chain taken as an arc [rad]."""
+
+
+def _circle(p, q, r):
+    """Centre [m] and radius [m] of the circle through three points (None if collinear)."""
+    d = 2.0 * ((q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]))
+    if d == 0.0:
+        return None
+    pq, pr = np.dot(q, q) - np.dot(p, p), np.dot(r, r) - np.dot(p, p)
+    centre = np.array([(pq * (r[1] - p[1]) - pr * (q[1] - p[1])) / d,
+                       (pr * (q[0] - p[0]) - pq * (r[0] - p[0])) / d])
+    return centre, float(np.linalg.norm(p - centre))
+
+
+def _chains(indices, p0, p1, scale):
+    """The interfaces ``indices`` (of one pair of bodies) as chains, each a list of indices
+    in which every interface starts where the one before ends (to 1e-9 of ``scale``)."""
+    key = lambda point: (round(point[0] / (1e-9 * scale)), round(point[1] / (1e-9 * scale)))  # noqa: E731
+    starting = {key(p0[i]): i for i in indices}
+    ending = {key(p1[i]) for i in indices}
+    chains, seen = [], set()
+    for first in indices:
+        if key(p0[first]) in ending:
+            continue  # not the start of a chain
+        chain = [first]
+        while (nxt := starting.get(key(p1[chain[-1]]))) is not None and nxt not in chain:
+            chain.append(nxt)
+        chains.append(chain)
+        seen.update(chain)
+    chains.extend([i] for i in indices if i not in seen)  # a closed loop: left as chords
+    return chains
+
+
+def _arc_of(chain, p0, p1, normals):
+    """The signed curvature [1/m] of the arc a chain of chords lies on (0: none, it stays as
+    chords): the circle through its ends and its middle corner, if every corner is within
+    :data:`CIRCLE_TOLERANCE` of the chain's chord of it, every turn of the normal between two
+    chords has the same sign and is below :data:`MAX_CHORD_TURN`, and the arc is shorter than
+    a half circle."""
+    if len(chain) < 2:
+        return 0.0
+    corners = np.vstack([p0[chain], p1[chain[-1:]]])
+    start, end = corners[0], corners[-1]
+    chord = float(np.linalg.norm(end - start))
+    n0, n1 = normals[chain[:-1]], normals[chain[1:]]
+    turns = np.arcsin(np.clip(n0[:, 0] * n1[:, 1] - n0[:, 1] * n1[:, 0], -1.0, 1.0))
+    if (chord == 0.0 or np.any(np.abs(turns) >= MAX_CHORD_TURN)
+            or not (np.all(turns > 0) or np.all(turns < 0))):
+        return 0.0
+    apex = corners[len(corners) // 2]
+    circle = _circle(start, apex, end)
+    if circle is None:
+        return 0.0
+    centre, radius = circle
+    middle = 0.5 * (start + end)
+    if (np.max(np.abs(np.linalg.norm(corners - centre, axis=1) - radius))
+            > CIRCLE_TOLERANCE * chord or np.dot(apex - middle, centre - middle) >= 0):
+        return 0.0  # not on the circle, or on its major arc
+    # convex face of body a (> 0) where its centre lies on the side of a, against the normal
+    side = -1.0 if np.dot(centre - middle, normals[chain[0]]) > 0 else 1.0
+    return side / radius
+
+
+def curved_joints(a, b, p0, p1, normals, friction, ring):
+    r"""The joints of an assembly's interfaces, with every chain of ring chords between the
+    same two blocks that lies on a circle made one curved joint.
+
+    A curved interface (two rings of an arch touching along an arc) is given as chords. Cut
+    so, every chord's end is a contact, the contacts of one interface outnumber the relative
+    motions of its two blocks many times over, and the rings cannot slide on each other
+    without opening at every corner (:mod:`archquake.rigid_blocks.contacts`, "Curved
+    faces"). The arc itself, with a contact at each end, holds exactly what the whole arc
+    holds. A chain is the chords ``i`` (``ring[i]``) between one pair of bodies, each starting
+    where the one before ends; it is taken as the arc of the circle through its ends and its
+    middle corner where every corner lies within :data:`CIRCLE_TOLERANCE` times the chain's
+    chord of it (a chain of chords of a circle: to round-off), the chords all turn the same
+    way by less than :data:`MAX_CHORD_TURN`, the arc is shorter than a half circle and its
+    chords have one friction coefficient. Any other interface is kept as it is.
+
+    Parameters
+    ----------
+    a, b : array of int (ni,)
+        The two bodies of every interface.
+    p0, p1 : array of float (ni, 2)
+        Its ends [m], ``p1 - p0`` the normal turned by +90 degrees.
+    normals : array of float (ni, 2)
+        Its unit normal from body a into body b [-].
+    friction : array of float (ni,)
+        Its Coulomb coefficient [-].
+    ring : array of bool (ni,)
+        Whether it is a chord of a ring interface.
+
+    Returns
+    -------
+    tuple of arrays
+        ``(a, b, p0, p1, normals, friction, curvature)`` of the joints: an arc's joint at the
+        place of its first chord, from the chain's first end to its last, with the normal of
+        that chord between them and the arc's signed curvature [1/m] (0 for the others).
+    """
+    ni = a.size
+    keep = np.ones(ni, dtype=bool)
+    q0, q1 = p0.copy(), p1.copy()
+    normal, curvature = normals.copy(), np.zeros(ni)
+    scale = max(float(np.abs(np.concatenate([p0, p1])).max()), 1.0) if ni else 1.0
+    pairs = {}
+    for i in np.flatnonzero(ring):
+        pairs.setdefault((int(a[i]), int(b[i])), []).append(int(i))
+    for indices in pairs.values():
+        for chain in _chains(indices, p0, p1, scale):
+            same = np.all(friction[chain] == friction[chain[0]])
+            kappa = _arc_of(chain, p0, p1, normals) if same else 0.0
+            if kappa == 0.0:
+                continue
+            first = chain[0]
+            q1[first] = p1[chain[-1]]
+            tangent = (q1[first] - q0[first]) / np.linalg.norm(q1[first] - q0[first])
+            normal[first] = (tangent[1], -tangent[0])  # the tangent is the normal turned +90
+            curvature[first] = kappa
+            keep[chain[1:]] = False
+    return (a[keep], b[keep], q0[keep], q1[keep], normal[keep], friction[keep],
+            curvature[keep])

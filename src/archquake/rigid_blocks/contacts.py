@@ -55,6 +55,34 @@ cross product :math:`r \times n = r_x n_y - r_y n_x`,
 
 and the same with ``t_a`` for ``H_t``: the turning of the face of ``a`` moves the lever arm of
 body ``a`` from ``p_a`` to ``p_b`` (:func:`contact_geometry`).
+
+Curved faces
+------------
+Two blocks that touch along an arc of a circle (the interface of two rings of an arch) share
+one joint whose face of body ``a`` is that arc, of signed curvature :math:`\kappa` (> 0: the
+face of ``a`` is convex, its centre inside ``a``; < 0: concave) [1/m], with a contact at each
+end of the arc. With ``n_a`` the face's normal at the contact's end (radial) and
+:math:`\sigma = \operatorname{sign}\kappa`, :math:`R = 1/|\kappa|`, the face's centre
+``o``, the gap, the arc length and the normal at the contact are
+
+.. math::
+
+    o = p_a - \sigma R\, n_a, \qquad g = \sigma\,(\lVert p_b - o \rVert - R), \qquad
+    s = \sigma R\, \angle(p_a - o,\; p_b - o), \qquad
+    n = \sigma\,\frac{p_b - o}{\lVert p_b - o \rVert}
+
+(the angle counterclockwise), and ``t`` is ``n`` turned by +90 degrees; the Jacobian rows are
+those above with this ``n`` and ``t``. The gap is exact for any motion, and so is
+:math:`u_n = H_n v = \dot g`: the velocity of ``o`` and that of the point of ``a`` at ``p_b``
+differ by a rotation about ``o``, normal to ``n``. ``u_t`` is the slip rate at ``p_b``, the
+rate of ``s`` while the contact is closed. Two end contacts hold a circular interface exactly
+to first order: a rigid relative motion moves the face's points normal to it at the velocity
+of the centre projected on the radial, :math:`u_n(\varphi) = V_o \cdot n(\varphi)`, a
+cosine of the angle that is >= 0 over an arc shorter than a half circle where it is >= 0 at
+both ends; so the ends admit the relative motions that the whole arc admits, rotation about
+``o`` (the rings sliding on each other) among them, and nothing else. Cut into chords, the
+same interface would need a contact at every chord's end, and the rings could not slide on
+each other without opening at every chord's corner (by half the angle between two chords).
 """
 
 from __future__ import annotations
@@ -71,15 +99,19 @@ undeformed centroid [m] of every block."""
 BODY_MASS, BODY_INERTIA, BODY_X, BODY_Y = range(4)
 
 CONTACT_FIELDS = ("ra_x", "ra_y", "rb_x", "rb_y", "normal_x", "normal_y", "tangent_x",
-                  "tangent_y", "offset", "face_lo", "face_hi", "length", "friction")
-"""Columns of the contact array ``contacts`` (nc, 13), contact ``2 j + k`` being end ``k`` of joint
+                  "tangent_y", "offset", "face_lo", "face_hi", "length", "friction", "curvature")
+"""Columns of the contact array ``contacts`` (nc, 14), contact ``2 j + k`` being end ``k`` of joint
 ``j``: the undeformed contact point relative to the centroid of body a and of body b (absolute for
 the ground) [m], the joint's unit normal and tangent [-], the position of the end along the joint
 (0 or its length), the face of body a along the joint and the joint's length [m], and the
-joint's own Coulomb coefficient [-] (nan: the analysis's, ``BlockSettings.friction``). The bodies
+joint's own Coulomb coefficient [-] (nan: the analysis's, ``BlockSettings.friction``) and the
+signed curvature of the face of body a [1/m] (0: flat; "Curved faces" in the module docstring).
+For a curved face the normal and tangent are those at the contact's end, and the positions
+along the face are arc lengths [m]. The bodies
 themselves are the int array ``contact_bodies`` (nc, 2): ``(a, b)``, -1 for the ground."""
 
-RA_X, RA_Y, RB_X, RB_Y, N_X, N_Y, T_X, T_Y, OFFSET, FACE_LO, FACE_HI, LENGTH, FRICTION = range(13)
+(RA_X, RA_Y, RB_X, RB_Y, N_X, N_Y, T_X, T_Y, OFFSET, FACE_LO, FACE_HI, LENGTH, FRICTION,
+ CURVATURE) = range(14)
 
 # ---------------------------------------------------------------------------------------------
 # Contacts: geometry, relative velocities, impulses
@@ -117,7 +149,7 @@ def contact_geometry(q, bodies, contacts, contact_bodies, trig, gap, slip, valid
         Displacements ``(x, y, theta)`` of the blocks [m, m, rad].
     bodies : array (nb, 4)
         The blocks (:data:`BODY_FIELDS`).
-    contacts : array (nc, 13)
+    contacts : array (nc, 14)
         The contacts (:data:`CONTACT_FIELDS`).
     contact_bodies : array of int (nc, 2)
         Bodies a and b of every contact (-1 for the ground).
@@ -155,8 +187,21 @@ def contact_geometry(q, bodies, contacts, contact_bodies, trig, gap, slip, valid
             cbx = cby = 0.0
             pbx, pby = contacts[c, RB_X], contacts[c, RB_Y]
         dx, dy = pbx - pax, pby - pay
-        gap[c] = dx * nx + dy * ny
-        slip[c] = dx * tx + dy * ty
+        kappa = contacts[c, CURVATURE]
+        if kappa == 0.0:
+            gap[c] = dx * nx + dy * ny
+            slip[c] = dx * tx + dy * ty
+        else:  # a circular face: the centre, then the radial normal through p_b
+            side = 1.0 if kappa > 0.0 else -1.0
+            radius = 1.0 / abs(kappa)
+            ox, oy = pax - side * radius * nx, pay - side * radius * ny
+            ex, ey = pbx - ox, pby - oy
+            distance = math.hypot(ex, ey)
+            gap[c] = side * (distance - radius)
+            slip[c] = side * radius * math.atan2((pax - ox) * ey - (pay - oy) * ex,
+                                                 (pax - ox) * ex + (pay - oy) * ey)
+            nx, ny = side * ex / distance, side * ey / distance
+            tx, ty = -ny, nx
         along = contacts[c, OFFSET] + slip[c]
         valid[c] = contacts[c, FACE_LO] <= along <= contacts[c, FACE_HI]
         # lever arms from each centroid to the contact point p_b

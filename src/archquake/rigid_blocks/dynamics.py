@@ -663,11 +663,13 @@ def contact_arrays(assembly: Assembly, reorder: bool = True) -> dict[str, np.nda
     at position ``k`` of :func:`joint_order` (``reorder``; joint ``k`` itself without).
 
     ``bodies`` (nb, 4): mass [kg/m], inertia [kg m] and centroid [m] of every block
-    (:data:`archquake.rigid_blocks.contacts.BODY_FIELDS`); ``contacts`` (nc, 13): the contact
+    (:data:`archquake.rigid_blocks.contacts.BODY_FIELDS`); ``contacts`` (nc, 14): the contact
     point relative to the centroid of body a and of body b in the undeformed configuration (the
     absolute point for the ground) [m], the joint's unit normal and tangent [-], the position of
     the end along the joint (0 or its length), the face of body a along the joint and the joint's
-    length [m] (:data:`~archquake.rigid_blocks.contacts.CONTACT_FIELDS`); ``contact_bodies``
+    length [m], its friction [-] and curvature [1/m] (along a curved joint: the normal and
+    tangent at the end, lengths along the arc;
+    :data:`~archquake.rigid_blocks.contacts.CONTACT_FIELDS`); ``contact_bodies``
     (nc, 2) int: bodies a and b (:data:`GROUND` for a support).
 
     Parameters
@@ -691,19 +693,20 @@ def contact_arrays(assembly: Assembly, reorder: bool = True) -> dict[str, np.nda
         cb = np.repeat(joint_bodies[:, 1], 2)
         points = joint_points.reshape(2 * nj, 2)
         centroid = np.vstack((assembly.centroids, np.zeros((1, 2))))  # index -1: the ground
-        lengths = assembly.joint_lengths[order]
-        tangents = (joint_points[:, 1] - joint_points[:, 0]) / lengths[:, None]
+        lengths = assembly.arc_lengths[order]
+        normals = assembly.end_normals()[order].reshape(2 * nj, 2)
         faces = assembly.face_extents[order]
         columns = {
             "ra": points - centroid[ca], "rb": points - centroid[cb],
-            "normal": np.repeat(assembly.joint_normals[order], 2, axis=0),
-            "tangent": np.repeat(tangents, 2, axis=0),
+            "normal": normals,
+            "tangent": np.column_stack((-normals[:, 1], normals[:, 0])),
             "offset": np.column_stack((np.zeros(nj), lengths)).reshape(-1),
             "face_lo": np.repeat(faces[:, 0], 2),
             "face_hi": np.repeat(faces[:, 1], 2),
             "length": np.repeat(lengths, 2),
             "friction": np.repeat(np.full(nj, np.nan) if assembly.friction is None else
                                   np.minimum(assembly.friction[order], STICK_FRICTION), 2),
+            "curvature": np.repeat(assembly.curvature[order], 2),
         }
         contacts = np.column_stack([np.reshape(x, (2 * nj, -1)) for x in columns.values()])
         assert contacts.shape[1] == len(CONTACT_FIELDS)

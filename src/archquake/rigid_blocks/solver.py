@@ -666,9 +666,9 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     ----------
     bodies : array (nb, 4)
         The blocks (:data:`~.contacts.BODY_FIELDS`).
-    contacts : array (nc, 13)
-        The contacts (:data:`~.contacts.CONTACT_FIELDS`; the last column the friction
-        coefficient of the contact's joint, nan for the settings' ``friction``).
+    contacts : array (nc, 14)
+        The contacts (:data:`~.contacts.CONTACT_FIELDS`; among them the friction coefficient
+        of the contact's joint, nan for the settings' ``friction``).
     contact_bodies : array of int (nc, 2)
         Bodies a and b of every contact (-1: the ground).
     q0, v0 : array (nb, 3)
