@@ -22,11 +22,14 @@ slide, and the rigid-block model is its only dynamic model. Its report therefore
    durations and scan of the assessment's settings (below k the blocks must not move);
 3. at a site (``site``), the code check of the mechanism by the linear route of Circolare 2019
    §C8.7.1.2.1 (:func:`archquake.site.local_mechanism.check_local_mechanism`, whose
-   participating mass comes from the assembly's collapse velocities);
+   participating mass comes from the assembly's collapse velocities), and the code's dynamic
+   route (NTC 2018 §7.3.5: the records compatible with the site's spectrum, each through the
+   rigid-block model, :func:`archquake.site.dynamic_check.run_dynamic_check`) where its
+   estimated cost is within :data:`DYNAMIC_BUDGET`;
 
 and says what it leaves out and why: the fragility under pulses and records, the irregular
-draws and the code's dynamic route and risk (each needs hundreds or thousands of rigid-block
-analyses, up to a minute each on these structures).
+draws and the risk (each needs hundreds or thousands of rigid-block analyses, up to a minute
+each on these structures).
 """
 
 from __future__ import annotations
@@ -50,6 +53,10 @@ DOMAIN_BUDGET = 300.0
 this [s]: :data:`DOMAIN_ANALYSES` analyses a duration, each as long as the longer run of the
 rigid-block check (whose held load lasts about as long as a pulse and the motion after it)."""
 
+DYNAMIC_BUDGET = 300.0
+"""The code's dynamic route is run when its estimated cost is at most this [s]: the number of
+its records times the wall time of one rigid-block analysis under the first of them."""
+
 DOMAIN_ANALYSES = 25
 """Analyses a duration of the failure domain's scan and bisections, for its cost estimate [-]
 (measured: 19 durations of three spans took 470 analyses)."""
@@ -61,9 +68,8 @@ LEFT_OUT = (
     "the fragility under pulses and records and the irregular structures: each needs "
     "thousands of rigid-block analyses; run one with archquake rigid-blocks and the same "
     "structure options (--amplitude/--duration for a pulse, --record FILE for a record)",
-    "at a site, the nonlinear route of the code check, its dynamic route and the annual risk "
-    "(the capacity curve needs a four-link chain; the other two, the rigid-block analyses "
-    "above)",
+    "at a site, the nonlinear route of the code check and the annual risk (the capacity curve "
+    "needs a four-link chain; the risk, a record-based fragility: the analyses above)",
 )
 """What the assessment of an assembly does not do, and why (the report lists it)."""
 
@@ -218,6 +224,51 @@ def domain_part(structure, k: float, direction: str, settings, activation: dict)
     out.update(rows=rows, domain=domain.to_dict(), seconds=time.perf_counter() - t0,
                resolution_g=settings.domain_resolution_g, direction=direction)
     return out, domain
+
+
+def dynamic_part(structure, site, suite, friction: float, progress: bool = True) -> dict:
+    """The code's dynamic route at the site with the rigid-block model (module docstring, 3),
+    where its estimated cost is within :data:`DYNAMIC_BUDGET`.
+
+    Parameters
+    ----------
+    structure : BlockAssembly
+    site : SiteSpec
+    suite : RecordSuite
+        The records from which the compatible ones are selected.
+    friction : float
+        Coulomb coefficient of the interfaces that give none [-].
+    progress : bool
+
+    Returns
+    -------
+    dict
+        JSON-ready: as the arch's dynamic route (``limit_state``, the selection, the runs and
+        the verdicts), or ``skipped`` (why), with ``estimate_s`` where it was estimated.
+    """
+    from ...models import ModelSpec
+    from ...site.dynamic_check import run_dynamic_check
+    from .site import dynamic_selection
+
+    action, selection, skipped = dynamic_selection(site, site.actions(), suite)
+    if skipped is not None:
+        return skipped
+    spec = ModelSpec("rigid-blocks", friction=friction).resolved(structure)
+    model = spec.build(structure)
+    motions = selection.scaled_motions()
+    for motion in motions:
+        spec.check_motion(structure, motion)
+    t0 = time.perf_counter()
+    model.outcome(motions[0])
+    estimate = len(motions) * (time.perf_counter() - t0)
+    if estimate > DYNAMIC_BUDGET:
+        return {"skipped": f"its {len(motions)} records would take about {estimate / 60:.0f} "
+                           f"minutes of rigid-block analyses (the budget is "
+                           f"{DYNAMIC_BUDGET / 60:.0f} minutes)", "estimate_s": estimate}
+    t0 = time.perf_counter()
+    dynamic = run_dynamic_check(structure, selection, models=(spec,), progress=progress)
+    return {"limit_state": action.limit_state, **dynamic.to_dict(), "estimate_s": estimate,
+            "seconds": time.perf_counter() - t0}
 
 
 # ------------------------------------------------------------------------------ words
@@ -429,6 +480,7 @@ def sections(results: dict, figures: dict) -> list[Section]:
 
 
 __all__ = ["ACTIVATION_DURATION", "ACTIVATION_MARGIN", "LEFT_OUT",
-           "DOMAIN_ANALYSES", "DOMAIN_BUDGET", "activation_part", "assembly_name", "domain_part",
+           "DOMAIN_ANALYSES", "DOMAIN_BUDGET", "DYNAMIC_BUDGET", "activation_part",
+           "assembly_name", "domain_part", "dynamic_part",
            "limit_part", "mechanism_words", "sections",
            "verdict_text"]

@@ -559,6 +559,7 @@ def _assess_assembly(structure, *, settings, out_dir, progress: bool = True,
         activation_part,
         assembly_name,
         domain_part,
+        dynamic_part,
         limit_part,
         sections,
     )
@@ -580,7 +581,7 @@ def _assess_assembly(structure, *, settings, out_dir, progress: bool = True,
         "settings": settings.to_dict(),
         "command": {"given": command, "regenerate": _regenerate(command, out), "note": ""},
         "left_out": list(LEFT_OUT)}
-    steps = Steps(4 + (site is not None), progress=progress, desc="assess")
+    steps = Steps(4 + 2 * (site is not None), progress=progress, desc="assess")
     timings = {}
     figures = {}
     domain = None
@@ -610,11 +611,13 @@ def _assess_assembly(structure, *, settings, out_dir, progress: bool = True,
                 results["site"] = {
                     "site": site.to_dict(), "describe": site.describe(),
                     "check": check.to_dict(),
-                    "dynamic": {"skipped": "an assembly's dynamic route needs seven record "
-                                           "analyses of the rigid-block model (see what this "
-                                           "assessment leaves out)"},
                     "risk": {"skipped": "no record-based fragility of an assembly (see what "
                                         "this assessment leaves out)"}}
+            with steps("code's dynamic route (rigid blocks)"):
+                suite, note = choose_suite(settings=settings)
+                results["site"]["dynamic"] = {
+                    **dynamic_part(structure, site, suite, settings.friction, progress),
+                    "records_note": note}
         with steps("figures"):
             if laws is not None:
                 from .. import render

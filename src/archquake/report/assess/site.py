@@ -61,10 +61,17 @@ def site_part(structure, site, suite, results: dict, *, progress: bool = False):
     return summary, check
 
 
-def _dynamic(structure, site, actions, suite, progress: bool) -> dict:
-    """The code's dynamic route at the SLV action (or the only one given)."""
+def dynamic_selection(site, actions, suite):
+    """The records of the code's dynamic route at the SLV action (or the only one given):
+    seven compatible with its spectrum, else as many as the suite has (>= 3).
+
+    Returns
+    -------
+    (action, selection, skipped)
+        The action and the :class:`~archquake.site.compatible_records.CompatibleSelection`, or
+        ``skipped``, a JSON-ready dict saying why there is none (the others then None).
+    """
     from ...site.compatible_records import select_compatible_records
-    from ...site.dynamic_check import run_dynamic_check
 
     action = next((a for a in actions if a.limit_state == "SLV"), actions[0])
     rule = "ec8" if site.code == "ec8" else "ntc2018"
@@ -79,11 +86,22 @@ def _dynamic(structure, site, actions, suite, progress: bool) -> dict:
             if "count must be at most" not in error:
                 break
     if selection is None:
-        return {"skipped": f"no selection of the assessment's records: {error}"}
+        return None, None, {"skipped": f"no selection of the assessment's records: {error}"}
     if not selection.compatible:
-        return {"skipped": "the assessment's records hold no subset compatible with the "
-                           f"site's {action.limit_state} spectrum: {selection.summary()}",
-                "selection": selection.to_dict()}
+        return None, None, {
+            "skipped": "the assessment's records hold no subset compatible with the site's "
+                       f"{action.limit_state} spectrum: {selection.summary()}",
+            "selection": selection.to_dict()}
+    return action, selection, None
+
+
+def _dynamic(structure, site, actions, suite, progress: bool) -> dict:
+    """The code's dynamic route at the SLV action (or the only one given)."""
+    from ...site.dynamic_check import run_dynamic_check
+
+    action, selection, skipped = dynamic_selection(site, actions, suite)
+    if skipped is not None:
+        return skipped
     dynamic = run_dynamic_check(structure, selection, progress=progress)
     return {"limit_state": action.limit_state, **dynamic.to_dict()}
 
@@ -212,12 +230,15 @@ def dynamic_text(site: dict) -> str:
     verdicts = "; ".join(
         f"{v['model']}: {v['verdict']} ({v['collapses']} collapses, {v['undecided']} "
         f"undecided of {v['records']}; {v['reason']})" for v in dynamic["verdicts"])
+    models = [v["model"] for v in dynamic["verdicts"]]
+    through = ("the rigid-block model (whose verdict is stated) and the four-link model beside "
+               "it" if len(models) > 1 else f"the {models[0]} model")
     return (f"The code's dynamic route (NTC 2018 §3.2.3.6 and §7.3.5) at the "
             f"{dynamic['limit_state']} spectrum: {len(sel['records'])} of the assessment's "
             f"records, scaled so that their mean spectrum lies within the code's band; "
-            f"each run through the rigid-block model (whose verdict is stated) and the "
-            f"four-link model beside it. {verdicts}. A collapse under any record fails the "
-            f"check; an undecided run is never a pass.")
+            f"each run through {through}. {verdicts}. A collapse under any record fails the "
+            f"check; an undecided run is never a pass."
+            + (f" {dynamic['records_note']}" if dynamic.get("records_note") else ""))
 
 
 def dynamic_rows(site: dict) -> list[list[str]]:
