@@ -122,6 +122,20 @@ def test_the_report_of_three_spans(bridge_report):
     assert dynamic["verdict"]["verdict"] == ("fail" if "collapse" in statuses else
                                              "undecided" if "undecided" in statuses else "pass")
     assert "each run through the rigid-blocks model" in text
+    # the record-based fragility: no record collapses the blocks at k g (they cannot move
+    # below it), and the stripes' fit is the lognormal of the records' collapse PGAs, each
+    # known to the grid's step (15 %): the geometric mean and log deviation of those PGAs
+    rec = results["records"]
+    assert rec["undecided"] == 0 and len(rec["records"]) == 3  # a quick assessment's
+    capacity = np.array([r["collapse_pga_g"] for r in rec["records"]], dtype=float)
+    step = math.log(rec["levels_g"][1] / rec["levels_g"][0])
+    assert step == pytest.approx(math.log(30) / 24)
+    assert np.all(capacity > k * (1 + 1e-9))
+    fit = rec["lognormal"]
+    assert abs(math.log(fit["median"]) - np.log(capacity).mean()) < step
+    assert abs(fit["dispersion"] - np.log(capacity).std()) < step
+    assert "## 3b. Record-based fragility (rigid blocks)" in text
+    assert (out / "fig3_record_fragility.png").is_file()
     for item in LEFT_OUT:
         assert item in text
     assert (out / "fig1_collapse.png").stat().st_size > 20_000
@@ -200,3 +214,32 @@ def test_ring_friction_keeps_the_other_interfaces_friction_of_the_command_line(t
     k = min(r.load_multiplier for laws in expected.values() for r in laws.values()
             if r.law == "non-associative")
     assert summary["k"] == pytest.approx(k, rel=1e-9)
+
+
+def test_the_risk_of_an_assembly_is_cornells_closed_form():
+    """The annual frequency of collapse from a record fragility (lognormal, median theta,
+    dispersion beta) and a power-law hazard lambda(x) = k0 x^-kk: Cornell's closed form
+    k0 theta^-kk exp(kk^2 beta^2 / 2) (Cornell et al. 2002, eq. 12). Without a hazard curve
+    the risk is skipped with the reason."""
+    from archquake.report.assess.assembly import assembly_risk
+    from archquake.site.hazard import HazardCurve
+
+    k0, kk, theta, beta = 1e-4, 2.0, 0.43, 0.2
+    x = np.geomspace(1e-3, 100.0, 60)
+
+    class Site:
+        def hazard_curve(self, im):
+            assert im == "PGA"
+            return HazardCurve(x, k0 * x**-kk, im="PGA")
+
+    risk = assembly_risk(Site(), {"lognormal": {"median": theta, "dispersion": beta}})
+    expected = k0 * theta**-kk * math.exp(0.5 * kk**2 * beta**2)
+    assert risk["annual_frequency"] == pytest.approx(expected, rel=1e-2)
+    assert risk["model"] == "rigid-blocks"
+
+    class Spectrum:
+        def hazard_curve(self, im):
+            return None
+
+    assert "hazard curve" in assembly_risk(Spectrum(), {})["skipped"]
+    assert "record-based" in assembly_risk(Site(), {"skipped": "budget"})["skipped"]

@@ -27,17 +27,22 @@ slide, and the rigid-block model is its only dynamic model. Its report therefore
    rigid-block model, :func:`archquake.site.dynamic_check.run_dynamic_check`) where its
    estimated cost is within :data:`DYNAMIC_BUDGET`;
 
-and says what it leaves out and why: the fragility under pulses and records, the irregular
-draws and the risk (each needs hundreds or thousands of rigid-block analyses, up to a minute
-each on these structures).
+4. where its estimated cost is within :data:`RECORD_BUDGET`, the record-based collapse
+   fragility in PGA of the structure with the rigid-block model (:func:`record_part`), and at a
+   site with a hazard curve, the annual risk of collapse from it (:func:`assembly_risk`);
+
+and says what it leaves out and why: the fragility under pulses and the irregular draws (each
+needs thousands of rigid-block analyses, up to a minute each on these structures).
 """
 
 from __future__ import annotations
 
 import math
+import sys
 import time
 
 from ...constants import GRAVITY
+from ...status import Status
 from ..render import Bullets, Paragraph, Section, Table
 
 ACTIVATION_MARGIN = 0.1
@@ -57,6 +62,16 @@ DYNAMIC_BUDGET = 300.0
 """The code's dynamic route is run when its estimated cost is at most this [s]: the number of
 its records times the wall time of one rigid-block analysis under the first of them."""
 
+RECORD_BUDGET = 300.0
+"""The record-based fragility is computed when its estimated cost is at most this [s]
+(:func:`record_part`)."""
+
+RECORD_LEVELS = 10
+"""Levels a record and polarity is expected to be run at before it collapses the structure,
+for the cost estimate of the record-based fragility [-] (the pilot's grid rises by 15 % a
+level; measured on three spans of Oppenheim's arch: the six records of a quick assessment
+collapse them at 2.7-4.8 k g, after 8-12 levels)."""
+
 DOMAIN_ANALYSES = 25
 """Analyses a duration of the failure domain's scan and bisections, for its cost estimate [-]
 (measured: 19 durations of three spans took 470 analyses)."""
@@ -65,11 +80,11 @@ LEFT_OUT = (
     "the four-link model: the structure is not one chain of voussoirs between two springings, "
     "so its mechanism is not a four-hinge mechanism of one chain; the rigid-block model is its "
     "dynamic model",
-    "the fragility under pulses and records and the irregular structures: each needs "
-    "thousands of rigid-block analyses; run one with archquake rigid-blocks and the same "
-    "structure options (--amplitude/--duration for a pulse, --record FILE for a record)",
-    "at a site, the nonlinear route of the code check and the annual risk (the capacity curve "
-    "needs a four-link chain; the risk, a record-based fragility: the analyses above)",
+    "the fragility under pulses and the irregular structures: each needs thousands of "
+    "rigid-block analyses; run one with archquake rigid-blocks and the same structure options "
+    "(--amplitude/--duration for a pulse, --record FILE for a record)",
+    "at a site, the nonlinear route of the code check (its capacity curve needs a four-link "
+    "chain)",
 )
 """What the assessment of an assembly does not do, and why (the report lists it)."""
 
@@ -226,6 +241,104 @@ def domain_part(structure, k: float, direction: str, settings, activation: dict)
     return out, domain
 
 
+def record_part(structure, k: float, suite, friction: float, progress: bool = True) -> dict:
+    r"""The record-based collapse fragility in PGA of the structure with the rigid-block model
+    (module docstring, 4), where its estimated cost is within :data:`RECORD_BUDGET`.
+
+    Every record of ``suite`` is scaled to the PGA levels of the pilot of a record study
+    (:data:`archquake.studies.stripes.PILOT_RANGE`: 25 levels geometric from ``k g`` to
+    ``30 k g``), up from the lowest, both polarities, until it collapses the structure: its
+    collapse PGA is the first level that does. The stripes follow: at level :math:`x_j` the
+    records whose collapse PGA is at most :math:`x_j` fail, and the lognormal fragility is their
+    maximum-likelihood fit (:func:`~archquake.studies.fits.fit_lognormal_or_none`), a
+    record-to-record fragility of the nominal structure (no irregular draws). A run left
+    undecided counts as a collapse (the fragility is then an upper bound; their number is
+    given). The cost estimate: the records times two polarities times
+    :data:`RECORD_LEVELS` levels, each as long as one analysis of the first record at ``k g``.
+
+    Returns
+    -------
+    dict
+        JSON-ready: ``estimate_s``; either ``skipped`` (why) or ``levels_g``, per record its
+        ``name``, ``pga_g`` and ``collapse_pga_g`` (None: none on the grid) and its analyses,
+        ``failures`` per level, ``lognormal`` (``median`` [g], ``dispersion``; None where the
+        counts do not separate into a fit), ``undecided`` runs, ``analyses`` and ``seconds``.
+    """
+    import numpy as np
+    from tqdm.auto import tqdm
+
+    from ...models import ModelSpec
+    from ...studies.fits import fit_lognormal_or_none
+    from ...studies.stripes import PILOT_RANGE
+
+    spec = ModelSpec("rigid-blocks", friction=friction).resolved(structure)
+    model = spec.build(structure)
+    motions = suite.motions(cached=True)
+    pga = suite.intensities("pga")
+    levels = k * np.geomspace(*PILOT_RANGE)
+    for motion, value in zip(motions, pga, strict=True):
+        spec.check_motion(structure, motion.scaled(levels[-1] / value))
+    t0 = time.perf_counter()
+    model.outcome(motions[0].scaled(levels[0] / pga[0]))
+    estimate = len(motions) * 2 * RECORD_LEVELS * (time.perf_counter() - t0)
+    out = {"estimate_s": estimate}
+    if estimate > RECORD_BUDGET:
+        out["skipped"] = (f"its {len(motions)} records would take about {estimate / 60:.0f} "
+                          f"minutes of rigid-block analyses (the budget is "
+                          f"{RECORD_BUDGET / 60:.0f} minutes)")
+        return out
+    t0 = time.perf_counter()
+    records, undecided, analyses = [], 0, 0
+    with tqdm(total=len(motions), desc="records", unit="record", disable=not progress,
+              file=sys.stderr) as bar:
+        for motion, value in zip(motions, pga, strict=True):
+            first, runs = None, 0
+            for level in levels:
+                statuses = [model.outcome(m).status for m in
+                            (motion.scaled(level / value), motion.scaled(-level / value))]
+                runs += 2
+                undecided += sum(s is Status.UNDECIDED for s in statuses)
+                if any(s in (Status.COLLAPSE, Status.UNDECIDED) for s in statuses):
+                    first = float(level)
+                    break
+            analyses += runs
+            records.append({"name": motion.name, "pga_g": float(value),
+                            "collapse_pga_g": first, "analyses": runs})
+            bar.update()
+    capacity = np.array([math.inf if r["collapse_pga_g"] is None else r["collapse_pga_g"]
+                         for r in records])
+    failures = np.array([int(np.sum(capacity <= x * (1 + 1e-12))) for x in levels])
+    fit = fit_lognormal_or_none(levels, len(records), failures)
+    out.update(levels_g=levels.tolist(), records=records, failures=failures.tolist(),
+               lognormal=None if fit is None else {"median": fit.median,
+                                                   "dispersion": fit.dispersion},
+               undecided=undecided, analyses=analyses, seconds=time.perf_counter() - t0)
+    return out
+
+
+def assembly_risk(site, records: dict) -> dict:
+    """The annual frequency of collapse at ``site`` from its hazard curve in PGA and the
+    record-based fragility of :func:`record_part` (:func:`archquake.site.risk.risk`), or
+    ``skipped`` (why)."""
+    from ...site.fragility_models import LognormalCollapseFragility
+    from ...site.risk import risk
+    from .site import RISK_YEARS
+
+    hazard = site.hazard_curve("PGA")
+    if hazard is None:
+        return {"skipped": "the site is given by one spectrum, not its hazard curve: give its "
+                           "national-grid table (--site FILE) for the risk"}
+    fit = (records or {}).get("lognormal")
+    if not fit:
+        return {"skipped": "no lognormal fragility in PGA from the record-based study of the "
+                           "rigid-block model" + (f" ({records['skipped']})"
+                                                  if "skipped" in (records or {}) else "")}
+    fragility = LognormalCollapseFragility(
+        float(fit["median"]), float(fit["dispersion"]), "PGA",
+        source="the record-based fragility of the structure (rigid-blocks model)")
+    return {**risk(fragility, hazard, years=RISK_YEARS).to_dict(), "model": "rigid-blocks"}
+
+
 def dynamic_part(structure, site, suite, friction: float, progress: bool = True) -> dict:
     """The code's dynamic route at the site with the rigid-block model (module docstring, 3),
     where its estimated cost is within :data:`DYNAMIC_BUDGET`.
@@ -328,7 +441,43 @@ def verdict_text(results: dict) -> str:
         text += (f" Under Oppenheim's pulse (rigid blocks) it collapses from "
                  f"{_g(rows[-1]['collapse_from_g'])} g at t_p = {rows[-1]['duration']:g} s and "
                  f"from {_g(rows[0]['collapse_from_g'])} g at t_p = {rows[0]['duration']:g} s.")
+    fit = (results.get("records") or {}).get("lognormal")
+    if fit:
+        rec = results["records"]
+        text += (f" Under {len(rec['records'])} records (rigid blocks) its collapse PGA has a "
+                 f"median of {fit['median']:.3f} g (dispersion {fit['dispersion']:.2f}).")
     return text
+
+
+def record_text(results: dict) -> str:
+    """The record-based fragility in words."""
+    r = results["records"]
+    note = f" {r['records_note']}" if r.get("records_note") else ""
+    if "skipped" in r:
+        return f"The record-based fragility was not computed: {r['skipped']}.{note}"
+    fit = r["lognormal"]
+    k = results["limit"]["k"]
+    fitted = (f"The lognormal fit of these stripes (maximum likelihood): median "
+              f"{fit['median']:.3f} g, dispersion {fit['dispersion']:.2f} (record to record "
+              f"only: the nominal structure, no irregular draws)." if fit else
+              "The stripes do not separate into a lognormal fit (every record collapses the "
+              "structure at one level, or none does).")
+    undecided = (f" {r['undecided']} runs were left undecided and count as collapses: the "
+                 "fragility is an upper bound." if r["undecided"] else " No run was left "
+                 "undecided.")
+    return (f"The record-based collapse fragility in PGA with the rigid-block model: every "
+            f"record scaled up the pilot's {len(r['levels_g'])} PGA levels from k g = "
+            f"{k:.4f} g to 30 k g (15 % apart), both polarities, until it collapses the "
+            f"structure ({r['analyses']} analyses in {r['seconds']:.0f} s). A record's collapse "
+            f"PGA is the first level that collapses it; at each level the records that "
+            f"collapsed at or below it count as failures. {fitted}{undecided}{note}")
+
+
+def record_rows(results: dict) -> list[list[str]]:
+    """One row per record: name, its PGA, its collapse PGA, analyses."""
+    return [[r["name"], f"{r['pga_g']:.3f}",
+             "beyond 30 k g" if r["collapse_pga_g"] is None else f"{r['collapse_pga_g']:.3f}",
+             str(r["analyses"])] for r in results["records"]["records"]]
 
 
 def limit_rows(results: dict) -> list[list[str]]:
@@ -461,6 +610,14 @@ def sections(results: dict, figures: dict) -> list[Section]:
             blocks += [Table(["t_p [s]", "the blocks move from [g]", "collapse from [g]",
                               "undecided [g]"], domain_rows(results)), figures["domain"]]
         out.append(Section("3. Failure domain under pulses (rigid blocks)", blocks))
+    if results.get("records"):
+        blocks = [Paragraph(record_text(results))]
+        if "records" in results["records"]:
+            blocks.append(Table(["record", "its PGA [g]", "collapses from PGA [g]",
+                                 "analyses"], record_rows(results)))
+            if "records" in figures:
+                blocks.append(figures["records"])
+        out.append(Section("3b. Record-based fragility (rigid blocks)", blocks))
     if results.get("site"):
         site = results["site"]
         out.append(Section("4. Is it safe here? The code check at the site", [
@@ -480,7 +637,8 @@ def sections(results: dict, figures: dict) -> list[Section]:
 
 
 __all__ = ["ACTIVATION_DURATION", "ACTIVATION_MARGIN", "LEFT_OUT",
-           "DOMAIN_ANALYSES", "DOMAIN_BUDGET", "DYNAMIC_BUDGET", "activation_part",
-           "assembly_name", "domain_part", "dynamic_part",
-           "limit_part", "mechanism_words", "sections",
+           "DOMAIN_ANALYSES", "DOMAIN_BUDGET", "DYNAMIC_BUDGET", "RECORD_BUDGET", "RECORD_LEVELS",
+           "activation_part", "assembly_name", "assembly_risk", "domain_part", "dynamic_part",
+           "record_part",
+           "limit_part", "mechanism_words", "record_rows", "record_text", "sections",
            "verdict_text"]

@@ -521,6 +521,46 @@ def _regenerate(command: str | None, out: Path) -> str:
     return shlex.join(words)
 
 
+QUICK_ASSEMBLY_RECORDS = 3
+"""Records of the record-based fragility of an assembly in a quick assessment (a smoke test;
+the code's dynamic route keeps the suite's, from which it selects the compatible ones)."""
+
+
+def _record_figure(results: dict):
+    """The figure of an assembly's record-based fragility (:func:`.assembly.record_part`)."""
+    import matplotlib.pyplot as plt
+
+    from ...studies.fits import LognormalFragility
+
+    rec = results["records"]
+    capacity = np.sort([r["collapse_pga_g"] for r in rec["records"]
+                        if r["collapse_pga_g"] is not None])
+    fig, ax = plt.subplots(figsize=(6.5, 4.2), constrained_layout=True)
+    levels = np.asarray(rec["levels_g"])
+    n = len(rec["records"])
+    if capacity.size:
+        ax.step(np.concatenate(([levels[0]], capacity)),
+                np.arange(capacity.size + 1) / n, where="post", color="0.3",
+                label=f"{n} records")
+    if rec["lognormal"]:
+        fit = LognormalFragility(rec["lognormal"]["median"], rec["lognormal"]["dispersion"])
+        x = np.geomspace(levels[0], levels[-1], 200)
+        ax.plot(x, fit(x), color="tab:red",
+                label=f"lognormal: median {fit.median:.3f} g, beta {fit.dispersion:.2f}")
+    ax.axvline(results["limit"]["k"], color="0.5", linestyle="--", linewidth=1)
+    ax.set_xscale("log")
+    ticks = [t for t in (0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0, 10.0)
+             if levels[0] <= t <= levels[-1]]
+    ax.set_xticks(ticks, [f"{t:g}" for t in ticks])
+    ax.xaxis.set_minor_formatter(plt.NullFormatter())
+    ax.set_xlabel("PGA [g]")
+    ax.set_ylabel("probability of collapse [-]")
+    ax.set_ylim(0, 1.02)
+    ax.legend(loc="lower right")
+    ax.set_title("Rigid blocks: collapse under the records, scaled")
+    return fig
+
+
 def _assess_assembly(structure, *, settings, out_dir, progress: bool = True,
                     resume: bool = False, command: str | None = None, site=None):
     """Assess a block assembly (:mod:`archquake.report.assess.assembly`): :func:`assess` of
@@ -558,9 +598,11 @@ def _assess_assembly(structure, *, settings, out_dir, progress: bool = True,
         LEFT_OUT,
         activation_part,
         assembly_name,
+        assembly_risk,
         domain_part,
         dynamic_part,
         limit_part,
+        record_part,
         sections,
     )
 
@@ -581,7 +623,7 @@ def _assess_assembly(structure, *, settings, out_dir, progress: bool = True,
         "settings": settings.to_dict(),
         "command": {"given": command, "regenerate": _regenerate(command, out), "note": ""},
         "left_out": list(LEFT_OUT)}
-    steps = Steps(4 + 2 * (site is not None), progress=progress, desc="assess")
+    steps = Steps(5 + 2 * (site is not None), progress=progress, desc="assess")
     timings = {}
     figures = {}
     domain = None
@@ -602,6 +644,13 @@ def _assess_assembly(structure, *, settings, out_dir, progress: bool = True,
                 results["domain"], domain = domain_part(structure, summary["k"],
                                                         summary["direction"], settings,
                                                         results["rigid_blocks"])
+            suite, records_note = choose_suite(settings=settings)
+            with steps("record-based fragility (rigid blocks)"):
+                fragility_suite = (record_parts.select_records(suite, QUICK_ASSEMBLY_RECORDS)
+                                   if settings.quick else suite)
+                results["records"] = {**record_part(structure, summary["k"], fragility_suite,
+                                                    settings.friction, progress),
+                                      "records_note": records_note}
         if site is not None and summary is not None:
             from ...site.local_mechanism import check_local_mechanism
 
@@ -611,13 +660,11 @@ def _assess_assembly(structure, *, settings, out_dir, progress: bool = True,
                 results["site"] = {
                     "site": site.to_dict(), "describe": site.describe(),
                     "check": check.to_dict(),
-                    "risk": {"skipped": "no record-based fragility of an assembly (see what "
-                                        "this assessment leaves out)"}}
+                    "risk": assembly_risk(site, results["records"])}
             with steps("code's dynamic route (rigid blocks)"):
-                suite, note = choose_suite(settings=settings)
                 results["site"]["dynamic"] = {
                     **dynamic_part(structure, site, suite, settings.friction, progress),
-                    "records_note": note}
+                    "records_note": records_note}
         with steps("figures"):
             if laws is not None:
                 from .. import render
@@ -644,6 +691,12 @@ def _assess_assembly(structure, *, settings, out_dir, progress: bool = True,
                     "The rigid-block model's failure domain under Oppenheim's pulse: no "
                     "motion, recovery and collapse over the pulse duration t_p and amplitude; "
                     "dashed: the collapse multiplier k of the limit analysis.", None)
+            if "lognormal" in (results.get("records") or {}):
+                figures["records"] = render.Figure(
+                    save(_record_figure(results), out, "fig3_record_fragility.png"),
+                    "Fig. 3", "The record-based collapse fragility with the rigid-block model: "
+                    "the records' collapse PGA (steps: the share of records collapsed at or "
+                    "below it) and the lognormal fit (line); dashed: k g.", None)
         timings.update(steps.timings)
         timings["total"] = time.perf_counter() - t_start
         results["timings"] = timings
