@@ -114,3 +114,19 @@ def test_rings_of_a_parabolic_arch(capsys):
     k_chain = load_multipliers(shaped_arch("parabolic", span=10.0, rise=3.0, thickness=0.8,
                                            voussoirs=9), "static")[0]
     assert out["k"] == pytest.approx(k_chain, abs=1e-4)
+
+
+def test_the_arbiter_names_rings_that_move_below_the_iteration(capsys):
+    """Staggered rings with friction 0.8: the rigid blocks' ramp moves them 25 % below the
+    non-associative k, and the command says to take the lower value; its lists of interfaces
+    are the structure's (0-100), runs compressed."""
+    from archquake.cli.main_limit import _listed
+
+    assert _listed([5, 1, 2, 3, 9, 10]) == "1-3,5,9,10" and _listed([]) == "-"
+    assert main(["limit", "--rings", "2", "--ring-bond", "staggered", "--friction", "0.8",
+                 "--arbiter"]) == 0
+    out = capsys.readouterr().out
+    assert "k = 0.2417" in out and "take the rigid blocks' lower value" in out
+    rows = [line for line in out.splitlines() if "rigid blocks" in line and "ramp" in line]
+    assert len(rows) == 2 and all(" 0.18" in row for row in rows)
+    assert all("-100" in row or "95-99" in row for row in rows)

@@ -45,8 +45,17 @@ def test_each_pair_of_voussoirs_shares_one_arc_of_the_rings_circle():
     np.testing.assert_allclose(np.linalg.norm(points, axis=2), RADIUS, rtol=1e-12)
     np.testing.assert_allclose(assembly.arc_lengths[curved], RADIUS * ALPHA / 7, rtol=1e-12)
     np.testing.assert_allclose(assembly.end_normals()[curved], points / RADIUS, atol=1e-12)
+    # every interface stands in exactly one joint; an arc for all the chords of its pair
+    flat = sorted(i for group in assembly.sources for i in group)
+    assert flat == list(range(arch.interfaces.n_interfaces))
+    a, b = np.asarray(arch.interfaces.a), np.asarray(arch.interfaces.b)
+    for j in np.flatnonzero(curved):
+        pair = tuple(assembly.joint_bodies[j])
+        assert assembly.interfaces_of([j]) == tuple(
+            np.flatnonzero(ring & (a == pair[0]) & (b == pair[1])))
     chords = from_block_assembly(arch, arcs=False)
     assert chords.n_joints == arch.interfaces.n_interfaces and not chords.curvature.any()
+    assert chords.interfaces_of([3, 1]) == (1, 3)
     assert assembly.total_mass == pytest.approx(chords.total_mass, rel=1e-15)
 
 
@@ -183,3 +192,24 @@ def test_arcs_and_fine_chords_give_the_same_outcome(amplitude):
     chords = RigidBlockModel(from_block_assembly(
         two_rings(arc_error=0.005 * 1.5, bond="staggered"), arcs=False), settings).outcome(motion)
     assert arcs.collapsed == chords.collapsed == (amplitude > 0.3)
+
+
+def test_staggered_rings_move_below_the_iterations_multiplier():
+    """Two staggered rings, friction 0.8: the ramp's onset (the cube law of a mechanism
+    starting from rest, extrapolated from three crossings) lies between a held acceleration
+    that leaves the blocks at rest (0.17 g for 1 s) and one that moves them (0.19 g), and well
+    below the non-associative iteration's k (0.2417: no bound with non-associative friction;
+    user guide, "Bridges: several rings")."""
+    from archquake.constants import GRAVITY
+    from archquake.ground_motion.pulses import rectangular_pulse
+    from archquake.limit_analysis import assembly_limit
+    from archquake.rigid_blocks.ramp import ramp_test
+
+    arch = two_rings(bond="staggered")
+    model = RigidBlockModel(arch, BlockSettings(friction=0.8))
+    assert model.outcome(rectangular_pulse(-0.17 * GRAVITY, 1.0)).status.label == "rest"
+    assert model.outcome(rectangular_pulse(-0.19 * GRAVITY, 1.0)).status.label != "rest"
+    onset = ramp_test(arch, friction=0.8).onset("+x")
+    assert 0.17 < onset.multiplier < 0.19 and onset.error < 0.005
+    k = assembly_limit(arch.with_friction(0.8), law="non-associative").load_multiplier
+    assert k > 1.2 * onset.multiplier

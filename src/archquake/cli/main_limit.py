@@ -218,6 +218,13 @@ def _with_friction(args: argparse.Namespace, structure) -> int:
         print(f"k = {k:.4f}: the least of the two directions under the non-associative law "
               "(slip without opening, the physical one; the associative multiplier is the "
               "classical program's, which can overestimate)")
+    if ramp is not None:
+        low = min((ramp.onset(d) for d in results), key=lambda o: o.multiplier)
+        if low.multiplier < k - 3.0 * low.error - 0.01 * k:
+            print(f"the rigid blocks move from {low.multiplier:.4f} toward {low.direction}, "
+                  f"{100 * (1 - low.multiplier / k):.0f} % below k: with non-associative "
+                  "friction the iteration's multiplier is no bound; take the rigid blocks' "
+                  "lower value")
     if args.plot:
         print(f"figure written to {args.plot}")
     return 0
@@ -316,7 +323,15 @@ def _moving(result) -> str:
 
 
 def _listed(interfaces) -> str:
-    return ",".join(str(i) for i in interfaces) or "-"
+    """Sorted interface indices, runs of three or more as ``first-last`` ("-" for none)."""
+    values = sorted(int(i) for i in interfaces)
+    runs, start = [], 0
+    for n in range(1, len(values) + 1):
+        if n == len(values) or values[n] != values[n - 1] + 1:
+            run = values[start:n]
+            runs.append(f"{run[0]}-{run[-1]}" if len(run) >= 3 else ",".join(map(str, run)))
+            start = n
+    return ",".join(runs) or "-"
 
 
 def _plot_friction(args: argparse.Namespace, results) -> None:

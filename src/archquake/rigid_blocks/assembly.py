@@ -119,6 +119,10 @@ class Assembly:
         lies inside ``a_j`` (convex), < 0 where it lies on the side of ``b_j`` (concave). A
         curved joint is the minor arc through its two end points; its face extents are arc
         lengths (:mod:`archquake.rigid_blocks.contacts`, "Curved faces").
+    sources : tuple of tuple of int, optional
+        Per joint, the indices of the interfaces of the structure it was built from that it
+        stands for (:func:`from_block_assembly`: several for a curved joint); None: joint
+        ``j`` is interface ``j``. :meth:`interfaces_of` reads it.
 
     Raises
     ------
@@ -157,6 +161,7 @@ class Assembly:
     name: str = ""
     friction: np.ndarray | None = None
     curvature: np.ndarray | None = None
+    sources: tuple | None = None
     _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False, hash=False)
 
     def __post_init__(self):
@@ -241,6 +246,11 @@ class Assembly:
         object.__setattr__(self, "outlines", tuple(_frozen(o) for o in self.outlines))
         object.__setattr__(self, "crown", (int(crown_block), _frozen(crown_point)))
         object.__setattr__(self, "thickness", thickness)
+        if self.sources is not None:
+            sources = tuple(tuple(int(i) for i in group) for group in self.sources)
+            if len(sources) != nj or any(not group for group in sources):
+                raise ValueError(f"sources must give {nj} non-empty groups of interfaces")
+            object.__setattr__(self, "sources", sources)
         if self.friction is not None:
             friction = _frozen(np.broadcast_to(np.asarray(self.friction, dtype=float), (nj,))
                                if np.ndim(self.friction) == 0 else self.friction)
@@ -281,6 +291,13 @@ class Assembly:
     def joint_lengths(self) -> np.ndarray:
         """Length of every joint [m]."""
         return np.linalg.norm(self.joint_points[:, 1] - self.joint_points[:, 0], axis=1)
+
+    def interfaces_of(self, joints) -> tuple[int, ...]:
+        """The structure's interfaces that the joints ``joints`` stand for, sorted
+        (:attr:`sources`; the joints themselves where it is None)."""
+        if self.sources is None:
+            return tuple(sorted(int(j) for j in joints))
+        return tuple(sorted({i for j in joints for i in self.sources[int(j)]}))
 
     @property
     def arc_lengths(self) -> np.ndarray:
@@ -491,7 +508,7 @@ def from_block_assembly(blocks, *, thickness: float | None = None, arcs: bool = 
     kinds = np.asarray(getattr(interfaces, "kind", np.full(a.size, "")))
     joints = curved_joints(a, b, p0, p1, np.asarray(normals, dtype=float),
                            np.asarray(friction, dtype=float), (kinds == "ring") & arcs)
-    a, b, p0, p1, normals, friction, curvature = joints
+    a, b, p0, p1, normals, friction, curvature, members = joints
     points = np.stack((p0, p1), axis=1) if p0.size else np.zeros((0, 2, 2))
     return Assembly(
         masses=masses, centroids=centroids, inertias=inertias,
@@ -499,7 +516,7 @@ def from_block_assembly(blocks, *, thickness: float | None = None, arcs: bool = 
         outlines=tuple(np.vstack((p, p[:1])) for p in polygons),
         crown=(crown, (centroids[crown, 0], tops[crown])), thickness=thickness,
         friction=None if getattr(blocks, "friction", 0.0) is None else friction,
-        curvature=curvature,
+        curvature=curvature, sources=members,
         name=f"assembly of {len(polygons)} blocks and {interfaces.a.size} interfaces",
     )
 
@@ -605,12 +622,14 @@ def curved_joints(a, b, p0, p1, normals, friction, ring):
     Returns
     -------
     tuple of arrays
-        ``(a, b, p0, p1, normals, friction, curvature)`` of the joints: an arc's joint at the
-        place of its first chord, from the chain's first end to its last, with the normal of
-        that chord between them and the arc's signed curvature [1/m] (0 for the others).
+        ``(a, b, p0, p1, normals, friction, curvature, members)`` of the joints: an arc's
+        joint at the place of its first chord, from the chain's first end to its last, with
+        the normal of that chord between them and the arc's signed curvature [1/m] (0 for the
+        others); ``members``, per joint the indices of the interfaces it stands for.
     """
     ni = a.size
     keep = np.ones(ni, dtype=bool)
+    members = [(i,) for i in range(ni)]
     q0, q1 = p0.copy(), p1.copy()
     normal, curvature = normals.copy(), np.zeros(ni)
     scale = max(float(np.abs(np.concatenate([p0, p1])).max()), 1.0) if ni else 1.0
@@ -628,6 +647,7 @@ def curved_joints(a, b, p0, p1, normals, friction, ring):
             tangent = (q1[first] - q0[first]) / np.linalg.norm(q1[first] - q0[first])
             normal[first] = (tangent[1], -tangent[0])  # the tangent is the normal turned +90
             curvature[first] = kappa
+            members[first] = tuple(chain)
             keep[chain[1:]] = False
     return (a[keep], b[keep], q0[keep], q1[keep], normal[keep], friction[keep],
-            curvature[keep])
+            curvature[keep], tuple(m for m, k in zip(members, keep, strict=True) if k))

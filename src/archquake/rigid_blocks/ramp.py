@@ -151,10 +151,11 @@ class RampOnset:
     crossings : tuple of float
         Multipliers at which the measure of motion crossed its three thresholds [-].
     rocking_joints : tuple of int
-        Joints open at the decision (indices of :class:`~archquake.rigid_blocks.Assembly`'s
-        joints).
+        Joints open at the decision, as the structure's interfaces
+        (:meth:`~archquake.rigid_blocks.Assembly.interfaces_of`: the chords of a ring interface
+        that the rigid blocks take as one arc are all listed).
     sliding_joints : tuple of int
-        Joints slipping at the decision.
+        Joints slipping at the decision, the same way.
     found : bool
         Whether the onset was found below ``max_multiplier``.
     steps : int
@@ -312,8 +313,8 @@ def _onset(assembly, settings: BlockSettings, direction: str, rate: float, thres
     first = (crossings[1] - rho * crossings[0]) / (1.0 - rho)
     second = (crossings[2] - rho * crossings[1]) / (1.0 - rho)
     decision = int(np.argmax(measure >= levels[2]))
-    rocking = tuple(int(j) for j in np.flatnonzero(openings[decision] >= levels[1]))
-    sliding = tuple(int(j) for j in np.flatnonzero(slips[decision] >= levels[1]))
+    rocking = assembly.interfaces_of(np.flatnonzero(openings[decision] >= levels[1]))
+    sliding = assembly.interfaces_of(np.flatnonzero(slips[decision] >= levels[1]))
     error = abs(first - second) + rate * h
     # moving from the start: the structure does not stand under its own weight
     return RampOnset(direction, float(first) if first > error else 0.0, float(error), crossings,
