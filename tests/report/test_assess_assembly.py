@@ -243,3 +243,20 @@ def test_the_risk_of_an_assembly_is_cornells_closed_form():
 
     assert "hazard curve" in assembly_risk(Spectrum(), {})["skipped"]
     assert "record-based" in assembly_risk(Site(), {"skipped": "budget"})["skipped"]
+
+
+def test_where_the_rigid_blocks_move_below_k_the_ramp_gives_their_multiplier():
+    """Two staggered rings, friction 0.8: the check finds the blocks moving 10 % below the
+    iteration's k (0.2417), so the report gives the rigid blocks' own multiplier by the ramp
+    test, between a held acceleration at rest and one that moves them (0.17 and 0.19 g,
+    tests/rigid_blocks/test_curved_joints.py), and the first screen says to take it."""
+    from archquake.geometry import multi_ring
+    from archquake.report.assess.assembly import activation_part, verdict_text
+
+    arch = multi_ring(10.0, math.radians(157.5), 1.5, rings=2, voussoirs=7, bond="staggered")
+    summary, _, _ = limit_part(arch, 0.8)
+    act = activation_part(arch, summary["k"], summary["direction"], 0.8)
+    assert not act["agrees"] and act["runs"][0]["moves"]
+    assert 0.17 < act["ramp"]["multiplier"] < 0.19 < summary["k"]
+    text = verdict_text({"limit": summary, "rigid_blocks": act})
+    assert "does NOT confirm" in text and "take this lower value" in text

@@ -194,9 +194,20 @@ def activation_part(structure, k: float, direction: str, friction: float) -> dic
                      "lemke_steps": outcome.fallback_steps,
                      "seconds": time.perf_counter() - t0})
     below, above = runs
-    return {"direction": direction, "k": k, "duration_s": duration, "threshold_m": threshold,
-            "friction": friction, "time_step_s": model.settings.time_step, "runs": runs,
-            "agrees": (not below["moves"]) and above["moves"]}
+    out = {"direction": direction, "k": k, "duration_s": duration, "threshold_m": threshold,
+           "friction": friction, "time_step_s": model.settings.time_step, "runs": runs,
+           "agrees": (not below["moves"]) and above["moves"]}
+    if not out["agrees"]:  # the rigid blocks' own collapse multiplier, by the ramp test
+        from ...rigid_blocks.ramp import ramp_test
+
+        t0 = time.perf_counter()
+        onset = ramp_test(structure, friction=friction, directions=(direction,)).onset(
+            direction)
+        out["ramp"] = {"multiplier": onset.multiplier if onset.found else None,
+                       "error": onset.error if onset.found else None,
+                       "crossings": list(onset.crossings),
+                       "seconds": time.perf_counter() - t0}
+    return out
 
 
 def domain_part(structure, k: float, direction: str, settings, activation: dict):
@@ -436,6 +447,13 @@ def verdict_text(results: dict) -> str:
                      f"{'move' if below['moves'] else 'stay at rest'}, under "
                      f"{above['acceleration_g']:.4f} g they "
                      f"{'move' if above['moves'] else 'stay at rest'} (section 2).")
+            ramp = act.get("ramp") or {}
+            if ramp.get("multiplier") is not None:
+                text += (f" Its ramp test finds them moving from {ramp['multiplier']:.4f} g "
+                         f"(+/- {ramp['error']:.4f}) toward {act['direction']}: "
+                         + ("below k, and with non-associative friction the limit analysis's "
+                            "multiplier is no bound, so take this lower value."
+                            if ramp["multiplier"] < k else "above k."))
     rows = (results.get("domain") or {}).get("rows")
     if rows:
         text += (f" Under Oppenheim's pulse (rigid blocks) it collapses from "
@@ -543,7 +561,22 @@ def activation_text(results: dict) -> str:
             f"move (the model's outcome: at rest when no joint ever opens or slips by more "
             f"than {act['threshold_m']:.3g} m, 1e-5 of the structure's length scale). Steps "
             "left to Lemke's algorithm are those where the active-set method of the contact "
-            "problem did not settle: they are decided exactly, at a higher cost.")
+            "problem did not settle: they are decided exactly, at a higher cost."
+            + _ramp_words(act))
+
+
+def _ramp_words(act: dict) -> str:
+    ramp = act.get("ramp")
+    if not ramp:
+        return ""
+    if ramp["multiplier"] is None:
+        return " The check failed, and the ramp test found no onset of motion up to 2 g."
+    crossings = ", ".join(f"{c:.4f}" for c in ramp["crossings"])
+    return (f" The check failed, so the ramp test (a horizontal load growing at 0.05 g/s, "
+            f"archquake.rigid_blocks.ramp.ramp_test) found the rigid blocks' own "
+            f"collapse multiplier: {ramp['multiplier']:.4f} +/- {ramp['error']:.4f}, "
+            f"extrapolated from the multipliers where the largest opening or slip crossed "
+            f"three thresholds ({crossings}) in {ramp['seconds']:.1f} s.")
 
 
 # ------------------------------------------------------------------------------ driver
