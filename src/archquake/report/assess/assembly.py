@@ -171,7 +171,9 @@ def activation_part(structure, k: float, direction: str, friction: float) -> dic
         JSON-ready: the duration [s], the threshold [m] and, below and above ``k``, the
         factor, the acceleration [g], the outcome, the largest opening and slip [m], whether
         the blocks moved, the time steps and those left to Lemke's algorithm, and the seconds
-        it took.
+        it took; where the check fails, ``ramp``: the rigid blocks' own collapse multiplier
+        toward ``direction`` by the ramp test (:func:`archquake.rigid_blocks.ramp.ramp_test`;
+        its ``multiplier``, ``error``, ``crossings`` and ``seconds``).
     """
     from ...ground_motion.pulses import rectangular_pulse
     from ...rigid_blocks import BlockSettings, RigidBlockModel
