@@ -86,3 +86,30 @@ def test_pilot_finds_the_first_collapse_of_each_record(nominal):
         assert factors[i] == first and collapses(motion, first)
         assert i == 0 or not collapses(motion, factors[i - 1])
     assert found
+
+
+def test_the_pilot_of_the_rigid_blocks_stops_at_the_first_collapse(nominal):
+    """A model of single analyses (the rigid blocks) is run up the grid until the first level
+    that collapses the structure: that level collapses it under single analyses, the level
+    below does not, and a record is run twice (both polarities) at every level up to it."""
+    from archquake.rigid_blocks import RigidBlockModel
+
+    model = RigidBlockModel(nominal)
+    suite = RecordSuite.from_stochastic(2, 3, **STOCHASTIC_SUITE)
+    pilot = record_pilot(model, suite)
+    grid = min(model.load_multipliers) * np.geomspace(*PILOT_RANGE)
+    assert pilot["pga_levels"] == pytest.approx(grid, rel=1e-15) and pilot["undecided"] == 0
+
+    def collapses(motion, factor):
+        return any(model.outcome(motion.scaled(sign * factor)).status == Status.COLLAPSE
+                   for sign in (1.0, -1.0))
+
+    for motion, pga, first, runs in zip(suite.motions(), pilot["pga"], pilot["first_factor"],
+                                        pilot["analyses"], strict=True):
+        factors = grid / pga
+        if first is None:
+            assert runs == 2 * factors.size
+            continue
+        i = int(np.argmin(np.abs(factors - first)))
+        assert factors[i] == first and collapses(motion, first) and runs == 2 * (i + 1)
+        assert i == 0 or not collapses(motion, factors[i - 1])

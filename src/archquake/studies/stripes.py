@@ -37,37 +37,67 @@ def _significant(x: float, digits: int = 4) -> float:
     return float(f"{x:.{digits}g}")
 
 
-def record_pilot(model, suite) -> dict:
+def pilot_levels(k: float) -> np.ndarray:
+    """The PGA levels of the pilot [g]: :data:`PILOT_RANGE` times ``k`` (the collapse
+    multiplier [-])."""
+    return k * np.geomspace(*PILOT_RANGE)
+
+
+def record_pilot(model, suite, k: float | None = None) -> dict:
     """The lowest scale factor of every record that collapses the structure (either polarity),
     on a geometric grid of PGA from k to 30 k (:data:`PILOT_RANGE`): where the stripes of the
     record-based fragility belong (:func:`stripe_levels`).
 
+    A model whose grid is one call (the four-link model) runs every level; a model whose
+    analyses are single (the rigid blocks) is run up the grid, both polarities a level, until
+    the first level that collapses the structure: the same answer, without the levels above
+    it. There a run left undecided counts as a collapse (the record's first factor is then a
+    lower bound on its collapse, never hidden as a survival) and is counted.
+
     Parameters
     ----------
-    model : FourLinkModel
+    model : StructuralModel
         The structure's model.
     suite : RecordSuite
         The records.
+    k : float, optional
+        The collapse multiplier the grid starts from [-] (default: the least of the model's
+        ``load_multipliers``).
 
     Returns
     -------
     dict
-        ``pga_levels`` [g] of the grid, ``pga`` of every record [g] and ``first_factor`` [-]
-        of every record (None: no collapse on the grid). JSON-ready.
+        ``pga_levels`` [g] of the grid, ``pga`` of every record [g], ``first_factor`` [-]
+        of every record (None: no collapse on the grid), the ``analyses`` run for every record
+        and the runs left ``undecided``. JSON-ready.
     """
+    from ..status import Status
     from .record_fragility import record_outcomes
 
-    k = min(model.load_multipliers)
-    grid = k * np.geomspace(*PILOT_RANGE)
+    grid = pilot_levels(min(model.load_multipliers) if k is None else float(k))
     pga = suite.intensities("pga")
-    first = []
+    first, analyses, undecided = [], [], 0
     for motion, value in zip(suite.motions(cached=True), pga, strict=True):
         factors = grid / value
-        out = record_outcomes(model, motion, np.concatenate([factors, -factors]))
-        collapsed = (out["status"].reshape(2, -1) == 2).any(axis=0)
-        first.append(float(factors[np.argmax(collapsed)]) if collapsed.any() else None)
+        if model.grid_in_one_call:
+            out = record_outcomes(model, motion, np.concatenate([factors, -factors]))
+            collapsed = (out["status"].reshape(2, -1) == 2).any(axis=0)
+            first.append(float(factors[np.argmax(collapsed)]) if collapsed.any() else None)
+            analyses.append(2 * factors.size)
+            continue
+        found, runs = None, 0
+        for factor in factors:
+            statuses = [model.outcome(motion.scaled(sign * factor)).status
+                        for sign in (1.0, -1.0)]
+            runs += 2
+            undecided += sum(s is Status.UNDECIDED for s in statuses)
+            if any(s in (Status.COLLAPSE, Status.UNDECIDED) for s in statuses):
+                found = float(factor)
+                break
+        first.append(found)
+        analyses.append(runs)
     return {"pga_levels": grid.tolist(), "pga": [float(v) for v in pga],
-            "first_factor": first}
+            "first_factor": first, "analyses": analyses, "undecided": undecided}
 
 
 def stripe_levels(pilot: dict, suite, im: str, count: int, weaker: float = 1.0
@@ -144,4 +174,4 @@ def median_collapse_pga(pilot: dict) -> float | None:
         float(np.max(first[np.isfinite(first)])))
 
 
-__all__ = ["PILOT_RANGE", "median_collapse_pga", "record_pilot", "stripe_levels"]
+__all__ = ["PILOT_RANGE", "median_collapse_pga", "pilot_levels", "record_pilot", "stripe_levels"]

@@ -38,11 +38,9 @@ needs thousands of rigid-block analyses, up to a minute each on these structures
 from __future__ import annotations
 
 import math
-import sys
 import time
 
 from ...constants import GRAVITY
-from ...status import Status
 from ..render import Bullets, Paragraph, Section, Table
 
 ACTIVATION_MARGIN = 0.1
@@ -254,14 +252,14 @@ def domain_part(structure, k: float, direction: str, settings, activation: dict)
     return out, domain
 
 
-def record_part(structure, k: float, suite, friction: float, progress: bool = True) -> dict:
+def record_part(structure, k: float, suite, friction: float) -> dict:
     r"""The record-based collapse fragility in PGA of the structure with the rigid-block model
     (module docstring, 4), where its estimated cost is within :data:`RECORD_BUDGET`.
 
-    Every record of ``suite`` is scaled to the PGA levels of the pilot of a record study
-    (:data:`archquake.studies.stripes.PILOT_RANGE`: 25 levels geometric from ``k g`` to
-    ``30 k g``), up from the lowest, both polarities, until it collapses the structure: its
-    collapse PGA is the first level that does. The stripes follow: at level :math:`x_j` the
+    Every record of ``suite`` is scaled up the PGA levels of the pilot of a record study
+    (:func:`archquake.studies.stripes.record_pilot`: 25 levels geometric from ``k g`` to
+    ``30 k g``), both polarities, until it collapses the structure: its collapse PGA is the
+    first level that does. The stripes follow: at level :math:`x_j` the
     records whose collapse PGA is at most :math:`x_j` fail, and the lognormal fragility is their
     maximum-likelihood fit (:func:`~archquake.studies.fits.fit_lognormal_or_none`), a
     record-to-record fragility of the nominal structure (no irregular draws). A run left
@@ -278,17 +276,16 @@ def record_part(structure, k: float, suite, friction: float, progress: bool = Tr
         counts do not separate into a fit), ``undecided`` runs, ``analyses`` and ``seconds``.
     """
     import numpy as np
-    from tqdm.auto import tqdm
 
     from ...models import ModelSpec
     from ...studies.fits import fit_lognormal_or_none
-    from ...studies.stripes import PILOT_RANGE
+    from ...studies.stripes import pilot_levels, record_pilot
 
     spec = ModelSpec("rigid-blocks", friction=friction).resolved(structure)
     model = spec.build(structure)
     motions = suite.motions(cached=True)
     pga = suite.intensities("pga")
-    levels = k * np.geomspace(*PILOT_RANGE)
+    levels = pilot_levels(k)
     for motion, value in zip(motions, pga, strict=True):
         spec.check_motion(structure, motion.scaled(levels[-1] / value))
     t0 = time.perf_counter()
@@ -301,23 +298,12 @@ def record_part(structure, k: float, suite, friction: float, progress: bool = Tr
                           f"{RECORD_BUDGET / 60:.0f} minutes)")
         return out
     t0 = time.perf_counter()
-    records, undecided, analyses = [], 0, 0
-    with tqdm(total=len(motions), desc="records", unit="record", disable=not progress,
-              file=sys.stderr) as bar:
-        for motion, value in zip(motions, pga, strict=True):
-            first, runs = None, 0
-            for level in levels:
-                statuses = [model.outcome(m).status for m in
-                            (motion.scaled(level / value), motion.scaled(-level / value))]
-                runs += 2
-                undecided += sum(s is Status.UNDECIDED for s in statuses)
-                if any(s in (Status.COLLAPSE, Status.UNDECIDED) for s in statuses):
-                    first = float(level)
-                    break
-            analyses += runs
-            records.append({"name": motion.name, "pga_g": float(value),
-                            "collapse_pga_g": first, "analyses": runs})
-            bar.update()
+    pilot = record_pilot(model, suite, k)
+    records = [{"name": motion.name, "pga_g": value,
+                "collapse_pga_g": None if first is None else first * value, "analyses": runs}
+               for motion, value, first, runs in zip(motions, pilot["pga"],
+                                                     pilot["first_factor"],
+                                                     pilot["analyses"], strict=True)]
     capacity = np.array([math.inf if r["collapse_pga_g"] is None else r["collapse_pga_g"]
                          for r in records])
     failures = np.array([int(np.sum(capacity <= x * (1 + 1e-12))) for x in levels])
@@ -325,7 +311,8 @@ def record_part(structure, k: float, suite, friction: float, progress: bool = Tr
     out.update(levels_g=levels.tolist(), records=records, failures=failures.tolist(),
                lognormal=None if fit is None else {"median": fit.median,
                                                    "dispersion": fit.dispersion},
-               undecided=undecided, analyses=analyses, seconds=time.perf_counter() - t0)
+               undecided=pilot["undecided"], analyses=sum(pilot["analyses"]),
+               seconds=time.perf_counter() - t0)
     return out
 
 

@@ -649,7 +649,7 @@ def _assess_assembly(structure, *, settings, out_dir, progress: bool = True,
                 fragility_suite = (record_parts.select_records(suite, QUICK_ASSEMBLY_RECORDS)
                                    if settings.quick else suite)
                 results["records"] = {**record_part(structure, summary["k"], fragility_suite,
-                                                    settings.friction, progress),
+                                                    settings.friction),
                                       "records_note": records_note}
         if site is not None and summary is not None:
             from ...site.local_mechanism import check_local_mechanism
