@@ -79,6 +79,8 @@ References
 
 from __future__ import annotations
 
+import math
+
 import numba
 import numpy as np
 
@@ -458,6 +460,26 @@ def _state_system(m, idx, state, mu, kl, wband, uf, aband, rhs, scale, full):
 
 
 @numba.njit(cache=True, inline="always")
+def _solve_states(m, idx, state, mu, kl, wband, uf, aband, rhs, scale):
+    """The impulses of the current ``state`` of every active contact, into ``rhs``: the system
+    of :func:`_state_system` solved by Cholesky's factorisation if no contact slides, else by
+    Gaussian elimination, and with pivoting should a pivot be small (the solvers of
+    :mod:`~.band`; the arch's own for its half-bandwidth)."""
+    sliding = _state_system(m, idx, state, mu, kl, wband, uf, aband, rhs, scale, False)
+    if sliding and kl == ARCH_BANDWIDTH:
+        solved = arch_lu_solve(aband, rhs, 2 * m, scale)
+    elif sliding:
+        solved = band_lu_solve(aband, rhs, 2 * m, kl, scale)
+    elif kl == ARCH_BANDWIDTH:
+        solved = arch_cholesky_solve(aband, rhs, 2 * m)
+    else:
+        solved = band_cholesky_solve(aband, rhs, 2 * m, kl)
+    if not solved:  # a small pivot: assemble again and pivot
+        _state_system(m, idx, state, mu, kl, wband, uf, aband, rhs, scale, True)
+        band_solve(aband, rhs, 2 * m, kl)
+
+
+@numba.njit(cache=True, inline="always")
 def _row_velocity(r, size, kl, wband, uf, impulses):
     r"""Row ``r`` of :math:`u = u^f + W P` [m/s] from the upper band ``wband`` of ``W``."""
     u = uf[r]
@@ -620,18 +642,7 @@ def solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse, state, m
     solves = 0
     converged = False
     while solves < max_solves:
-        sliding = _state_system(m, idx, state, mu, kl, wband, uf, aband, rhs, scale, False)
-        if sliding and kl == ARCH_BANDWIDTH:
-            solved = arch_lu_solve(aband, rhs, 2 * m, scale)
-        elif sliding:
-            solved = band_lu_solve(aband, rhs, 2 * m, kl, scale)
-        elif kl == ARCH_BANDWIDTH:
-            solved = arch_cholesky_solve(aband, rhs, 2 * m)
-        else:
-            solved = band_cholesky_solve(aband, rhs, 2 * m, kl)
-        if not solved:  # a small pivot: assemble again and pivot
-            _state_system(m, idx, state, mu, kl, wband, uf, aband, rhs, scale, True)
-            band_solve(aband, rhs, 2 * m, kl)
+        _solve_states(m, idx, state, mu, kl, wband, uf, aband, rhs, scale)
         solves += 1
         if not _switch_states(m, idx, state, mu, p_tol, u_tol, kl, wband, uf, rhs, solves):
             converged = True
@@ -644,6 +655,154 @@ def solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse, state, m
             apply_impulse(v, inv_mass, contact_bodies[c, 0], contact_bodies[c, 1], jac, c,
                            impulse[c, 0], impulse[c, 1])
     return solves, converged
+
+
+@numba.njit(cache=True, inline="always")
+def _narrow(lo, hi, value, slope, limit):
+    r"""The range ``[lo, hi]`` of :math:`\delta` narrowed to where
+    :math:`value + \delta\,slope \le limit` (an empty range where it holds nowhere in it)."""
+    if slope > 0.0:
+        hi = min(hi, (limit - value) / slope)
+    elif slope < 0.0:
+        lo = max(lo, (limit - value) / slope)
+    elif value > limit:
+        hi = lo - 1.0
+    return lo, hi
+
+
+@numba.njit(cache=True, _nrt=False)
+def rest_range(v_free, dv, inv_mass, contact_bodies, jac, active, state, mu, p_tol, u_tol,
+               energy_limit, work, path):
+    r"""The ground accelerations under which a structure at rest stays at rest: the range of
+    :math:`\delta = \bar a_g - a_0` over which the contact problem of a step keeps the states
+    ``state`` of its active contacts and leaves the blocks still.
+
+    For fixed states the step's problem is one linear system (:func:`solve_active_set`), whose
+    right-hand side, the free velocities :math:`u^f = H v^f`, is affine in the step's mean
+    ground acceleration: :math:`v^f(a_0 + \delta) = v^f(a_0) + \delta\,\partial v^f`, with
+    :math:`\partial v^f = -h\,e_x` on every block (the inertial force of the frame of the
+    ground). So are its impulses and the velocities at the end of the step:
+
+    .. math::
+
+        P(\delta) = P_0 + \delta\,\partial P, \qquad
+        v(\delta) = v_0 + \delta\,\partial v, \quad
+        v_0 = v^f(a_0) + \mathbf M^{-1} H^T P_0, \quad
+        \partial v = \partial v^f + \mathbf M^{-1} H^T \partial P,
+
+    (two solves of the same system). The active-set method keeps the states where none of its
+    switching tests (:func:`switched_state`) holds: every test is linear in :math:`\delta`
+    (:math:`P_n \ge -\epsilon_P` and :math:`|P_t| \le \mu P_n + \epsilon_P` of a sticking
+    contact, :math:`u_n \ge -\epsilon_u` of an open one, :math:`P_n \ge -\epsilon_P` and the
+    slip rate's sign of a sliding one), so where they hold is an interval; and the blocks stay
+    still where the kinetic energy of :math:`v(\delta)`, a convex quadratic, is at most
+    ``energy_limit``, another interval. On their intersection every step from rest solves to
+    these states, ends at rest and moves no block (to the compliance and round-off: the
+    velocities of rest, :math:`10^{-13}`-:math:`10^{-10}` m/s).
+
+    Parameters
+    ----------
+    v_free : array (nb, 3)
+        Free velocities of a step at :math:`a_0` [m/s, m/s, rad/s].
+    dv : array (nb, 3)
+        Their derivative with respect to the step's mean ground acceleration [s].
+    inv_mass, contact_bodies, jac, active, mu, p_tol, u_tol, work
+        As :func:`solve_active_set` (``jac`` of the configuration at rest).
+    state : array of int (nc,)
+        The states of the last step, unchanged.
+    energy_limit : float
+        Kinetic energy of a step at rest [J/m].
+    path : tuple
+        ``(p0, dp, uf0, v0, dvel)``: out, the impulses :math:`P_0` and :math:`\partial P` of
+        the ``i``-th active contact at rows ``2 i``, ``2 i + 1`` of ``p0``, ``dp`` (2 nc,)
+        [N s/m, N s^3/m^2]; work space ``uf0`` (2 nc,), ``v0`` and ``dvel`` (nb, 3).
+
+    Returns
+    -------
+    lo, hi : float
+        The range of :math:`\delta` [m/s^2] (``lo > hi``: empty; an active contact without a
+        state, or a structure that does not stay still even at :math:`a_0`).
+    m : int
+        The active contacts (their indices ``work[0][:m]``).
+    """
+    idx, pos, pointer, incident, kl, wband, aband, rhs, uf, scale, scaled = work
+    p0, dp, uf0, v0, dvel = path
+    nc = contact_bodies.shape[0]
+    m = 0
+    for c in range(nc):
+        if active[c]:
+            if state[c] < 0:
+                return 1.0, -1.0, 0
+            idx[m] = c
+            pos[c] = m
+            m += 1
+        else:
+            pos[c] = -1
+    size = 2 * m
+    # P0, the impulses at a0
+    _assemble_delassus(v_free, inv_mass, contact_bodies, jac, m, idx, pos, pointer, incident, kl,
+                       wband, uf, scaled)
+    if m > 0:
+        _solve_states(m, idx, state, mu, kl, wband, uf, aband, rhs, scale)
+    for r in range(size):
+        uf0[r] = uf[r]
+        p0[r] = rhs[r]
+    # dP, their derivative: the same system, the derivative of u^f on the right
+    for i in range(m):
+        c = idx[i]
+        uf[2 * i], uf[2 * i + 1] = relative_velocity(dv, contact_bodies[c, 0],
+                                                     contact_bodies[c, 1], jac, c)
+    if m > 0:
+        _solve_states(m, idx, state, mu, kl, wband, uf, aband, rhs, scale)
+    for r in range(size):
+        dp[r] = rhs[r]
+    lo, hi = -np.inf, np.inf
+    for i in range(m):
+        c = idx[i]
+        st = state[c]
+        n, t = 2 * i, 2 * i + 1
+        if st == 0:  # open: u_n >= -u_tol
+            u0 = _row_velocity(n, size, kl, wband, uf0, p0)
+            du = _row_velocity(n, size, kl, wband, uf, dp)
+            lo, hi = _narrow(lo, hi, -u0, -du, u_tol)
+            continue
+        lo, hi = _narrow(lo, hi, -p0[n], -dp[n], p_tol)  # P_n >= -p_tol
+        if st == 1:  # stick: |P_t| <= mu P_n + p_tol
+            lo, hi = _narrow(lo, hi, p0[t] - mu[c] * p0[n], dp[t] - mu[c] * dp[n], p_tol)
+            lo, hi = _narrow(lo, hi, -p0[t] - mu[c] * p0[n], -dp[t] - mu[c] * dp[n], p_tol)
+        else:  # slide: the slip rate keeps its sign (+P_t: u_t <= u_tol; -P_t: u_t >= -u_tol)
+            sign = 1.0 if st == 2 else -1.0
+            u0 = _row_velocity(t, size, kl, wband, uf0, p0)
+            du = _row_velocity(t, size, kl, wband, uf, dp)
+            lo, hi = _narrow(lo, hi, sign * u0, sign * du, u_tol)
+    # the blocks' velocities v0 + delta dv: T(delta) = T0 + T1 delta + T2 delta^2 <= limit
+    for b in range(v_free.shape[0]):
+        for k in range(3):
+            v0[b, k] = v_free[b, k]
+            dvel[b, k] = dv[b, k]
+    for i in range(m):
+        c = idx[i]
+        a, b = contact_bodies[c, 0], contact_bodies[c, 1]
+        apply_impulse(v0, inv_mass, a, b, jac, c, p0[2 * i], p0[2 * i + 1])
+        apply_impulse(dvel, inv_mass, a, b, jac, c, dp[2 * i], dp[2 * i + 1])
+    t0 = t1 = t2 = 0.0
+    for b in range(v_free.shape[0]):
+        mass, inertia = 1.0 / inv_mass[b, 0], 1.0 / inv_mass[b, 1]
+        t0 += 0.5 * (mass * (v0[b, 0] ** 2 + v0[b, 1] ** 2) + inertia * v0[b, 2] ** 2)
+        t1 += (mass * (v0[b, 0] * dvel[b, 0] + v0[b, 1] * dvel[b, 1])
+               + inertia * v0[b, 2] * dvel[b, 2])
+        t2 += 0.5 * (mass * (dvel[b, 0] ** 2 + dvel[b, 1] ** 2) + inertia * dvel[b, 2] ** 2)
+    excess = t0 - energy_limit
+    if t2 > 0.0:
+        disc = t1 * t1 - 4.0 * t2 * excess
+        if disc < 0.0:
+            return 1.0, -1.0, m
+        root = math.sqrt(disc)
+        lo = max(lo, (-t1 - root) / (2.0 * t2))
+        hi = min(hi, (-t1 + root) / (2.0 * t2))
+    else:
+        lo, hi = _narrow(lo, hi, excess, t1, 0.0)
+    return lo, hi, m
 
 
 @numba.njit(cache=True)

@@ -243,9 +243,14 @@ class BlockSettings:
         Skip the steps that would repeat a static equilibrium (True, the default): a structure
         at rest under a constant piece of a piecewise-constant pulse stays at rest to the
         piece's end, and one at rest after the excitation stays at rest through its window of
-        rest (:func:`archquake.rigid_blocks.solver.steady_steps`). False takes every step: the
-        same outcome, its times and maxima, the check of the skip
-        (``benchmarks/rigid_block_savings.py`` times both).
+        rest (:func:`archquake.rigid_blocks.solver.steady_steps`); at rest under a motion that
+        varies (a record, a sine), it stays at rest while the step's mean acceleration lies in
+        the range in which its contact problem holds it
+        (:func:`archquake.rigid_blocks.contact_problem.rest_range`,
+        :func:`archquake.rigid_blocks.solver.held_steps`), moved by the creep of the
+        compliance as those steps would move it. False takes every step: the same outcome, its
+        times and maxima, the check of the skip (``benchmarks/rigid_block_savings.py`` times
+        both, ``--records`` under records).
     unknowns : str
         The unknowns of the linear systems of the contact problem (the same states, tests and
         solution to the compliance's resolution): ``"impulses"``, two a contact, in a band of

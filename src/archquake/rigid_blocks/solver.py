@@ -142,14 +142,21 @@ The driver
     9. advance      energy bookkeeping and the positions q_{k+1}
     10. at rest     two steps at rest under one constant ground acceleration: the steps that
                     would repeat them are skipped (:func:`steady_steps`; unless the setting
-                    ``skip_rest`` is 0)
+                    ``skip_rest`` is 0); under a motion that varies (not STEP), the steps
+                    whose mean accelerations lie in the range in which the contact problem
+                    holds the blocks (:func:`~.contact_problem.rest_range`,
+                    :func:`held_steps`), the blocks moved by the creep of those steps
+                    (:func:`_creep`)
 
 Where the steps go (``benchmarks/rigid_block_savings.py``, Oppenheim's arch under Oppenheim's
 pulse over the paper's grid, t_p = 0.4-0.7 s x 0.2-0.8 g, the steps solved by phase that the
 summary counts): 61 % during the pulse once the arch moves, 38 % after it while it moves (the
 free rocking of the recoveries, the fall of the collapses to the drop that decides), under
 0.5 % at rest (the rest of a pulse below the arch's activation, and the window of rest, are
-skipped: 5-7 steps solved of 1300-2200). Deciding every recovery at the end of the pulse would
+skipped: 5-7 steps solved of 1300-2200). Under a record most steps are at rest (50-99 % of a
+30 s far-field record at 0.3-1.5 g on Oppenheim's arch), and the rest within the range that
+holds the arch is skipped: ``python benchmarks/rigid_block_savings.py --records`` measures it
+side by side with every step taken. Deciding every recovery at the end of the pulse would
 save at most 15 % of the steps. No recovery is decided from its energy before it comes to rest:
 ``T + V`` falls after the excitation (up to the O(h^2) of "Energy"), but a level that no
 collapse can pass from below is the least mountain pass of ``V`` between the rest and every
@@ -193,6 +200,7 @@ from .block_space import solve_active_set_blocks
 from .contact_problem import (
     SWITCH_VELOCITY,
     incidence,
+    rest_range,
     solve_active_set,
     solve_contacts,
     solve_lemke,
@@ -210,6 +218,11 @@ from .contacts import (
 ACTIVATION_GAP = 1e-9
 """Predicted gap, as a fraction of the joint's length, below which a contact is active [-]: a
 closed joint's round-off gap (1e-16 m) must not drop it from the contact problem."""
+
+RETRY_STEPS = 16
+"""Steps [-] after which a structure at rest under a varying ground motion is tested again for
+a skip (:func:`held_steps`) when the last test skipped none: each test costs two solves of
+the contact problem."""
 
 STEADY_ENERGY = 1e-12
 r"""Kinetic energy below which a step is at rest, as a fraction of the energy of rest
@@ -633,6 +646,71 @@ def steady_steps(step, h, ag, kind, params, times, values, settings, rest_count,
     return max(0, (whole // coarse) * coarse - step)
 
 
+@numba.njit(cache=True, _nrt=False)
+def held_steps(step, h, a0, lo, hi, kind, params, times, values, settings, stop_step):
+    r"""How many steps from ``step`` on a structure at rest stays so under a ground motion that
+    varies (0 if none can be skipped): the steps that end before the end of the excitation and
+    whose mean ground accelerations all lie in :math:`[a_0 + lo, a_0 + hi]`, the range in which
+    the contact problem keeps the blocks still (:func:`~.contact_problem.rest_range`), up to
+    the last point of the grid of coarse steps (``coarse_factor`` ``k``) before the first that
+    does not. A coarse step's mean acceleration is the mean of those of its steps ``h``, so it
+    lies in the range too; from that point on the steps are those of the run without the skip.
+    The skip ends before the end of the excitation, so that the step that reaches it, which
+    starts the count of rest, is taken.
+    """
+    coarse = max(1, int(settings[S_COARSE_FACTOR]))
+    end = settings[S_EXCITATION_END]
+    k = step
+    while k < stop_step and (k + 1) * h < end:
+        a = mean_acceleration(k * h, (k + 1) * h, kind, params, times, values) - a0
+        if not lo <= a <= hi:
+            break
+        k += 1
+    return max(0, (k // coarse) * coarse - step)
+
+
+@numba.njit(cache=True, _nrt=False)
+def _creep(q, v, bodies, start, end, h, theta, coarse, a0, kind, params, times, values, v0, dv):
+    r"""Move the blocks, in place, as the steps ``start .. end`` (steps ``h``) that a skip
+    under a varying motion leaves out would have moved them: a step of length ``hs`` from rest
+    ends at the velocity :math:`(h_s / h_c)(v_0 + \delta\,\partial v)` of the affine path of
+    :func:`~.contact_problem.rest_range` (computed for the longest step, :math:`h_c = k h`:
+    the velocities of rest are those that the compliance of the contacts leaves, proportional
+    to the impulses, so to the step), and
+    :math:`q \leftarrow q + h_s\,((1 - \theta) v_{old} + \theta v)`, over the steps the run
+    without the skip takes (coarse from the grid of ``k h``). The compliance lets a structure
+    at rest creep by :math:`10^{-9}` of its size over a record; without this the skip would
+    leave it where it was, and a chaotic rocking that starts later would diverge from the full
+    run's. Sets ``v`` to the last step's velocities; returns their kinetic energy [J/m]."""
+    hc = coarse * h
+    s = start
+    while s < end:
+        m = coarse if s % coarse == 0 and s + coarse <= end else 1
+        hs = m * h
+        delta = mean_acceleration(s * h, s * h + hs, kind, params, times, values) - a0
+        factor = hs / hc
+        for i in range(q.shape[0]):
+            for k in range(3):
+                new = factor * (v0[i, k] + delta * dv[i, k])
+                q[i, k] += hs * ((1.0 - theta) * v[i, k] + theta * new)
+                v[i, k] = new
+        s += m
+    kinetic = 0.0
+    for i in range(q.shape[0]):
+        kinetic += 0.5 * (bodies[i, BODY_MASS] * (v[i, 0] ** 2 + v[i, 1] ** 2)
+                          + bodies[i, BODY_INERTIA] * v[i, 2] ** 2)
+    return kinetic
+
+
+@numba.njit(cache=True, _nrt=False)
+def _path_impulses(delta, m, idx, p0, dp, impulse):
+    """The impulses of the ``m`` active contacts ``idx[:m]`` at ``delta`` on their affine path
+    (:func:`~.contact_problem.rest_range`), into ``impulse``."""
+    for i in range(m):
+        impulse[idx[i], 0] = p0[2 * i] + delta * dp[2 * i]
+        impulse[idx[i], 1] = p0[2 * i + 1] + delta * dp[2 * i + 1]
+
+
 # ---------------------------------------------------------------------------------------------
 # The driver
 # ---------------------------------------------------------------------------------------------
@@ -756,6 +834,12 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     n_rec = 0
     next_record = 0  # the first step h at or after which the next state is recorded
     energies = np.zeros(4)  # kinetic, potential, dissipated, input [J/m]
+    path = (np.zeros(2 * nc), np.zeros(2 * nc), np.zeros(2 * nc), np.zeros((nb, 3)),
+            np.zeros((nb, 3)))  # rest_range's impulses and work space
+    v_rest = np.zeros((nb, 3))
+    dv_rest = np.zeros((nb, 3))
+    retry = 0  # the first step at which a skip under a varying motion is tried again
+    hc = coarse * h  # its steps' longest: the largest velocities of rest
 
     energies[0] = _kinetic_energy(bodies, v)
     steady_energy = STEADY_ENERGY * settings[S_REST_ENERGY]
@@ -880,14 +964,49 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
                 and max(kinetic_before, energies[0]) <= steady_energy):
             skip = min(steady_steps(step, h, ag, kind, params, times, values, settings,
                                     rest_count, closed, last, stop_step), stop_step - step)
+            held = 0  # active contacts on the affine path of a skip under a varying motion
+            if (skip == 0 and kind != STEP and step >= retry
+                    and step * h < settings[S_EXCITATION_END]):
+                for i in range(nb):
+                    v_rest[i, 0] = v[i, 0] - hc * ag
+                    v_rest[i, 1] = v[i, 1] - hc * gravity
+                    v_rest[i, 2] = v[i, 2]
+                    dv_rest[i, 0] = -hc
+                lo, hi, held = rest_range(
+                    v_rest, dv_rest, inv_mass, contact_bodies, jac, active, state, mu,
+                    1e-12 * mean_mass * gravity * hc, SWITCH_VELOCITY * gravity * hc,
+                    steady_energy, problem, path)
+                if lo <= 0.0 <= hi:
+                    skip = min(held_steps(step, h, ag, lo, hi, kind, params, times, values,
+                                          settings, stop_step), stop_step - step)
+                if skip == 0:
+                    retry = step + RETRY_STEPS
+                    held = 0
+            crept = step  # the skipped steps whose creep has moved the blocks (_creep)
             if recording:  # the skipped steps' records: the same state
                 for k in range(step, step + skip):
                     if k >= next_record:
+                        if held > 0:  # the forces of the step that ends at k, and the creep
+                            _path_impulses(mean_acceleration(k * h - hc, k * h, kind, params,
+                                                             times, values) - ag,
+                                           held, problem[0], path[0], path[1], impulse)
+                            reached = min(step + skip, -(-k // coarse) * coarse)
+                            energies[0] = _creep(q, v, bodies, crept, reached, h, theta,
+                                                 coarse, ag, kind, params, times, values,
+                                                 path[3], path[4])
+                            crept = reached
                         rec_energy, rec_q, rec_contacts = _record(
-                            n_rec, k * h, q, gap, slip, impulse, hs, energies, rec_energy,
-                            rec_q, rec_contacts)
+                            n_rec, k * h, q, gap, slip, impulse, hc if held > 0 else hs,
+                            energies, rec_energy, rec_q, rec_contacts)
                         n_rec += 1
                         next_record = (k // record_stride + 1) * record_stride
+            if held > 0:  # the last skipped step's impulses and the creep, recorded or not
+                _path_impulses(mean_acceleration((step + skip) * h - hc, (step + skip) * h,
+                                                 kind, params, times, values) - ag,
+                               held, problem[0], path[0], path[1], impulse)
+                hs = hc
+                energies[0] = _creep(q, v, bodies, crept, step + skip, h, theta, coarse, ag,
+                                     kind, params, times, values, path[3], path[4])
             if skip > 0 and step * h >= settings[S_EXCITATION_END]:
                 rest_count += skip
             step += skip
