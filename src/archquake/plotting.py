@@ -966,8 +966,9 @@ def plot_assembly_limit(result, ax=None, *, displacement: float | None = None):
     The blocks are drawn in grey, the mechanism's displaced blocks (the collapse velocities
     times ``displacement``) in red outline, the interfaces that move in colour (red: rock, the
     hinge as a dot at the end that stays closed; blue: slide; purple: both; orange: separate),
-    the pressure points of the loaded interfaces as black dots and the ground as a thick line
-    under the foundation interfaces.
+    the pressure points of the loaded interfaces as black dots, the line of thrust through them
+    (:meth:`~archquake.limit_analysis.AssemblyLimit.thrust_line`) and the ground as a thick
+    line under the foundation interfaces.
 
     Parameters
     ----------
@@ -1014,6 +1015,12 @@ def plot_assembly_limit(result, ax=None, *, displacement: float | None = None):
             hinge = c.p0[i] if result.opening[i, 0] < result.opening[i, 1] else c.p1[i]
             ax.plot(*hinge, "o", color=colour, markeredgecolor="black", markersize=7, zorder=5)
     loaded = np.isfinite(result.pressure[:, 0]) & (result.normal > 1e-9 * np.max(result.normal))
+    segments, _ = result.thrust_line()
+    if segments.size:
+        from matplotlib.collections import LineCollection
+
+        ax.add_collection(LineCollection(segments, colors="black", linewidths=0.9, zorder=5,
+                                         label="thrust line"))
     ax.plot(result.pressure[loaded, 0], result.pressure[loaded, 1], ".", color="black",
             markersize=4, zorder=5, label="pressure points")
     arrow = "-|>"

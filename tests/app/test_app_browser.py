@@ -144,6 +144,7 @@ def test_three_spans_draw_the_bridge_its_mechanism_and_k(page):
     assert page.locator("#svg-l polygon.block").count() == 3 * 7 + 4 * 2
     assert page.locator("#svg-l polygon.block.pier").count() == 4 * 2
     assert page.locator("#svg-l polygon.displaced").count() > 0
+    assert page.locator("#svg-l line.thrust").count() > 2 * 3 * 7
     assert page.locator("#svg-l circle.hinge").count() == 4
     assert text(page, "#assembly-first").startswith(f"At k = {expected:.4f}")
     assert "span 3 moves first" in text(page, "#assembly-first")

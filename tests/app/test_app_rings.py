@@ -93,6 +93,12 @@ def test_bridge_json_has_three_spans_of_blocks_and_the_command_lines_k(client):
     moved = {d["block"] for d in law["displaced"]}
     assert {groups[b] for b in moved if groups[b] is not None} == {3}
     assert sum(f["hinge"] is not None for f in law["interfaces"]) == 4
+    # the line of thrust: two segments in each of the 21 voussoirs and the 2 end piers (a
+    # middle pier carries three thrusts and has none), meeting in each block
+    thrust = np.asarray(law["thrust"])
+    assert thrust.shape == (2 * (21 + 2), 2, 2)
+    for a, b in zip(thrust[0::2], thrust[1::2], strict=True):
+        assert np.hypot(*(a[1] - b[1])) < 1e-3
     # every displaced block is its outline moved rigidly: its edges keep their lengths
     for d in law["displaced"]:
         before = np.asarray(structure["blocks"][d["block"]])

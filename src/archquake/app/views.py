@@ -272,6 +272,8 @@ def assembly_mechanism_view(result, groups: list) -> dict:
         structure's size [m]), ``interfaces`` (``{"p0", "p1", "state", "hinge"}`` of every
         interface that rocks, slides or separates; ``hinge`` the end that stays closed of one
         that rocks, else None [m]), ``pressure_points`` of the loaded interfaces [m],
+        ``thrust`` (the segments of the line of thrust,
+        :meth:`~archquake.limit_analysis.AssemblyLimit.thrust_line`, each ``[P, X]`` [m]),
         ``moving`` (the spans or rings, from 1, whose blocks move), and the length of ring
         interface that opens (rocks or separates, without sliding) and that slides,
         ``ring_opens_m`` and ``ring_slides_m`` [m] (0 without rings).
@@ -301,9 +303,11 @@ def assembly_mechanism_view(result, groups: list) -> dict:
     loaded = np.isfinite(result.pressure[:, 0]) & (normal > 1e-9 * max(float(normal.max(
         initial=0.0)), 1e-300))
     opens, slides = result.ring_lengths() if math.isfinite(k) else (0.0, 0.0)
+    thrust = rounded(result.thrust_line()[0], 4) if math.isfinite(k) else []
     return {"law": result.law, "k": finite(k), "tilt": finite(result.tilt) if math.isfinite(k)
             else None, "converged": bool(result.converged), "displaced": displaced,
             "interfaces": interfaces, "pressure_points": rounded(result.pressure[loaded], 4),
+            "thrust": thrust,
             "moving": _moving_groups(result, groups),
             "ring_opens_m": opens, "ring_slides_m": slides}
 

@@ -448,6 +448,65 @@ class AssemblyLimit:
         """The interfaces whose state contains ``state`` (``"rocks"``, ``"slides"``, ...)."""
         return [i for i, s in enumerate(self.state) if state in s]
 
+    def thrust_line(self) -> tuple[np.ndarray, np.ndarray]:
+        r"""The line of thrust at collapse, as segments inside the blocks [m].
+
+        The force of body :math:`a_i` on :math:`b_i` at a loaded interface,
+        :math:`N_i \mathbf n_i + t_i \boldsymbol\tau_i`, acts along the line through its
+        pressure point :math:`\mathbf P_i` in its direction; block :math:`j`'s load, its weight
+        :math:`W_j` along :math:`x = a_j` and :math:`\pm k H_j` along :math:`y = b_j`, along the
+        line through :math:`(a_j, b_j)` in the direction :math:`(\pm k H_j, -W_j)`. A block
+        held by two loaded interfaces (every voussoir of a single ring, every course of a pier)
+        is in equilibrium under three forces, which meet in one point :math:`\mathbf X_j` of
+        the load's line: the line of thrust through it is the polygon :math:`\mathbf P_i \to
+        \mathbf X_j \to \mathbf P_{i'}` that graphic statics draws, each segment from a
+        pressure point along its force to the load's line (a block on one interface: the one
+        segment to the load's line). A block that carries more (a pier's top under two arches),
+        or a voussoir loaded through a ring interface (the rings share the thrust: no ring has
+        a line of its own), or one with an interface that carries shear without a normal force
+        (where it cannot slide), has no single line through it and gives no segment; nor does
+        a force parallel to the load's line, or meeting it farther from the block than the
+        block's size.
+
+        Returns
+        -------
+        segments : array of float, shape (m, 2, 2)
+            The segments' ends ``[P_i, X]`` [m].
+        blocks : array of int, shape (m,)
+            The block of every segment.
+        """
+        c = self.contacts
+        sign = _sign(self.direction)
+        force = self.normal[:, None] * c.normal + self.shear[:, None] * c.tangent
+        magnitude = np.hypot(force[:, 0], force[:, 1])
+        carries = magnitude > 1e-9 * max(float(np.max(magnitude, initial=0.0)), 0.0)
+        loaded = np.isfinite(self.pressure[:, 0]) & carries
+        segments, blocks = [], []
+        for j in range(c.n_blocks):
+            point = np.array([c.vertical_x[j], c.horizontal_y[j]])
+            load = np.array([sign * self.load_multiplier * c.horizontal[j], -c.vertical[j]])
+            outline = np.asarray(c.outlines[j], dtype=float)
+            reach = float(np.max(np.ptp(outline, axis=0)))
+            centre = outline.mean(axis=0)
+            touching = (c.a == j) | (c.b == j)
+            held = np.flatnonzero(loaded & touching)
+            if (held.size > 2 or np.any(carries & ~loaded & touching)
+                    or np.any(c.kind[held] == "ring")):
+                continue
+            for i in held:
+                d = force[i]
+                cross = d[0] * load[1] - d[1] * load[0]
+                if abs(cross) <= 1e-9 * np.hypot(*d) * np.hypot(*load):
+                    continue
+                # P + s d = point + r load
+                rel = point - self.pressure[i]
+                s = (rel[0] * load[1] - rel[1] * load[0]) / cross
+                x = self.pressure[i] + s * d
+                if np.hypot(*(x - centre)) <= reach:
+                    segments.append((self.pressure[i], x))
+                    blocks.append(j)
+        return np.array(segments, dtype=float).reshape(-1, 2, 2), np.array(blocks, dtype=int)
+
     def to_dict(self) -> dict:
         """A JSON-ready summary: k, tilt, law, convergence and the moving interfaces."""
         c = self.contacts

@@ -191,7 +191,7 @@ function assemblyBounds(answer) {
 
 // A block assembly's mechanism (the governing friction law's), as plot_assembly_limit draws it:
 // the blocks, the displaced ones dashed, the interfaces that move coloured by what they do, the
-// hinges and the pressure points.
+// hinges, the pressure points and the line of thrust through them.
 function drawAssemblyMechanism(svg, answer, direction) {
   const s = answer.structure;
   const bounds = assemblyBounds(answer);
@@ -210,6 +210,9 @@ function drawAssemblyMechanism(svg, answer, direction) {
   for (const f of law.interfaces) {
     el("line", { x1: f.p0[0], y1: f.p0[1], x2: f.p1[0], y2: f.p1[1],
                  class: `iface ${classOf[f.state] || "rocks"}` }, world);
+  }
+  for (const seg of law.thrust || []) {
+    el("line", { x1: seg[0][0], y1: seg[0][1], x2: seg[1][0], y2: seg[1][1], class: "thrust" }, world);
   }
   for (const p of law.pressure_points) {
     el("circle", { cx: p[0], cy: p[1], r: 2 * scale, class: "point dark" }, world);
