@@ -670,6 +670,14 @@ def _narrow(lo, hi, value, slope, limit):
     return lo, hi
 
 
+@numba.njit(cache=True, inline="always")
+def _copy_rows(source, target):
+    """``target[:] = source`` for arrays (n, 3), without numba's reference counting."""
+    for i in range(source.shape[0]):
+        for k in range(3):
+            target[i, k] = source[i, k]
+
+
 @numba.njit(cache=True, _nrt=False)
 def rest_range(v_free, dv, inv_mass, contact_bodies, jac, active, state, mu, p_tol, u_tol,
                energy_limit, work, path):
@@ -713,9 +721,12 @@ def rest_range(v_free, dv, inv_mass, contact_bodies, jac, active, state, mu, p_t
     energy_limit : float
         Kinetic energy of a step at rest [J/m].
     path : tuple
-        ``(p0, dp, uf0, v0, dvel)``: out, the impulses :math:`P_0` and :math:`\partial P` of
-        the ``i``-th active contact at rows ``2 i``, ``2 i + 1`` of ``p0``, ``dp`` (2 nc,)
-        [N s/m, N s^3/m^2]; work space ``uf0`` (2 nc,), ``v0`` and ``dvel`` (nb, 3).
+        ``(p0, dp, uf0, v0, dvel, states, impulses)``: out, the impulses :math:`P_0` and
+        :math:`\partial P` of the ``i``-th active contact at rows ``2 i``, ``2 i + 1`` of
+        ``p0``, ``dp`` (2 nc,) [N s/m, N s^3/m^2]; work space ``uf0`` (2 nc,), ``v0`` and
+        ``dvel`` (nb, 3), ``states`` (nc,) int and ``impulses`` (nc, 2). Each solve is one of
+        :func:`solve_active_set` from copies of the states (its switching tests change only
+        the copies): it leaves ``W``, :math:`u^f` and the solution in ``work``.
 
     Returns
     -------
@@ -726,34 +737,31 @@ def rest_range(v_free, dv, inv_mass, contact_bodies, jac, active, state, mu, p_t
         The active contacts (their indices ``work[0][:m]``).
     """
     idx, pos, pointer, incident, kl, wband, aband, rhs, uf, scale, scaled = work
-    p0, dp, uf0, v0, dvel = path
+    p0, dp, uf0, v0, dvel, states, impulses = path
     nc = contact_bodies.shape[0]
     m = 0
     for c in range(nc):
         if active[c]:
             if state[c] < 0:
                 return 1.0, -1.0, 0
-            idx[m] = c
-            pos[c] = m
             m += 1
-        else:
-            pos[c] = -1
     size = 2 * m
-    # P0, the impulses at a0
-    _assemble_delassus(v_free, inv_mass, contact_bodies, jac, m, idx, pos, pointer, incident, kl,
-                       wband, uf, scaled)
-    if m > 0:
-        _solve_states(m, idx, state, mu, kl, wband, uf, aband, rhs, scale)
+    # P0, the impulses at a0: one solve of the active-set method from the states, on copies
+    # (it leaves W, u^f and the solution in its work space)
+    for c in range(nc):
+        states[c] = state[c]
+    _copy_rows(v_free, v0)
+    solve_active_set(v0, inv_mass, contact_bodies, jac, active, impulses, states, mu, p_tol,
+                     u_tol, work, np.int64(1))  # not a literal: run's compiled signature
     for r in range(size):
         uf0[r] = uf[r]
         p0[r] = rhs[r]
     # dP, their derivative: the same system, the derivative of u^f on the right
-    for i in range(m):
-        c = idx[i]
-        uf[2 * i], uf[2 * i + 1] = relative_velocity(dv, contact_bodies[c, 0],
-                                                     contact_bodies[c, 1], jac, c)
-    if m > 0:
-        _solve_states(m, idx, state, mu, kl, wband, uf, aband, rhs, scale)
+    for c in range(nc):
+        states[c] = state[c]
+    _copy_rows(dv, dvel)
+    solve_active_set(dvel, inv_mass, contact_bodies, jac, active, impulses, states, mu, p_tol,
+                     u_tol, work, np.int64(1))  # not a literal: run's compiled signature
     for r in range(size):
         dp[r] = rhs[r]
     lo, hi = -np.inf, np.inf
@@ -776,10 +784,8 @@ def rest_range(v_free, dv, inv_mass, contact_bodies, jac, active, state, mu, p_t
             du = _row_velocity(t, size, kl, wband, uf, dp)
             lo, hi = _narrow(lo, hi, sign * u0, sign * du, u_tol)
     # the blocks' velocities v0 + delta dv: T(delta) = T0 + T1 delta + T2 delta^2 <= limit
-    for b in range(v_free.shape[0]):
-        for k in range(3):
-            v0[b, k] = v_free[b, k]
-            dvel[b, k] = dv[b, k]
+    _copy_rows(v_free, v0)
+    _copy_rows(dv, dvel)
     for i in range(m):
         c = idx[i]
         a, b = contact_bodies[c, 0], contact_bodies[c, 1]

@@ -835,7 +835,8 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     next_record = 0  # the first step h at or after which the next state is recorded
     energies = np.zeros(4)  # kinetic, potential, dissipated, input [J/m]
     path = (np.zeros(2 * nc), np.zeros(2 * nc), np.zeros(2 * nc), np.zeros((nb, 3)),
-            np.zeros((nb, 3)))  # rest_range's impulses and work space
+            np.zeros((nb, 3)), np.zeros(nc, dtype=np.int64),
+            np.zeros((nc, 2)))  # rest_range's impulses and work space
     v_rest = np.zeros((nb, 3))
     dv_rest = np.zeros((nb, 3))
     retry = 0  # the first step at which a skip under a varying motion is tried again
@@ -929,7 +930,8 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
                 fallbacks += 0 if decided else 1
                 if in_blocks:  # the assembled problem that Lemke's algorithm reads
                     solve_active_set(v, inv_mass, contact_bodies, jac, active, impulse, state,
-                                     mu, p_tol, u_tol, problem, 0)
+                                     mu, p_tol, u_tol, problem,
+                                     np.int64(0))  # not a literal: one compiled signature
                 pivots, converged = solve_lemke(v, inv_mass, contact_bodies, jac, active,
                                                 impulse, state, mu, p_tol, u_tol, problem)
                 sweeps += pivots
