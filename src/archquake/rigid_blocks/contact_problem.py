@@ -678,6 +678,19 @@ def _copy_rows(source, target):
             target[i, k] = source[i, k]
 
 
+@numba.njit(cache=True, inline="always")
+def _solve_once(base, v, inv_mass, contact_bodies, jac, active, impulses, state, states, mu,
+                p_tol, u_tol, work):
+    """One solve of the active-set method from the states ``state`` with the free velocities
+    ``base``, on copies (``v``, ``states``, ``impulses``: its switching tests and impulses
+    change only those); it leaves ``W``, :math:`u^f` and the solution in ``work``."""
+    for c in range(state.size):
+        states[c] = state[c]
+    _copy_rows(base, v)
+    solve_active_set(v, inv_mass, contact_bodies, jac, active, impulses, states, mu, p_tol,
+                     u_tol, work, np.int64(1))  # not a literal: run's compiled signature
+
+
 @numba.njit(cache=True, _nrt=False)
 def rest_range(v_free, dv, inv_mass, contact_bodies, jac, active, state, mu, p_tol, u_tol,
                energy_limit, work, path):
@@ -746,22 +759,14 @@ def rest_range(v_free, dv, inv_mass, contact_bodies, jac, active, state, mu, p_t
                 return 1.0, -1.0, 0
             m += 1
     size = 2 * m
-    # P0, the impulses at a0: one solve of the active-set method from the states, on copies
-    # (it leaves W, u^f and the solution in its work space)
-    for c in range(nc):
-        states[c] = state[c]
-    _copy_rows(v_free, v0)
-    solve_active_set(v0, inv_mass, contact_bodies, jac, active, impulses, states, mu, p_tol,
-                     u_tol, work, np.int64(1))  # not a literal: run's compiled signature
+    # P0, the impulses at a0, and dP, their derivative (the derivative of u^f on the right)
+    _solve_once(v_free, v0, inv_mass, contact_bodies, jac, active, impulses, state, states, mu,
+                p_tol, u_tol, work)
     for r in range(size):
         uf0[r] = uf[r]
         p0[r] = rhs[r]
-    # dP, their derivative: the same system, the derivative of u^f on the right
-    for c in range(nc):
-        states[c] = state[c]
-    _copy_rows(dv, dvel)
-    solve_active_set(dvel, inv_mass, contact_bodies, jac, active, impulses, states, mu, p_tol,
-                     u_tol, work, np.int64(1))  # not a literal: run's compiled signature
+    _solve_once(dv, v0, inv_mass, contact_bodies, jac, active, impulses, state, states, mu,
+                p_tol, u_tol, work)
     for r in range(size):
         dp[r] = rhs[r]
     lo, hi = -np.inf, np.inf

@@ -695,11 +695,7 @@ def _creep(q, v, bodies, start, end, h, theta, coarse, a0, kind, params, times, 
                 q[i, k] += hs * ((1.0 - theta) * v[i, k] + theta * new)
                 v[i, k] = new
         s += m
-    kinetic = 0.0
-    for i in range(q.shape[0]):
-        kinetic += 0.5 * (bodies[i, BODY_MASS] * (v[i, 0] ** 2 + v[i, 1] ** 2)
-                          + bodies[i, BODY_INERTIA] * v[i, 2] ** 2)
-    return kinetic
+    return _kinetic_energy(bodies, v)
 
 
 @numba.njit(cache=True, _nrt=False)
