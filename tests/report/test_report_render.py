@@ -21,7 +21,7 @@ from archquake.report.render import (
     write_html,
     write_markdown,
 )
-from archquake.report.running import HERE, Background, Steps, run_here
+from archquake.report.running import HERE, Background, Steps, Task, run_here
 
 PNG = (b"\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR\x00\x00\x00\x01\x00\x00\x00\x01\x08\x06\x00\x00"
        b"\x00\x1f\x15\xc4\x89\x00\x00\x00\rIDATx\x9cc\xf8\x0f\x00\x00\x01\x01\x00\x05\x18\xd8N"
@@ -123,6 +123,16 @@ def test_tasks_without_a_second_process_run_when_asked():
     assert run.describe() == {"ran on": HERE, "seconds": run.seconds,
                               "wall_seconds": run.seconds}
     assert run_here(sum, (1, 2)).result == 3
+
+
+def test_a_task_run_now_is_done_and_runs_once():
+    calls = []
+    deferred = Background().submit(calls.append, 0)
+    assert not deferred.done and calls == []
+    task = Task.run_now(calls.append, 1)
+    assert calls == [1] and task.done  # run at once, here
+    run = task.result()
+    assert calls == [1] and run.ran_on == HERE and task.result() is run
 
 
 def test_steps_time_every_step_in_order():

@@ -164,6 +164,30 @@ class Task:
         if self._done is None:
             self._done = time.perf_counter()
 
+    @classmethod
+    def run_now(cls, function: Callable, *args) -> Task:
+        """A task run here and now, its :class:`TaskRun` kept for :meth:`result`.
+
+        Parameters
+        ----------
+        function : callable
+            The task.
+        *args
+            Its arguments.
+
+        Returns
+        -------
+        Task
+        """
+        task = cls(function, args)
+        task.result()
+        return task
+
+    @property
+    def done(self) -> bool:
+        """Whether the task's result is there (the worker finished it, or it ran here)."""
+        return self._run is not None or (self._future is not None and self._future.done())
+
     def result(self) -> TaskRun:
         """The task's :class:`TaskRun` (waiting for the worker, or running the task here).
 

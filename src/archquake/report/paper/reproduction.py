@@ -40,7 +40,7 @@ from ..render import (
     write_html,
     write_markdown,
 )
-from ..running import Background, Steps
+from ..running import Background, Steps, Task
 from . import figures as draw
 from . import parts, text
 from .settings import ReproductionSettings
@@ -383,8 +383,12 @@ def reproduce(out_dir, settings: ReproductionSettings | None = None, *,
         with steps("failure domain (Fig. 16)"):
             domain = parts.failure_domain(settings, arches, cases)
             # the four-link engine is compiled and cached by now: the second process loads it
-            # instead of compiling it a second time
-            records = background.submit(parts.record_studies, settings)
+            # instead of compiling it a second time; while it is still compiling the rigid
+            # blocks (a cold cache), this process runs the record studies (four links)
+            # meanwhile, instead of waiting for them after the rigid blocks' work
+            records = (Task.run_now(parts.record_studies, settings)
+                       if background.parallel and not curve.done
+                       else background.submit(parts.record_studies, settings))
         with steps("fragility and k~ sample (Figs. 17-21)"):
             fragility = parts.fragility(settings, cases, progress)
         with steps("figures"):
