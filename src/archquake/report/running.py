@@ -166,21 +166,10 @@ class Task:
 
     @classmethod
     def run_now(cls, function: Callable, *args) -> Task:
-        """A task run here and now, its :class:`TaskRun` kept for :meth:`result`.
-
-        Parameters
-        ----------
-        function : callable
-            The task.
-        *args
-            Its arguments.
-
-        Returns
-        -------
-        Task
-        """
+        """``function(*args)`` run here and now (:func:`run_here`), as a :class:`Task` whose
+        :meth:`result` is that run."""
         task = cls(function, args)
-        task.result()
+        task._run = run_here(function, *args)
         return task
 
     @property
