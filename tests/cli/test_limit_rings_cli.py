@@ -130,3 +130,19 @@ def test_the_arbiter_names_rings_that_move_below_the_iteration(capsys):
     rows = [line for line in out.splitlines() if "rigid blocks" in line and "ramp" in line]
     assert len(rows) == 2 and all(" 0.18" in row for row in rows)
     assert all("-100" in row or "95-99" in row for row in rows)
+
+
+def test_the_arbiter_says_when_the_rigid_blocks_do_not_stand(capsys):
+    """Two staggered rings of a semicircle of radius 5 m and 0.6 m in 8 voussoirs, ring
+    friction 0.6: both programs find it standing (k = 0.0728 associative, 0.0691 by the
+    non-associative iteration), but the rigid blocks' rings slide under their own weight (a
+    pulse of 0.001 g collapses them, ``rigid-blocks`` with the same options): the ramp's onset is
+    0 (within its error), and the command says the structure does not stand in the rigid-block
+    model instead of giving a multiplier 100 % below k."""
+    assert main(["limit", "--radius", "5", "--embrace", "180", "--thickness", "0.6",
+                 "--voussoirs", "8", "--rings", "2", "--ring-bond", "staggered",
+                 "--ring-friction", "0.6", "--arbiter"]) == 0
+    text = capsys.readouterr().out
+    assert "k = 0.0691" in text  # the iteration's (associative 0.0728)
+    assert "the rigid blocks do not stand: they move under their own weight" in text
+    assert "% below k" not in text

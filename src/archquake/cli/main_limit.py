@@ -220,7 +220,12 @@ def _with_friction(args: argparse.Namespace, structure) -> int:
               "classical program's, which can overestimate)")
     if ramp is not None:
         low = min((ramp.onset(d) for d in results), key=lambda o: o.multiplier)
-        if low.multiplier < k - 3.0 * low.error - 0.01 * k:
+        if low.multiplier == 0.0 and k > 0.0:  # the ramp's onset within its error of zero
+            print(f"the rigid blocks do not stand: they move under their own weight (onset "
+                  f"0 +/- {low.error:.1e} toward {low.direction}), though the linear programs "
+                  "find contact forces that hold them; with non-associative friction that is no "
+                  "proof of safety: take the rigid blocks' verdict")
+        elif low.multiplier < k - 3.0 * low.error - 0.01 * k:
             print(f"the rigid blocks move from {low.multiplier:.4f} toward {low.direction}, "
                   f"{100 * (1 - low.multiplier / k):.0f} % below k: with non-associative "
                   "friction the iteration's multiplier is no bound; take the rigid blocks' "
