@@ -21,8 +21,9 @@ compared, every value that differs with its relative difference (up to ``--show`
 of only one side, and exits 1 if a value differs.
 
 Measured against f1415e3 (``git archive f1415e3 src``, the version before the studies were made
-faster), one run each on a quiet two-processor machine: 11.6 s against 10.4 s of wall time,
-14.4 s against 15.1 s of CPU; of 1,433 values, two differ, in the last bit (the impact's energy
+faster), median of three interleaved runs on a quiet two-processor machine (``--untimed 0
+--repeats 3``): 10.0 s against 9.9 s of wall time, 13.5 s against 13.9 s of CPU; of 1,430
+values, two differ, in the last bit (the impact's energy
 ratio and Mech-r's share, relative 2.0e-16 and 1.3e-16: summed in another order); 83 paths are
 in one version only, results added since (the rigid blocks' upper curves, the undecided counts)
 or keys renamed (``blocks`` to ``measured``). With ``--rtol 1e-15`` every value is equal.
