@@ -121,6 +121,9 @@ def main(argv=None) -> int:
     parser.add_argument("--rtol", type=float, default=0.0)
     parser.add_argument("--show", type=int, default=40, help="differences printed at most")
     args = parser.parse_args(argv)
+    if not (args.b_src / "archquake" / "__init__.py").is_file():
+        # else PYTHONPATH would name nothing and the installed package would run as B
+        parser.error(f"--b-src: {args.b_src} holds no archquake package (give OLD/src)")
     variants = {"A": ROOT / "src", "B": args.b_src.resolve()}
     times = {"A": [], "B": []}
     results = {}
