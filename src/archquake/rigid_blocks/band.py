@@ -35,6 +35,23 @@ systems with the band solvers written out for this value (:func:`arch_cholesky_s
 
 
 @numba.njit(cache=True, _nrt=False)
+def copy_1d(dst, src):
+    """``dst[:] = src`` for two vectors of one length, by a loop: numba compiles a slice
+    assignment between arrays with the formatting of its shape-mismatch message, seconds of
+    every start on a cold cache."""
+    for i in range(src.shape[0]):
+        dst[i] = src[i]
+
+
+@numba.njit(cache=True, _nrt=False)
+def copy_2d(dst, src):
+    """``dst[:, :] = src`` for two matrices of one shape, by loops (:func:`copy_1d`)."""
+    for i in range(src.shape[0]):
+        for j in range(src.shape[1]):
+            dst[i, j] = src[i, j]
+
+
+@numba.njit(cache=True, _nrt=False)
 def band_solve(ab, b, n, kl):
     r"""Solve ``A x = b`` for a band matrix ``A`` (n x n, ``kl`` diagonals below and above the
     main one) by Gaussian elimination with partial pivoting, in place.

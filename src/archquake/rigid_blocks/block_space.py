@@ -43,6 +43,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
+from .band import copy_1d, copy_2d
 from .contact_problem import REGULARISATION, SINGLE_SWITCH_AFTER, switched_state
 from .contacts import delassus_block, relative_velocity
 
@@ -372,14 +373,14 @@ def solve_active_set_blocks(v, inv_mass, contact_bodies, jac, active, impulse, s
                 state[c] = new
                 changed = True
         if not contradicted:
-            v[:] = after
-            impulse[:] = p
+            copy_2d(v, after)
+            copy_2d(impulse, p)
             return solves, True
         if augmented and not changed:  # a fixed point of the augmented states that the
             return solves, False       # tests contradict: Lemke's algorithm decides
         if not augmented and solves >= max_solves:  # the second phase, from the first
             augmented = True                         # states
-            state[:] = initial
+            copy_1d(state, initial)
     return solves, False
 
 

@@ -91,6 +91,8 @@ from .band import (
     band_cholesky_solve,
     band_lu_solve,
     band_solve,
+    copy_1d,
+    copy_2d,
 )
 from .contacts import apply_impulse, delassus_block, relative_velocity
 from .lemke import LEMKE_COMPLIANCE, LEMKE_SOLVED, solve_contact_lcp
@@ -671,22 +673,13 @@ def _narrow(lo, hi, value, slope, limit):
 
 
 @numba.njit(cache=True, inline="always")
-def _copy_rows(source, target):
-    """``target[:] = source`` for arrays (n, 3), without numba's reference counting."""
-    for i in range(source.shape[0]):
-        for k in range(3):
-            target[i, k] = source[i, k]
-
-
-@numba.njit(cache=True, inline="always")
 def _solve_once(base, v, inv_mass, contact_bodies, jac, active, impulses, state, states, mu,
                 p_tol, u_tol, work):
     """One solve of the active-set method from the states ``state`` with the free velocities
     ``base``, on copies (``v``, ``states``, ``impulses``: its switching tests and impulses
     change only those); it leaves ``W``, :math:`u^f` and the solution in ``work``."""
-    for c in range(state.size):
-        states[c] = state[c]
-    _copy_rows(base, v)
+    copy_1d(states, state)
+    copy_2d(v, base)
     solve_active_set(v, inv_mass, contact_bodies, jac, active, impulses, states, mu, p_tol,
                      u_tol, work, np.int64(1))  # not a literal: run's compiled signature
 
@@ -789,8 +782,8 @@ def rest_range(v_free, dv, inv_mass, contact_bodies, jac, active, state, mu, p_t
             du = _row_velocity(t, size, kl, wband, uf, dp)
             lo, hi = _narrow(lo, hi, sign * u0, sign * du, u_tol)
     # the blocks' velocities v0 + delta dv: T(delta) = T0 + T1 delta + T2 delta^2 <= limit
-    _copy_rows(v_free, v0)
-    _copy_rows(dv, dvel)
+    copy_2d(v0, v_free)
+    copy_2d(dvel, dv)
     for i in range(m):
         c = idx[i]
         a, b = contact_bodies[c, 0], contact_bodies[c, 1]
@@ -872,7 +865,7 @@ def solve_lemke(v, inv_mass, contact_bodies, jac, active, impulse, state, mu, p_
                                          min(POLISH_SOLVES, 2 * m))  # an int64, as run's
     if converged:
         return pivots + solves, True
-    v[:] = v_free  # the active-set method switched Lemke's states and failed: Lemke's impulses
+    copy_2d(v, v_free)  # the active-set method switched Lemke's states and failed: Lemke's impulses
     for i in range(m):
         c = idx[i]
         state[c] = states[i]

@@ -81,6 +81,8 @@ from __future__ import annotations
 import numba
 import numpy as np
 
+from .band import copy_2d
+
 PIVOT_TOLERANCE = 1e-11
 """A tableau entry smaller than this times the largest of its column is taken as zero in the
 ratio test [-] (entries are of order one after scaling)."""
@@ -142,8 +144,9 @@ def _refactor(tab, original, basis):
     nc = original.shape[1]
     b = np.empty((n, n))
     for k in range(n):
-        b[:, k] = original[:, basis[k]]
-    tab[:, :] = original
+        for i in range(n):
+            b[i, k] = original[i, basis[k]]
+    copy_2d(tab, original)
     big = 0.0
     for i in range(n):
         for j in range(n):

@@ -196,6 +196,7 @@ import numba
 import numpy as np
 
 from ..ground_motion import HARMONIC, STEP, analytic_duration, evaluate
+from .band import copy_1d, copy_2d
 from .block_space import solve_active_set_blocks
 from .contact_problem import (
     SWITCH_VELOCITY,
@@ -461,7 +462,7 @@ def _grow(buffer, n):
     if n < buffer.shape[0]:
         return buffer
     out = np.empty((2 * buffer.shape[0], buffer.shape[1]))
-    out[:buffer.shape[0]] = buffer
+    copy_2d(out, buffer)  # not a slice assignment: this function compiles at import
     return out
 
 
@@ -899,8 +900,8 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
         # -------- 6.-8. a coarse step if one fits, taken again at h if a contact changes
         m = coarse if (step % coarse == 0 and step + coarse <= stop_step) else 1
         if m > 1:
-            impulse_k[:] = impulse
-            state_k[:] = state
+            copy_2d(impulse_k, impulse)
+            copy_1d(state_k, state)
         while True:
             hs = m * h
             tol_impulse = settings[S_TOLERANCE] * mean_mass * gravity * hs
@@ -941,9 +942,9 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
             if m == 1 or (direct and not _changed(active, state, carried)):
                 break
             # a contact starts or stops carrying an impulse: the step again, at h
-            v[:] = v_old
-            impulse[:] = impulse_k
-            state[:] = state_k
+            copy_2d(v, v_old)
+            copy_2d(impulse, impulse_k)
+            copy_1d(state, state_k)
             m = 1
         if not decided and not converged:
             unconverged += 1
@@ -1025,5 +1026,6 @@ def run(bodies, contacts, contact_bodies, q0, v0, kind, params, times, values, s
     summary[13] = step * h
     summary[14] = 1.0 if closed else 0.0
     summary[15] = fallbacks
-    summary[16:20] = solved
+    for k in range(4):
+        summary[16 + k] = solved[k]
     return summary, (rec_energy[:n_rec], rec_q[:n_rec], rec_contacts[:n_rec])
