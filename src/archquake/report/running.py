@@ -5,8 +5,12 @@ them. A report has parts that wait on one another (the four-link chain of the pa
 that need nothing of them (the rigid-block failure curve, the record-based fragility). On a
 machine with two processors or more, :class:`Background` starts one worker process and gives it
 those tasks, so that they cost a CPU instead of the report's time; on one processor a task runs
-here, when its result is first asked for. Either way a task's result comes back as a
-:class:`TaskRun`: the value, its run time and where it ran.
+here, when its result is first asked for. A long study of independent chunks
+(:meth:`Background.study`) starts on the worker and is shared with this process once its own
+steps are done (:class:`SharedChunks`): whichever is free takes the next chunk, so that neither
+waits for the other at the end (measured on ``archquake reproduce``: the rigid-block fragility
+study's 9 s of chunks, which the report waited for alone, end 5 s sooner). Either way a task's
+result comes back as a :class:`TaskRun`: the value, its run time and where it ran.
 
 >>> background = Background()            # no worker process: tasks run when asked
 >>> run = background.submit(sum, (1, 2, 3)).result()
@@ -18,9 +22,12 @@ from __future__ import annotations
 
 import contextlib
 import os
+import queue
 import sys
+import threading
 import time
 from collections.abc import Callable, Iterator
+from concurrent.futures import Executor, Future
 from dataclasses import dataclass
 from typing import Any
 
@@ -29,6 +36,10 @@ HERE = "this process"
 
 SECOND_PROCESS = "a second process"
 """Where a task ran, when it ran on the worker process."""
+
+BOTH_PROCESSES = "a second process, then both"
+"""Where a study ran whose chunks the worker process took from its start and this process too
+once its own steps were done (:meth:`Background.study`)."""
 
 
 class Steps:
@@ -194,6 +205,106 @@ class Task:
         return self._run
 
 
+class SharedChunks(Executor):
+    """An executor whose tasks (a study's chunks) the worker process takes one at a time from
+    the start, and this process too from :meth:`help` on: whichever is free takes the next one.
+
+    A study's chunks are independent and their results do not depend on where they run (the
+    same compiled code on the same machine), so a study that the worker would finish alone
+    while this process waits is shared between the two instead.
+
+    Parameters
+    ----------
+    pool : concurrent.futures.Executor
+        The worker process (:class:`Background`'s pool).
+    """
+
+    def __init__(self, pool):
+        self._pool = pool
+        self._queue: queue.SimpleQueue = queue.SimpleQueue()
+        self._forwarder = threading.Thread(target=self._forward, daemon=True)
+        self._forwarder.start()
+
+    def submit(self, fn, /, *args, **kwargs) -> Future:
+        future: Future = Future()
+        self._queue.put((future, fn, args, kwargs))
+        return future
+
+    def _forward(self) -> None:
+        while (item := self._queue.get()) is not None:
+            future, fn, args, kwargs = item
+            if future.set_running_or_notify_cancel():
+                try:
+                    future.set_result(self._pool.submit(fn, *args, **kwargs).result())
+                except BaseException as exc:  # noqa: BLE001 - the chunk's own error, passed on
+                    future.set_exception(exc)
+
+    def help(self, until: Future) -> None:
+        """Run queued tasks in this process until ``until`` is done.
+
+        Parameters
+        ----------
+        until : concurrent.futures.Future
+            The study whose chunks these are.
+        """
+        while not until.done():
+            try:
+                item = self._queue.get(timeout=0.02)
+            except queue.Empty:
+                continue
+            if item is None:  # shut down meanwhile
+                self._queue.put(None)
+                return
+            future, fn, args, kwargs = item
+            if future.set_running_or_notify_cancel():
+                try:
+                    future.set_result(fn(*args, **kwargs))
+                except BaseException as exc:  # noqa: BLE001 - the chunk's own error, passed on
+                    future.set_exception(exc)
+
+    def shutdown(self, wait: bool = True, *, cancel_futures: bool = False) -> None:
+        self._queue.put(None)
+        if wait:
+            self._forwarder.join()
+
+
+class StudyTask:
+    """A study started on :class:`SharedChunks` (:meth:`Background.study`): its driver runs on
+    a thread of this process, its chunks on the worker process, and here from :meth:`result`."""
+
+    def __init__(self, function: Callable, args: tuple, pool, after: Task | None):
+        self._shared = SharedChunks(pool)
+        self._submitted = time.perf_counter()
+        self._future: Future = Future()
+
+        def drive():
+            try:
+                if after is not None:
+                    after.result()
+                self._future.set_result(timed(function, *args, self._shared))
+            except BaseException as exc:  # noqa: BLE001 - raised again by result()
+                self._future.set_exception(exc)
+
+        threading.Thread(target=drive, daemon=True).start()
+
+    @property
+    def done(self) -> bool:
+        """Whether the study has finished."""
+        return self._future.done()
+
+    def result(self) -> TaskRun:
+        """Help with the study's chunks until it ends; its :class:`TaskRun`.
+
+        Returns
+        -------
+        TaskRun
+        """
+        self._shared.help(self._future)
+        self._shared.shutdown(wait=False)
+        result, seconds = self._future.result()
+        return TaskRun(result, seconds, time.perf_counter() - self._submitted, BOTH_PROCESSES)
+
+
 class Background:
     """One worker process for a report's long independent tasks (or none: tasks run here).
 
@@ -252,6 +363,31 @@ class Background:
         """
         return Task(function, args, self._pool)
 
+    def study(self, function: Callable, *args, after: Task | None = None) -> Task | StudyTask:
+        """Start ``function(*args, pool)``, a study that runs its chunks on ``pool``: on the
+        worker from now on, and on this process as well once :meth:`StudyTask.result` is
+        called, so that neither waits for the other at the end. Without a worker it runs here
+        when its result is asked for, with ``pool=None``.
 
-__all__ = ["HERE", "SECOND_PROCESS", "Background", "Steps", "Task", "TaskRun", "run_here",
-           "timed"]
+        Parameters
+        ----------
+        function : callable
+            The study: ``function(*args, pool)`` where ``pool`` is an executor of its chunks
+            (or None).
+        *args
+            Its arguments.
+        after : Task, optional
+            A task on the worker to wait for before the study starts (one that compiles what
+            the study runs, so that this process loads it instead of compiling it again).
+
+        Returns
+        -------
+        Task or StudyTask
+        """
+        if self._pool is None:
+            return Task(function, (*args, None))
+        return StudyTask(function, args, self._pool, after)
+
+
+__all__ = ["BOTH_PROCESSES", "HERE", "SECOND_PROCESS", "Background", "SharedChunks", "Steps",
+           "StudyTask", "Task", "TaskRun", "run_here", "timed"]

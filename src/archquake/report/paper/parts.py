@@ -884,14 +884,17 @@ def record_fragility(settings: ReproductionSettings,
 
 
 # ------------------------------------------------------------------------------ both models
-def rigid_block_fragility(settings: ReproductionSettings):
-    """The fragility study with the rigid-block model (a worker's task): the first
+def rigid_block_fragility(settings: ReproductionSettings, pool=None):
+    """The fragility study with the rigid-block model: the first
     ``rigid_fragility_sample_size`` arches of the four-link study's sample, on its grid, with the
     default search (:data:`archquake.defaults.DEFAULT_SEARCH`).
 
     Parameters
     ----------
     settings : ReproductionSettings
+    pool : concurrent.futures.Executor, optional
+        Where its chunks run (:meth:`archquake.report.running.Background.study`); default: in
+        this process.
 
     Returns
     -------
@@ -906,7 +909,8 @@ def rigid_block_fragility(settings: ReproductionSettings):
         amplitudes_g=tuple(inclusive_range(settings.amplitude_min_g, settings.amplitude_max_g,
                                            settings.amplitude_step_g).tolist()),
         seed=settings.seed, limit_sample_size=2, model="rigid-blocks")
-    return run_fragility(study, backend="serial", progress=False)
+    return run_fragility(study, backend="serial" if pool is None else "processes", pool=pool,
+                         progress=False)
 
 
 def _failed_arches(result, undecided: bool = False) -> tuple[np.ndarray, np.ndarray]:
@@ -981,7 +985,7 @@ def two_models(settings: ReproductionSettings, arches: Arches, cases: dict,
     fragility : FragilityPart
         The four-link study.
     rigid : TaskRun
-        :func:`rigid_block_fragility`, run elsewhere.
+        :func:`rigid_block_fragility`, run beside the other parts.
 
     Returns
     -------

@@ -10,7 +10,8 @@ and on irregular arches drawn with epsilon = 0.10, and writes a report:
 Beyond the paper, two sections: how far to trust the four-link model (its failure curve beside
 the rigid-block model's, :mod:`archquake.studies.comparison`; the rigid-block curve runs on a
 second process while the other parts run, so that its compilation and analyses cost a CPU, not
-the report's time) and the record-based fragility of the arch and its irregular sample in PGA
+the report's time, and so does the rigid-block fragility study, whose chunks this process shares
+once its own parts are done: :meth:`archquake.report.running.Background.study`) and the record-based fragility of the arch and its irregular sample in PGA
 and PGV (:mod:`archquake.studies.record_fragility`, at a reduced size).
 
 This module only orchestrates: the parts compute (:mod:`archquake.report.paper.parts`), the figures
@@ -368,7 +369,8 @@ def reproduce(out_dir, settings: ReproductionSettings | None = None, *,
     with Background.start(warm_up) as background:
         blocks = model_for(nominal, "rigid-blocks")
         curve = background.submit(parts.rigid_block_curve, blocks, settings)
-        rigid_fragility = background.submit(parts.rigid_block_fragility, settings)
+        # its chunks on the second CPU, and on this one too once its own parts are done
+        rigid_fragility = background.study(parts.rigid_block_fragility, settings, after=curve)
         with steps("limit analysis (Table 1)"):
             arches = parts.paper_arches(settings, nominal)
             table1 = parts.limit_table(arches, paper)
