@@ -234,6 +234,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--b", default="--workers 2 --search exhaustive",
                         help="options of variant B (the baseline)")
     args = parser.parse_args(argv)
+    if not (args.b_src / "archquake" / "__init__.py").is_file():  # PYTHONPATH naming nothing
+        # would let the installed package run as B, and A and B would compare equal
+        parser.error(f"--b-src: {args.b_src} holds no archquake package (give OLD/src)")
     command = STUDIES[args.study]
     variants = (("A", args.a, ROOT / "src"), ("B", args.b, args.b_src))
     for _ in range(args.untimed):  # compiled code cached and files read once: not timed
