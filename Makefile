@@ -14,18 +14,23 @@ OQ := $(OQ_VENV)/.installed
 
 .PHONY: run test fuzz docs lint bench clean openquake chromium app-screenshots
 
-# --no-compile: pip would write the byte code of every module of every dependency (scipy,
-# pandas, matplotlib: 18 of the 31 s of this install); Python writes it on first import for
-# the modules that are used.
+# pip --no-compile, then the byte code written on both processors and without the
+# dependencies' own test suites (which nothing here imports): 19 s instead of 31 s for the
+# package's install. The byte code matters even where Python would write it on first import:
+# under PYTHONDONTWRITEBYTECODE every process would compile scipy, numba and pandas again.
+BYTE_CODE = $(BIN)/python -m compileall -q -j 0 -x '/tests?/' $(VENV)/lib > /dev/null
+
 $(BASE): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/pip install --quiet --no-compile -e .
+	$(BYTE_CODE)
 	touch $@
 
 # The records extra (the FEMA P695 record sets, about 300 MB with its dependencies) so that
 # the tests of the built-in suites run.
 $(TEST): $(BASE)
 	$(BIN)/pip install --quiet --no-compile -e ".[test,records]"
+	$(BYTE_CODE)
 	touch $@
 
 # The API pages import every module, archquake.app (the app extra) included: `make docs` on a
@@ -33,6 +38,7 @@ $(TEST): $(BASE)
 # older recipe is brought up to date.
 $(DOCS): $(BASE) Makefile
 	$(BIN)/pip install --quiet --no-compile -e ".[docs,app]"
+	$(BYTE_CODE)
 	touch $@
 
 # OpenQuake's reader, which a test uses to load the NRML fragility models archquake writes, in a
