@@ -11,8 +11,9 @@ Beyond the paper, two sections: how far to trust the four-link model (its failur
 the rigid-block model's, :mod:`archquake.studies.comparison`; the rigid-block curve runs on a
 second process while the other parts run, so that its compilation and analyses cost a CPU, not
 the report's time, and so does the rigid-block fragility study, whose chunks this process shares
-once its own parts are done: :meth:`archquake.report.running.Background.study`) and the record-based fragility of the arch and its irregular sample in PGA
-and PGV (:mod:`archquake.studies.record_fragility`, at a reduced size).
+once its own parts are done: :meth:`archquake.report.running.Background.study`) and the
+record-based fragility of the arch and its irregular sample in PGA and PGV
+(:mod:`archquake.studies.record_fragility`, at a reduced size).
 
 This module only orchestrates: the parts compute (:mod:`archquake.report.paper.parts`), the figures
 are drawn from their values (:mod:`archquake.report.paper.figures`), the words written from them
