@@ -159,7 +159,8 @@ def run_here(function: Callable, *args) -> TaskRun:
 
 
 class Task:
-    """A submitted task: on the worker process, or deferred until :meth:`result` runs it here."""
+    """A submitted task: on the worker process, or deferred until :meth:`Task.result` runs it
+    here."""
 
     def __init__(self, function: Callable, args: tuple, pool=None):
         self._function, self._args = function, args
@@ -207,7 +208,8 @@ class Task:
 
 class SharedChunks(Executor):
     """An executor whose tasks (a study's chunks) the worker process takes one at a time from
-    the start, and this process too from :meth:`help` on: whichever is free takes the next one.
+    the start, and this process too from :meth:`SharedChunks.help` on: whichever is free takes the
+    next one.
 
     A study's chunks are independent and their results do not depend on where they run (the
     same compiled code on the same machine), so a study that the worker would finish alone
@@ -226,6 +228,12 @@ class SharedChunks(Executor):
         self._forwarder.start()
 
     def submit(self, fn, /, *args, **kwargs) -> Future:
+        """Queue ``fn(*args, **kwargs)`` for whichever side is free first.
+
+        Returns
+        -------
+        concurrent.futures.Future
+        """
         future: Future = Future()
         self._queue.put((future, fn, args, kwargs))
         return future
@@ -263,6 +271,8 @@ class SharedChunks(Executor):
                     future.set_exception(exc)
 
     def shutdown(self, wait: bool = True, *, cancel_futures: bool = False) -> None:
+        """Stop taking tasks to the worker (after those queued before); with ``wait``, until the
+        last one it took is done."""
         self._queue.put(None)
         if wait:
             self._forwarder.join()
@@ -270,7 +280,8 @@ class SharedChunks(Executor):
 
 class StudyTask:
     """A study started on :class:`SharedChunks` (:meth:`Background.study`): its driver runs on
-    a thread of this process, its chunks on the worker process, and here from :meth:`result`."""
+    a thread of this process, its chunks on the worker process, and here from
+    :meth:`StudyTask.result` on."""
 
     def __init__(self, function: Callable, args: tuple, pool, after: Task | None):
         self._shared = SharedChunks(pool)
