@@ -76,3 +76,18 @@ def test_without_a_worker_the_study_runs_here_when_asked():
     assert not task.done
     run = task.result()
     assert [v for v, _ in run.result] == [0, 1, 4] and run.ran_on == HERE
+
+
+def test_ctrl_c_in_a_chunk_run_here_stops_this_process_at_once():
+    def study(pool):
+        return [f.result() for f in [pool.submit(_interrupted) for _ in range(3)]]
+
+    with ThreadPoolExecutor(1) as worker:
+        task = Background(worker).study(study)
+        with pytest.raises(KeyboardInterrupt):
+            task.result()
+
+
+def _interrupted():
+    time.sleep(0.05)
+    raise KeyboardInterrupt

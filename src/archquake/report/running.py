@@ -267,8 +267,11 @@ class SharedChunks(Executor):
             if future.set_running_or_notify_cancel():
                 try:
                     future.set_result(fn(*args, **kwargs))
-                except BaseException as exc:  # noqa: BLE001 - the chunk's own error, passed on
+                except Exception as exc:  # the chunk's own error, passed on to the study
                     future.set_exception(exc)
+                except BaseException as exc:  # Ctrl-C: the study stops, and so does this
+                    future.set_exception(exc)
+                    raise
 
     def shutdown(self, wait: bool = True, *, cancel_futures: bool = False) -> None:
         """Stop taking tasks to the worker (after those queued before); with ``wait``, until the

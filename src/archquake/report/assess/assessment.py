@@ -984,8 +984,14 @@ def _records(structure, settings, suite, note: str, model, out: Path, resume: bo
             levels = stripe_levels(pilot, suite, im, settings.record_levels, weaker)
             if irregular:
                 directory = out / RECORDS_DIR.format(im=record_parts.file_stem(im))
-                result = record_parts.record_study(structure, suite, im, levels, settings,
-                                                   directory, resume)
+
+                def study(pool, im=im, levels=levels, directory=directory):
+                    return record_parts.record_study(structure, suite, im, levels, settings,
+                                                     directory, resume, pool=pool)
+
+                # its chunks on this process and on the second one, idle once its tasks
+                # (the rigid blocks' failure domain, the check under the records) are done
+                result = background.study(study).result().result
                 nrml, why = record_parts.export_nrml(result, out, im)
                 entries[im] = record_parts.record_summary(result, nrml, why)
             else:  # no irregular arches around a surveyed arch: the structure alone
