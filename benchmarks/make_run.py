@@ -51,6 +51,12 @@ def main(argv=None) -> int:
     parser.add_argument("--candidate", default="HEAD", help="the commit measured")
     parser.add_argument("--repeats", type=int, default=3)
     args = parser.parse_args(argv)
+    for option, commit in (("--baseline", args.baseline), ("--candidate", args.candidate)):
+        if subprocess.run(["git", "rev-parse", "--verify", "--quiet", f"{commit}^{{commit}}"],
+                          cwd=ROOT, capture_output=True).returncode != 0:
+            parser.error(f"{option}: {commit!r} is not a commit of this repository")
+    if args.repeats < 1:
+        parser.error(f"--repeats must be an integer >= 1, got {args.repeats}")
     commits = {"candidate": args.candidate, "baseline": args.baseline}
     runs: dict[str, list[dict[str, float]]] = {name: [] for name in commits}
     for k in range(args.repeats):

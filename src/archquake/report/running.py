@@ -238,14 +238,25 @@ class SharedChunks(Executor):
         self._queue.put((future, fn, args, kwargs))
         return future
 
+    @staticmethod
+    def _settle(item, run: Callable, here: bool) -> None:
+        """Run a queued task by ``run(fn, args, kwargs)`` and set its future (unless it was
+        cancelled); an exception goes to the future, and where the task ran ``here`` (this
+        process's own thread), a Ctrl-C is raised again, so that this process stops at once."""
+        future, fn, args, kwargs = item
+        if not future.set_running_or_notify_cancel():
+            return
+        try:
+            future.set_result(run(fn, args, kwargs))
+        except BaseException as exc:
+            future.set_exception(exc)
+            if here and not isinstance(exc, Exception):
+                raise
+
     def _forward(self) -> None:
         while (item := self._queue.get()) is not None:
-            future, fn, args, kwargs = item
-            if future.set_running_or_notify_cancel():
-                try:
-                    future.set_result(self._pool.submit(fn, *args, **kwargs).result())
-                except BaseException as exc:  # noqa: BLE001 - the chunk's own error, passed on
-                    future.set_exception(exc)
+            self._settle(item, lambda fn, args, kwargs: self._pool.submit(
+                fn, *args, **kwargs).result(), here=False)
 
     def help(self, until: Future) -> None:
         """Run queued tasks in this process until ``until`` is done.
@@ -263,15 +274,7 @@ class SharedChunks(Executor):
             if item is None:  # shut down meanwhile
                 self._queue.put(None)
                 return
-            future, fn, args, kwargs = item
-            if future.set_running_or_notify_cancel():
-                try:
-                    future.set_result(fn(*args, **kwargs))
-                except Exception as exc:  # the chunk's own error, passed on to the study
-                    future.set_exception(exc)
-                except BaseException as exc:  # Ctrl-C: the study stops, and so does this
-                    future.set_exception(exc)
-                    raise
+            self._settle(item, lambda fn, args, kwargs: fn(*args, **kwargs), here=True)
 
     def shutdown(self, wait: bool = True, *, cancel_futures: bool = False) -> None:
         """Stop taking tasks to the worker (after those queued before); with ``wait``, until the
