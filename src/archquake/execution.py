@@ -502,6 +502,31 @@ def process_pool(workers: int | None = None, *,
                       initializer=_limit_threads, initargs=(threads, warm_up, os.getpid()))
 
 
+def forked_pool() -> WorkerPool | None:
+    """One worker process forked from this one, or None where processes cannot be forked
+    (only Linux forks them here: elsewhere a fork of a process with numba and BLAS loaded is
+    not safe).
+
+    A forked worker starts with this process's modules imported and its compiled code
+    loaded, in milliseconds where a fresh one (:func:`process_pool`) takes a second or two:
+    it pays for work of a fraction of a second that this process would otherwise do after
+    its own, such as the limit-analysis sample of a fragility study run here
+    (:func:`archquake.studies.fragility.run_fragility`). Fork it before this process starts
+    threads of its own (progress bars): a fork copies only the thread that forks. Like
+    :func:`process_pool`'s workers it ignores SIGINT and ends with this process.
+
+    Returns
+    -------
+    WorkerPool or None
+    """
+    import multiprocessing
+
+    if not sys.platform.startswith("linux"):
+        return None
+    return WorkerPool(max_workers=1, mp_context=multiprocessing.get_context("fork"),
+                      initializer=_limit_threads, initargs=(1, None, os.getpid()))
+
+
 def _processes(task: Task, chunks: list[Chunk], workers: int,
                pool: Any) -> Iterator[tuple[int, dict, float]]:
     from concurrent.futures import FIRST_COMPLETED, wait

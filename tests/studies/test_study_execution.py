@@ -78,3 +78,61 @@ def test_a_small_record_study_on_workers_runs_here_with_the_same_results():
     here = run_record_fragility(settings, workers=2, progress=False)
     assert here.metadata["backend"] == "serial"
     pd.testing.assert_frame_equal(here.table, serial.table)
+
+
+def _pid(_=None):
+    import os
+
+    return os.getpid()
+
+
+def test_a_forked_worker_runs_in_another_process_and_only_on_linux(monkeypatch):
+    import os
+    import sys
+
+    from archquake.execution import forked_pool
+
+    if not sys.platform.startswith("linux"):
+        assert forked_pool() is None
+        return
+    with forked_pool() as pool:
+        assert pool.submit(_pid).result() != os.getpid()
+    monkeypatch.setattr(sys, "platform", "darwin")
+    assert forked_pool() is None
+
+
+def test_a_study_run_here_gives_its_limit_sample_to_a_forked_worker(monkeypatch, tmp_path):
+    """With two workers asked for and a study too small for fresh ones, the limit sample of 250
+    arches (0.25 s estimated, FORK_PAYS_SECONDS) runs on a forked worker while the arches run
+    here: the same table, limit sample and curves as the serial run, its directory written (so
+    that the study can be resumed), and on one worker, or with fewer arches, no fork."""
+    import sys
+
+    from archquake import execution
+    from archquake.studies import fragility
+
+    if not sys.platform.startswith("linux"):
+        pytest.skip("processes are forked only on Linux")
+    settings = FragilitySettings(**{**TINY, "limit_sample_size": 250})
+    assert settings.limit_sample_size * fragility.LIMIT_ANALYSIS_SECONDS >= (
+        fragility.FORK_PAYS_SECONDS)
+    serial = run_fragility(settings, tmp_path / "serial", backend="serial", **FAST)
+    forks, fork = [], execution.forked_pool
+
+    def counted():
+        forks.append(1)
+        return fork()
+
+    monkeypatch.setattr(execution, "forked_pool", counted)
+    here = run_fragility(settings, tmp_path / "here", workers=2, **FAST)
+    assert forks == [1] and here.metadata["backend"] == "serial"
+    pd.testing.assert_frame_equal(here.table, serial.table)
+    for side in ("load_multiplier_l", "load_multiplier_r"):
+        np.testing.assert_array_equal(getattr(here.limit_sample, side),
+                                      getattr(serial.limit_sample, side))
+    np.testing.assert_array_equal(here.probability, serial.probability)
+    written = pd.read_parquet(tmp_path / "here" / fragility.LIMIT_DIRECTORY / "results.parquet")
+    assert len(written) == 250
+    run_fragility(settings, workers=1, **FAST)
+    run_fragility(FragilitySettings(**TINY), workers=2, **FAST)
+    assert forks == [1]
