@@ -386,10 +386,11 @@ def _limit_threads(threads: int, warm_up: Callable[[], Any] | None = None,
 
     A worker ignores SIGINT: Ctrl-C in a terminal signals the whole process group, and the
     process that owns the pool stops the workers itself (:meth:`WorkerPool.terminate_workers`)
-    instead of each worker printing a KeyboardInterrupt traceback. Its progress bars (tqdm)
-    lock with a thread lock, not tqdm's default multiprocessing one: a worker terminated with a
-    semaphore of its own registered would leave the resource tracker to warn of it ("leaked
-    semaphore objects") at the end of the command.
+    instead of each worker printing a KeyboardInterrupt traceback; SIGTERM takes its default
+    action (ends it), also in a worker forked from a command that handles SIGTERM. Its
+    progress bars (tqdm) lock with a thread lock, not tqdm's default multiprocessing one: a
+    worker terminated with a semaphore of its own registered would leave the resource tracker
+    to warn of it ("leaked semaphore objects") at the end of the command.
     """
     import threading
 
@@ -398,6 +399,9 @@ def _limit_threads(threads: int, warm_up: Callable[[], Any] | None = None,
     tqdm.set_lock(threading.RLock())
     with suppress(ValueError):  # not the main thread of the worker: leave signals alone
         signal.signal(signal.SIGINT, signal.SIG_IGN)
+        # a forked worker inherits the command's SIGTERM handler, which raises an exception
+        # that the pool's loop would catch: SIGTERM must end it (terminate_workers)
+        signal.signal(signal.SIGTERM, signal.SIG_DFL)
     numba_imported = "numba" in sys.modules  # e.g. by the parent's __main__, re-imported here
     for name in _THREAD_VARIABLES:
         # numba reads NUMBA_NUM_THREADS again at every compilation and refuses a value that

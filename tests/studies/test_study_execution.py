@@ -136,3 +136,36 @@ def test_a_study_run_here_gives_its_limit_sample_to_a_forked_worker(monkeypatch,
     run_fragility(settings, workers=1, **FAST)
     run_fragility(FragilitySettings(**TINY), workers=2, **FAST)
     assert forks == [1]
+
+
+def _sigterm_is_default(_=None):
+    import signal
+
+    return signal.getsignal(signal.SIGTERM) == signal.SIG_DFL
+
+
+def test_a_forked_worker_ends_on_sigterm_though_the_command_handles_it():
+    """The command turns SIGTERM into an exception (cli._signals); a forked worker inherits
+    the handler, and the pool's loop would catch that exception and go on: its initializer
+    restores the default action, so that terminating the pool ends it at once."""
+    import signal
+    import sys
+    import time
+
+    from archquake.execution import forked_pool
+
+    if not sys.platform.startswith("linux"):
+        pytest.skip("processes are forked only on Linux")
+
+    def handler(signum, frame):
+        raise RuntimeError("terminated")
+
+    previous = signal.signal(signal.SIGTERM, handler)
+    try:
+        pool = forked_pool()
+        assert pool.submit(_sigterm_is_default).result()
+        start = time.monotonic()
+        pool.terminate_workers()
+        assert time.monotonic() - start < 2.0
+    finally:
+        signal.signal(signal.SIGTERM, previous)
