@@ -498,11 +498,17 @@ def process_pool(workers: int | None = None, *,
     ValueError
         If ``workers`` is not an integer >= 1.
     """
+    n = _check_count("workers", workers) if workers is not None else (os.cpu_count() or 1)
+    return _worker_pool(n, "spawn", warm_up)
+
+
+def _worker_pool(n: int, start_method: str, warm_up: Callable[[], Any] | None) -> WorkerPool:
+    """``n`` worker processes started by ``start_method``, with :func:`_limit_threads` as
+    their initializer (:func:`process_pool`, :func:`forked_pool`)."""
     import multiprocessing
 
-    n = _check_count("workers", workers) if workers is not None else (os.cpu_count() or 1)
     threads = max(1, (os.cpu_count() or 1) // n)
-    return WorkerPool(max_workers=n, mp_context=multiprocessing.get_context("spawn"),
+    return WorkerPool(max_workers=n, mp_context=multiprocessing.get_context(start_method),
                       initializer=_limit_threads, initargs=(threads, warm_up, os.getpid()))
 
 
@@ -523,12 +529,9 @@ def forked_pool() -> WorkerPool | None:
     -------
     WorkerPool or None
     """
-    import multiprocessing
-
     if not sys.platform.startswith("linux"):
         return None
-    return WorkerPool(max_workers=1, mp_context=multiprocessing.get_context("fork"),
-                      initializer=_limit_threads, initargs=(1, None, os.getpid()))
+    return _worker_pool(1, "fork", None)
 
 
 def _processes(task: Task, chunks: list[Chunk], workers: int,

@@ -1139,7 +1139,7 @@ def run_fragility(
         running = run.get("pool")
         nominal = (None if running is None
                    else running.submit(_nominal_domains, settings, nominal_resolution_g))
-        helper = forked_pool() if fork_limit and running is None else None
+        helper = forked_pool() if fork_limit else None  # fork_limit: no pool here
         if helper is None:
             table = run_study(fragility_task, plan, out, **options, **run,
                               save=False)  # saved below, with the summary
