@@ -74,7 +74,7 @@ def test_plot_of_the_rings(tmp_path, capsys):
 
 @pytest.mark.parametrize(("argv", "message"), [
     (["simulate", "--rings", "2"], "--rings: an arch of several rings is a block assembly"),
-    (["domain", "--rings", "2", "--ring-bond", "staggered"], "--rings, --ring-bond: an arch"),
+    (["compare", "--rings", "2", "--ring-bond", "staggered"], "--rings, --ring-bond: an arch"),
     (["limit", "--rings", "2", "--min-pier-width", "--piers", ",3"], "--rings"),
     (["limit", "--ring-friction", "0.3"], "--ring-friction: give --rings"),
     (["limit", "--rings", "2", "--piers", "1,3"], "--piers: left pier: pier width must be at "

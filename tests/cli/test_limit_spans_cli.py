@@ -84,12 +84,12 @@ def test_refusals_name_the_options(argv, message, capsys):
 
 
 @pytest.mark.parametrize("command", [
-    ["domain", "--piers", "3,6"], ["limit", "--min-pier-width", "--piers", ",6"]])
+    ["compare", "--piers", "3,6"], ["limit", "--min-pier-width", "--piers", ",6"]])
 def test_other_commands_refuse_several_spans_by_name(command, capsys):
     assert main([*command, "--spans", "2"]) == 2
     err = capsys.readouterr().err
-    assert ("--spans 2 builds several arches on shared piers: limit, rigid-blocks and assess "
-            "analyse them") in err
+    assert ("--spans 2 builds several arches on shared piers: limit, rigid-blocks, domain and "
+            "assess analyse them") in err
 
 
 def test_the_rigid_blocks_take_several_spans(capsys):

@@ -64,7 +64,7 @@ def run(args: argparse.Namespace) -> int:
     """Assess the structure of the options into ``--out``."""
     from ..report.assess import AssessmentSettings, assess
 
-    if _assembly_options(args):
+    if options.describes_assembly(args):
         with options.naming_options():
             structure = options.structure_spec(args, draw=False, spans=True).nominal()
         if hasattr(structure, "interfaces"):
@@ -114,14 +114,6 @@ def _print(result) -> int:
           + (f", {nrml} NRML file{'s' if nrml != 1 else ''}" if nrml else "")
           + f") in {total:.1f} s")
     return 0
-
-
-def _assembly_options(args: argparse.Namespace) -> bool:
-    """Whether the options describe a block assembly: several spans, rings, or a --geometry
-    file (which may hold one)."""
-    return (getattr(args, "rings", None) is not None
-            or getattr(args, "spans", None) not in (None, 1)
-            or bool(getattr(args, "geometry", None)))
 
 
 def _assembly(args: argparse.Namespace, structure) -> int:

@@ -27,7 +27,7 @@ DESCRIPTION = (
     "acceleration (lowest collapsing a), the lowest a collapsing in the first half cycle "
     "(Oppenheim's curve) and the intervals. Accelerations in g. --model rigid-blocks runs the "
     "rigid-block model instead (it does not count half cycles: the scan is extended until the "
-    "first collapse).")
+    "first collapse); it alone takes a block assembly (--spans, --rings, a drawing).")
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
@@ -82,7 +82,7 @@ def run(args: argparse.Namespace) -> int:
     from ..studies.strategies import search_caveat
 
     domain_stride = DEFAULT_STRIDE if args.stride is None else args.stride
-    model = options.structure_model(args, options.model_spec_from_args(args))
+    model = _model(args)
     with options.analysing(args):
         domain = domain_of(model, durations, amplitudes, direction=args.direction,
                            resolution_g=args.resolution, extend_to_g=args.extend_to,
@@ -172,6 +172,19 @@ def run(args: argparse.Namespace) -> int:
     if args.plot:
         print(f"figure written to {args.plot}")
     return 0
+
+
+def _model(args: argparse.Namespace):
+    """The model of the options' structure: a block assembly (several spans, rings, a drawing
+    of one) only with the rigid blocks, which the four-link model does not describe."""
+    spec = options.model_spec_from_args(args)
+    nominal, structure = options.arches_from_args(args, assembly=True, spans=True)
+    if hasattr(structure, "interfaces") and spec.name != "rigid-blocks":
+        raise ValueError("a block assembly (several spans, rings, a drawing of one) is not one "
+                         "chain of voussoirs between two springings, so it has no four-link "
+                         "model: give --model rigid-blocks")
+    with options.analysing(args):
+        return spec.build(structure, nominal)
 
 
 def _print_rigid_block_domain(domain, args: argparse.Namespace) -> int:

@@ -331,8 +331,8 @@ def add_ring_options(parser: argparse.ArgumentParser) -> None:
     ``limit``, ``rigid-blocks`` and ``assess`` analyse one (:func:`refuse_rings`)."""
     from ..defaults import RING_BONDS
 
-    group = parser.add_argument_group("rings (limit, rigid-blocks and assess; default: one "
-                                      "ring, the arch)")
+    group = parser.add_argument_group("rings (limit, rigid-blocks, domain and assess; default: "
+                                      "one ring, the arch)")
     group.add_argument("--rings", type=int, metavar="N",
                        help="cut the arch of the shape options (not a pointed one) into N "
                             "concentric rings of equal thickness that can separate (a "
@@ -351,13 +351,21 @@ def add_ring_options(parser: argparse.ArgumentParser) -> None:
 
 def refuse_rings(args: argparse.Namespace) -> None:
     """Refuse ``--rings`` (and its options) naming them: an arch of several rings is a block
-    assembly, which only ``limit``, ``rigid-blocks`` and ``assess`` analyse."""
+    assembly, which only the commands of :data:`SPANS_COMMANDS` analyse."""
     present = given(args, "rings", "ring_bond", "ring_friction") if hasattr(args, "rings") \
         else []
     if present:
         raise ValueError(f"{', '.join(present)}: an arch of several rings is a block assembly, "
-                         "which limit, rigid-blocks and assess analyse; this command does "
-                         "not")
+                         f"which {', '.join(SPANS_COMMANDS[:-1])} and {SPANS_COMMANDS[-1]} "
+                         "analyse; this command does not")
+
+
+def describes_assembly(args: argparse.Namespace) -> bool:
+    """Whether the options may describe a block assembly: several spans, rings, or a
+    ``--geometry`` file (which may hold one)."""
+    return (getattr(args, "rings", None) is not None
+            or getattr(args, "spans", None) not in (None, 1)
+            or bool(getattr(args, "geometry", None)))
 
 
 def shape_spec(args: argparse.Namespace):
@@ -370,7 +378,7 @@ def shape_spec(args: argparse.Namespace):
         return StructureSpec(**{k: v for k, v in values.items() if v is not None})
 
 
-SPANS_COMMANDS = ("limit", "rigid-blocks", "assess")
+SPANS_COMMANDS = ("limit", "rigid-blocks", "domain", "assess")
 """The commands that take several spans (``--spans`` of 2 or more)."""
 
 
@@ -442,7 +450,7 @@ def pier_from_option(option: str, text: str, *, blank_width: bool = False):
         return pier_field(field, text, blank_width=blank_width)
 
 
-ASSEMBLY_COMMANDS = ("limit", "rigid-blocks")
+ASSEMBLY_COMMANDS = ("limit", "rigid-blocks", "domain")
 """The commands that take any block assembly (``--geometry`` with supports, or a drawing)."""
 
 
