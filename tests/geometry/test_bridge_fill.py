@@ -10,6 +10,7 @@ import pytest
 from archquake.constants import GRAVITY
 from archquake.geometry import Fill, Pier, circular_arch, shaped_arch
 from archquake.geometry.bridge import FilledAssembly, multi_span
+from archquake.geometry.fill import fill_columns
 from archquake.geometry.structure import Structure
 from archquake.limit_analysis import assembly_limit, load_multipliers
 from archquake.limit_analysis.assembly import contacts_of
@@ -21,16 +22,25 @@ FLAT = shaped_arch("circular", span=4.0, rise=1.2, thickness=0.45, voussoirs=8, 
 LEFT, RIGHT = Pier(1.2, 3.0, 3), Pier(1.6, 2.5, 1)
 
 
-@pytest.mark.parametrize("inertia", ["none", "centroid", "extrados"])
-def test_one_span_with_fill_is_the_arch_on_piers_with_fill(inertia):
+PASSIVE = (math.radians(30.0), 0.33)
+"""A passive reaction of the fill: phi = 30 deg, a third of Rankine's pressure mobilised."""
+
+
+@pytest.mark.parametrize(("inertia", "passive"), [
+    ("none", ()), ("centroid", ()), ("extrados", ()), ("centroid", PASSIVE),
+    ("extrados", (math.radians(35.0), 1.0))])
+def test_one_span_with_fill_is_the_arch_on_piers_with_fill(inertia, passive):
     # the same columns (fill_columns of the single arch), so the same loads block for block,
-    # and the assembly program gives the chain program's k in both directions (unequal piers)
-    fill = Fill(0.5, 1800.0, inertia)
+    # the passive reactions too, and the assembly program gives the chain program's k in both
+    # directions (unequal piers)
+    fill = Fill(0.5, 1800.0, inertia, *passive)
     single = Structure(FLAT, LEFT, RIGHT, fill)
     bridge = multi_span(FLAT, 1, end_piers=(LEFT, RIGHT), fill=fill)
     assert isinstance(bridge, FilledAssembly)
     mine, theirs = contacts_of(bridge), contacts_of(single)
-    for name in ("vertical", "vertical_x", "horizontal", "horizontal_y"):
+    assert (mine.passive.max() > 0) == bool(passive)
+    for name in ("vertical", "vertical_x", "horizontal", "horizontal_y", "passive",
+                 "passive_y", "passive_sign"):
         a, b = getattr(mine, name), getattr(theirs, name)
         assert np.max(np.abs(a - b)) <= 1e-12 * np.max(np.abs(b)), name
     k_l, k_r = load_multipliers(single)
@@ -93,9 +103,34 @@ def test_the_rigid_blocks_carry_the_fill_as_mass():
                                        fill=Fill(0.5, 1800.0, "none")))
 
 
+def test_the_passive_reaction_over_several_spans():
+    # every span's voussoirs push toward the middle of their own span, with the single arch's
+    # bounds; the spandrel columns over the piers offer none
+    fill = Fill(0.5, 1800.0, "centroid", *PASSIVE)
+    single = fill_columns(FLAT, fill)
+    bridge = multi_span(FLAT, 3, end_piers=(LEFT, LEFT), middle_pier=LEFT, fill=fill)
+    names = bridge.names
+    for span in (1, 2, 3):
+        mine = [i for i, n in enumerate(names) if n.startswith(f"span {span} ")]
+        assert bridge.passive[mine] == pytest.approx(single.passive, rel=1e-12)
+        assert bridge.passive_y[mine] == pytest.approx(single.passive_y, abs=1e-12)
+        assert np.array_equal(bridge.passive_sign[mine], single.passive_sign)
+        assert sorted(set(bridge.passive_sign[mine])) == [-1.0, 1.0]  # toward the middle
+    assert np.all(bridge.passive[[i for i, n in enumerate(names) if n.startswith("pier")]] == 0)
+    # a resistance only adds to the strength: k with it at least k without it, and the end
+    # span fails as the single arch on the same piers with the same fill (its chain program)
+    without = multi_span(FLAT, 3, end_piers=(LEFT, LEFT), middle_pier=LEFT,
+                         fill=Fill(0.5, 1800.0, "centroid"))
+    k_single = min(load_multipliers(Structure(FLAT, LEFT, LEFT, fill)))
+    for direction in ("+x", "-x"):
+        k = assembly_limit(bridge, direction).load_multiplier
+        assert k > assembly_limit(without, direction).load_multiplier * 1.05
+        assert k <= k_single * (1 + 1e-9)
+    # the dynamic models carry no passive reaction, and say so
+    with pytest.raises(ValueError, match="fill_passive: the fill's passive reaction"):
+        from_block_assembly(bridge)
+
+
 def test_refusals_name_the_parameter():
-    with pytest.raises(ValueError, match="fill: several spans take no passive reaction"):
-        multi_span(FLAT, 2, end_piers=(LEFT, LEFT), middle_pier=LEFT,
-                   fill=Fill(0.5, 1800.0, "centroid", math.radians(30), 0.3))
     with pytest.raises(ValueError, match="fill must be a Fill or None"):
         multi_span(FLAT, 2, end_piers=(LEFT, LEFT), middle_pier=LEFT, fill=0.5)

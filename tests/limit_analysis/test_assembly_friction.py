@@ -122,6 +122,45 @@ def test_without_friction_the_assembly_program_is_the_chain_program(arch):
     assert len(plus.interfaces_that("rocks")) == 4
 
 
+@pytest.mark.parametrize("piers", [False, True])
+def test_a_passive_fill_in_the_assembly_program_is_the_chain_programs(piers):
+    # the passive reaction an unknown bounded force of the program (Contacts.passive), against
+    # the chain program's static and kinematic forms (LP and enumeration), which carry it their
+    # own way
+    from archquake.geometry import Fill, Pier, shaped_arch
+    from archquake.geometry.structure import Structure
+
+    arch = shaped_arch("circular", span=4.0, rise=1.2, thickness=0.45, voussoirs=8,
+                       faces="flat")
+    pier = Pier(1.2, 3.0, 3) if piers else None
+    structure = Structure(arch, pier, pier, Fill(0.5, 1800.0, "centroid", math.radians(30.0),
+                                                 0.33))
+    assert contacts_of(structure).passive.max() > 0
+    left, right = load_multipliers(structure)
+    kinematic = load_multipliers(structure, method="kinematic")
+    plus, minus = (assembly_limit(structure, d).load_multiplier for d in ("+x", "-x"))
+    assert plus == pytest.approx(left, rel=1e-9)
+    assert minus == pytest.approx(right, rel=1e-9)
+    assert plus == pytest.approx(kinematic[0], rel=1e-8)
+    without = Structure(arch, pier, pier, Fill(0.5, 1800.0, "centroid"))
+    assert plus > 1.05 * assembly_limit(without, "+x").load_multiplier
+
+
+def test_a_bounded_push_on_a_block_by_hand():
+    # one block 0.4 m x 2 m on the ground, W = 2000 g 0.8 N/m: alone it rocks about its right
+    # corner at k = b / (2 h_c) = 0.2 / 1 = 0.2. A resistance up to P at height 1.5 m pushing
+    # toward -x adds P 1.5 to the moment about that corner: k = (0.2 W + 1.5 P) / (1 W);
+    # pushing toward +x it resists nothing (it cannot pull)
+    stack = rectangle_stack(0.4, [2.0])
+    weight = float(stack.vertical[0])
+    bound = 0.1 * weight
+    for sign, expected in ((-1.0, 0.2 + 1.5 * 0.1), (1.0, 0.2)):
+        pushed = Contacts(**{**stack.__dict__, "passive": np.array([bound]),
+                             "passive_y": np.array([1.5]), "passive_sign": np.array([sign])})
+        assert assembly_limit(pushed, "+x").load_multiplier == pytest.approx(expected,
+                                                                             rel=1e-9)
+
+
 def test_oppenheim_hinges_are_the_chain_programs():
     arch = archquake.oppenheim()
     from archquake.limit_analysis import both_directions

@@ -160,6 +160,8 @@ def test_the_rigid_block_model_of_an_assembly_has_its_load_multipliers():
      "the site's options need --site FILE or --code"),
     (["--rings", "0"], "--rings must be an integer >= 1, got 0"),
     (["--spans", "0"], "--spans must be an integer in [1, 100], got 0"),
+    (["--spans", "2", "--piers", "3,6", "--fill-cover", "0.5", "--fill-passive", "30,0.33"],
+     "--fill-passive: the fill's passive reaction is a limit-analysis model"),
 ])
 def test_what_an_assemblys_assessment_refuses(argv, message, capsys, tmp_path):
     assert main(["assess", *argv, "--out", str(tmp_path / "x"), "--no-progress"]) == 2

@@ -39,7 +39,7 @@ course 2"``, spans and piers counted from 1 and 0 left to right, voussoirs and c
 arches' springings on the piers ``"bed"``, the piers' bases (and fixed springings)
 ``"foundation"``.
 
-**Fill** (``fill``, a :class:`~archquake.geometry.Fill` without a passive reaction): one level
+**Fill** (``fill``, a :class:`~archquake.geometry.Fill`): one level
 surface over the whole bridge, :math:`d` (the cover) above the arches' crown. Over every span
 it is the single arch's fill, column by column over the voussoirs
 (:func:`~archquake.geometry.fill.fill_columns`, the same columns as an arch on piers under that
@@ -50,6 +50,10 @@ springings the fill rests on the abutments and is ignored, as for one arch. A bl
 column are one body (:class:`FilledAssembly`): their weight acts through their centroid, the
 horizontal load as the fill's inertia model says, so the limit analysis of one span under fill
 is that of the arch on piers under fill, and the rigid-block model carries the fill as mass.
+A passive reaction of the fill acts on every span's voussoirs as on the single arch's, each
+toward the middle of its own span (:mod:`~archquake.geometry.fill`); the spandrel columns over
+the piers offer none, and the dynamic models none at all
+(:func:`~archquake.geometry.fill.check_dynamic_fill`).
 
 **Arches of several rings** (:func:`~archquake.geometry.multi_ring`) span the same way: every
 ring rests on the seat of its springing, and the fill lies on the top faces of the extrados
@@ -134,7 +138,7 @@ class FilledAssembly:
     blocks : BlockAssembly
         The masonry.
     fill : Fill
-        The fill (no passive reaction: an assembly's limit analysis takes none).
+        The fill.
     fill_masses : array of float, shape (nb,)
         Mass of the column every block carries [kg/m] (0: none).
     fill_centroids : array of float, shape (nb, 2)
@@ -150,6 +154,10 @@ class FilledAssembly:
         Height of the fill's surface [m].
     outlines : tuple of arrays
         Closed outline of every column [m], for drawing (one per carrier, in its order).
+    passive, passive_y, passive_sign : array of float, shape (nb,)
+        The fill's passive reaction on every block (:class:`~archquake.geometry.loads.BlockLoads`;
+        none by default): the largest [N/m], the ordinate of its line [m], its direction (+1
+        toward +x, -1 toward -x, 0 none).
     """
 
     blocks: BlockAssembly
@@ -161,13 +169,12 @@ class FilledAssembly:
     carriers: np.ndarray
     level: float
     outlines: tuple
+    passive: np.ndarray | None = None
+    passive_y: np.ndarray | None = None
+    passive_sign: np.ndarray | None = None
     _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def __post_init__(self):
-        if self.fill.has_passive:
-            raise ValueError("fill: the limit analysis of an assembly takes no passive reaction "
-                             "of a fill (a bounded unknown force, not a contact): give a fill "
-                             "without friction_angle and mobilisation")
         b = self.blocks
         mass, centroid, inertia = (np.array(v, dtype=float) for v in (b.mass, b.centroid,
                                                                        b.inertia))
@@ -183,7 +190,8 @@ class FilledAssembly:
             value.setflags(write=False)
             self._cache[name] = value
         self._cache["loads"] = BlockLoads(mass * GRAVITY, centroid[:, 0], horizontal,
-                                          horizontal_y)
+                                          horizontal_y, self.passive, self.passive_y,
+                                          self.passive_sign)
 
     _MASONRY = ("polygons", "supports", "density", "friction", "tolerance", "kinds", "names",
                 "n_blocks", "size", "interfaces", "block_name")
@@ -371,7 +379,8 @@ def multi_span(arch, spans: int, *, end_piers=(None, None),
         Coulomb coefficient of the interfaces [-] (:class:`~archquake.geometry.BlockAssembly`);
         None: a ring arch's own (its ring interfaces'), else none slides.
     fill : Fill, optional
-        A level fill over the whole bridge (see the module), without a passive reaction.
+        A level fill over the whole bridge (see the module), with its passive reaction if it
+        has one.
     points : int, default 24
         Points on each curved face of a voussoir (:func:`~archquake.geometry.assembly.from_arch`).
 
@@ -388,8 +397,7 @@ def multi_span(arch, spans: int, *, end_piers=(None, None),
         already or carries fill; spans out of range; end piers not a pair of Pier or None, or
         one that does not fit its springing; no intermediate pier with two spans or more, or one
         that is not rectangular, whose springings are not at one height, or narrower than its
-        two seats (the message gives the width needed); a fill that is not a Fill, or has a
-        passive reaction.
+        two seats (the message gives the width needed); a fill that is not a Fill.
     """
     if isinstance(arch, Structure):
         what = "carries fill" if arch.fill is not None else "is on piers already"
@@ -400,10 +408,6 @@ def multi_span(arch, spans: int, *, end_piers=(None, None),
                          f"{type(arch).__name__}")
     if fill is not None and not isinstance(fill, Fill):
         raise ValueError(f"fill must be a Fill or None, got {type(fill).__name__}")
-    if fill is not None and fill.has_passive:
-        raise ValueError("fill: several spans take no passive reaction of the fill (the limit "
-                         "analysis of an assembly has none): give a fill without friction_angle "
-                         "and mobilisation")
     spans = _check_spans(spans)
     try:
         left, right = end_piers
@@ -523,6 +527,7 @@ def _filled(blocks: BlockAssembly, fill: Fill, span: _Span, starts: list, middle
     columns = fill_columns(span.extrados, fill)
     mass, centroid, inertia = np.zeros(nb), np.zeros((nb, 2)), np.zeros(nb)
     below = np.zeros(nb)
+    passive, passive_y, passive_sign = np.zeros(nb), np.zeros(nb), np.zeros(nb)
     carriers, outlines = [], []
     local = np.asarray(span.carriers)
     for k, start in enumerate(starts):
@@ -532,6 +537,9 @@ def _filled(blocks: BlockAssembly, fill: Fill, span: _Span, starts: list, middle
         centroid[index] = columns.centroids + shift
         inertia[index] = columns.inertias
         below[index] = columns.extrados_points[:, 1]
+        # toward the middle of this span: the single arch's, moved with its voussoirs
+        passive[index], passive_sign[index] = columns.passive, columns.passive_sign
+        passive_y[index] = columns.passive_y
         carriers.extend(index.tolist())
         outlines.extend(o + shift for o in columns.outlines)
     level = columns.level
@@ -549,7 +557,8 @@ def _filled(blocks: BlockAssembly, fill: Fill, span: _Span, starts: list, middle
     index.setflags(write=False)
     return FilledAssembly(blocks, fill, frozen_array(mass), frozen_array(centroid),
                           frozen_array(inertia), frozen_array(below), index, level,
-                          tuple(outlines[i] for i in order))
+                          tuple(outlines[i] for i in order), frozen_array(passive),
+                          frozen_array(passive_y), frozen_array(passive_sign))
 
 
 def spans_of(assembly: BlockAssembly, blocks) -> list[int]:

@@ -428,10 +428,6 @@ class StructureSpec:
         if self.pier_middle is None and self.piers is None:
             raise DescriptionError(f"{{spans}} {self.spans} needs the piers between the spans: "
                                    "give {pier_middle} (or {piers}, which gives all the piers)")
-        if self.fill_passive is not None:
-            raise DescriptionError(f"{{spans}} {self.spans}: the limit analysis of several spans "
-                                   "takes no passive reaction of the fill; leave out "
-                                   "{fill_passive}")
         if self.epsilon is not None:
             raise DescriptionError(f"{{spans}} {self.spans}: an irregular draw ({{epsilon}}) of "
                                    "several spans is not modelled yet")
@@ -535,9 +531,6 @@ class StructureSpec:
             if not self.ring_friction >= 0:
                 raise DescriptionError(f"{{ring_friction}} must be a Coulomb coefficient >= 0, "
                                        f"got {self.ring_friction:g}")
-        if self.fill_passive is not None:
-            raise DescriptionError("{rings}: the limit analysis of an arch of rings takes no "
-                                   "passive reaction of the fill; leave out {fill_passive}")
         other = self._given("geometry", "faces", "epsilon")
         if other:
             raise DescriptionError(f"{{rings}} cuts the arch of the shape fields into rings "

@@ -119,6 +119,11 @@ class Contacts:
         unit multiplier [N/m] and the ordinate of its line [m].
     outlines : tuple of arrays
         Every block's outline [m], for drawing.
+    passive, passive_y, passive_sign : array of float, shape (n_blocks,)
+        The passive reaction of a fill on every block (:mod:`archquake.geometry.fill`): its
+        largest value :math:`\bar P_i` [N/m] (0: none), the ordinate of its line [m] and its
+        direction (+1 toward +x, -1 toward -x, 0 none). In the program an unknown horizontal
+        force in :math:`[0, \bar P_i]`: a resistance, not a load.
     """
 
     n_blocks: int
@@ -134,6 +139,20 @@ class Contacts:
     horizontal: np.ndarray
     horizontal_y: np.ndarray
     outlines: tuple
+    passive: np.ndarray | None = None
+    passive_y: np.ndarray | None = None
+    passive_sign: np.ndarray | None = None
+
+    def __post_init__(self):
+        zeros = np.zeros(self.n_blocks)
+        for name in ("passive", "passive_y", "passive_sign"):
+            if getattr(self, name) is None:
+                object.__setattr__(self, name, zeros)
+
+    @property
+    def resisting(self) -> np.ndarray:
+        """The blocks a passive reaction acts on (a bound > 0 and a direction) [-]."""
+        return np.flatnonzero((self.passive_sign != 0) & (self.passive > 0))
 
     @property
     def n_interfaces(self) -> int:
@@ -205,10 +224,11 @@ def _assembly_contacts(assembly) -> Contacts:
         centroid = np.asarray(assembly.centroid, dtype=float)
         vertical, vertical_x = weight, centroid[:, 0].copy()
         horizontal, horizontal_y = weight, centroid[:, 1].copy()
+        passive = None
     else:
-        _refuse_passive(loads)
         vertical, vertical_x = loads.vertical, loads.vertical_x
         horizontal, horizontal_y = loads.horizontal, loads.horizontal_y
+        passive = loads
     return Contacts(
         n_blocks=int(assembly.n_blocks), a=np.asarray(faces.a, dtype=np.int64),
         b=np.asarray(faces.b, dtype=np.int64), p0=np.asarray(faces.p0, dtype=float),
@@ -217,19 +237,22 @@ def _assembly_contacts(assembly) -> Contacts:
         vertical=np.asarray(vertical, dtype=float),
         vertical_x=np.asarray(vertical_x, dtype=float),
         horizontal=np.asarray(horizontal, dtype=float),
-        horizontal_y=np.asarray(horizontal_y, dtype=float), outlines=tuple(assembly.polygons))
+        horizontal_y=np.asarray(horizontal_y, dtype=float), outlines=tuple(assembly.polygons),
+        **_passive_of(passive))
 
 
-def _refuse_passive(loads) -> None:
-    if np.any((loads.passive_sign != 0) & (loads.passive > 0)):
-        raise ValueError("the limit analysis of an assembly takes no passive reaction of a fill "
-                         "(a bounded unknown force, not a contact): leave out --fill-passive")
+def _passive_of(loads) -> dict:
+    """The passive reaction's fields of :class:`Contacts` from a structure's
+    :class:`~archquake.geometry.loads.BlockLoads` (none without loads)."""
+    if loads is None:
+        return {}
+    return {name: np.asarray(getattr(loads, name), dtype=float)
+            for name in ("passive", "passive_y", "passive_sign")}
 
 
 def _chain_contacts(arch) -> Contacts:
     n = arch.n_voussoirs
     loads = arch.loads
-    _refuse_passive(loads)
     joints = np.asarray(arch.joints, dtype=float)
     a = np.arange(-1, n)
     b = np.arange(0, n + 1)
@@ -244,7 +267,7 @@ def _chain_contacts(arch) -> Contacts:
         vertical_x=np.asarray(loads.vertical_x, dtype=float),
         horizontal=np.asarray(loads.horizontal, dtype=float),
         horizontal_y=np.asarray(loads.horizontal_y, dtype=float),
-        outlines=tuple(arch.outline(i) for i in range(n)))
+        outlines=tuple(arch.outline(i) for i in range(n)), **_passive_of(loads))
 
 
 # --------------------------------------------------------------------------- the program
@@ -252,8 +275,9 @@ def _chain_contacts(arch) -> Contacts:
 class _Program:
     """The equilibrium rows of an assembly, in units of its weight and size."""
 
-    a_eq: object        # sparse (3 nb, 3 ni + 1): columns n0, n1, t of every interface, then k
-    b_eq: np.ndarray
+    a_eq: object        # sparse (3 nb, 3 ni + np + 1): columns n0, n1, t of every interface,
+    b_eq: np.ndarray    # the passive reactions of the np resisting blocks, then k
+    passive: np.ndarray  # the passive reactions' upper bounds (np,)
     weight: float       # total weight [N/m]
     origin: np.ndarray  # [m]
     size: float         # [m]
@@ -283,11 +307,18 @@ def _program(c: Contacts, sign: float) -> _Program:
     for column, force, point in ((index, n, p0), (ni + index, n, p1), (2 * ni + index, t, p0)):
         put(c.b, column, force, point)      # the force of a on b
         put(c.a, column, -force, point)     # and of b on a
+    resisting = c.resisting  # a horizontal force s_i P on block i at height y_i
+    along = c.passive_sign[resisting]
+    index = 3 * ni + np.arange(resisting.size)
+    rows += [3 * resisting, 3 * resisting + 2]
+    cols += [index, index]
+    vals += [along, -(c.passive_y[resisting] - origin[1]) / size * along]
+    live = 3 * ni + resisting.size
     live_h = sign * c.horizontal / weight
     live_y = (c.horizontal_y - origin[1]) / size
     blocks = np.arange(nb)
     rows += [3 * blocks, 3 * blocks + 2]
-    cols += [np.full(nb, 3 * ni), np.full(nb, 3 * ni)]
+    cols += [np.full(nb, live), np.full(nb, live)]
     vals += [live_h, -live_y * live_h]
     w = c.vertical / weight
     wx = (c.vertical_x - origin[0]) / size
@@ -295,8 +326,8 @@ def _program(c: Contacts, sign: float) -> _Program:
     b_eq[3 * blocks + 1] = w
     b_eq[3 * blocks + 2] = w * wx
     a_eq = coo_array((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                     shape=(3 * nb, 3 * ni + 1)).tocsc()
-    return _Program(a_eq, b_eq, weight, origin, size)
+                     shape=(3 * nb, live + 1)).tocsc()
+    return _Program(a_eq, b_eq, c.passive[resisting] / weight, weight, origin, size)
 
 
 def _check_connected(c: Contacts) -> None:
@@ -312,12 +343,13 @@ def _solve(prog: _Program, c: Contacts, shear: np.ndarray | None, fixed_k: float
     """Solve the program; ``shear``: the fixed shear capacities (non-associative step), else
     Coulomb's cone with the interfaces' friction."""
     ni = c.n_interfaces
-    nv = 3 * ni + 1
+    nv = prog.a_eq.shape[1]
     cost = np.zeros(nv)
     cost[-1] = -1.0
     bounds = np.empty((nv, 2))
     bounds[:2 * ni] = (0.0, np.inf)
     bounds[2 * ni:3 * ni] = (-np.inf, np.inf)
+    bounds[3 * ni:-1, 0], bounds[3 * ni:-1, 1] = 0.0, prog.passive
     bounds[-1] = (-np.inf, np.inf) if fixed_k is None else (fixed_k, fixed_k)
     a_ub = b_ub = None
     finite = np.isfinite(c.friction)
@@ -349,16 +381,17 @@ def _closest(prog: _Program, c: Contacts, shear: np.ndarray, k: float, target: n
     from scipy.sparse import hstack, identity, vstack
 
     ni = c.n_interfaces
-    nv = 3 * ni + 1
+    nv = prog.a_eq.shape[1]
     cost = np.concatenate((np.zeros(nv), np.ones(ni)))
     finite = np.isfinite(c.friction)
     bounds = np.empty((nv + ni, 2))
     bounds[:2 * ni] = (0.0, np.inf)
     bounds[2 * ni:3 * ni, 0] = np.where(finite, -shear, -np.inf)
     bounds[2 * ni:3 * ni, 1] = np.where(finite, shear, np.inf)
-    bounds[3 * ni] = (k, k)
+    bounds[3 * ni:nv - 1, 0], bounds[3 * ni:nv - 1, 1] = 0.0, prog.passive
+    bounds[nv - 1] = (k, k)
     bounds[nv:] = (0.0, np.inf)
-    pick = hstack((identity(ni), identity(ni), coo_array((ni, ni + 1))))
+    pick = hstack((identity(ni), identity(ni), coo_array((ni, nv - 2 * ni))))
     # (n0 + n1) - s <= target and -(n0 + n1) - s <= -target
     a_ub = vstack((hstack((pick, -identity(ni))), hstack((-pick, -identity(ni))))).tocsc()
     b_ub = np.concatenate((target, -target))

@@ -447,7 +447,10 @@ def assess(structure=None, *, records=None, suite: str | None = None,
     elif epsilon is not None or sa_period is not None or quick:
         raise ValueError("give epsilon, sa_period and quick in settings, or settings not at all")
     if assembly:  # several spans, rings, a drawing: the limit analysis and the rigid blocks
+        from ...geometry.fill import check_dynamic_fill
         from ...site.spec import SiteSpec
+
+        check_dynamic_fill(structure)  # before anything is written: the rigid blocks run
         if records is not None or suite is not None:
             raise ValueError("records and suite: the assessment of a block assembly runs no "
                              "record study (archquake.report.assess.assembly.LEFT_OUT)")
