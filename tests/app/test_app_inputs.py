@@ -18,8 +18,10 @@ from archquake.limit_analysis import both_directions
      ["--shape", "pointed", "--span", "10", "--rise", "7", "--thickness", "0.6",
       "--voussoirs", "12"]),
     ({"piers": "2,4,2", "fill_cover": 0.5}, ["--piers", "2,4,2", "--fill-cover", "0.5"]),
+    ({"piers": "2,4,2", "fill_cover": 0.5, "fill_passive": "30,0.33"},
+     ["--piers", "2,4,2", "--fill-cover", "0.5", "--fill-passive", "30,0.33"]),
     ({"epsilon": 0.1, "seed": 3}, ["--epsilon", "0.1", "--seed", "3"]),
-], ids=["thickness", "pointed", "piers-fill", "irregular"])
+], ids=["thickness", "pointed", "piers-fill", "passive-fill", "irregular"])
 def test_structure_has_the_load_multipliers_of_archquake_limit(spec, argv):
     _, structure = structure_from_spec(spec)
     k_l, k_r = (r.load_multiplier for r in both_directions(structure))

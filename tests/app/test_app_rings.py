@@ -107,6 +107,16 @@ def test_bridge_json_has_three_spans_of_blocks_and_the_command_lines_k(client):
                            np.hypot(*np.diff(before, axis=0).T), atol=0.02 * 25)
 
 
+def test_a_bridge_under_a_passive_fill_has_the_command_lines_k(client):
+    fill = {"fill_cover": 0.5, "fill_passive": "30,0.33"}
+    limit = post(client, {"structure": {**BRIDGE, **fill}}).json()["limit"]
+    expected = cli_json("limit", "--spans", "3", "--piers", "3,6", "--fill-cover", "0.5",
+                        "--fill-passive", "30,0.33")
+    assert limit["k"] == pytest.approx(expected["k"], rel=1e-9)
+    without = post(client, {"structure": {**BRIDGE, "fill_cover": 0.5}}).json()["limit"]
+    assert limit["k"] > 1.5 * without["k"]
+
+
 def test_ring_friction_gives_both_laws_the_non_associative_governing(client):
     limit = post(client, {"structure": {"rings": 2, "ring_friction": 0.5}}).json()["limit"]
     expected = cli_json("limit", "--rings", "2", "--ring-friction", "0.5")
@@ -147,13 +157,26 @@ def test_more_rings_than_the_page_takes_are_refused_before_they_are_built(client
 def test_parts_that_need_one_chain_say_why_not(client):
     answer = post(client, {"structure": BRIDGE}).json()
     assert answer["unavailable"] == ASSEMBLY_UNAVAILABLE
-    assert set(ASSEMBLY_UNAVAILABLE) == {"four-link", "domain"}
+    assert set(ASSEMBLY_UNAVAILABLE) == {"four-link"}
     assert "archquake rigid-blocks --spans 3 --piers 3,6" in answer["unavailable"]["four-link"]
-    refused = client.post("/api/jobs/domain", json={"structure": BRIDGE})
-    assert refused.status_code == 400
-    assert refused.json()["error"] == ASSEMBLY_UNAVAILABLE["domain"]
     # a single arch has none of these notes
     assert "unavailable" not in post(client, {"structure": {}}).json()
+
+
+def test_the_failure_domain_of_a_bridge_is_the_rigid_blocks_as_the_command_line_gives_it():
+    from archquake.app.tasks import failure_domain
+
+    domain = {"durations": "0.4", "amplitudes": "0.1:0.4:0.05", "direction": "l",
+              "motion": "oppenheim", "resolution": 0.01, "extend_to": 0.0}
+    spec = {"structure": {"spans": 2, "piers": "3,6"}, "domain": domain}
+    out = failure_domain(spec, lambda done, total, text: None)
+    assert out["four-link"] == {"error": ASSEMBLY_UNAVAILABLE["four-link"]}
+    assert "disagreement" not in out and out["figure"].startswith("data:image/png;base64,")
+    rows = cli_json("domain", "--model", "rigid-blocks", "--spans", "2", "--piers", "3,6",
+                    "--durations", "0.4", "--amplitudes", "0.1:0.4:0.05", "--resolution",
+                    "0.01", "--extend-to", "0", "--no-progress")
+    assert out["rigid-blocks"]["failure"]["failure_g"] == [rows[0]["failure_acceleration"]]
+    assert out["rigid-blocks"]["undecided"] == rows[0]["undecided_analyses"] == 0
 
 
 def test_the_code_check_of_a_bridge_is_the_librarys_linear_route():

@@ -115,34 +115,18 @@ ASSEMBLY_UNAVAILABLE = {
                  "a structure of several spans or rings is a block assembly: its time history "
                  "is the rigid blocks' (archquake rigid-blocks --spans 3 --piers 3,6 on the "
                  "command line)",
-    "domain": "the failure domain is not available for several spans or rings on this page: "
-              "the four-link model needs one chain of voussoirs, and the rigid blocks' domain of "
-              "an assembly takes many minutes (run single motions with archquake rigid-blocks "
-              "--spans 3 --piers 3,6, or the time history above)",
 }
 """What the page says of its parts that need one chain of voussoirs when the structure is a block
-assembly (several spans, several rings, a file of one), by part: the four-link time history and
-the failure domain (the code check takes the linear route alone, and the assessment report is
-that of :mod:`archquake.report.assess.assembly`)."""
+assembly (several spans, several rings, a file of one), by part: the four-link model's time
+history and failure domain (the rigid blocks' are drawn alone, as ``archquake domain --model
+rigid-blocks`` gives them; the code check takes the linear route alone, and the assessment
+report is that of :mod:`archquake.report.assess.assembly`)."""
 
 
 def is_assembly(structure) -> bool:
     """Whether ``structure`` is a :class:`~archquake.geometry.BlockAssembly` (several spans,
     several rings, a file of one) rather than one chain of voussoirs."""
     return hasattr(structure, "interfaces") and hasattr(structure, "polygons")
-
-
-def refuse_assembly(structure, part: str) -> None:
-    """Refuse, with the page's words (:data:`ASSEMBLY_UNAVAILABLE`), a part that needs one chain
-    of voussoirs for a block assembly.
-
-    Raises
-    ------
-    ValueError
-        When ``structure`` is a block assembly.
-    """
-    if is_assembly(structure):
-        raise ValueError(ASSEMBLY_UNAVAILABLE[part])
 
 
 def _check_copies(spec) -> None:
@@ -497,5 +481,5 @@ def check_record_file(entry: dict) -> dict:
 
 __all__ = ["ASSEMBLY_UNAVAILABLE", "LIMITS", "SITE_FIELDS", "Uploads", "check_geometry_file",
            "check_record_file",
-           "is_assembly", "motion_and_warnings", "motion_from_spec", "refuse_assembly",
+           "is_assembly", "motion_and_warnings", "motion_from_spec",
            "site_from_spec", "structure_from_spec", "suites"]

@@ -88,6 +88,9 @@ function structureSpec() {
     spec.fill_cover = number("fill-cover");
     spec.fill_density = number("fill-density");
     spec.fill_inertia = value("fill-inertia");
+    if (value("fill-phi") !== "" || value("fill-mobilisation") !== "") {
+      spec.fill_passive = [value("fill-phi"), value("fill-mobilisation")].join(",");
+    }
   }
   for (const key of ["density", "epsilon", "seed"]) {
     if (value(key) !== "") spec[key] = number(key);
@@ -305,8 +308,9 @@ function showAssembly(answer) {
   const was = state.unavailable;
   state.unavailable = unavailable;
   if (!state.domain && (unavailable || was)) {
-    $("domain-start").disabled = Boolean(unavailable);
-    $("domain-status").textContent = unavailable ? `Not available: ${unavailable.domain}` : "not computed";
+    $("domain-start").disabled = Boolean(unavailable && unavailable.domain);
+    $("domain-status").textContent = unavailable && unavailable.domain
+      ? `Not available: ${unavailable.domain}` : "not computed";
   }
   if (!state.assess && (unavailable || was)) {
     $("assess").disabled = Boolean(unavailable && unavailable.assess);
@@ -880,8 +884,8 @@ async function startDomain() {
     },
     done: (result) => {
       const img = $("domain-figure");
-      img.src = result.figure;
-      img.hidden = false;
+      if (result.figure) img.src = result.figure;
+      img.hidden = !result.figure;  // none where neither model could be built
       const n = (result["four-link"].analyses || 0) + (result["rigid-blocks"].analyses || 0);
       const u = (result["four-link"].undecided || 0) + (result["rigid-blocks"].undecided || 0);
       finish(`done: ${n} analyses, ${u} undecided` +
