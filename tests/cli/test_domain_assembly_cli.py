@@ -35,6 +35,19 @@ def test_the_blocks_of_two_spans_start_moving_at_the_limit_analysis_multiplier(c
     assert row["failure_acceleration"] > k + resolution
 
 
+def test_the_screened_search_of_an_assembly_is_the_exhaustive_grids(capsys):
+    # an assembly has no four-link model to screen it: its coarse scan alone, with the
+    # safeguard that infers only rest and collapses during the pulse; on this grid it gives the
+    # exhaustive grid's domain, with fewer analyses
+    argv = ["domain", "--model", "rigid-blocks", *BRIDGE, "--durations", "0.3",
+            "--amplitudes", "0.1:0.6:0.02", "--resolution", "0.002", "--extend-to", "0",
+            "--no-progress"]
+    (screened,) = _json(argv, capsys)
+    (exhaustive,) = _json([*argv, "--search", "exhaustive"], capsys)
+    assert screened["intervals"] == exhaustive["intervals"]
+    assert screened["failure_acceleration"] == exhaustive["failure_acceleration"]
+
+
 def test_the_text_names_the_rigid_blocks_and_the_undecided_count(capsys):
     assert main(["domain", "--model", "rigid-blocks", *BRIDGE, "--durations", "0.4",
                  "--amplitudes", "0.1:0.3:0.1", "--resolution", "0.01", "--extend-to", "0",
