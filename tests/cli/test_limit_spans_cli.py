@@ -68,7 +68,6 @@ def test_the_description_builds_the_bridge():
     (["--spans", "2"], "--spans 2 needs the piers between the spans: give --pier-middle"),
     (["--spans", "101", "--piers", "3,6"], r"--spans must be an integer in \[1, 100\]"),
     (["--pier-middle", "3,6"], "--pier-middle is the pier between two spans"),
-    (["--spans", "2", "--piers", "3,6", "--epsilon", "0.1"], "irregular draw"),
     # Oppenheim's arch (t = 1.5 m, embrace 157.5 deg): the radial springing joint at 78.75 deg
     # from the vertical reaches t sin(78.75 deg) = 1.5 x 0.980785 = 1.47118 m; two seats
     (["--spans", "2", "--piers", "3,6", "--pier-middle", "2.9,6"],

@@ -259,7 +259,8 @@ def add_arch_options(parser: argparse.ArgumentParser) -> None:
     add_structure_options(parser)
     group.add_argument("--epsilon", type=number, default=None, metavar="EPS",
                        help="draw one irregular arch around the arch above with the "
-                            "irregularity epsilon in [0, 1) of the paper's eq. (1)")
+                            "irregularity epsilon in [0, 1) of the paper's eq. (1) (with "
+                            "--spans: one a span)")
     group.add_argument("--seed", type=int, default=None,
                        help=f"seed of the irregular draw (default: {DEFAULT_SEED})")
 

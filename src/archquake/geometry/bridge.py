@@ -356,16 +356,21 @@ def _normal(joint: np.ndarray) -> np.ndarray:
 def multi_span(arch, spans: int, *, end_piers=(None, None),
                middle_pier: Pier | None = None, friction=None, fill: Fill | None = None,
                points: int = ARC_POINTS):
-    r"""``spans`` equal arches in a row on ``spans + 1`` piers, as a block assembly (see the
+    r"""``spans`` arches in a row on ``spans + 1`` piers, as a block assembly (see the
     module), under a fill if given.
 
     Parameters
     ----------
-    arch : BlockArch or BlockAssembly
+    arch : BlockArch, BlockAssembly or sequence of BlockArch
         The arch of every span, on fixed springings and without fill: a
         :class:`~archquake.geometry.BlockArch` (circular, shaped or surveyed) or an arch of
         several rings (:func:`~archquake.geometry.multi_ring`); its density is the masonry's,
-        piers included [kg/m^3].
+        piers included [kg/m^3]. Or one BlockArch a span, left to right, of one density (the
+        irregular arches of a bridge, :meth:`~archquake.geometry.StructureSpec.arches`): each
+        intermediate pier carries the right springing of the arch on its left and the left
+        springing of the one on its right, ``width`` apart, so every arch after the first is
+        moved, horizontally and vertically, to bring its left intrados springing point there;
+        the fill's surface lies ``cover`` above the highest crown.
     spans : int
         Number of arches, in [1, :data:`MAX_SPANS`].
     end_piers : (Pier or None, Pier or None), default (None, None)
@@ -403,6 +408,9 @@ def multi_span(arch, spans: int, *, end_piers=(None, None),
         what = "carries fill" if arch.fill is not None else "is on piers already"
         raise ValueError(f"arch must be an arch on fixed springings: this one {what} (multi_span "
                          "puts the arch on its piers and under the fill of its fill argument)")
+    arches = _arches(arch, spans)
+    if arches is not None:
+        arch = arches[0]
     if not isinstance(arch, BlockArch | BlockAssembly):
         raise ValueError(f"arch must be a BlockArch or an arch of rings (BlockAssembly), got "
                          f"{type(arch).__name__}")
@@ -424,7 +432,15 @@ def multi_span(arch, spans: int, *, end_piers=(None, None),
     density = arch.density if isinstance(arch, BlockArch) else float(arch.density[0])
     if friction is None:
         friction = span.friction
-    if isinstance(arch, BlockArch):  # the end piers and supports of the arch on piers
+    if arches is not None:  # one arch a span: the end piers of the first and the last
+        first, final = Structure(arches[0], left, None), Structure(arches[-1], None, right)
+        n_left, n_right = first.n_left, final.n_right
+        left_courses = [first.outline(i)[:-1] for i in range(n_left)]
+        last = arches[-1].n_voussoirs
+        right_courses = [final.outline(i)[:-1] for i in range(last, last + n_right)]
+        first_support = _support(*first.joints[0], first.joint_normals[0], -1.0)
+        last_joint, last_normal = final.joints[-1], final.joint_normals[-1]
+    elif isinstance(arch, BlockArch):  # the end piers and supports of the arch on piers
         ends = Structure(arch, left, right)
         n_left, n_right = ends.n_left, ends.n_right
         left_courses = [ends.outline(i)[:-1] for i in range(n_left)]
@@ -450,19 +466,28 @@ def multi_span(arch, spans: int, *, end_piers=(None, None),
             last_joint = joints[0] * _FLIP
             last_normal = _normal(last_joint)
         n_left, n_right = len(left_courses), len(right_courses)
-    pitch = 0.0
-    middle = []
-    if spans > 1:
-        chord = float(span.right[0, 0] - span.left[0, 0])
-        pitch = chord + middle_pier.width
-        shift = np.array([pitch, 0.0])
+    each = [span] * spans if arches is None else [_span_of(a, points) for a in arches]
+    offsets = [np.zeros(2)]  # every span's move [m]
+    middles = []  # every intermediate pier's courses, in place
+    for k in range(spans - 1):
+        here, after = each[k], each[k + 1]
+        if arches is None:  # equal spans: k pitches along, the same pier moved
+            pitch = float(span.right[0, 0] - span.left[0, 0]) + middle_pier.width
+            offsets.append(np.array([(k + 1) * pitch, 0.0]))
+            if k > 0:
+                middles.append([p + offsets[k] for p in middles[0]])
+                continue
+        else:  # the next left intrados springing point `width` beyond this right one
+            offsets.append(offsets[k] + here.right[0] - after.left[0]
+                           + np.array([middle_pier.width, 0.0]))
         try:
-            middle = middle_pier_blocks(middle_pier, span.right, span.left + shift)
+            middles.append(middle_pier_blocks(middle_pier, here.right + offsets[k],
+                                              after.left + offsets[k + 1]))
         except ValueError as exc:
             raise ValueError(f"middle_pier: {exc}") from exc
 
     def moved(polygon: np.ndarray, k: int) -> np.ndarray:
-        return polygon if k == 0 else polygon + np.array([k * pitch, 0.0])
+        return polygon if k == 0 else polygon + offsets[k]
 
     polygons, names, kinds = [], [], []
     starts, middle_tops = [], []
@@ -479,15 +504,17 @@ def multi_span(arch, spans: int, *, end_piers=(None, None),
     pier = add(left_courses, [f"pier 0 course {c + 1}" for c in range(n_left)], True)
     seat = pier[-1] if pier else None  # the block under the next arch's left springing
     for k in range(spans):
-        here = add([moved(v, k) for v in span.voussoirs],
-                   [f"span {k + 1} {name}" for name in span.names], False)
+        this = each[k]
+        here = add([moved(v, k) for v in this.voussoirs],
+                   [f"span {k + 1} {name}" for name in this.names], False)
         starts.append(here.start)
-        kinds.extend((here.start + i, here.start + j, kind) for i, j, kind in span.kinds)
+        kinds.extend((here.start + i, here.start + j, kind) for i, j, kind in this.kinds)
         if seat is not None:
-            kinds.extend((seat, here.start + i, "bed") for i in span.on_left)
+            kinds.extend((seat, here.start + i, "bed") for i in this.on_left)
         if k < spans - 1:
-            pier = add([moved(p, k) for p in middle],
-                       [f"pier {k + 1} course {c + 1}" for c in range(len(middle))], True)
+            middle = middles[k]
+            pier = add(middle, [f"pier {k + 1} course {c + 1}" for c in range(len(middle))],
+                       True)
             middle_tops.append(pier[-1])
         else:
             pier = add([moved(p, k) for p in right_courses],
@@ -495,57 +522,84 @@ def multi_span(arch, spans: int, *, end_piers=(None, None),
         seat = None
         if pier:
             top = pier[-1] if k < spans - 1 else pier[0]  # the right end pier runs top down
-            kinds.extend((here.start + i, top, "bed") for i in span.on_right)
+            kinds.extend((here.start + i, top, "bed") for i in this.on_right)
             seat = top
 
     supports = [moved(first_support, 0)]
     for k in range(spans - 1):
-        base = middle[0]
+        base = middles[k][0]
         x0, x1 = float(base[:, 0].min()), float(base[:, 0].max())
         y = float(base[:, 1].min())
         width = x1 - x0
-        supports.append(moved(np.array([(x0, y), (x0, y - width), (x1, y - width), (x1, y)]), k))
+        supports.append(np.array([(x0, y), (x0, y - width), (x1, y - width), (x1, y)]))
     if last_joint is None:  # a ring arch on a fixed right springing: its own support
         supports.append(moved(arch.supports[1], spans - 1))
     else:
-        end = last_joint if spans == 1 else last_joint + np.array([(spans - 1) * pitch, 0.0])
+        end = last_joint if spans == 1 else last_joint + offsets[spans - 1]
         supports.append(_support(*end, last_normal, 1.0))
     blocks = BlockAssembly(tuple(polygons), density, tuple(supports), friction,
                            kinds=tuple(kinds), names=tuple(names))
     if fill is None:
         return blocks
-    return _filled(blocks, fill, span, starts, middle_tops, pitch)
+    return _filled(blocks, fill, each, starts, middle_tops, offsets)
 
 
-def _filled(blocks: BlockAssembly, fill: Fill, span: _Span, starts: list, middle_tops: list,
-            pitch: float) -> FilledAssembly:
-    """The fill over every span's voussoirs (the columns of the single arch,
-    :func:`~archquake.geometry.fill.fill_columns`, moved span by span) and over every
-    intermediate pier (a rectangle from its level top between the two extrados springing points
-    up to the fill's surface)."""
+def _arches(arch, spans) -> list | None:
+    """The arches of a bridge given one a span (:func:`multi_span`), checked; None for one
+    arch."""
+    if not isinstance(arch, list | tuple):
+        return None
+    arches = list(arch)
+    if isinstance(spans, int) and not isinstance(spans, bool) and len(arches) != spans:
+        raise ValueError(f"arch: {len(arches)} arches given for {spans} spans (one a span)")
+    for i, a in enumerate(arches):
+        if isinstance(a, Structure) or not isinstance(a, BlockArch):
+            raise ValueError(f"arch[{i}] must be an arch on fixed springings without fill "
+                             f"(a BlockArch), got {type(a).__name__}")
+    if len({float(a.density) for a in arches}) > 1:
+        raise ValueError("arch: the arches of one bridge are of one masonry (one density)")
+    return arches
+
+
+def _filled(blocks: BlockAssembly, fill: Fill, each: list, starts: list, middle_tops: list,
+            offsets: list) -> FilledAssembly:
+    """The fill over every span's voussoirs (the columns of the span's arch,
+    :func:`~archquake.geometry.fill.fill_columns`, moved with it; one level surface, ``cover``
+    above the highest crown) and over every intermediate pier (a rectangle from its level top
+    between the two extrados springing points up to the fill's surface)."""
     nb = blocks.n_blocks
-    columns = fill_columns(span.extrados, fill)
+    columns_of = {}  # by span (equal spans: one)
+    for span in each:
+        if id(span) not in columns_of:
+            columns_of[id(span)] = fill_columns(span.extrados, fill)
+    level = max(columns_of[id(span)].level + offset[1]
+                for span, offset in zip(each, offsets, strict=True))
+    for span, offset in zip(each, offsets, strict=True):
+        rise = level - (columns_of[id(span)].level + offset[1])
+        if rise != 0.0:  # a lower crown: the fill of this arch with its surface at `level`
+            columns_of[id(span)] = fill_columns(span.extrados,
+                                                replace(fill, cover=fill.cover + rise))
     mass, centroid, inertia = np.zeros(nb), np.zeros((nb, 2)), np.zeros(nb)
     below = np.zeros(nb)
     passive, passive_y, passive_sign = np.zeros(nb), np.zeros(nb), np.zeros(nb)
     carriers, outlines = [], []
-    local = np.asarray(span.carriers)
     for k, start in enumerate(starts):
-        shift = np.array([k * pitch, 0.0])
+        span, shift = each[k], offsets[k]
+        columns = columns_of[id(span)]
+        local = np.asarray(span.carriers)
         index = start + local
         mass[index] = columns.masses
         centroid[index] = columns.centroids + shift
         inertia[index] = columns.inertias
-        below[index] = columns.extrados_points[:, 1]
+        below[index] = columns.extrados_points[:, 1] + shift[1]
         # toward the middle of this span: the single arch's, moved with its voussoirs
         passive[index], passive_sign[index] = columns.passive, columns.passive_sign
-        passive_y[index] = columns.passive_y
+        passive_y[index] = columns.passive_y + shift[1]
         carriers.extend(index.tolist())
         outlines.extend(o + shift for o in columns.outlines)
-    level = columns.level
     for k, top in enumerate(middle_tops):
-        shift = np.array([k * pitch, 0.0])
-        e_right, e_left = span.right[1] + shift, span.left[1] + shift + np.array([pitch, 0.0])
+        e_right = each[k].right[1] + offsets[k]
+        e_left = each[k + 1].left[1] + offsets[k + 1]
         column = np.array([e_right, e_left, (e_left[0], level), (e_right[0], level)])
         _, m, c, j = polygon_mass_properties([column], np.array([fill.density]))
         mass[top], centroid[top], inertia[top] = m[0], c[0], j[0]

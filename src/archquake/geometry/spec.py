@@ -234,7 +234,8 @@ class StructureSpec:
         :data:`~archquake.constants.DEFAULT_DENSITY`); given, it replaces the geometry file's.
     epsilon : float, optional
         Draw one irregular arch around the arch with the irregularity :math:`\epsilon` in
-        [0, 1) of eq. (1) (:func:`~archquake.geometry.irregular_arch`).
+        [0, 1) of eq. (1) (:func:`~archquake.geometry.irregular_arch`); with ``spans``, one a
+        span, one after the other from one generator of the seed.
     seed : int, optional
         Seed of the irregular draw, >= 0 (default :data:`~archquake.defaults.DEFAULT_SEED`);
         only with ``epsilon``.
@@ -428,17 +429,16 @@ class StructureSpec:
         if self.pier_middle is None and self.piers is None:
             raise DescriptionError(f"{{spans}} {self.spans} needs the piers between the spans: "
                                    "give {pier_middle} (or {piers}, which gives all the piers)")
-        if self.epsilon is not None:
-            raise DescriptionError(f"{{spans}} {self.spans}: an irregular draw ({{epsilon}}) of "
-                                   "several spans is not modelled yet")
 
     def _bridge(self, arch):
-        """The arch of the description in ``spans`` copies on shared piers."""
+        """The arch of the description in ``spans`` copies on shared piers (or a list of one
+        arch a span: the irregular ones of :meth:`arches`)."""
         from .bridge import multi_span
         from .piers import Pier
         from .structure import Structure
 
-        if isinstance(arch, Structure) or (hasattr(arch, "interfaces") and self.rings is None):
+        if isinstance(arch, Structure) or (hasattr(arch, "interfaces") and self.rings is None
+                                           and not isinstance(arch, list)):
             what = "a structure" if isinstance(arch, Structure) else "a block assembly"
             raise DescriptionError(f"{{spans}} puts copies of one arch on piers; the geometry "
                                    f"file describes {what} already")
@@ -599,6 +599,8 @@ class StructureSpec:
         if self.epsilon is None:
             return nominal, nominal
         seed = DEFAULT_SEED if self.seed is None else self.seed
+        if (self.spans or 1) > 1 and self.rings is None:
+            return nominal, self._irregular_bridge(seed)
         if not hasattr(nominal, "perturbed"):
             raise DescriptionError("{epsilon} draws an irregular arch around an arch with a "
                                    "centreline; a surveyed arch ({geometry} with 'blocks') has "
@@ -611,6 +613,36 @@ class StructureSpec:
             raise DescriptionError(f"{self.drawn()} is not a valid arch: "
                                    f"{_literal(exc.__cause__)}; epsilon is too large for this "
                                    f"arch") from exc
+
+    def _irregular_bridge(self, seed: int):
+        """The bridge of ``spans`` irregular arches, drawn around the arch of the description one
+        after the other from one generator of ``seed`` (span 1 first), each a draw of the
+        paper's eq. (1) (:func:`~archquake.geometry.irregular.irregular_arch`), on the shared
+        piers (:func:`~archquake.geometry.bridge.multi_span`)."""
+        import numpy as np
+
+        from .irregular import irregular_arch
+
+        arch = self._arch()
+        if not hasattr(arch, "perturbed"):
+            raise DescriptionError("{epsilon} draws an irregular arch around an arch with a "
+                                   "centreline; a surveyed arch ({geometry} with 'blocks') has "
+                                   "none")
+        rng = np.random.default_rng(seed)
+        try:
+            draws = [irregular_arch(arch, self.epsilon, rng=rng) for _ in range(self.spans)]
+        except ValueError as exc:
+            if exc.__cause__ is None:  # epsilon itself is out of its range
+                raise
+            raise DescriptionError(f"{self.drawn()} is not a valid arch: "
+                                   f"{_literal(exc.__cause__)}; epsilon is too large for this "
+                                   f"arch") from exc
+        try:
+            return self._bridge(draws)
+        except DescriptionError as exc:  # thicker end voussoirs need wider seats, ...
+            raise DescriptionError(f"the {self.spans} irregular arches drawn with {{epsilon}} "
+                                   f"{self.epsilon:g} (seed {seed}), on these piers: "
+                                   f"{exc.template}") from None
 
     def build(self):
         """The structure described (after the irregular draw, if any): :meth:`arches`\\ ``[1]``.
