@@ -593,20 +593,25 @@ class StructureSpec:
             As :meth:`nominal`; for an epsilon out of [0, 1), an arch without a centreline to
             draw around, or a draw that is not a valid arch (naming epsilon and the seed).
         """
-        from .irregular import irregular_arch
-
         nominal = self.nominal()
         if self.epsilon is None:
             return nominal, nominal
         seed = DEFAULT_SEED if self.seed is None else self.seed
         if (self.spans or 1) > 1 and self.rings is None:
             return nominal, self._irregular_bridge(seed)
-        if not hasattr(nominal, "perturbed"):
+        return nominal, self._draw(nominal, seed)
+
+    def _draw(self, arch, rng):
+        """One irregular arch around ``arch`` (:func:`~archquake.geometry.irregular_arch`, from
+        the seed or generator ``rng``); a refusal names epsilon and the seed."""
+        from .irregular import irregular_arch
+
+        if not hasattr(arch, "perturbed"):
             raise DescriptionError("{epsilon} draws an irregular arch around an arch with a "
                                    "centreline; a surveyed arch ({geometry} with 'blocks') has "
                                    "none")
         try:
-            return nominal, irregular_arch(nominal, self.epsilon, rng=seed)
+            return irregular_arch(arch, self.epsilon, rng=rng)
         except ValueError as exc:
             if exc.__cause__ is None:  # epsilon itself is out of its range
                 raise
@@ -617,26 +622,13 @@ class StructureSpec:
     def _irregular_bridge(self, seed: int):
         """The bridge of ``spans`` irregular arches, drawn around the arch of the description one
         after the other from one generator of ``seed`` (span 1 first), each a draw of the
-        paper's eq. (1) (:func:`~archquake.geometry.irregular.irregular_arch`), on the shared
-        piers (:func:`~archquake.geometry.bridge.multi_span`)."""
+        paper's eq. (1) (:meth:`_draw`), on the shared piers
+        (:func:`~archquake.geometry.bridge.multi_span`)."""
         import numpy as np
 
-        from .irregular import irregular_arch
-
         arch = self._arch()
-        if not hasattr(arch, "perturbed"):
-            raise DescriptionError("{epsilon} draws an irregular arch around an arch with a "
-                                   "centreline; a surveyed arch ({geometry} with 'blocks') has "
-                                   "none")
         rng = np.random.default_rng(seed)
-        try:
-            draws = [irregular_arch(arch, self.epsilon, rng=rng) for _ in range(self.spans)]
-        except ValueError as exc:
-            if exc.__cause__ is None:  # epsilon itself is out of its range
-                raise
-            raise DescriptionError(f"{self.drawn()} is not a valid arch: "
-                                   f"{_literal(exc.__cause__)}; epsilon is too large for this "
-                                   f"arch") from exc
+        draws = [self._draw(arch, rng) for _ in range(self.spans)]
         try:
             return self._bridge(draws)
         except DescriptionError as exc:  # thicker end voussoirs need wider seats, ...
