@@ -694,6 +694,13 @@ class BlockAssembly:
         first = np.concatenate(([0], np.cumsum(counts)[:-1]))
         pair, ka, kb = _products(counts[i], counts[j])
         x, y = first[i][pair] + ka, first[j][pair] + kb
+        # the penetration of two convex pieces is the least overlap of their projections over
+        # every direction, so at most that along x or y: pieces whose bounding boxes overlap by
+        # no more than the tolerance cannot be refused, and need no separating axes
+        low, high = every.min(axis=1), every.max(axis=1)
+        boxes = np.minimum(high[x], high[y]) - np.maximum(low[x], low[y])
+        near = np.flatnonzero((boxes > self.tolerance).all(axis=1))
+        pair, x, y = pair[near], x[near], y[near]
         depth = _penetration(every[x], vertices[x], every[y], vertices[y])
         bad = np.flatnonzero(depth > self.tolerance)
         if bad.size:
