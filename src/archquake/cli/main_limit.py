@@ -6,7 +6,7 @@ from __future__ import annotations
 import argparse
 import math
 
-from ..defaults import DEFAULT_LIMIT_METHOD, LIMIT_METHODS
+from ..defaults import DEFAULT_LIMIT_METHOD, DEFAULT_SEED, LIMIT_METHODS
 from . import options
 from .output import print_json
 
@@ -39,8 +39,14 @@ def configure(parser: argparse.ArgumentParser) -> None:
                              "(Coulomb friction without dilatancy) under a slowly growing "
                              "horizontal acceleration, a tilting-table test, to arbitrate between "
                              "the two laws (a second or so for an arch)")
+    parser.add_argument("--samples", type=int, default=None, metavar="N",
+                        help="with --epsilon: the distribution of k over N irregular structures "
+                             "instead (member i drawn from child i of the seed, as the studies "
+                             "draw their arches; a bridge's spans one after the other): its "
+                             "quantiles, and with --plot its distribution beside the nominal k")
     options.add_plot_option(parser, "write a figure of both mechanisms (arch, hinges, line of "
                                     "thrust; with --friction, every law's mechanism)")
+    options.add_progress_option(parser)
     options.add_json_option(parser)
 
 
@@ -49,7 +55,12 @@ def run(args: argparse.Namespace) -> int:
     from ..limit_analysis import both_directions
 
     if args.min_pier_width:
+        if args.samples is not None:
+            raise ValueError("--min-pier-width finds the piers of the nominal arch: leave out "
+                             "--samples")
         return _min_pier_width(args)
+    if args.samples is not None:
+        return _samples(args)
     arch = options.arch_from_args(args, assembly=True, spans=True)
     if args.friction is not None or hasattr(arch, "interfaces"):
         return _with_friction(args, arch)
@@ -97,6 +108,109 @@ def run(args: argparse.Namespace) -> int:
     if args.plot:
         print(f"figure written to {args.plot}")
     return 0
+
+
+MAX_SAMPLES = 100_000
+"""Largest ``--samples`` [-]."""
+
+
+def _k_of(args: argparse.Namespace, structure) -> float:
+    """The least k of both directions: the governing friction law's with --friction or for a
+    block assembly, else the chain program's (the method of the options)."""
+    from ..limit_analysis import assembly_limits, both_directions, governing_law
+
+    if args.friction is not None or hasattr(structure, "interfaces"):
+        results = assembly_limits(structure, friction=_friction_of(args))
+        return min(governing_law(laws).load_multiplier for laws in results.values())
+    return min(r.load_multiplier for r in both_directions(structure, method=args.method))
+
+
+def _samples(args: argparse.Namespace) -> int:
+    """``limit --epsilon E --samples N``: k over N irregular structures (arches or bridges)."""
+    import numpy as np
+    from tqdm.auto import tqdm
+
+    from ..errors import DescriptionError
+
+    if args.epsilon is None:
+        raise ValueError("--samples draws irregular structures: give --epsilon")
+    if not 1 <= args.samples <= MAX_SAMPLES:
+        raise ValueError(f"--samples must be an integer in [1, {MAX_SAMPLES}], got "
+                         f"{args.samples}")
+    if args.arbiter:
+        raise ValueError("--arbiter tests one structure: leave out --samples")
+    spec = options.structure_spec(args, spans=True)
+    with options.naming_options():
+        nominal = spec.nominal()
+        members = spec.sample(args.samples)
+    if (args.friction is not None or hasattr(nominal, "interfaces")) \
+            and args.method != "static":
+        raise ValueError("--friction and block assemblies take the static method (the linear "
+                         "program): the kinematic enumeration holds for chains of voussoirs "
+                         "whose joints do not slide")
+    k_nominal = _k_of(args, nominal)
+    k = np.full(args.samples, np.nan)
+    refused = []
+    with options.analysing(args), options.naming_options():
+        bar = tqdm(total=args.samples, desc="irregular structures", unit="structure",
+                   disable=args.no_progress or args.json)
+        for i, member in enumerate(members):  # each drawn, built and analysed in turn
+            if isinstance(member, DescriptionError):
+                refused.append({"member": i, "reason": member.naming(options.FIELD_OPTIONS)})
+            else:
+                k[i] = _k_of(args, member)
+            bar.update(1)
+        bar.close()
+    drawn = k[np.isfinite(k)]
+    seed = spec.seed if spec.seed is not None else DEFAULT_SEED
+    quantiles = {f"{q:g}": float(np.quantile(drawn, q)) for q in (0.05, 0.5, 0.95)} \
+        if drawn.size else {}
+    what = "bridges" if (spec.spans or 1) > 1 else "structures"
+    if args.plot:
+        _plot_sample(args, drawn, k_nominal, f"{what}, epsilon {spec.epsilon:g}, seed {seed}")
+    if args.json:
+        print_json({"k_nominal": k_nominal, "epsilon": spec.epsilon, "seed": seed,
+                    "samples": args.samples, "k": [float(x) if np.isfinite(x) else None
+                                                   for x in k],
+                    "refused": refused, "quantiles": quantiles,
+                    "mean": float(drawn.mean()) if drawn.size else None,
+                    "min": float(drawn.min()) if drawn.size else None,
+                    "max": float(drawn.max()) if drawn.size else None})
+        return 0
+    print(f"k over {args.samples} irregular {what} (epsilon {spec.epsilon:g}, seed {seed}: "
+          f"member i from child i of the seed); nominal k = {k_nominal:.4f}")
+    if drawn.size:
+        print(f"  min {drawn.min():.4f}, 5 % {quantiles['0.05']:.4f}, median "
+              f"{quantiles['0.5']:.4f}, mean {drawn.mean():.4f}, 95 % "
+              f"{quantiles['0.95']:.4f}, max {drawn.max():.4f}; below the nominal: "
+              f"{np.mean(drawn < k_nominal):.0%}")
+    if refused:
+        print(f"warning: {len(refused)} of {args.samples} drawn could not be built and are left "
+              f"out, so the distribution is of the others (those left out have end voussoirs "
+              f"too thick for the seats: wider middle piers keep them); the first: member "
+              f"{refused[0]['member']}: {refused[0]['reason']}")
+    if args.plot:
+        print(f"figure written to {args.plot}")
+    return 0
+
+
+def _plot_sample(args: argparse.Namespace, k, k_nominal: float, what: str) -> None:
+    """The empirical distribution of the sample's k beside the nominal k."""
+    from .output import pyplot, save_figure
+
+    plt = pyplot()
+    from ..studies.fits import empirical_cdf
+
+    fig, ax = plt.subplots(figsize=(6.4, 4.2), constrained_layout=True)
+    if k.size:
+        x, p = empirical_cdf(k)
+        ax.step(x, p, where="post", label=f"{k.size} irregular {what}")
+    ax.axvline(k_nominal, color="k", linestyle="--", label=f"nominal, k = {k_nominal:.4f}")
+    ax.set_xlabel("load multiplier k [-]")
+    ax.set_ylabel("fraction with a lower k [-]")
+    ax.set_ylim(0, 1)
+    ax.legend(loc="upper left")
+    save_figure(fig, args.plot)
 
 
 def describe_arch(arch) -> str:

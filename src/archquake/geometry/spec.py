@@ -598,7 +598,7 @@ class StructureSpec:
             return nominal, nominal
         seed = DEFAULT_SEED if self.seed is None else self.seed
         if (self.spans or 1) > 1 and self.rings is None:
-            return nominal, self._irregular_bridge(seed)
+            return nominal, self._irregular_bridge(seed, f"seed {seed}")
         return nominal, self._draw(nominal, seed)
 
     def _draw(self, arch, rng):
@@ -619,21 +619,66 @@ class StructureSpec:
                                    f"{_literal(exc.__cause__)}; epsilon is too large for this "
                                    f"arch") from exc
 
-    def _irregular_bridge(self, seed: int):
+    def sample(self, sample_size: int):
+        """``sample_size`` irregular structures of the description, one at a time: member ``i``
+        drawn from child ``i`` of ``SeedSequence(seed)``
+        (:func:`~archquake.geometry.irregular_sample`'s streams, so an arch's sample is that of
+        the paper's studies), a bridge's spans one after the other from it.
+
+        Yields
+        ------
+        structure or DescriptionError
+            Every member: the structure, or for a bridge whose piers cannot seat the draw's
+            springings the :class:`~archquake.errors.DescriptionError` that refuses it.
+
+        Raises
+        ------
+        ValueError
+            As :meth:`arches`, for a description without ``epsilon``, or a size that is not an
+            integer >= 1.
+        """
+        import numpy as np
+
+        if self.epsilon is None:
+            raise DescriptionError("a sample of irregular structures needs {epsilon}")
+        if isinstance(sample_size, bool) or not isinstance(sample_size, int) or sample_size < 1:
+            raise ValueError(f"sample_size must be an integer >= 1, got {sample_size!r}")
+        seed = DEFAULT_SEED if self.seed is None else self.seed
+        children = np.random.SeedSequence(seed).spawn(sample_size)
+        bridge = (self.spans or 1) > 1 and self.rings is None
+        nominal = None if bridge else self.nominal()
+        return self._members(children, nominal, seed)
+
+    def _members(self, children, nominal, seed):
+        import numpy as np
+
+        for i, child in enumerate(children):
+            rng = np.random.default_rng(child)
+            if nominal is not None:
+                yield self._draw(nominal, rng)
+                continue
+            try:
+                yield self._irregular_bridge(rng, f"member {i} of the sample of seed {seed}")
+            except DescriptionError as exc:
+                if "on these piers" not in exc.template:
+                    raise
+                yield exc
+
+    def _irregular_bridge(self, rng, which: str):
         """The bridge of ``spans`` irregular arches, drawn around the arch of the description one
-        after the other from one generator of ``seed`` (span 1 first), each a draw of the
+        after the other from the generator (or seed) ``rng`` (span 1 first), each a draw of the
         paper's eq. (1) (:meth:`_draw`), on the shared piers
-        (:func:`~archquake.geometry.bridge.multi_span`)."""
+        (:func:`~archquake.geometry.bridge.multi_span`); a refusal names it by ``which``."""
         import numpy as np
 
         arch = self._arch()
-        rng = np.random.default_rng(seed)
+        rng = np.random.default_rng(rng)
         draws = [self._draw(arch, rng) for _ in range(self.spans)]
         try:
             return self._bridge(draws)
         except DescriptionError as exc:  # thicker end voussoirs need wider seats, ...
             raise DescriptionError(f"the {self.spans} irregular arches drawn with {{epsilon}} "
-                                   f"{self.epsilon:g} (seed {seed}), on these piers: "
+                                   f"{self.epsilon:g} ({which}), on these piers: "
                                    f"{exc.template}") from None
 
     def build(self):
