@@ -937,6 +937,39 @@ _STATE_STYLE = {
 }
 
 
+def plot_k_distribution(k, k_nominal: float, what: str, ax=None):
+    """The empirical distribution of the load multipliers ``k`` of irregular structures beside
+    the nominal one's (``archquake limit --samples``, the assessment of a bridge).
+
+    Parameters
+    ----------
+    k : array_like
+        The multipliers of the structures drawn [-].
+    k_nominal : float
+        The nominal structure's [-].
+    what : str
+        What was drawn, for the legend (``"bridges, epsilon 0.1, seed 0"``).
+    ax : matplotlib Axes, optional
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    from .studies.fits import empirical_cdf
+
+    ax = _axes(ax)
+    k = np.asarray(k, dtype=float)
+    if k.size:
+        x, p = empirical_cdf(k)
+        ax.step(x, p, where="post", label=f"{k.size} irregular {what}")
+    ax.axvline(k_nominal, color="k", linestyle="--", label=f"nominal, k = {k_nominal:.4f}")
+    ax.set_xlabel("load multiplier k [-]")
+    ax.set_ylabel("fraction with a lower k [-]")
+    ax.set_ylim(0, 1)
+    ax.legend(loc="upper left")
+    return ax
+
+
 def plot_assembly_limits(results):
     """Every direction's and friction law's collapse of an assembly, one panel each: the
     directions side by side, the laws one row each (:func:`plot_assembly_limit`).

@@ -25,6 +25,17 @@ from archquake.site.local_mechanism import (
 from archquake.site.spectra import ec8_spectrum
 
 
+def cli_json(*argv):
+    """The ``--json`` output of ``archquake argv``, in this process."""
+    import contextlib
+    import io
+
+    buffer = io.StringIO()
+    with contextlib.redirect_stdout(buffer):
+        assert main([*argv, "--json"]) == 0
+    return json.loads(buffer.getvalue())
+
+
 def _bridge():
     return StructureSpec(spans=3, piers="3,6").nominal()
 
@@ -138,6 +149,21 @@ def test_the_report_of_three_spans(bridge_report):
     assert (out / "fig3_record_fragility.png").is_file()
     for item in LEFT_OUT:
         assert item in text
+    # the irregular bridges: the members of `limit --samples` with the assessment's epsilon,
+    # seed and friction, member by member (their k from another path of the limit analysis);
+    # on piers 3 m wide some draws cannot be seated, and the report says so
+    irregular = results["irregular"]
+    assert irregular["size"] == 20 and irregular["epsilon"] == 0.1 and irregular["seed"] == 0
+    limit = cli_json("limit", "--spans", "3", "--piers", "3,6", "--epsilon", "0.1",
+                     "--samples", "20", "--friction", "0.8")
+    assert [x is None for x in irregular["k"]] == [x is None for x in limit["k"]]
+    assert irregular["refused"] and irregular["k_nominal"] == pytest.approx(k, rel=1e-12)
+    assert [x for x in irregular["k"] if x is not None] == pytest.approx(
+        [x for x in limit["k"] if x is not None], rel=1e-12)
+    assert all(x < k for x in irregular["k"] if x is not None)
+    assert "## 1b. Irregular bridges" in text and "WARNING: " in text
+    assert (out / "fig1b_irregular_bridges.png").is_file()
+    assert "irregular bridges around it (epsilon 0.1), 5 % start to collapse below" in first
     assert (out / "fig1_collapse.png").stat().st_size > 20_000
     assert results["command"]["regenerate"].endswith("--resume")
 

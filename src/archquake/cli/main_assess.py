@@ -66,9 +66,10 @@ def run(args: argparse.Namespace) -> int:
 
     if options.describes_assembly(args):
         with options.naming_options():
-            structure = options.structure_spec(args, draw=False, spans=True).nominal()
+            description = options.structure_spec(args, draw=False, spans=True)
+            structure = description.nominal()
         if hasattr(structure, "interfaces"):
-            return _assembly(args, structure)
+            return _assembly(args, structure, description)
     structure = options.nominal_arch_from_args(args)
     changes = {"epsilon": args.epsilon, "seed": args.seed, "restitution": args.restitution,
                "friction": args.friction, "sa_period": args.sa_period}
@@ -116,19 +117,24 @@ def _print(result) -> int:
     return 0
 
 
-def _assembly(args: argparse.Namespace, structure) -> int:
-    """``assess`` of a block assembly (:mod:`archquake.report.assess.assembly`)."""
-    from ..defaults import DEFAULT_EPSILON
+def _assembly(args: argparse.Namespace, structure, description) -> int:
+    """``assess`` of a block assembly (:mod:`archquake.report.assess.assembly`); of several
+    spans of one arch, with the limit analysis of its irregular bridges."""
+    from ..defaults import DEFAULT_EPSILON, DEFAULT_SEED
     from ..report.assess import AssessmentSettings, assess
 
+    bridge = (description.spans or 1) > 1 and description.rings is None \
+        and description.geometry is None
     refused = options.given(args, "records", "suite", "sa_period")
-    if args.epsilon != DEFAULT_EPSILON:  # the sample's default is no request
-        refused.append("--epsilon")
+    if not bridge and (args.epsilon != DEFAULT_EPSILON or args.seed != DEFAULT_SEED):
+        refused += [o for o, given in (("--epsilon", args.epsilon != DEFAULT_EPSILON),
+                                       ("--seed", args.seed != DEFAULT_SEED)) if given]
     if refused:
         raise ValueError(f"{', '.join(refused)}: the assessment of a block assembly (several "
-                         "spans, rings, a drawing) runs no irregular or record study")
+                         "spans, rings, a drawing) runs no record study, and draws irregular "
+                         "structures only of several spans of one arch")
     settings = (AssessmentSettings.quick_settings if args.quick else AssessmentSettings)(
-        friction=args.friction)
+        friction=args.friction, epsilon=args.epsilon, seed=args.seed)
     own = getattr(structure, "friction", None)
     if isinstance(own, dict):
         # the rings' own friction given (--ring-friction), the other interfaces' none (they
@@ -137,5 +143,5 @@ def _assembly(args: argparse.Namespace, structure) -> int:
             {**own, **{kind: args.friction for kind in own if kind != "ring"}})
     result = assess(structure, out_dir=args.out, progress=not args.no_progress,
                     resume=args.resume, settings=settings, command=_command(args),
-                    site=_site(args))
+                    site=_site(args), description=description if bridge else None)
     return _print(result)

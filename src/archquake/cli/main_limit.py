@@ -117,11 +117,10 @@ MAX_SAMPLES = 100_000
 def _k_of(args: argparse.Namespace, structure) -> float:
     """The least k of both directions: the governing friction law's with --friction or for a
     block assembly, else the chain program's (the method of the options)."""
-    from ..limit_analysis import assembly_limits, both_directions, governing_law
+    from ..limit_analysis import both_directions, governing_multiplier
 
     if args.friction is not None or hasattr(structure, "interfaces"):
-        results = assembly_limits(structure, friction=_friction_of(args))
-        return min(governing_law(laws).load_multiplier for laws in results.values())
+        return governing_multiplier(structure, friction=_friction_of(args))
     return min(r.load_multiplier for r in both_directions(structure, method=args.method))
 
 
@@ -198,19 +197,12 @@ def _plot_sample(args: argparse.Namespace, k, k_nominal: float, what: str) -> No
     """The empirical distribution of the sample's k beside the nominal k."""
     from .output import pyplot, save_figure
 
-    plt = pyplot()
-    from ..studies.fits import empirical_cdf
+    pyplot()
+    from ..plotting import plot_k_distribution
 
-    fig, ax = plt.subplots(figsize=(6.4, 4.2), constrained_layout=True)
-    if k.size:
-        x, p = empirical_cdf(k)
-        ax.step(x, p, where="post", label=f"{k.size} irregular {what}")
-    ax.axvline(k_nominal, color="k", linestyle="--", label=f"nominal, k = {k_nominal:.4f}")
-    ax.set_xlabel("load multiplier k [-]")
-    ax.set_ylabel("fraction with a lower k [-]")
-    ax.set_ylim(0, 1)
-    ax.legend(loc="upper left")
-    save_figure(fig, args.plot)
+    ax = plot_k_distribution(k, k_nominal, what)
+    ax.figure.set_layout_engine("constrained")
+    save_figure(ax.figure, args.plot)
 
 
 def describe_arch(arch) -> str:

@@ -107,6 +107,7 @@ from .assembly import (
     assembly_stands,
     contacts_of,
     governing_law,
+    governing_multiplier,
 )
 from .equilibrium import LP_TOLERANCE
 from .friction import friction_margin, standing_with_friction
@@ -134,7 +135,7 @@ __all__ = [
     "AssemblyLimit", "Contacts", "GeometricSafetyFactor", "LimitAnalysis", "LimitSample",
     "Standing", "ThrustLine",
     "assembly_limit", "assembly_limits", "assembly_min_thickness", "assembly_stands",
-    "governing_law",
+    "governing_law", "governing_multiplier",
     "both_directions", "contacts_of",
     "friction_margin", "geometric_safety_factor", "limit_analysis",
     "limit_sample", "load_multipliers", "load_multipliers_of", "min_pier_width",

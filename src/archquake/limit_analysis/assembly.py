@@ -753,6 +753,17 @@ def governing_law(laws: dict) -> AssemblyLimit:
     return laws.get("non-associative") or next(iter(laws.values()))
 
 
+def governing_multiplier(structure, *, friction=None) -> float:
+    """The least collapse multiplier of both directions under the governing friction law
+    (:func:`governing_law`: the non-associative one where an interface can slide) [-]: the k
+    of :func:`assembly_limits`, without the law that does not govern."""
+    c = structure if isinstance(structure, Contacts) else contacts_of(structure)
+    if friction is not None:
+        c = c.with_friction(friction)
+    law = "non-associative" if np.isfinite(c.friction).any() else "associative"
+    return min(assembly_limit(c, d, law=law).load_multiplier for d in ("+x", "-x"))
+
+
 def assembly_stands(structure, *, friction=None) -> bool:
     """Whether some set of contact forces balances the assembly under its own weight (no
     tension, within the friction cones)."""

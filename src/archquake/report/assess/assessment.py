@@ -365,7 +365,7 @@ def assess(structure=None, *, records=None, suite: str | None = None,
            epsilon: float | None = None, sa_period: float | None = None, quick: bool = False,
            out_dir, progress: bool = True, resume: bool = False,
            settings: AssessmentSettings | None = None, command: str | None = None,
-           site=None) -> Assessment:
+           site=None, description=None) -> Assessment:
     """Assess a structure: the paper's method and both models applied to it, against real
     records, in a report (module docstring).
 
@@ -406,6 +406,11 @@ def assess(structure=None, *, records=None, suite: str | None = None,
         dynamic route on the assessment's records with the trusted model, and the annual risk
         of collapse from the site's hazard curve (:mod:`archquake.report.assess.site`); the
         first screen gains the verdict.
+    description : StructureSpec, optional
+        The description a block assembly was built from: where it is several spans of one arch
+        (not rings, not a drawing) the report draws irregular bridges around it and gives the
+        distribution of their collapse multiplier
+        (:func:`~archquake.report.assess.assembly.irregular_part`); ignored otherwise.
 
     Returns
     -------
@@ -458,7 +463,8 @@ def assess(structure=None, *, records=None, suite: str | None = None,
             raise ValueError(f"site must be a SiteSpec (archquake.site.spec), got "
                              f"{type(site).__name__}")
         return _assess_assembly(structure, settings=settings, out_dir=out_dir,
-                               progress=progress, resume=resume, command=command, site=site)
+                               progress=progress, resume=resume, command=command, site=site,
+                               description=_bridge_description(description))
     check_before_writing(structure, settings)
     out = Path(out_dir)
     timings: dict[str, float] = {}
@@ -564,8 +570,25 @@ def _record_figure(results: dict):
     return fig
 
 
+def _bridge_description(description):
+    """The description of a bridge of several spans of one arch, whose irregular bridges an
+    assessment draws; None for none (or for rings, a drawing: no centreline to perturb)."""
+    from ...geometry.spec import StructureSpec
+
+    if description is None:
+        return None
+    if not isinstance(description, StructureSpec):
+        raise ValueError(f"description must be a StructureSpec (archquake.geometry) or None, "
+                         f"got {type(description).__name__}")
+    if (description.spans or 1) < 2 or description.rings is not None \
+            or description.geometry is not None:
+        return None
+    return description
+
+
 def _assess_assembly(structure, *, settings, out_dir, progress: bool = True,
-                    resume: bool = False, command: str | None = None, site=None):
+                    resume: bool = False, command: str | None = None, site=None,
+                    description=None):
     """Assess a block assembly (:mod:`archquake.report.assess.assembly`): :func:`assess` of
     one.
 
@@ -585,6 +608,9 @@ def _assess_assembly(structure, *, settings, out_dir, progress: bool = True,
         The command line that ran it.
     site : SiteSpec, optional
         The site of the code check.
+    description : StructureSpec, optional
+        The description of a bridge of several spans of one arch: its irregular bridges'
+        multipliers are drawn (:func:`~.assembly.irregular_part`).
 
     Returns
     -------
@@ -604,6 +630,7 @@ def _assess_assembly(structure, *, settings, out_dir, progress: bool = True,
         assembly_risk,
         domain_part,
         dynamic_part,
+        irregular_part,
         limit_part,
         record_part,
         sections,
@@ -618,6 +645,8 @@ def _assess_assembly(structure, *, settings, out_dir, progress: bool = True,
               "suite": {"kind": "none"}}
     if site is not None:
         record["site"] = site.to_dict()
+    if description is not None:
+        record["description"] = description.to_dict()
     prepare_directory(out, record, resume)
     results: dict = {
         "structure": {"name": assembly_name(structure), "kind": type(structure).__name__,
@@ -626,7 +655,8 @@ def _assess_assembly(structure, *, settings, out_dir, progress: bool = True,
         "settings": settings.to_dict(),
         "command": {"given": command, "regenerate": _regenerate(command, out), "note": ""},
         "left_out": list(LEFT_OUT)}
-    steps = Steps(5 + 2 * (site is not None), progress=progress, desc="assess")
+    steps = Steps(5 + 2 * (site is not None) + (description is not None), progress=progress,
+                  desc="assess")
     timings = {}
     figures = {}
     domain = None
@@ -638,6 +668,9 @@ def _assess_assembly(structure, *, settings, out_dir, progress: bool = True,
                 summary, laws, governing = None, None, None
                 results["cannot_stand"] = str(exc)
             results["limit"] = summary
+        if summary is not None and description is not None:
+            with steps("irregular bridges (limit analysis)"):
+                results["irregular"] = irregular_part(description, summary["k"], settings)
         if summary is not None:
             with steps("rigid-block check of the limit"):
                 results["rigid_blocks"] = activation_part(structure, summary["k"],
@@ -680,6 +713,19 @@ def _assess_assembly(structure, *, settings, out_dir, progress: bool = True,
                     "displaced blocks (red outline), interfaces that rock (red, the hinge a "
                     "dot), slide (blue), both (purple) or separate (orange), the pressure "
                     "points of the loaded interfaces (black).", None)
+            if "quantiles" in (results.get("irregular") or {}):
+                from ...plotting import plot_k_distribution
+                from .. import render
+
+                r = results["irregular"]
+                ax = plot_k_distribution([x for x in r["k"] if x is not None], r["k_nominal"],
+                                         f"bridges, epsilon {r['epsilon']:g}, seed {r['seed']}")
+                ax.figure.set_layout_engine("constrained")
+                figures["irregular"] = render.Figure(
+                    save(ax.figure, out, "fig1b_irregular_bridges.png"), "Fig. 1b",
+                    "The collapse multiplier k of irregular bridges around this one (every "
+                    "span its own irregular arch): the fraction of them with a lower k, and "
+                    "the nominal bridge's k (dashed).", None)
             if domain is not None:
                 import matplotlib.pyplot as plt
 
