@@ -130,6 +130,7 @@ def _samples(args: argparse.Namespace) -> int:
     from tqdm.auto import tqdm
 
     from ..errors import DescriptionError
+    from ..limit_analysis import multiplier_distribution
 
     if args.epsilon is None:
         raise ValueError("--samples draws irregular structures: give --epsilon")
@@ -162,8 +163,7 @@ def _samples(args: argparse.Namespace) -> int:
         bar.close()
     drawn = k[np.isfinite(k)]
     seed = spec.seed if spec.seed is not None else DEFAULT_SEED
-    quantiles = {f"{q:g}": float(np.quantile(drawn, q)) for q in (0.05, 0.5, 0.95)} \
-        if drawn.size else {}
+    summary = multiplier_distribution(drawn, k_nominal)
     what = "bridges" if (spec.spans or 1) > 1 else "structures"
     if args.plot:
         _plot_sample(args, drawn, k_nominal, f"{what}, epsilon {spec.epsilon:g}, seed {seed}")
@@ -171,18 +171,17 @@ def _samples(args: argparse.Namespace) -> int:
         print_json({"k_nominal": k_nominal, "epsilon": spec.epsilon, "seed": seed,
                     "samples": args.samples, "k": [float(x) if np.isfinite(x) else None
                                                    for x in k],
-                    "refused": refused, "quantiles": quantiles,
-                    "mean": float(drawn.mean()) if drawn.size else None,
-                    "min": float(drawn.min()) if drawn.size else None,
-                    "max": float(drawn.max()) if drawn.size else None})
+                    "refused": refused, "quantiles": summary.get("quantiles", {}),
+                    **{key: summary.get(key) for key in ("mean", "min", "max",
+                                                          "below_nominal")}})
         return 0
     print(f"k over {args.samples} irregular {what} (epsilon {spec.epsilon:g}, seed {seed}: "
           f"member i from child i of the seed); nominal k = {k_nominal:.4f}")
-    if drawn.size:
-        print(f"  min {drawn.min():.4f}, 5 % {quantiles['0.05']:.4f}, median "
-              f"{quantiles['0.5']:.4f}, mean {drawn.mean():.4f}, 95 % "
-              f"{quantiles['0.95']:.4f}, max {drawn.max():.4f}; below the nominal: "
-              f"{np.mean(drawn < k_nominal):.0%}")
+    if summary:
+        q = summary["quantiles"]
+        print(f"  min {summary['min']:.4f}, 5 % {q['0.05']:.4f}, median {q['0.5']:.4f}, mean "
+              f"{summary['mean']:.4f}, 95 % {q['0.95']:.4f}, max {summary['max']:.4f}; below "
+              f"the nominal: {summary['below_nominal']:.0%}")
     if refused:
         print(f"warning: {len(refused)} of {args.samples} drawn could not be built and are left "
               f"out, so the distribution is of the others (those left out have end voussoirs "

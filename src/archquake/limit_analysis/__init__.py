@@ -117,7 +117,14 @@ from .kinematic import (
     MAX_ENUMERATED_VOUSSOIRS,
 )
 from .kinematic import mechanisms as _mechanisms  # noqa: F401 -- the name tests import
-from .results import AGREEMENT_TOLERANCE, DIRECTIONS, LimitAnalysis, LimitSample, ThrustLine
+from .results import (
+    AGREEMENT_TOLERANCE,
+    DIRECTIONS,
+    LimitAnalysis,
+    LimitSample,
+    ThrustLine,
+    multiplier_distribution,
+)
 from .self_weight import Standing, self_weight_margin, standing
 from .static import HINGE_TOLERANCE
 from .thickness import (
@@ -139,6 +146,7 @@ __all__ = [
     "both_directions", "contacts_of",
     "friction_margin", "geometric_safety_factor", "limit_analysis",
     "limit_sample", "load_multipliers", "load_multipliers_of", "min_pier_width",
+    "multiplier_distribution",
     "min_thickness", "self_weight_margin", "shaped_min_thickness", "standing",
     "standing_with_friction", "virtual_displacements",
 ]

@@ -161,3 +161,28 @@ class LimitSample:
     def load_multiplier(self) -> np.ndarray:
         """k~ = min(k~_l, k~_r) of every arch [-]."""
         return np.minimum(self.load_multiplier_l, self.load_multiplier_r)
+
+
+def multiplier_distribution(k, k_nominal: float) -> dict:
+    """What a sample of load multipliers says beside the nominal one: ``min``, ``max``,
+    ``mean``, ``quantiles`` (0.05, 0.5, 0.95, keyed ``"0.05"``, ...) and ``below_nominal`` (the
+    fraction of the sample below ``k_nominal``); empty for an empty sample.
+
+    Parameters
+    ----------
+    k : array_like
+        The multipliers of the structures drawn [-] (none missing).
+    k_nominal : float
+        The nominal structure's [-].
+
+    Returns
+    -------
+    dict
+        JSON-ready floats.
+    """
+    k = np.asarray(k, dtype=float)
+    if not k.size:
+        return {}
+    return {"min": float(k.min()), "max": float(k.max()), "mean": float(k.mean()),
+            "quantiles": {f"{q:g}": float(np.quantile(k, q)) for q in (0.05, 0.5, 0.95)},
+            "below_nominal": float(np.mean(k < k_nominal))}

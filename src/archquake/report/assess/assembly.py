@@ -43,8 +43,6 @@ from __future__ import annotations
 import math
 import time
 
-import numpy as np
-
 from ...constants import GRAVITY
 from ..render import Bullets, Paragraph, Section, Table
 
@@ -192,7 +190,7 @@ def irregular_part(description, k_nominal: float, settings) -> dict:
     from dataclasses import replace
 
     from ...errors import DescriptionError
-    from ...limit_analysis import governing_multiplier
+    from ...limit_analysis import governing_multiplier, multiplier_distribution
 
     t0 = time.perf_counter()
     size = QUICK_IRREGULAR_BRIDGES if settings.quick else IRREGULAR_BRIDGES
@@ -205,15 +203,10 @@ def irregular_part(description, k_nominal: float, settings) -> dict:
             refusal = refusal or str(member)
         else:
             k.append(governing_multiplier(_friction(member, settings.friction)))
-    drawn = np.array([x for x in k if x is not None])
-    out = {"epsilon": settings.epsilon, "seed": settings.seed, "size": size, "k": k,
-           "refused": refused, "refusal": refusal, "k_nominal": k_nominal,
-           "seconds": time.perf_counter() - t0}
-    if drawn.size:
-        out.update(min=float(drawn.min()), max=float(drawn.max()), mean=float(drawn.mean()),
-                   quantiles={f"{q:g}": float(np.quantile(drawn, q)) for q in (0.05, 0.5, 0.95)},
-                   below_nominal=float(np.mean(drawn < k_nominal)))
-    return out
+    return {"epsilon": settings.epsilon, "seed": settings.seed, "size": size, "k": k,
+            "refused": refused, "refusal": refusal, "k_nominal": k_nominal,
+            **multiplier_distribution([x for x in k if x is not None], k_nominal),
+            "seconds": time.perf_counter() - t0}
 
 
 def irregular_text(results: dict) -> str:
