@@ -200,13 +200,26 @@ def test_the_code_check_of_a_bridge_is_the_librarys_linear_route():
 def test_the_assessment_of_a_bridge_is_the_assemblys(tmp_path):
     """The page's report of several spans is the library's assessment of an assembly: its
     verdict names the span that fails first."""
-    from archquake.app.tasks import assessment_report
+    from archquake.app.tasks import _description, assessment_report
 
-    _, bridge = structure_from_spec(BRIDGE)
-    summary = assessment_report(bridge, tmp_path / "report")
+    nominal, bridge = structure_from_spec(BRIDGE)
+    summary = assessment_report(bridge, tmp_path / "report", _description(BRIDGE, nominal))
     assert summary["verdict"].startswith("VERDICT: STANDS.")
     assert "span 1:" in summary["verdict"] or "span 3:" in summary["verdict"]
     assert "fig1_collapse.png" in summary["files"]
+    # the irregular bridges of its description, as the command line's assessment draws them
+    assert "fig1b_irregular_bridges.png" in summary["files"]
+    assert "irregular bridges around it (epsilon 0.1)" in summary["verdict"]
+    assert _description({"rings": 2}, structure_from_spec({"rings": 2})[0]) is None
+    assert _description({}, structure_from_spec({})[0]) is None
+
+
+def test_an_irregular_bridge_on_the_page_is_the_command_lines(client):
+    structure = {**BRIDGE, "piers": "3.2,6", "epsilon": 0.1, "seed": 2}
+    limit = post(client, {"structure": structure}).json()["limit"]
+    expected = cli_json("limit", "--spans", "3", "--piers", "3.2,6", "--epsilon", "0.1",
+                        "--seed", "2")
+    assert limit["k"] == pytest.approx(expected["k"], rel=1e-9)
 
 
 def test_time_history_of_a_bridge_is_the_rigid_blocks_only():

@@ -337,11 +337,12 @@ def assessment(spec: dict, report) -> dict:
         while it keeps the job; the folder the report was written in is deleted once zipped),
         ``verdict`` and ``files`` of the report.
     """
-    _, structure = structure_from_spec(spec.get("structure") or {})
+    fields = spec.get("structure") or {}
+    nominal, structure = structure_from_spec(fields)
     workdir = Path(spec["workdir"])
     name = f"assessment-{spec['job']}"
     report(0, 1, "assessment report (a few minutes)")
-    summary = assessment_report(structure, workdir / name)
+    summary = assessment_report(structure, workdir / name, _description(fields, nominal))
     archive = workdir / f"{name}.zip"
     with zipfile.ZipFile(archive, "w", zipfile.ZIP_DEFLATED) as zf:
         for path in sorted((workdir / name).rglob("*")):
@@ -352,9 +353,21 @@ def assessment(spec: dict, report) -> dict:
     return {"file": archive.name, **summary}
 
 
-def assessment_report(structure, out_dir: Path) -> dict:
+def _description(fields: dict, nominal):
+    """The description of a bridge of several spans of one arch whose irregular bridges its
+    assessment draws (:func:`archquake.report.assess.assess`'s ``description``), else None."""
+    if not is_assembly(nominal) or fields.get("geometry") or fields.get("rings"):
+        return None
+    from ..geometry import StructureSpec
+
+    return StructureSpec.from_dict({k: v for k, v in fields.items()
+                                    if k not in ("epsilon", "seed")})
+
+
+def assessment_report(structure, out_dir: Path, description=None) -> dict:
     """Run :func:`archquake.report.assess.assess` on ``structure`` into ``out_dir`` with its
-    quick sizes: the page's button is a first look; ``archquake assess`` runs the full one.
+    quick sizes: the page's button is a first look; ``archquake assess`` runs the full one
+    (with ``description``, a bridge's, its irregular bridges too).
 
     Returns
     -------
@@ -363,7 +376,8 @@ def assessment_report(structure, out_dir: Path) -> dict:
     """
     from ..report.assess import assess
 
-    result = assess(structure, quick=True, out_dir=out_dir, progress=False)
+    result = assess(structure, quick=True, out_dir=out_dir, progress=False,
+                    description=description)
     return {"verdict": str(result.verdict), "files": [Path(f).name for f in result.files]}
 
 
