@@ -82,3 +82,20 @@ def test_the_figure(tmp_path, capsys):
     assert main(["limit", "--epsilon", "0.1", "--samples", "20", "--plot", str(path),
                  "--no-progress"]) == 0
     assert path.stat().st_size > 10_000 and "figure written to" in capsys.readouterr().out
+
+
+def test_members_that_cannot_stand_are_counted_apart(capsys):
+    # a thin arch (t = 0.9 m) drawn with epsilon 0.2: some members cannot stand under their own
+    # weight; the assembly program's own test (another LP) says which
+    from archquake.geometry import StructureSpec
+    from archquake.limit_analysis import assembly_stands
+
+    argv = ["limit", "--thickness", "0.9", "--epsilon", "0.2", "--samples", "12"]
+    out = _json(argv, capsys)
+    weak = out["cannot_stand"]
+    assert weak and all(out["k"][i] is None for i in weak)
+    arches = irregular_sample(StructureSpec(thickness=0.9).nominal(), 0.2, 12, 0)
+    assert [i for i, a in enumerate(arches) if not assembly_stands(a)] == weak
+    assert main([*argv, "--no-progress"]) == 0
+    assert f"warning: {len(weak)} of 12 cannot stand under their own weight" in \
+        capsys.readouterr().out

@@ -129,7 +129,7 @@ def _samples(args: argparse.Namespace) -> int:
     import numpy as np
     from tqdm.auto import tqdm
 
-    from ..errors import DescriptionError
+    from ..errors import CannotStandError, DescriptionError
     from ..limit_analysis import multiplier_distribution
 
     if args.epsilon is None:
@@ -150,15 +150,18 @@ def _samples(args: argparse.Namespace) -> int:
                          "whose joints do not slide")
     k_nominal = _k_of(args, nominal)
     k = np.full(args.samples, np.nan)
-    refused = []
-    with options.analysing(args), options.naming_options():
+    refused, weak = [], []  # members not built; members that cannot stand (k < 0)
+    with options.naming_options():  # each member's refusal names it
         bar = tqdm(total=args.samples, desc="irregular structures", unit="structure",
                    disable=args.no_progress or args.json)
         for i, member in enumerate(members):  # each drawn, built and analysed in turn
             if isinstance(member, DescriptionError):
                 refused.append({"member": i, "reason": member.naming(options.FIELD_OPTIONS)})
             else:
-                k[i] = _k_of(args, member)
+                try:
+                    k[i] = _k_of(args, member)
+                except CannotStandError:
+                    weak.append(i)
             bar.update(1)
         bar.close()
     drawn = k[np.isfinite(k)]
@@ -171,7 +174,8 @@ def _samples(args: argparse.Namespace) -> int:
         print_json({"k_nominal": k_nominal, "epsilon": spec.epsilon, "seed": seed,
                     "samples": args.samples, "k": [float(x) if np.isfinite(x) else None
                                                    for x in k],
-                    "refused": refused, "quantiles": summary.get("quantiles", {}),
+                    "refused": refused, "cannot_stand": weak,
+                    "quantiles": summary.get("quantiles", {}),
                     **{key: summary.get(key) for key in ("mean", "min", "max",
                                                           "below_nominal")}})
         return 0
@@ -187,6 +191,10 @@ def _samples(args: argparse.Namespace) -> int:
               f"out, so the distribution is of the others (those left out have end voussoirs "
               f"too thick for the seats: wider middle piers keep them); the first: member "
               f"{refused[0]['member']}: {refused[0]['reason']}")
+    if weak:
+        print(f"warning: {len(weak)} of {args.samples} cannot stand under their own weight "
+              f"(k < 0) and are left out of the figures above, all of which they lie below "
+              f"(the first: member {weak[0]})")
     if args.plot:
         print(f"figure written to {args.plot}")
     return 0

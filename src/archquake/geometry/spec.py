@@ -601,9 +601,10 @@ class StructureSpec:
             return nominal, self._irregular_bridge(seed, f"seed {seed}")
         return nominal, self._draw(nominal, seed)
 
-    def _draw(self, arch, rng):
+    def _draw(self, arch, rng, which: str | None = None):
         """One irregular arch around ``arch`` (:func:`~archquake.geometry.irregular_arch`, from
-        the seed or generator ``rng``); a refusal names epsilon and the seed."""
+        the seed or generator ``rng``); a refusal names epsilon and the seed (or ``which``
+        draw it is)."""
         from .irregular import irregular_arch
 
         if not hasattr(arch, "perturbed"):
@@ -615,7 +616,9 @@ class StructureSpec:
         except ValueError as exc:
             if exc.__cause__ is None:  # epsilon itself is out of its range
                 raise
-            raise DescriptionError(f"{self.drawn()} is not a valid arch: "
+            what = self.drawn() if which is None else (
+                f"the irregular arch drawn with {{epsilon}} {self.epsilon:g} ({which})")
+            raise DescriptionError(f"{what} is not a valid arch: "
                                    f"{_literal(exc.__cause__)}; epsilon is too large for this "
                                    f"arch") from exc
 
@@ -655,7 +658,7 @@ class StructureSpec:
         for i, child in enumerate(children):
             rng = np.random.default_rng(child)
             if nominal is not None:
-                yield self._draw(nominal, rng)
+                yield self._draw(nominal, rng, f"member {i} of the sample of seed {seed}")
                 continue
             try:
                 yield self._irregular_bridge(rng, f"member {i} of the sample of seed {seed}")
@@ -673,7 +676,7 @@ class StructureSpec:
 
         arch = self._arch()
         rng = np.random.default_rng(rng)
-        draws = [self._draw(arch, rng) for _ in range(self.spans)]
+        draws = [self._draw(arch, rng, which) for _ in range(self.spans)]
         try:
             return self._bridge(draws)
         except DescriptionError as exc:  # thicker end voussoirs need wider seats, ...

@@ -183,28 +183,34 @@ def irregular_part(description, k_nominal: float, settings) -> dict:
     -------
     dict
         JSON-ready: ``epsilon``, ``seed``, ``size``, every bridge's ``k`` (None for one whose
-        piers cannot seat its springings), ``refused`` (their indices) and ``refusal`` (the
-        first's reason), ``min``, ``max``, ``mean``, ``quantiles`` (0.05, 0.5, 0.95),
+        piers cannot seat its springings, and for one that cannot stand), ``refused`` (the
+        first's indices) and ``refusal`` (the first's reason), ``cannot_stand`` (the second's
+        indices), ``min``, ``max``, ``mean``, ``quantiles`` (0.05, 0.5, 0.95),
         ``below_nominal`` (the fraction below ``k_nominal``), ``k_nominal`` and ``seconds``.
     """
     from dataclasses import replace
 
-    from ...errors import DescriptionError
+    from ...errors import CannotStandError, DescriptionError
     from ...limit_analysis import governing_multiplier, multiplier_distribution
 
     t0 = time.perf_counter()
     size = QUICK_IRREGULAR_BRIDGES if settings.quick else IRREGULAR_BRIDGES
     spec = replace(description, epsilon=settings.epsilon, seed=settings.seed)
-    k, refused, refusal = [], [], None
+    k, refused, refusal, weak = [], [], None, []
     for i, member in enumerate(spec.sample(size)):
         if isinstance(member, DescriptionError):
             k.append(None)
             refused.append(i)
             refusal = refusal or str(member)
-        else:
+            continue
+        try:
             k.append(governing_multiplier(_friction(member, settings.friction)))
+        except CannotStandError:  # weaker than every other: said, not hidden
+            k.append(None)
+            weak.append(i)
     return {"epsilon": settings.epsilon, "seed": settings.seed, "size": size, "k": k,
-            "refused": refused, "refusal": refusal, "k_nominal": k_nominal,
+            "refused": refused, "refusal": refusal, "cannot_stand": weak,
+            "k_nominal": k_nominal,
             **multiplier_distribution([x for x in k if x is not None], k_nominal),
             "seconds": time.perf_counter() - t0}
 
@@ -223,6 +229,9 @@ def irregular_text(results: dict) -> str:
                  f"{r['k_nominal']:.4f} ({r['below_nominal']:.0%} of them below it).")
     else:
         text += "none could be built."
+    if r.get("cannot_stand"):
+        text += (f" WARNING: {len(r['cannot_stand'])} of {r['size']} cannot stand under their "
+                 f"own weight and are left out of these figures, all of which they lie below.")
     if r["refused"]:
         text += (f" WARNING: {len(r['refused'])} of {r['size']} could not be built and are left "
                  f"out, so the distribution is of the others (their end voussoirs are too thick "
