@@ -266,7 +266,7 @@ def test_assessment_keeps_only_its_zip(tmp_path, monkeypatch):
 
     from archquake.app import tasks
 
-    def fake_report(structure, out_dir):
+    def fake_report(structure, out_dir, description=None):
         (out_dir / "figures").mkdir(parents=True)
         (out_dir / "report.html").write_text("<p>report</p>")
         (out_dir / "figures" / "a.png").write_bytes(b"\x89PNG")
