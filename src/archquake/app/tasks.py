@@ -338,11 +338,11 @@ def assessment(spec: dict, report) -> dict:
         ``verdict`` and ``files`` of the report.
     """
     fields = spec.get("structure") or {}
-    nominal, structure = structure_from_spec(fields)
+    _, structure = structure_from_spec(fields)
     workdir = Path(spec["workdir"])
     name = f"assessment-{spec['job']}"
     report(0, 1, "assessment report (a few minutes)")
-    summary = assessment_report(structure, workdir / name, _description(fields, nominal))
+    summary = assessment_report(structure, workdir / name, _description(fields))
     archive = workdir / f"{name}.zip"
     with zipfile.ZipFile(archive, "w", zipfile.ZIP_DEFLATED) as zf:
         for path in sorted((workdir / name).rglob("*")):
@@ -353,15 +353,17 @@ def assessment(spec: dict, report) -> dict:
     return {"file": archive.name, **summary}
 
 
-def _description(fields: dict, nominal):
+def _description(fields: dict):
     """The description of a bridge of several spans of one arch whose irregular bridges its
-    assessment draws (:func:`archquake.report.assess.assess`'s ``description``), else None."""
-    if not is_assembly(nominal) or fields.get("geometry") or fields.get("rings"):
+    assessment draws (:func:`archquake.report.assess.assessment.bridge_description`), else
+    None (as for an uploaded geometry file, which the structure resolves)."""
+    if fields.get("geometry"):
         return None
     from ..geometry import StructureSpec
+    from ..report.assess.assessment import bridge_description
 
-    return StructureSpec.from_dict({k: v for k, v in fields.items()
-                                    if k not in ("epsilon", "seed")})
+    return bridge_description(StructureSpec.from_dict(
+        {k: v for k, v in fields.items() if k not in ("epsilon", "seed")}))
 
 
 def assessment_report(structure, out_dir: Path, description=None) -> dict:

@@ -122,11 +122,11 @@ def _assembly(args: argparse.Namespace, structure, description) -> int:
     spans of one arch, with the limit analysis of its irregular bridges."""
     from ..defaults import DEFAULT_EPSILON, DEFAULT_SEED
     from ..report.assess import AssessmentSettings, assess
+    from ..report.assess.assessment import bridge_description
 
-    bridge = (description.spans or 1) > 1 and description.rings is None \
-        and description.geometry is None
+    bridge = bridge_description(description)
     refused = options.given(args, "records", "suite", "sa_period")
-    if not bridge and (args.epsilon != DEFAULT_EPSILON or args.seed != DEFAULT_SEED):
+    if bridge is None:  # the sample's defaults are no request
         refused += [o for o, given in (("--epsilon", args.epsilon != DEFAULT_EPSILON),
                                        ("--seed", args.seed != DEFAULT_SEED)) if given]
     if refused:
@@ -143,5 +143,5 @@ def _assembly(args: argparse.Namespace, structure, description) -> int:
             {**own, **{kind: args.friction for kind in own if kind != "ring"}})
     result = assess(structure, out_dir=args.out, progress=not args.no_progress,
                     resume=args.resume, settings=settings, command=_command(args),
-                    site=_site(args), description=description if bridge else None)
+                    site=_site(args), description=bridge)
     return _print(result)

@@ -469,10 +469,11 @@ def multi_span(arch, spans: int, *, end_piers=(None, None),
     each = [span] * spans if arches is None else [_span_of(a, points) for a in arches]
     offsets = [np.zeros(2)]  # every span's move [m]
     middles = []  # every intermediate pier's courses, in place
+    if spans > 1:
+        pitch = float(span.right[0, 0] - span.left[0, 0]) + middle_pier.width
     for k in range(spans - 1):
         here, after = each[k], each[k + 1]
         if arches is None:  # equal spans: k pitches along, the same pier moved
-            pitch = float(span.right[0, 0] - span.left[0, 0]) + middle_pier.width
             offsets.append(np.array([(k + 1) * pitch, 0.0]))
             if k > 0:
                 middles.append([p + offsets[k] for p in middles[0]])

@@ -554,6 +554,13 @@ class StructureSpec:
         return multi_ring(shape=shape, span=kwargs["span"], rise=kwargs["rise"],
                           thickness=self._value("thickness"), **common)
 
+    @property
+    def bridge_of_arches(self) -> bool:
+        """Whether the description is several spans of one arch (not of rings): a bridge whose
+        irregular draws put one irregular arch on every span (:meth:`arches`,
+        :meth:`sample`)."""
+        return (self.spans or 1) > 1 and self.rings is None
+
     # ------------------------------------------------------------------ the structure
     def nominal(self):
         """The structure before the irregular draw: the arch of the shape fields (or of the
@@ -597,8 +604,9 @@ class StructureSpec:
         if self.epsilon is None:
             return nominal, nominal
         seed = DEFAULT_SEED if self.seed is None else self.seed
-        if (self.spans or 1) > 1 and self.rings is None:
-            return nominal, self._irregular_bridge(seed, f"seed {seed}")
+        if self.bridge_of_arches:
+            return nominal, self._seated(self._span_draws(self._arch(), seed, f"seed {seed}"),
+                                         f"seed {seed}")
         return nominal, self._draw(nominal, seed)
 
     def _draw(self, arch, rng, which: str | None = None):
@@ -642,41 +650,47 @@ class StructureSpec:
         """
         import numpy as np
 
+        from .irregular import check_epsilon
+
         if self.epsilon is None:
             raise DescriptionError("a sample of irregular structures needs {epsilon}")
+        check_epsilon(self.epsilon)  # before the first member, not at its draw
         if isinstance(sample_size, bool) or not isinstance(sample_size, int) or sample_size < 1:
             raise ValueError(f"sample_size must be an integer >= 1, got {sample_size!r}")
         seed = DEFAULT_SEED if self.seed is None else self.seed
         children = np.random.SeedSequence(seed).spawn(sample_size)
-        bridge = (self.spans or 1) > 1 and self.rings is None
-        nominal = None if bridge else self.nominal()
-        return self._members(children, nominal, seed)
+        # the arch drawn around: the bridge's one arch, else the whole structure
+        around = self._arch() if self.bridge_of_arches else self.nominal()
+        return self._members(children, around, seed)
 
-    def _members(self, children, nominal, seed):
+    def _members(self, children, around, seed):
         import numpy as np
 
         for i, child in enumerate(children):
             rng = np.random.default_rng(child)
-            if nominal is not None:
-                yield self._draw(nominal, rng, f"member {i} of the sample of seed {seed}")
+            which = f"member {i} of the sample of seed {seed}"
+            if not self.bridge_of_arches:
+                yield self._draw(around, rng, which)
                 continue
-            try:
-                yield self._irregular_bridge(rng, f"member {i} of the sample of seed {seed}")
+            draws = self._span_draws(around, rng, which)
+            try:  # piers that cannot seat these springings: the member is not built
+                member = self._seated(draws, which)
             except DescriptionError as exc:
-                if "on these piers" not in exc.template:
-                    raise
-                yield exc
+                member = exc
+            yield member
 
-    def _irregular_bridge(self, rng, which: str):
-        """The bridge of ``spans`` irregular arches, drawn around the arch of the description one
-        after the other from the generator (or seed) ``rng`` (span 1 first), each a draw of the
-        paper's eq. (1) (:meth:`_draw`), on the shared piers
-        (:func:`~archquake.geometry.bridge.multi_span`); a refusal names it by ``which``."""
+    def _span_draws(self, arch, rng, which: str) -> list:
+        """``spans`` irregular arches around ``arch``, one after the other from the generator
+        (or seed) ``rng`` (span 1 first), each a draw of the paper's eq. (1) (:meth:`_draw`)."""
         import numpy as np
 
-        arch = self._arch()
         rng = np.random.default_rng(rng)
-        draws = [self._draw(arch, rng, which) for _ in range(self.spans)]
+        return [self._draw(arch, rng, which) for _ in range(self.spans)]
+
+    def _seated(self, draws: list, which: str):
+        """The bridge of the arches ``draws`` on the shared piers
+        (:func:`~archquake.geometry.bridge.multi_span`); a refusal names the draw by
+        ``which``."""
         try:
             return self._bridge(draws)
         except DescriptionError as exc:  # thicker end voussoirs need wider seats, ...

@@ -224,11 +224,9 @@ def _assembly_contacts(assembly) -> Contacts:
         centroid = np.asarray(assembly.centroid, dtype=float)
         vertical, vertical_x = weight, centroid[:, 0].copy()
         horizontal, horizontal_y = weight, centroid[:, 1].copy()
-        passive = None
     else:
         vertical, vertical_x = loads.vertical, loads.vertical_x
         horizontal, horizontal_y = loads.horizontal, loads.horizontal_y
-        passive = loads
     return Contacts(
         n_blocks=int(assembly.n_blocks), a=np.asarray(faces.a, dtype=np.int64),
         b=np.asarray(faces.b, dtype=np.int64), p0=np.asarray(faces.p0, dtype=float),
@@ -238,7 +236,7 @@ def _assembly_contacts(assembly) -> Contacts:
         vertical_x=np.asarray(vertical_x, dtype=float),
         horizontal=np.asarray(horizontal, dtype=float),
         horizontal_y=np.asarray(horizontal_y, dtype=float), outlines=tuple(assembly.polygons),
-        **_passive_of(passive))
+        **_passive_of(loads))
 
 
 def _passive_of(loads) -> dict:

@@ -464,7 +464,7 @@ def assess(structure=None, *, records=None, suite: str | None = None,
                              f"{type(site).__name__}")
         return _assess_assembly(structure, settings=settings, out_dir=out_dir,
                                progress=progress, resume=resume, command=command, site=site,
-                               description=_bridge_description(description))
+                               description=bridge_description(description))
     check_before_writing(structure, settings)
     out = Path(out_dir)
     timings: dict[str, float] = {}
@@ -570,9 +570,10 @@ def _record_figure(results: dict):
     return fig
 
 
-def _bridge_description(description):
+def bridge_description(description):
     """The description of a bridge of several spans of one arch, whose irregular bridges an
-    assessment draws; None for none (or for rings, a drawing: no centreline to perturb)."""
+    assessment draws (:func:`assess`'s ``description``); None for none, and for rings or a
+    geometry file (a surveyed arch has no centreline to perturb)."""
     from ...geometry.spec import StructureSpec
 
     if description is None:
@@ -580,8 +581,7 @@ def _bridge_description(description):
     if not isinstance(description, StructureSpec):
         raise ValueError(f"description must be a StructureSpec (archquake.geometry) or None, "
                          f"got {type(description).__name__}")
-    if (description.spans or 1) < 2 or description.rings is not None \
-            or description.geometry is not None:
+    if not description.bridge_of_arches or description.geometry is not None:
         return None
     return description
 
