@@ -146,3 +146,9 @@ class DescriptionError(ValueError):
         if unknown:
             raise cls(f"unknown {what} field(s) {cls.literal(unknown)}; known: "
                       f"{cls.literal(list(known))}")
+
+
+class UnseatedError(DescriptionError):
+    """Irregular arches drawn for the spans of a bridge whose piers cannot seat their
+    springings (thicker end voussoirs need wider seats): that draw cannot be built, though
+    the description is sound (a sample leaves the member out and says so)."""

@@ -311,6 +311,7 @@ def plot_fragility_curve(result, duration: float, ax=None):
     i = result.duration_index(duration)
     a = result.amplitudes_g
     settings = result.settings
+    noun = "bridge" if getattr(settings, "description", None) is not None else "arch"
     # excluded arches (k~ = nan) are not counted; those that never collapse (k~ = inf) are,
     # so the CDF then stays below 1
     k_values = result.limit_load_multipliers[~np.isnan(result.limit_load_multipliers)]
@@ -322,7 +323,7 @@ def plot_fragility_curve(result, duration: float, ax=None):
             color="tab:blue", linewidth=1.3,
             label=f"limit analysis: CDF of k~ (s = {k_values.size})")
     ax.axvline(result.nominal_load_multiplier, color="tab:blue", linewidth=1.2,
-               label=f"nominal arch, limit analysis k = {result.nominal_load_multiplier:.3f}")
+               label=f"nominal {noun}, limit analysis k = {result.nominal_load_multiplier:.3f}")
     ax.plot(fine, evaluate_polynomial_fit(result.polynomial_fits[i], fine), "--", color="black",
             linewidth=1.3, label="fifth-degree polynomial fit")
     lognormal = result.lognormal_fits[i]
@@ -340,7 +341,7 @@ def plot_fragility_curve(result, duration: float, ax=None):
     q = float(result.nominal_failure_acceleration_g[i])
     if np.isfinite(q):
         ax.axvline(q, color="black", linestyle="-.", linewidth=1.2,
-                   label=f"nominal arch, failure acceleration {q:.3f} g")
+                   label=f"nominal {noun}, failure acceleration {q:.3f} g")
     ax.set_xlim(x_low - 0.02, float(a[-1]) + 0.02)
     ax.set_ylim(-0.02, 1.04)
     ax.set_xlabel("pulse amplitude |$\\ddot{x}_g$| [g]; load multiplier k~ [-]")

@@ -30,7 +30,9 @@ DESCRIPTION = (
     f"failure acceleration and k. Default restitution: '{DEFAULT_RESTITUTION}', each arch's "
     "own c_v from its momentum balance; --restitution nominal applies the nominal arch's "
     "computed c_v to every irregular arch (the paper's practice). A drawn arch that is not an "
-    "arch or cannot stand is excluded, counted and named, and left out of h. Writes "
+    "arch or cannot stand is excluded, counted and named, and left out of h. With --spans "
+    "(the rigid blocks alone): irregular bridges, one irregular arch a span, those whose piers "
+    "cannot seat the draws excluded as 'not seated'. Writes "
     "results.parquet/.csv (one row per analysis), curves.csv, summary.json and limit_sample/ to "
     "--out; checkpoints allow --resume.")
 
@@ -65,8 +67,9 @@ def run(args: argparse.Namespace) -> int:
     """The pulse study of the options."""
     from ..studies.fragility import CURVES_CSV, LIMIT_DIRECTORY, FragilitySettings, run_fragility
 
+    structure = options.sampled_structure_from_args(args)
     settings = FragilitySettings(
-        nominal=options.nominal_arch_from_args(args), sample_size=args.samples,
+        **structure, sample_size=args.samples,
         epsilon=args.epsilon,
         durations=tuple(parse_values(args.durations, "--durations")),
         amplitudes_g=tuple(parse_values(args.amplitudes, "--amplitudes")),
@@ -107,21 +110,22 @@ def run(args: argparse.Namespace) -> int:
         print(warning)
     for line in (check or {}).get("lines", ()):
         print(f"warning: nominal arch: {line}")
-    print(f"Fragility study: h = {settings.sample_size} irregular arches (epsilon = "
+    kind = "bridges" if settings.description is not None else "arches"
+    print(f"Fragility study: h = {settings.sample_size} irregular {kind} (epsilon = "
           f"{settings.epsilon:g}, seed {settings.seed}), {len(settings.durations)} durations x "
           f"{len(settings.amplitudes_g)} amplitudes x 2 directions = {n_analyses} analyses; "
           f"{model}")
     if summary["search"]["caveat"]:
         print(f"warning: {summary['search']['caveat']}")
-    print(f"nominal arch: k = {result.nominal_load_multiplier:.4f}")
+    print(f"nominal {kind[:-1]}: k = {result.nominal_load_multiplier:.4f}")
     arches = summary["arches"]
     if arches["excluded"]:
         listed = "; ".join(f"{why}: {', '.join(map(str, items))}"
                            for why, items in arches["excluded"].items())
-        print(f"excluded: {arches['drawn'] - arches['analysed']} of {arches['drawn']} arches "
-              f"could not be analysed ({listed}; arch i is drawn from SeedSequence("
+        print(f"excluded: {arches['drawn'] - arches['analysed']} of {arches['drawn']} {kind} "
+              f"could not be analysed ({listed}; member i is drawn from SeedSequence("
               f"{settings.seed}, spawn_key=(i,))); P_F = h_f / h over the h = "
-              f"{arches['analysed']} arches analysed")
+              f"{arches['analysed']} {kind} analysed")
     print(f"{'t_p [s]':>8} {'Q nominal [g]':>14} {'P_F below Q':>12} {'lowest a_f [g]':>15} "
           f"{'lognormal median [g]':>21} {'beta':>6}")
 
@@ -156,13 +160,14 @@ def run(args: argparse.Namespace) -> int:
     others = [f"{k[key]} {what}" for key, what in (("excluded", "excluded"),
                                                      ("never_collapse", "never collapse"))
               if k[key]]
-    print(f"k~ = min(k~_l, k~_r) over s = {k['count']} arches ({k['method']}"
+    print(f"k~ = min(k~_l, k~_r) over s = {k['count']} {kind} ({k['method']}"
           + "".join(f"; {o}" for o in others) + f"): mean {number(k['mean'])}, std "
           f"{number(k['std'])}, min {number(k['min'])}, max {number(k['max'])}; fraction below "
           f"the nominal k (by more than {k['below_nominal_rtol']:g} relative): "
           f"{number(k['fraction_below_nominal'], 3)}")
-    print("P_F below Q: fraction of irregular arches that fail at the largest amplitude of "
-          "the grid below the nominal failure acceleration Q (where the nominal arch survives)")
+    print(f"P_F below Q: fraction of irregular {kind} that fail at the largest amplitude of "
+          f"the grid below the nominal failure acceleration Q (where the nominal {kind[:-1]} "
+          "survives)")
     _print_undecided(summary, undecided)
     print(f"written to {args.out}: results.parquet, results.csv, {CURVES_CSV}, summary.json, "
           f"{LIMIT_DIRECTORY}/")

@@ -299,9 +299,10 @@ def add_structure_options(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--pier-right", metavar="WIDTH,HEIGHT[,COURSES]",
                        help="the pier under the right springing only")
     group.add_argument("--spans", type=int, default=None, metavar="N",
-                       help="N equal arches in a row on N + 1 piers (a bridge, an arcade; limit "
-                            "only): the end piers those of --piers, --pier-left, --pier-right, "
-                            "the ones between the spans --pier-middle (default: 1)")
+                       help=f"N equal arches in a row on N + 1 piers (a bridge, an arcade; "
+                            f"{', '.join(SPANS_COMMANDS[:-1])} and {SPANS_COMMANDS[-1]}): the "
+                            "end piers those of --piers, --pier-left, --pier-right, the ones "
+                            "between the spans --pier-middle (default: 1)")
     group.add_argument("--pier-middle", metavar="WIDTH,HEIGHT[,COURSES]",
                        help="the piers between the spans: WIDTH [m] between the two intrados "
                             "springing points each carries, HEIGHT [m] from the ground up to "
@@ -352,12 +353,12 @@ def add_ring_options(parser: argparse.ArgumentParser) -> None:
 
 def refuse_rings(args: argparse.Namespace) -> None:
     """Refuse ``--rings`` (and its options) naming them: an arch of several rings is a block
-    assembly, which only the commands of :data:`SPANS_COMMANDS` analyse."""
+    assembly, which only the commands of :data:`RING_COMMANDS` analyse."""
     present = given(args, "rings", "ring_bond", "ring_friction") if hasattr(args, "rings") \
         else []
     if present:
         raise ValueError(f"{', '.join(present)}: an arch of several rings is a block assembly, "
-                         f"which {', '.join(SPANS_COMMANDS[:-1])} and {SPANS_COMMANDS[-1]} "
+                         f"which {', '.join(RING_COMMANDS[:-1])} and {RING_COMMANDS[-1]} "
                          "analyse; this command does not")
 
 
@@ -379,8 +380,11 @@ def shape_spec(args: argparse.Namespace):
         return StructureSpec(**{k: v for k, v in values.items() if v is not None})
 
 
-SPANS_COMMANDS = ("limit", "rigid-blocks", "domain", "assess")
+SPANS_COMMANDS = ("limit", "rigid-blocks", "domain", "fragility", "assess")
 """The commands that take several spans (``--spans`` of 2 or more)."""
+
+RING_COMMANDS = ("limit", "rigid-blocks", "domain", "assess")
+"""The commands that take an arch of several rings (``--rings``)."""
 
 
 def structure_spec(args: argparse.Namespace, *, draw: bool = True, spans: bool = False):
@@ -438,6 +442,22 @@ def nominal_arch_from_args(args: argparse.Namespace):
     refuse_rings(args)
     with naming_options():
         return structure_spec(args, draw=False).nominal()
+
+
+def sampled_structure_from_args(args: argparse.Namespace) -> dict:
+    """What a sample of irregular structures is drawn around: ``{"nominal": arch}``, or for a
+    bridge of several spans of one arch ``{"description": StructureSpec}`` (its members one
+    irregular arch a span, :class:`archquake.studies.arch_sample.BridgeSample`); ``--epsilon``
+    and ``--seed`` are the sample's."""
+    refuse_rings(args)
+    if (getattr(args, "spans", None) or 1) > 1:
+        spec = structure_spec(args, draw=False, spans=True)
+        if not spec.bridge_of_arches:  # a drawing of an assembly has no arch to draw around
+            raise ValueError("--spans with --geometry of an assembly: a sample of bridges draws "
+                             "one irregular arch a span around an arch")
+        spec.nominal()  # refused now, naming the options
+        return {"description": spec}
+    return {"nominal": nominal_arch_from_args(args)}
 
 
 def pier_from_option(option: str, text: str, *, blank_width: bool = False):

@@ -45,7 +45,7 @@ from ..defaults import (
     VOUSSOIR_FACES,
     circular_defaults,
 )
-from ..errors import DescriptionError
+from ..errors import DescriptionError, UnseatedError
 from ..ranges import number, number_field
 
 SHAPE_FIELDS = ("shape", "span", "rise", "radius", "embrace", "thickness", "voussoirs", "faces")
@@ -664,20 +664,54 @@ class StructureSpec:
         return self._members(children, around, seed)
 
     def _members(self, children, around, seed):
-        import numpy as np
-
         for i, child in enumerate(children):
-            rng = np.random.default_rng(child)
-            which = f"member {i} of the sample of seed {seed}"
-            if not self.bridge_of_arches:
-                yield self._draw(around, rng, which)
-                continue
-            draws = self._span_draws(around, rng, which)
-            try:  # piers that cannot seat these springings: the member is not built
-                member = self._seated(draws, which)
-            except DescriptionError as exc:
+            try:  # piers that cannot seat a bridge's springings: the member is not built
+                member = self._member(around, child, f"member {i} of the sample of seed {seed}")
+            except UnseatedError as exc:
                 member = exc
             yield member
+
+    def member(self, index: int):
+        """Member ``index`` of :meth:`sample` alone, drawn from ``SeedSequence(seed,
+        spawn_key=(index,))`` (child ``index`` of the seed, whatever the sample's size): what a
+        study that draws its members one chunk at a time builds.
+
+        Parameters
+        ----------
+        index : int
+            Member index, >= 0.
+
+        Returns
+        -------
+        BlockArch or BlockAssembly
+
+        Raises
+        ------
+        DescriptionError
+            As :meth:`sample` (without ``epsilon``), or for a draw that is not a valid arch;
+            :class:`~archquake.errors.UnseatedError` for a bridge whose piers cannot seat the
+            draw's springings (naming the member).
+        """
+        import numpy as np
+
+        from .irregular import check_epsilon
+
+        if self.epsilon is None:
+            raise DescriptionError("a sample of irregular structures needs {epsilon}")
+        check_epsilon(self.epsilon)
+        seed = DEFAULT_SEED if self.seed is None else self.seed
+        around = self._arch() if self.bridge_of_arches else self.nominal()
+        child = np.random.SeedSequence(seed, spawn_key=(int(index),))
+        return self._member(around, child, f"member {index} of the sample of seed {seed}")
+
+    def _member(self, around, child, which: str):
+        """The member of the generator seeded by ``child``, around the arch ``around``."""
+        import numpy as np
+
+        rng = np.random.default_rng(child)
+        if not self.bridge_of_arches:
+            return self._draw(around, rng, which)
+        return self._seated(self._span_draws(around, rng, which), which)
 
     def _span_draws(self, arch, rng, which: str) -> list:
         """``spans`` irregular arches around ``arch``, one after the other from the generator
@@ -694,9 +728,9 @@ class StructureSpec:
         try:
             return self._bridge(draws)
         except DescriptionError as exc:  # thicker end voussoirs need wider seats, ...
-            raise DescriptionError(f"the {self.spans} irregular arches drawn with {{epsilon}} "
-                                   f"{self.epsilon:g} ({which}), on these piers: "
-                                   f"{exc.template}") from None
+            raise UnseatedError(f"the {self.spans} irregular arches drawn with {{epsilon}} "
+                                f"{self.epsilon:g} ({which}), on these piers: "
+                                f"{exc.template}") from None
 
     def build(self):
         """The structure described (after the irregular draw, if any): :meth:`arches`\\ ``[1]``.

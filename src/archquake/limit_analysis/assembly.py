@@ -762,6 +762,20 @@ def governing_multiplier(structure, *, friction=None) -> float:
     return min(assembly_limit(c, d, law=law).load_multiplier for d in ("+x", "-x"))
 
 
+def assembly_multipliers(structure) -> tuple[float, float]:
+    """``(k_l, k_r)``: the collapse multipliers toward +x and -x by the static program with the
+    assembly's own friction (:func:`assembly_limit`, its default law) [-]; inf where there is
+    no mechanism. What :attr:`archquake.rigid_blocks.RigidBlockModel.load_multipliers` states
+    of an assembly.
+
+    Raises
+    ------
+    archquake.errors.CannotStandError
+        When the assembly cannot stand under its own weight.
+    """
+    return tuple(float(assembly_limit(structure, d).load_multiplier) for d in ("+x", "-x"))
+
+
 def assembly_stands(structure, *, friction=None) -> bool:
     """Whether some set of contact forces balances the assembly under its own weight (no
     tension, within the friction cones)."""

@@ -106,11 +106,9 @@ class RigidBlockModel:
                 raise ValueError("the load multipliers need an arch (a BlockArch), not an "
                                  "Assembly")
             if hasattr(self.structure, "interfaces"):  # a BlockAssembly: its own friction
-                from ..limit_analysis import assembly_limit
+                from ..limit_analysis import assembly_multipliers
 
-                cache["load_multipliers"] = tuple(
-                    float(assembly_limit(self.structure, d).load_multiplier)
-                    for d in ("+x", "-x"))
+                cache["load_multipliers"] = assembly_multipliers(self.structure)
             else:
                 cache["load_multipliers"] = tuple(float(k) for k in
                                                   load_multipliers(self.structure))

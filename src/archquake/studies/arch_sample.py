@@ -84,6 +84,9 @@ EXCLUSIONS = {
     "not analysable": "the arch stands but its collapse mechanism is not the four-link "
                       "mechanism of the dynamics (e.g. a joint that opens over its whole depth, "
                       "or no mechanism in one direction)",
+    "not seated": "the irregular arches drawn for the spans of a bridge have springings its "
+                  "piers cannot seat (thicker end voussoirs need wider seats): that bridge "
+                  "cannot be built",
 }
 """Why an arch of a sample is excluded (not analysed), by the name a study records in its
 column ``excluded`` ("" for an analysed arch), in the order summaries list them. Excluded
@@ -342,6 +345,159 @@ class ArchSample:
         return f"irregular arch {index} (SeedSequence({self.seed}, spawn_key=({index},)))"
 
 
+@dataclass(frozen=True, eq=False)
+class BridgeSample:
+    r"""Irregular bridges drawn around a bridge of several spans of one arch: member :math:`i`
+    puts one irregular arch [paper, eq. (1)] on every span, drawn one after the other from
+    ``SeedSequence(seed, spawn_key=(i,))``
+    (:meth:`archquake.geometry.StructureSpec.member`), so that member :math:`i` of a study is
+    member :math:`i` of ``archquake limit --spans N --epsilon E --seed S --samples n`` and of
+    an assessment's irregular bridges. The same interface as :class:`ArchSample`, for the
+    rigid-block model alone (a bridge has no four-link model).
+
+    Parameters
+    ----------
+    description : StructureSpec
+        The bridge, without ``epsilon`` and ``seed`` (the study's are used):
+        :attr:`~archquake.geometry.StructureSpec.bridge_of_arches`.
+    epsilon : float
+        :math:`\varepsilon` of eq. (1) [-], in [0, 1).
+    seed : int
+        Root seed, >= 0.
+
+    Raises
+    ------
+    ValueError
+        For a description that is not a bridge of several spans of one arch, that draws its
+        own irregular arch, or an epsilon or seed out of range.
+    """
+
+    description: Any
+    epsilon: float
+    seed: int
+
+    def __post_init__(self) -> None:
+        from ..geometry.spec import StructureSpec
+
+        d = self.description
+        if not isinstance(d, StructureSpec) or not d.bridge_of_arches:
+            raise ValueError("description must be a StructureSpec of several spans of one arch "
+                             f"(spans >= 2, no rings), got {d!r}")
+        if d.epsilon is not None or d.seed is not None:
+            raise ValueError("the description of a sampled bridge draws no irregular arch of "
+                             "its own (epsilon and seed are the sample's)")
+        object.__setattr__(self, "epsilon", check_epsilon(self.epsilon))
+        object.__setattr__(self, "seed", check_integer("seed", self.seed, minimum=0))
+
+    @functools.cached_property
+    def nominal(self):
+        """The bridge before the draw (:meth:`~archquake.geometry.StructureSpec.nominal`)."""
+        return self.description.nominal()
+
+    @functools.cached_property
+    def _drawing(self):
+        from dataclasses import replace
+
+        return replace(self.description, epsilon=self.epsilon, seed=self.seed)
+
+    def arch(self, index: int):
+        """Bridge ``index`` of the sample (a :class:`~archquake.geometry.BlockAssembly`).
+
+        Raises
+        ------
+        ValueError
+            If a span's draw is not an arch, or
+            (:class:`~archquake.errors.UnseatedError`) the piers cannot seat the draws.
+        """
+        if self.epsilon == 0.0:
+            return self.nominal
+        return self._drawing.member(int(index))
+
+    def draw(self, index: int):
+        """Bridge ``index`` and ``""``, or ``(None, reason)``: ``"not an arch"`` when a span's
+        draw is no arch, ``"not seated"`` when the piers cannot seat the draws."""
+        from ..errors import UnseatedError
+
+        try:
+            return self.arch(index), ""
+        except UnseatedError:
+            return None, "not seated"
+        except ValueError:
+            return None, "not an arch"
+
+    def member(self, index: int, model: ModelSpec | str | None = None) -> SampledArch:
+        """Bridge ``index`` with its rigid-block model, or why it is excluded (as
+        :meth:`ArchSample.member`; the standing check by the assembly's limit analysis)."""
+        spec = model_spec(model)
+        if spec.name != "rigid-blocks":
+            raise ValueError(f"a bridge of several spans has no {spec.name} model: use the "
+                             "rigid blocks")
+        bridge, why = self.draw(index)
+        if bridge is None:
+            return SampledArch(int(index), None, None, why)
+        k, why = _bridge_multipliers(bridge)
+        if why or all(math.isinf(x) for x in k):
+            return SampledArch(int(index), bridge, None, why)
+        return SampledArch(int(index), bridge, spec.build(bridge), "")
+
+    def load_multipliers(self, indices, method: str) -> tuple[np.ndarray, np.ndarray]:
+        """``(k, excluded)`` of the bridges ``indices``, as :meth:`ArchSample.load_multipliers`:
+        the assembly's limit analysis in both directions (``method`` is the study's, recorded;
+        an assembly has the one static program)."""
+        rows = []
+        for i in indices:
+            bridge, why = self.draw(i)
+            k = (math.nan, math.nan)
+            if bridge is not None:
+                k, why = _bridge_multipliers(bridge)
+            rows.append((k, why))
+        k = np.array([r[0] for r in rows], dtype=float).reshape(-1, 2)
+        return k, np.array([r[1] for r in rows], dtype="<U16")
+
+    def label(self, index: int) -> str:
+        """``"irregular bridge i (SeedSequence(seed, spawn_key=(i,)))"``."""
+        return f"irregular bridge {index} (SeedSequence({self.seed}, spawn_key=({index},)))"
+
+
+def sample_of(data: dict, seed: int) -> ArchSample | BridgeSample:
+    """The sample a study's settings draw (``nominal`` or a bridge's ``description``, and
+    ``epsilon``), with the root seed ``seed``.
+
+    Parameters
+    ----------
+    data : dict
+        ``{"nominal": arch dict, "epsilon": e}`` or ``{"description": StructureSpec dict,
+        "epsilon": e}`` (:meth:`archquake.studies.fragility.FragilitySettings.to_sample_dict`).
+    seed : int
+        Root seed, >= 0.
+
+    Returns
+    -------
+    ArchSample or BridgeSample
+    """
+    if data.get("description") is not None:
+        from ..geometry.spec import StructureSpec
+
+        return BridgeSample(StructureSpec.from_dict(data["description"]), data["epsilon"], seed)
+    return ArchSample(arch_from_dict(data["nominal"]), data["epsilon"], seed)
+
+
+def _bridge_multipliers(bridge) -> tuple[tuple[float, float], str]:
+    """``((k_l, k_r), "")`` of a bridge by its limit analysis (what its rigid-block model
+    states, :attr:`archquake.rigid_blocks.RigidBlockModel.load_multipliers`), or ``((nan, nan),
+    "cannot stand")``."""
+    from ..errors import CannotStandError
+    from ..limit_analysis import assembly_multipliers
+
+    try:
+        k = assembly_multipliers(bridge)
+    except CannotStandError:
+        return (math.nan, math.nan), "cannot stand"
+    if any(math.isnan(x) or x < 0.0 for x in k):
+        return (math.nan, math.nan), "cannot stand"
+    return k, ""
+
+
 def analysable_model(arch: BlockArch, model: ModelSpec | str | None = None, *,
                      nominal=None) -> tuple[Any, str]:
     """The model of an arch, or why the arch cannot be analysed (:data:`EXCLUSIONS`).
@@ -561,13 +717,16 @@ def check_analysed(drawn: int, excluded: dict[int, str], epsilon: float) -> None
         return
     counts = ", ".join(f"{why}: {len(items)}" for why, items in
                        exclusion_summary(drawn, excluded)["excluded"].items())
+    piers = (" (or wider piers, for the draws they cannot seat)"
+             if "not seated" in excluded.values() else "")
     raise ValueError(f"every one of the {drawn} irregular arches was excluded ({counts}): no "
                      f"probability of failure can be estimated; use a smaller epsilon (epsilon "
-                     f"= {epsilon:g}) or a thicker nominal arch")
+                     f"= {epsilon:g}) or a thicker nominal arch{piers}")
 
 
 __all__ = [
-    "EXCLUSIONS", "NEVER_COLLAPSES", "STATUS_EXCLUDED", "ArchSample", "SampledArch",
+    "EXCLUSIONS", "NEVER_COLLAPSES", "STATUS_EXCLUDED", "ArchSample", "BridgeSample",
+    "SampledArch",
     "analysable_model", "check_analysed", "check_nominal", "exclusion_summary",
-    "excluded_arches", "nominal_json", "nominal_model", "study_error",
+    "excluded_arches", "nominal_json", "nominal_model", "sample_of", "study_error",
 ]

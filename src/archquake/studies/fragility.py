@@ -109,11 +109,13 @@ from ..reference_arches import oppenheim
 from .arch_sample import (
     STATUS_EXCLUDED,
     ArchSample,
+    BridgeSample,
     check_analysed,
     check_nominal,
     excluded_arches,
     exclusion_summary,
     nominal_model,
+    sample_of,
     study_error,
 )
 from .failure_domain import (
@@ -197,6 +199,14 @@ class FragilitySettings:
     stride : int, optional
         Grid steps between the coarse points of ``bisection`` and ``screened`` [-] (default
         :data:`archquake.defaults.DEFAULT_STRIDE`).
+    description : StructureSpec, optional
+        A bridge of several spans of one arch
+        (:attr:`~archquake.geometry.StructureSpec.bridge_of_arches`, without ``epsilon`` and
+        ``seed``), instead of ``nominal``: its members put one irregular arch on every span
+        (:class:`~archquake.studies.arch_sample.BridgeSample`), analysed by the rigid blocks
+        (the only model of a bridge), whose search has no four-link screen; the nominal
+        structure is the bridge the description builds, and ``limit_method`` is ``"static"``
+        (the assembly's program, :func:`~archquake.limit_analysis.assembly_multipliers`).
 
     Raises
     ------
@@ -217,18 +227,27 @@ class FragilitySettings:
     model: ModelSpec | str = DEFAULT_MODEL
     search: str | None = None
     stride: int | None = None
+    description: Any = None
 
     def __post_init__(self) -> None:
         from ..ground_motion import ANALYTIC_GROUND_MOTIONS
         from .strategies import check_search, check_stride
 
+        if self.description is not None:  # a bridge: its sample checks the description
+            bridges = BridgeSample(self.description, self.epsilon, self.seed)
+            if model_spec(self.model).name != "rigid-blocks":
+                raise ValueError("a bridge of several spans has no four-link model: a study of "
+                                 "one takes the rigid blocks (model 'rigid-blocks')")
+            object.__setattr__(self, "nominal", bridges.nominal)
+            # an assembly has one program of the limit analysis, the static one
+            object.__setattr__(self, "limit_method", "static")
         # resolved for the nominal structure (its time step), then recorded
         object.__setattr__(self, "model", model_spec(self.model).resolved(self.nominal))
         object.__setattr__(self, "search", check_search(
             self.model.default_search if self.search is None else self.search))
         object.__setattr__(self, "stride", check_stride(
             DEFAULT_STRIDE if self.stride is None else self.stride))
-        sample = ArchSample(self.nominal, self.epsilon, self.seed)  # nominal, epsilon, seed
+        sample = self.sample  # checks nominal, epsilon, seed
         check_integer("sample_size", self.sample_size, maximum=MAX_SAMPLES)
         check_integer("limit_sample_size", self.limit_sample_size, maximum=MAX_LIMIT_SAMPLES)
         d = np.atleast_1d(np.asarray(self.durations, dtype=float))
@@ -283,11 +302,19 @@ class FragilitySettings:
         self.model.check_motion(self.nominal, ground_motion(self.motion, GRAVITY, shortest))
 
     @property
-    def sample(self) -> ArchSample:
+    def sample(self) -> ArchSample | BridgeSample:
         """The irregular arches of the study: :class:`~archquake.studies.arch_sample.ArchSample`
         ``(nominal, epsilon, seed)``, arches ``0 .. sample_size - 1`` (and ``0 ..
-        limit_sample_size - 1`` for the limit analysis)."""
-        return ArchSample(self.nominal, self.epsilon, self.seed)
+        limit_sample_size - 1`` for the limit analysis); for a bridge,
+        :class:`~archquake.studies.arch_sample.BridgeSample` ``(description, epsilon, seed)``."""
+        return sample_of(self.to_sample_dict(), self.seed)
+
+    def to_sample_dict(self) -> dict:
+        """What draws the study's sample (:func:`sample_of`): the nominal arch (or the
+        bridge's description) and epsilon."""
+        if self.description is not None:
+            return {"description": self.description.to_dict(), "epsilon": self.epsilon}
+        return {"nominal": self.nominal.to_dict(), "epsilon": self.epsilon}
 
     def to_dict(self) -> dict:
         """The settings as JSON-ready data, as stored with the results.
@@ -295,11 +322,14 @@ class FragilitySettings:
         Returns
         -------
         dict
-            Every field, the nominal arch as :meth:`archquake.geometry.CircularArch.to_dict`.
+            Every field, the nominal arch as :meth:`archquake.geometry.CircularArch.to_dict`
+            (for a bridge, its ``description`` as
+            :meth:`archquake.geometry.StructureSpec.to_dict` instead).
         """
         model = self.model.to_dict()  # its keys stored flat, as before the spec
         return {
-            "nominal": self.nominal.to_dict(),
+            **({"nominal": self.nominal.to_dict()} if self.description is None else
+               {"description": self.description.to_dict()}),  # a bridge: it builds the nominal
             "sample_size": self.sample_size,
             "epsilon": self.epsilon,
             "durations": list(self.durations),
@@ -328,14 +358,20 @@ class FragilitySettings:
         -------
         FragilitySettings
         """
-        return cls(nominal=arch_from_dict(data["nominal"]), sample_size=data["sample_size"],
+        from ..geometry.spec import StructureSpec
+
+        description = data.get("description")
+        if description is not None:  # a bridge: the nominal structure is the description's
+            description = StructureSpec.from_dict(description)
+        nominal = oppenheim() if description is not None else arch_from_dict(data["nominal"])
+        return cls(nominal=nominal, sample_size=data["sample_size"],
                    epsilon=data.get("epsilon", data.get("tolerance")),
                    durations=tuple(data["durations"]),
                    amplitudes_g=tuple(data["amplitudes_g"]), seed=data["seed"],
                    limit_sample_size=data["limit_sample_size"],
                    limit_method=data["limit_method"], motion=data["motion"],
                    model=ModelSpec.from_dict(data), search=data.get("search"),
-                   stride=data.get("stride", DEFAULT_STRIDE))
+                   stride=data.get("stride", DEFAULT_STRIDE), description=description)
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, FragilitySettings):
@@ -482,7 +518,8 @@ def fragility_task(chunk) -> dict[str, np.ndarray]:
             if member.model is not None:
                 screen = None
                 screening = settings.model.screening()  # default restitution
-                if settings.search == "screened" and screening is not None:
+                if (settings.search == "screened" and screening is not None
+                        and settings.description is None):  # a bridge has no four-link model
                     screen = sample.member(item, screening).model  # where the arch has one
                 columns = model_outcomes(member.model, *grid, motion=settings.motion,
                                          search=settings.search, stride=settings.stride,
@@ -519,8 +556,7 @@ def limit_task(chunk) -> dict[str, np.ndarray]:
     dict of ndarray
         Columns ``arch`` (item index), ``k_l``, ``k_r`` [-] and ``excluded``.
     """
-    sample = ArchSample(arch_from_dict(chunk.settings["nominal"]), chunk.settings["epsilon"],
-                        chunk.seed)
+    sample = sample_of(chunk.settings, chunk.seed)
     k, why = sample.load_multipliers(chunk.items, chunk.settings["limit_method"])
     return {"arch": chunk.items, "k_l": k[:, 0], "k_r": k[:, 1], "excluded": why}
 
@@ -1117,8 +1153,7 @@ def run_fragility(
         chunk_size = settings.model.chunk_size
     plan = StudyPlan(settings.to_dict(), settings.seed, settings.sample_size,
                      check_integer("chunk_size", chunk_size))
-    limit_settings = {"nominal": settings.nominal.to_dict(),
-                      "epsilon": settings.epsilon, "limit_method": settings.limit_method}
+    limit_settings = {**settings.to_sample_dict(), "limit_method": settings.limit_method}
     limit_plan = StudyPlan(limit_settings, settings.seed, settings.limit_sample_size,
                            check_integer("limit_chunk_size", limit_chunk_size))
     asked = workers

@@ -93,7 +93,8 @@ LEFT_OUT = (
     "thousands of rigid-block analyses; run one with archquake rigid-blocks and the same "
     "structure options (--amplitude/--duration for a pulse, --record FILE for a record); the "
     "limit analysis of irregular bridges is drawn where the structure is a description of "
-    "several spans of one arch (not rings or a drawing)",
+    "several spans of one arch (not rings or a drawing), and their fragility under pulses is "
+    "archquake fragility --model rigid-blocks with the same structure options",
     "at a site, the nonlinear route of the code check (its capacity curve needs a four-link "
     "chain)",
 )
