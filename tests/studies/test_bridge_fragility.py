@@ -120,3 +120,19 @@ def test_the_command(tmp_path, capsys):
     assert "no four-link model" in capsys.readouterr().err
     assert main(["fragility", "--rings", "2", "--out", str(tmp_path / "c")]) == 2
     assert "limit, rigid-blocks, domain and assess analyse" in capsys.readouterr().err
+
+
+def test_a_bridge_under_fill(tmp_path):
+    # the fill rides on its blocks in both models: the nominal k is the filled bridge's limit
+    # analysis, and every member rests below its own k
+    description = StructureSpec(spans=2, piers="3.2,6", fill_cover=0.5)
+    settings = FragilitySettings(description=description, sample_size=1, durations=(0.4,),
+                                 amplitudes_g=(0.05, 0.1), limit_sample_size=1,
+                                 model="rigid-blocks")
+    result = run_fragility(settings, tmp_path, progress=False)
+    nominal = description.nominal()
+    k = min(assembly_limit(nominal, d).load_multiplier for d in ("+x", "-x"))
+    assert result.nominal_load_multiplier == pytest.approx(k, rel=1e-12)
+    rows = result.table
+    assert (rows["status"] == 0).all() and (rows["amplitude_g"] < rows[["k_l", "k_r"]].min(
+        axis=1)).all()

@@ -550,28 +550,35 @@ def analysable_model(arch: BlockArch, model: ModelSpec | str | None = None, *,
         return None, "not analysable"
 
 
-def nominal_json(nominal: BlockArch) -> str:
+def nominal_json(nominal: BlockArch | BridgeSample) -> str:
     """The nominal arch as canonical JSON text (sorted keys): what identifies it in a study.
 
     Parameters
     ----------
-    nominal : BlockArch
-        The arch.
+    nominal : BlockArch or BridgeSample
+        The arch, or the sample of a bridge (identified by its description).
 
     Returns
     -------
     str
         ``json.dumps(nominal.to_dict(), sort_keys=True)``.
     """
+    if isinstance(nominal, BridgeSample):  # a bridge's nominal structure: its description's
+        return json_dumps({"description": nominal.description.to_dict()}, sort_keys=True)
     return json_dumps(nominal.to_dict(), sort_keys=True)
 
 
 @functools.lru_cache(maxsize=8)
 def _model_of(nominal: str, model: ModelSpec):
-    return model.build(arch_from_dict(json.loads(nominal)))
+    data = json.loads(nominal)
+    if "description" in data:  # a bridge: built from its description
+        from ..geometry.spec import StructureSpec
+
+        return model.build(StructureSpec.from_dict(data["description"]).nominal())
+    return model.build(arch_from_dict(data))
 
 
-def nominal_model(nominal: BlockArch, model: ModelSpec | str | None = None):
+def nominal_model(nominal: BlockArch | BridgeSample, model: ModelSpec | str | None = None):
     """The model of the nominal arch, built once per process and (arch, model spec).
 
     Every chunk of a study needs it (its mechanisms for ``restitution="nominal"``, the record
@@ -580,8 +587,9 @@ def nominal_model(nominal: BlockArch, model: ModelSpec | str | None = None):
 
     Parameters
     ----------
-    nominal : BlockArch
-        The nominal arch (identified by :func:`nominal_json`).
+    nominal : BlockArch or BridgeSample
+        The nominal arch (identified by :func:`nominal_json`), or the sample of a bridge (its
+        nominal bridge).
     model : ModelSpec or str, optional
         The model and its settings (:func:`archquake.models.model_spec`; default the four-link
         model, restitution ``"computed"``).
@@ -598,14 +606,14 @@ def nominal_model(nominal: BlockArch, model: ModelSpec | str | None = None):
     return _model_of(nominal_json(nominal), model_spec(model))
 
 
-def check_nominal(nominal: BlockArch, model: ModelSpec | str | None = None):
+def check_nominal(nominal: BlockArch | BridgeSample, model: ModelSpec | str | None = None):
     """Refuse, before any study, a nominal arch that cannot be analysed (e.g. it cannot stand
     under its own weight): every result of a study is compared with it.
 
     Parameters
     ----------
-    nominal : BlockArch
-        The nominal arch.
+    nominal : BlockArch or BridgeSample
+        The nominal arch, or the sample of a bridge.
     model : ModelSpec or str, optional
         The model and its settings (:func:`archquake.models.model_spec`).
 

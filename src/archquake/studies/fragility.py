@@ -309,6 +309,13 @@ class FragilitySettings:
         :class:`~archquake.studies.arch_sample.BridgeSample` ``(description, epsilon, seed)``."""
         return sample_of(self.to_sample_dict(), self.seed)
 
+    @property
+    def nominal_structure(self) -> BlockArch | BridgeSample:
+        """What identifies the nominal structure to
+        :func:`~archquake.studies.arch_sample.nominal_model`: the nominal arch, or a bridge's
+        sample (its description)."""
+        return self.nominal if self.description is None else self.sample
+
     def to_sample_dict(self) -> dict:
         """What draws the study's sample (:func:`sample_of`): the nominal arch (or the
         bridge's description) and epsilon."""
@@ -1048,7 +1055,7 @@ def _nominal_domains(settings: FragilitySettings, resolution_g: float | None) ->
     :attr:`archquake.models.ModelSpec.nominal_resolution_g` of the model)."""
     if resolution_g is None:
         resolution_g = settings.model.nominal_resolution_g
-    model = nominal_model(settings.nominal, settings.model)
+    model = nominal_model(settings.nominal_structure, settings.model)
     return tuple(domain_of(model, settings.durations, settings.amplitudes_g,
                            direction=direction, resolution_g=resolution_g,
                            motion=settings.motion, extend_to_g=None, search=settings.search,
@@ -1148,7 +1155,7 @@ def run_fragility(
 
     if not isinstance(settings, FragilitySettings):
         raise ValueError(f"settings must be FragilitySettings, got {type(settings).__name__}")
-    check_nominal(settings.nominal, settings.model)
+    check_nominal(settings.nominal_structure, settings.model)
     if chunk_size is None:
         chunk_size = settings.model.chunk_size
     plan = StudyPlan(settings.to_dict(), settings.seed, settings.sample_size,
