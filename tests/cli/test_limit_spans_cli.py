@@ -86,7 +86,7 @@ def test_other_commands_refuse_several_spans_by_name(command, capsys):
     assert main([*command, "--spans", "2"]) == 2
     err = capsys.readouterr().err
     assert ("--spans 2 builds several arches on shared piers: limit, rigid-blocks, domain, "
-            "fragility and assess analyse them") in err
+            "fragility, record-fragility and assess analyse them") in err
 
 
 def test_the_rigid_blocks_take_several_spans(capsys):

@@ -17,7 +17,8 @@ DESCRIPTION = (
     "in either polarity. P(collapse | IM) per stripe, lognormal fits by maximum likelihood "
     "(irregular arches pooled; the nominal arch alone, the record-to-record dispersion; a common "
     "dispersion over records, the geometric one) with 90% bootstrap bands over arches and "
-    "records. --epsilon 0 --samples 1 is the nominal arch alone. Writes results.parquet/.csv "
+    "records. --epsilon 0 --samples 1 is the nominal arch alone. With --spans (the rigid "
+    "blocks alone): irregular bridges, one irregular arch a span. Writes results.parquet/.csv "
     "(one row per arch, record, level and polarity), curves.csv, incremental.csv and "
     "summary.json to --out.")
 
@@ -75,7 +76,7 @@ def run(args: argparse.Namespace) -> int:
     settings = RecordFragilitySettings(
         suite=suite,
         levels=tuple(parse_values(args.levels, "--levels")), im=im.name,
-        nominal=options.nominal_arch_from_args(args), sample_size=args.samples,
+        **options.sampled_structure_from_args(args), sample_size=args.samples,
         epsilon=args.epsilon, seed=args.seed, model=options.model_spec_from_args(args),
         search=args.search, stride=args.stride)
     result = run_record_fragility(settings, args.out, workers=args.workers,
@@ -127,8 +128,9 @@ def _print(result, summary: dict) -> None:
         print(f"warning: {caveat}")
     if warning:
         print(warning)
-    print(f"Record-based fragility: h = {s.sample_size} irregular arches (epsilon = "
-          f"{s.epsilon:g}, seed {s.seed}) and the nominal arch, {len(result.records)} records "
+    kind, kinds = ("bridge", "bridges") if s.description is not None else ("arch", "arches")
+    print(f"Record-based fragility: h = {s.sample_size} irregular {kinds} (epsilon = "
+          f"{s.epsilon:g}, seed {s.seed}) and the nominal {kind}, {len(result.records)} records "
           f"x {result.levels.size} levels of {s.im} [{unit}] x 2 polarities = "
           f"{analyses['total']} analyses ({analyses['at_rest_without_integration']} at rest "
           f"without integration); {s.model.settings_text()}")
@@ -148,8 +150,8 @@ def _print(result, summary: dict) -> None:
               f"{bounded(row.nominal_probability, row.nominal_probability_upper, 10)} "
               f"{fit:>10} {band:>15}")
     print(f"undecided: {undecided['analyses']} of {undecided['of']} analyses of the irregular "
-          f"arches, {undecided['nominal_analyses']} of {undecided['nominal_of']} of the "
-          f"nominal arch")
+          f"{kinds}, {undecided['nominal_analyses']} of {undecided['nominal_of']} of the "
+          f"nominal {kind}")
     if undecided["analyses"] or undecided["nominal_analyses"]:
         print("a-b: P with the pairs whose failure is undecided counted as survivals (a, the "
               "lower bound; the fits and bands too) and as collapses (b, the upper bound)")
@@ -167,8 +169,8 @@ def _print(result, summary: dict) -> None:
         return text
 
     total, nominal = summary["lognormal"], summary["nominal"]["lognormal"]
-    print(f"irregular arches, all pairs: {describe(total, total['band'])}")
-    print(f"nominal arch: {describe(nominal, nominal['band'])}")
+    print(f"irregular {kinds}, all pairs: {describe(total, total['band'])}")
+    print(f"nominal {kind}: {describe(nominal, nominal['band'])}")
     v = summary["variability"]
 
     def fmt(x):

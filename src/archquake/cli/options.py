@@ -380,7 +380,7 @@ def shape_spec(args: argparse.Namespace):
         return StructureSpec(**{k: v for k, v in values.items() if v is not None})
 
 
-SPANS_COMMANDS = ("limit", "rigid-blocks", "domain", "fragility", "assess")
+SPANS_COMMANDS = ("limit", "rigid-blocks", "domain", "fragility", "record-fragility", "assess")
 """The commands that take several spans (``--spans`` of 2 or more)."""
 
 RING_COMMANDS = ("limit", "rigid-blocks", "domain", "assess")

@@ -139,6 +139,7 @@ from ..status import Status
 from .arch_sample import (
     STATUS_EXCLUDED,
     ArchSample,
+    BridgeSample,
     check_analysed,
     check_nominal,
     excluded_arches,
@@ -222,6 +223,11 @@ class RecordFragilitySettings:
     stride : int, optional
         Levels between the coarse points of ``bisection`` and ``screened`` [-] (default
         :data:`archquake.defaults.DEFAULT_LEVEL_STRIDE`).
+    description : StructureSpec, optional
+        A bridge of several spans of one arch, instead of ``nominal``, as in
+        :class:`~archquake.studies.fragility.FragilitySettings`: its members put one irregular
+        arch on every span (:class:`~archquake.studies.arch_sample.BridgeSample`), analysed by
+        the rigid blocks alone, without a four-link screen.
 
     Raises
     ------
@@ -241,10 +247,17 @@ class RecordFragilitySettings:
     model: ModelSpec | str = DEFAULT_MODEL
     search: str | None = None
     stride: int | None = None
+    description: Any = None
 
     def __post_init__(self) -> None:
         from .strategies import check_search, check_stride
 
+        if self.description is not None:  # a bridge: its sample checks the description
+            bridges = BridgeSample(self.description, self.epsilon, self.seed)
+            if model_spec(self.model).name != "rigid-blocks":
+                raise ValueError("a bridge of several spans has no four-link model: a study of "
+                                 "one takes the rigid blocks (model 'rigid-blocks')")
+            object.__setattr__(self, "nominal", bridges.nominal)
         # resolved for the nominal structure (its time step), then recorded
         object.__setattr__(self, "model", model_spec(self.model).resolved(self.nominal))
         object.__setattr__(self, "search", check_search(
@@ -270,7 +283,7 @@ class RecordFragilitySettings:
         check_integer("bootstrap", self.bootstrap, minimum=10)
         if not (isinstance(self.confidence, int | float) and 0.0 < self.confidence < 1.0):
             raise ValueError(f"confidence must be in (0, 1), got {self.confidence!r}")
-        sample = ArchSample(self.nominal, self.epsilon, self.seed)  # nominal, epsilon, seed
+        sample = self.sample  # checks nominal, epsilon, seed
         check_integer("sample_size", self.sample_size, maximum=MAX_SAMPLES)
         object.__setattr__(self, "im", im.name)
         object.__setattr__(self, "levels", tuple(float(v) for v in x))
@@ -286,10 +299,20 @@ class RecordFragilitySettings:
         return stripe_measure(self.im).unit
 
     @property
-    def sample(self) -> ArchSample:
+    def sample(self) -> ArchSample | BridgeSample:
         """The irregular arches of the study: :class:`~archquake.studies.arch_sample.ArchSample`
-        ``(nominal, epsilon, seed)``, arches ``0 .. sample_size - 1``."""
+        ``(nominal, epsilon, seed)``, arches ``0 .. sample_size - 1``; for a bridge,
+        :class:`~archquake.studies.arch_sample.BridgeSample` ``(description, epsilon, seed)``."""
+        if self.description is not None:
+            return BridgeSample(self.description, self.epsilon, self.seed)
         return ArchSample(self.nominal, self.epsilon, self.seed)
+
+    @property
+    def nominal_structure(self) -> BlockArch | BridgeSample:
+        """What identifies the nominal structure to
+        :func:`~archquake.studies.arch_sample.nominal_model`: the nominal arch, or a bridge's
+        sample (its description)."""
+        return self.nominal if self.description is None else self.sample
 
     def to_dict(self) -> dict:
         """The settings as JSON-ready data, as stored with the results.
@@ -306,7 +329,8 @@ class RecordFragilitySettings:
             "im": self.im,
             "im_unit": self.unit,
             "levels": list(self.levels),
-            "nominal": self.nominal.to_dict(),
+            **({"nominal": self.nominal.to_dict()} if self.description is None else
+               {"description": self.description.to_dict()}),  # a bridge: it builds the nominal
             "sample_size": self.sample_size,
             "epsilon": self.epsilon,
             "seed": self.seed,
@@ -332,14 +356,20 @@ class RecordFragilitySettings:
         -------
         RecordFragilitySettings
         """
+        from ..geometry.spec import StructureSpec
+
+        description = data.get("description")
+        if description is not None:  # a bridge: the nominal structure is the description's
+            description = StructureSpec.from_dict(description)
+        nominal = oppenheim() if description is not None else arch_from_dict(data["nominal"])
         return cls(suite=RecordSuite.from_dict(data["suite"]), levels=tuple(data["levels"]),
-                   im=data["im"], nominal=arch_from_dict(data["nominal"]),
+                   im=data["im"], nominal=nominal,
                    sample_size=data["sample_size"],
                    epsilon=data.get("epsilon", data.get("tolerance")),
                    seed=data["seed"], bootstrap=data["bootstrap"],
                    confidence=data["confidence"], model=ModelSpec.from_dict(data),
                    search=data.get("search"),
-                   stride=data.get("stride", DEFAULT_LEVEL_STRIDE))
+                   stride=data.get("stride", DEFAULT_LEVEL_STRIDE), description=description)
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, RecordFragilitySettings):
@@ -409,11 +439,12 @@ def record_fragility_task(chunk) -> dict[str, np.ndarray]:
         try:
             screen = None
             # the four-link model of the study's restitution screens a model that needs one
-            screening = settings.model.screening(settings.model.restitution)
+            screening = (settings.model.screening(settings.model.restitution)
+                         if settings.description is None else None)  # a bridge has none
             if arch_id == NOMINAL_ARCH:
                 excluded = ""
                 if screening is None:
-                    model = nominal_model(settings.nominal, settings.model)
+                    model = nominal_model(settings.nominal_structure, settings.model)
                     k = model.load_multipliers
                 else:
                     screen = nominal_model(settings.nominal, screening)
@@ -1099,7 +1130,7 @@ def run_record_fragility(
     # read every record and its IM here, so that a bad file or a level that would scale a
     # record beyond any acceleration analysed stops the study before it starts
     settings.suite.scale_factors(settings.im, settings.levels)
-    check_nominal(settings.nominal, settings.model)
+    check_nominal(settings.nominal_structure, settings.model)
     for motion in settings.suite.motions(cached=True):  # a step that cannot follow a record
         settings.model.check_motion(settings.nominal, motion)  # refused before any analysis
     out = None if out_dir is None else Path(out_dir)
