@@ -136,3 +136,29 @@ def test_a_bridge_under_fill(tmp_path):
     rows = result.table
     assert (rows["status"] == 0).all() and (rows["amplitude_g"] < rows[["k_l", "k_r"]].min(
         axis=1)).all()
+
+
+def test_a_study_of_bridges_is_estimated_by_its_blocks():
+    # a step of the rigid blocks costs time linear in the blocks: the study of 20 bridges of
+    # three spans (81 s in one process) is given the workers asked for, not run here as an
+    # arch's study of its size would be
+    from archquake.studies.fragility import _serial_seconds
+    from archquake.studies.strategies import workers_that_pay
+
+    grid = dict(sample_size=20, durations=(0.5,), limit_sample_size=200,
+                amplitudes_g=tuple(np.round(np.arange(0.10, 0.401, 0.01), 2)))
+    bridges = FragilitySettings(description=StructureSpec(spans=3, piers="3.2,6"),
+                                model="rigid-blocks", **grid)
+    arches = FragilitySettings(model="rigid-blocks", **grid)
+    assert workers_that_pay(_serial_seconds(arches), 2) is None  # about 4 s: here
+    assert workers_that_pay(_serial_seconds(bridges), 2) == 2
+    assert _serial_seconds(bridges) > 20.0
+
+
+def test_the_text_names_arches_for_a_study_of_arches(tmp_path, capsys):
+    assert main(["fragility", "--samples", "2", "--durations", "0.4", "--amplitudes", "0.2,0.3",
+                 "--limit-samples", "2", "--no-progress", "--no-model-check", "--out",
+                 str(tmp_path)]) == 0
+    text = capsys.readouterr().out
+    assert "h = 2 irregular arches" in text and "nominal arch: k = " in text
+    assert "over s = 2 arches" in text and "of the nominal arch's failure domains" in text

@@ -110,14 +110,15 @@ def run(args: argparse.Namespace) -> int:
         print(warning)
     for line in (check or {}).get("lines", ()):
         print(f"warning: nominal arch: {line}")
-    kind = "bridges" if settings.description is not None else "arches"
+    one, kind = ("bridge", "bridges") if settings.description is not None else ("arch",
+                                                                                "arches")
     print(f"Fragility study: h = {settings.sample_size} irregular {kind} (epsilon = "
           f"{settings.epsilon:g}, seed {settings.seed}), {len(settings.durations)} durations x "
           f"{len(settings.amplitudes_g)} amplitudes x 2 directions = {n_analyses} analyses; "
           f"{model}")
     if summary["search"]["caveat"]:
         print(f"warning: {summary['search']['caveat']}")
-    print(f"nominal {kind[:-1]}: k = {result.nominal_load_multiplier:.4f}")
+    print(f"nominal {one}: k = {result.nominal_load_multiplier:.4f}")
     arches = summary["arches"]
     if arches["excluded"]:
         listed = "; ".join(f"{why}: {', '.join(map(str, items))}"
@@ -166,9 +167,9 @@ def run(args: argparse.Namespace) -> int:
           f"the nominal k (by more than {k['below_nominal_rtol']:g} relative): "
           f"{number(k['fraction_below_nominal'], 3)}")
     print(f"P_F below Q: fraction of irregular {kind} that fail at the largest amplitude of "
-          f"the grid below the nominal failure acceleration Q (where the nominal {kind[:-1]} "
+          f"the grid below the nominal failure acceleration Q (where the nominal {one} "
           "survives)")
-    _print_undecided(summary, undecided)
+    _print_undecided(summary, undecided, (one, kind))
     print(f"written to {args.out}: results.parquet, results.csv, {CURVES_CSV}, summary.json, "
           f"{LIMIT_DIRECTORY}/")
     for path in written:
@@ -176,11 +177,13 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _print_undecided(summary: dict, undecided: dict) -> None:
+def _print_undecided(summary: dict, undecided: dict, kind=("arch", "arches")) -> None:
     """The count of undecided analyses and, where there are any, the bounds of P_F they leave
-    (:mod:`archquake.studies.undecided`)."""
+    (:mod:`archquake.studies.undecided`); ``kind`` names a member, one and several
+    (``("bridge", "bridges")`` for a study of bridges)."""
     print(f"undecided: {undecided['analyses']} of {undecided['of']} analyses of the irregular "
-          f"arches, {undecided['nominal_analyses']} of the nominal arch's failure domains")
+          f"{kind[1]}, {undecided['nominal_analyses']} of the nominal {kind[0]}'s failure "
+          "domains")
     gaps = [(row["duration"], row["undecided"], row["probability_upper_largest_gap"])
             for row in summary["durations"] if row["undecided"]]
     if gaps:

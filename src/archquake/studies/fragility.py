@@ -1033,6 +1033,10 @@ LIMIT_ANALYSIS_SECONDS = 1e-3
 """Time of the kinematic limit analysis of one arch of the limit sample [s] (measured: 1,000
 arches in about a second)."""
 
+BRIDGE_LIMIT_SECONDS = 0.06
+"""Time of the limit analysis of one irregular bridge of the limit sample [s] (measured: 200
+bridges of three spans in 12 s, each built and its overlaps checked)."""
+
 FORK_PAYS_SECONDS = 0.2
 """Estimated time of a limit sample [s] from which a study run in this process gives it to a
 forked worker (:func:`archquake.execution.forked_pool`), when more than one worker was asked
@@ -1045,8 +1049,10 @@ def _serial_seconds(settings: FragilitySettings) -> float:
     sample."""
     grid = 2 * len(settings.durations) * len(settings.amplitudes_g)
     arches = settings.sample_size + 1
-    return (study_seconds(settings.model.name, "pulse", arches, arches * grid)
-            + settings.limit_sample_size * LIMIT_ANALYSIS_SECONDS)
+    blocks = None if settings.description is None else settings.nominal.n_blocks
+    limit = LIMIT_ANALYSIS_SECONDS if blocks is None else BRIDGE_LIMIT_SECONDS
+    return (study_seconds(settings.model.name, "pulse", arches, arches * grid, blocks)
+            + settings.limit_sample_size * limit)
 
 
 def _nominal_domains(settings: FragilitySettings, resolution_g: float | None) -> tuple:

@@ -1140,7 +1140,9 @@ def run_record_fragility(
                      check_integer("chunk_size", chunk_size))
     arches = settings.sample_size + 1  # and the nominal arch
     analyses = arches * len(settings.suite) * len(settings.levels) * 2
-    workers = workers_that_pay(study_seconds(settings.model.name, "record", arches, analyses),
+    blocks = None if settings.description is None else settings.nominal.n_blocks
+    workers = workers_that_pay(study_seconds(settings.model.name, "record", arches, analyses,
+                                             blocks),
                                workers, backend=backend, scheduler=scheduler, pool=pool)
     table = run_study(record_fragility_task, plan, out, backend=backend, workers=workers,
                       scheduler=scheduler, pool=pool, resume=resume, progress=progress,

@@ -367,14 +367,22 @@ grid under pulses 15 µs a point; a rigid-block analysis under Oppenheim's pulse
 average over the paper's grid (0.3 ms at rest, 6 ms for a recovery); under 20-s records,
 about 5 ms (four-link) and 80 ms (rigid blocks)."""
 
+ARCH_BLOCKS = 7
+"""Blocks of the arch on which :data:`ANALYSIS_SECONDS` were measured (Oppenheim's
+voussoirs) [-]."""
+
 ARCH_SECONDS = 0.06
 """Time to draw one arch of a study and build its model [s] (the four-link model's tables and
 limit analysis dominate, about 60 ms)."""
 
 
-def study_seconds(model: str, excitation: str, arches: int, analyses: int) -> float:
+def study_seconds(model: str, excitation: str, arches: int, analyses: int,
+                  blocks: int | None = None) -> float:
     """Estimated serial time of a study's analyses [s]: ``arches`` x :data:`ARCH_SECONDS` +
-    ``analyses`` x :data:`ANALYSIS_SECONDS` of the model under the excitation.
+    ``analyses`` x :data:`ANALYSIS_SECONDS` of the model under the excitation, the latter
+    scaled by ``blocks`` / :data:`ARCH_BLOCKS` for a structure of more blocks than the arch
+    they were measured on (a step of the rigid blocks costs time linear in the blocks: at
+    least that much; a bridge of three spans, 25 blocks, takes about 15 times an arch's).
 
     Parameters
     ----------
@@ -386,6 +394,8 @@ def study_seconds(model: str, excitation: str, arches: int, analyses: int) -> fl
         Arches drawn and modelled [-].
     analyses : int
         Grid points of all arches [-].
+    blocks : int, optional
+        Blocks of the structure, when more than an arch's (a bridge) [-].
 
     Returns
     -------
@@ -398,7 +408,8 @@ def study_seconds(model: str, excitation: str, arches: int, analyses: int) -> fl
     >>> round(study_seconds("four-link", "pulse", 40, 40 * 488), 2)  # 2.4 + 0.29
     2.69
     """
-    return arches * ARCH_SECONDS + analyses * ANALYSIS_SECONDS[(model, excitation)]
+    scale = 1.0 if blocks is None else max(1.0, blocks / ARCH_BLOCKS)
+    return arches * ARCH_SECONDS + analyses * ANALYSIS_SECONDS[(model, excitation)] * scale
 
 
 def pool_pays(seconds: float, workers: int) -> bool:
@@ -472,7 +483,8 @@ def _keys(out: dict) -> np.ndarray:
     return status * 1000 + np.where(status == 2, half, 0)
 
 
-__all__ = ["ANALYSIS_SECONDS", "ARCH_SECONDS", "DEFAULT_STRIDE", "POOL_START_SECONDS",
+__all__ = ["ANALYSIS_SECONDS", "ARCH_BLOCKS", "ARCH_SECONDS", "DEFAULT_STRIDE",
+           "POOL_START_SECONDS",
            "SEARCHES", "change_hints", "check_search", "check_stride",
            "coarse_indices", "excitation_end", "pool_pays", "pulse_grid_outcomes",
            "search_caveat", "search_grid", "smooth_outcomes", "study_seconds",
