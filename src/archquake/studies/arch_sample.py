@@ -459,6 +459,58 @@ class BridgeSample:
         return f"irregular bridge {index} (SeedSequence({self.seed}, spawn_key=({index},)))"
 
 
+class StudySample:
+    """What the settings of a study of irregular structures share to draw their sample: mixed
+    into a frozen dataclass with the fields ``nominal`` (an arch), ``description`` (a bridge's
+    :class:`~archquake.geometry.StructureSpec`, or None), ``epsilon``, ``seed`` and ``model``
+    (:class:`~archquake.studies.fragility.FragilitySettings`,
+    :class:`~archquake.studies.record_fragility.RecordFragilitySettings`)."""
+
+    def _take_description(self) -> None:
+        """With a bridge's description: check it and the model (the rigid blocks alone), and
+        make its bridge the nominal structure."""
+        if self.description is None:
+            return
+        bridges = BridgeSample(self.description, self.epsilon, self.seed)
+        if model_spec(self.model).name != "rigid-blocks":
+            raise ValueError("a bridge of several spans has no four-link model: a study of one "
+                             "takes the rigid blocks (model 'rigid-blocks')")
+        object.__setattr__(self, "nominal", bridges.nominal)
+
+    @property
+    def sample(self) -> ArchSample | BridgeSample:
+        """The irregular structures of the study: :class:`ArchSample` ``(nominal, epsilon,
+        seed)``, or for a bridge :class:`BridgeSample` ``(description, epsilon, seed)``; member
+        ``i`` drawn from ``SeedSequence(seed, spawn_key=(i,))``."""
+        if self.description is not None:
+            return BridgeSample(self.description, self.epsilon, self.seed)
+        return ArchSample(self.nominal, self.epsilon, self.seed)
+
+    @property
+    def nominal_structure(self) -> BlockArch | BridgeSample:
+        """What identifies the nominal structure to :func:`nominal_model`: the nominal arch, or
+        a bridge's sample (its description)."""
+        return self.nominal if self.description is None else self.sample
+
+    def structure_dict(self) -> dict:
+        """``{"nominal": arch dict}``, or for a bridge ``{"description": its fields}`` (which
+        builds the nominal bridge), as the settings store them."""
+        if self.description is not None:
+            return {"description": self.description.to_dict()}
+        return {"nominal": self.nominal.to_dict()}
+
+    @staticmethod
+    def structure_of(data: dict) -> dict:
+        """Inverse of :meth:`structure_dict`: the fields ``nominal`` and ``description``."""
+        from ..geometry.spec import StructureSpec
+        from ..reference_arches import oppenheim
+
+        if data.get("description") is not None:  # a bridge: its nominal is the description's
+            return {"nominal": oppenheim(),
+                    "description": StructureSpec.from_dict(data["description"])}
+        return {"nominal": arch_from_dict(data["nominal"]), "description": None}
+
+
 def sample_of(data: dict, seed: int) -> ArchSample | BridgeSample:
     """The sample a study's settings draw (``nominal`` or a bridge's ``description``, and
     ``epsilon``), with the root seed ``seed``.
@@ -734,7 +786,7 @@ def check_analysed(drawn: int, excluded: dict[int, str], epsilon: float) -> None
 
 __all__ = [
     "EXCLUSIONS", "NEVER_COLLAPSES", "STATUS_EXCLUDED", "ArchSample", "BridgeSample",
-    "SampledArch",
+    "SampledArch", "StudySample",
     "analysable_model", "check_analysed", "check_nominal", "exclusion_summary",
     "excluded_arches", "nominal_json", "nominal_model", "sample_of", "study_error",
 ]

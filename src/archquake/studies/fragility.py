@@ -103,13 +103,12 @@ from ..defaults import (
     STUDY_DURATIONS,
     STUDY_SAMPLE_SIZE,
 )
-from ..geometry import GRAVITY, BlockArch, arch_from_dict
+from ..geometry import GRAVITY, BlockArch
 from ..models import DEFAULT_MODEL, ModelSpec, model_spec
 from ..reference_arches import oppenheim
 from .arch_sample import (
     STATUS_EXCLUDED,
-    ArchSample,
-    BridgeSample,
+    StudySample,
     check_analysed,
     check_nominal,
     excluded_arches,
@@ -153,7 +152,7 @@ POLYNOMIAL_DEGREE = 5
 
 
 @dataclass(frozen=True, eq=False)
-class FragilitySettings:
+class FragilitySettings(StudySample):
     """Settings of a fragility study [paper, Sect. 5.3.3].
 
     Parameters
@@ -233,13 +232,8 @@ class FragilitySettings:
         from ..ground_motion import ANALYTIC_GROUND_MOTIONS
         from .strategies import check_search, check_stride
 
-        if self.description is not None:  # a bridge: its sample checks the description
-            bridges = BridgeSample(self.description, self.epsilon, self.seed)
-            if model_spec(self.model).name != "rigid-blocks":
-                raise ValueError("a bridge of several spans has no four-link model: a study of "
-                                 "one takes the rigid blocks (model 'rigid-blocks')")
-            object.__setattr__(self, "nominal", bridges.nominal)
-            # an assembly has one program of the limit analysis, the static one
+        self._take_description()
+        if self.description is not None:  # an assembly has one limit analysis, the static one
             object.__setattr__(self, "limit_method", "static")
         # resolved for the nominal structure (its time step), then recorded
         object.__setattr__(self, "model", model_spec(self.model).resolved(self.nominal))
@@ -301,27 +295,10 @@ class FragilitySettings:
 
         self.model.check_motion(self.nominal, ground_motion(self.motion, GRAVITY, shortest))
 
-    @property
-    def sample(self) -> ArchSample | BridgeSample:
-        """The irregular arches of the study: :class:`~archquake.studies.arch_sample.ArchSample`
-        ``(nominal, epsilon, seed)``, arches ``0 .. sample_size - 1`` (and ``0 ..
-        limit_sample_size - 1`` for the limit analysis); for a bridge,
-        :class:`~archquake.studies.arch_sample.BridgeSample` ``(description, epsilon, seed)``."""
-        return sample_of(self.to_sample_dict(), self.seed)
-
-    @property
-    def nominal_structure(self) -> BlockArch | BridgeSample:
-        """What identifies the nominal structure to
-        :func:`~archquake.studies.arch_sample.nominal_model`: the nominal arch, or a bridge's
-        sample (its description)."""
-        return self.nominal if self.description is None else self.sample
-
     def to_sample_dict(self) -> dict:
         """What draws the study's sample (:func:`sample_of`): the nominal arch (or the
         bridge's description) and epsilon."""
-        if self.description is not None:
-            return {"description": self.description.to_dict(), "epsilon": self.epsilon}
-        return {"nominal": self.nominal.to_dict(), "epsilon": self.epsilon}
+        return {**self.structure_dict(), "epsilon": self.epsilon}
 
     def to_dict(self) -> dict:
         """The settings as JSON-ready data, as stored with the results.
@@ -335,8 +312,7 @@ class FragilitySettings:
         """
         model = self.model.to_dict()  # its keys stored flat, as before the spec
         return {
-            **({"nominal": self.nominal.to_dict()} if self.description is None else
-               {"description": self.description.to_dict()}),  # a bridge: it builds the nominal
+            **self.structure_dict(),
             "sample_size": self.sample_size,
             "epsilon": self.epsilon,
             "durations": list(self.durations),
@@ -365,20 +341,14 @@ class FragilitySettings:
         -------
         FragilitySettings
         """
-        from ..geometry.spec import StructureSpec
-
-        description = data.get("description")
-        if description is not None:  # a bridge: the nominal structure is the description's
-            description = StructureSpec.from_dict(description)
-        nominal = oppenheim() if description is not None else arch_from_dict(data["nominal"])
-        return cls(nominal=nominal, sample_size=data["sample_size"],
+        return cls(**cls.structure_of(data), sample_size=data["sample_size"],
                    epsilon=data.get("epsilon", data.get("tolerance")),
                    durations=tuple(data["durations"]),
                    amplitudes_g=tuple(data["amplitudes_g"]), seed=data["seed"],
                    limit_sample_size=data["limit_sample_size"],
                    limit_method=data["limit_method"], motion=data["motion"],
                    model=ModelSpec.from_dict(data), search=data.get("search"),
-                   stride=data.get("stride", DEFAULT_STRIDE), description=description)
+                   stride=data.get("stride", DEFAULT_STRIDE))
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, FragilitySettings):

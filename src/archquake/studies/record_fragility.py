@@ -131,15 +131,14 @@ from ..defaults import (
     RECORD_STUDY_SEARCH,
     STUDY_SAMPLE_SIZE,
 )
-from ..geometry import BlockArch, arch_from_dict
+from ..geometry import BlockArch
 from ..ground_motion.suites import RecordSuite, stripe_measure
 from ..models import DEFAULT_MODEL, ModelSpec, model_spec
 from ..reference_arches import oppenheim
 from ..status import Status
 from .arch_sample import (
     STATUS_EXCLUDED,
-    ArchSample,
-    BridgeSample,
+    StudySample,
     check_analysed,
     check_nominal,
     excluded_arches,
@@ -182,7 +181,7 @@ INCREMENTAL_CSV = "incremental.csv"
 
 
 @dataclass(frozen=True, eq=False)
-class RecordFragilitySettings:
+class RecordFragilitySettings(StudySample):
     """Settings of a multiple-stripe study (module docstring).
 
     Parameters
@@ -252,12 +251,7 @@ class RecordFragilitySettings:
     def __post_init__(self) -> None:
         from .strategies import check_search, check_stride
 
-        if self.description is not None:  # a bridge: its sample checks the description
-            bridges = BridgeSample(self.description, self.epsilon, self.seed)
-            if model_spec(self.model).name != "rigid-blocks":
-                raise ValueError("a bridge of several spans has no four-link model: a study of "
-                                 "one takes the rigid blocks (model 'rigid-blocks')")
-            object.__setattr__(self, "nominal", bridges.nominal)
+        self._take_description()
         # resolved for the nominal structure (its time step), then recorded
         object.__setattr__(self, "model", model_spec(self.model).resolved(self.nominal))
         object.__setattr__(self, "search", check_search(
@@ -298,22 +292,6 @@ class RecordFragilitySettings:
         """Unit of the IM and of the levels."""
         return stripe_measure(self.im).unit
 
-    @property
-    def sample(self) -> ArchSample | BridgeSample:
-        """The irregular arches of the study: :class:`~archquake.studies.arch_sample.ArchSample`
-        ``(nominal, epsilon, seed)``, arches ``0 .. sample_size - 1``; for a bridge,
-        :class:`~archquake.studies.arch_sample.BridgeSample` ``(description, epsilon, seed)``."""
-        if self.description is not None:
-            return BridgeSample(self.description, self.epsilon, self.seed)
-        return ArchSample(self.nominal, self.epsilon, self.seed)
-
-    @property
-    def nominal_structure(self) -> BlockArch | BridgeSample:
-        """What identifies the nominal structure to
-        :func:`~archquake.studies.arch_sample.nominal_model`: the nominal arch, or a bridge's
-        sample (its description)."""
-        return self.nominal if self.description is None else self.sample
-
     def to_dict(self) -> dict:
         """The settings as JSON-ready data, as stored with the results.
 
@@ -329,8 +307,7 @@ class RecordFragilitySettings:
             "im": self.im,
             "im_unit": self.unit,
             "levels": list(self.levels),
-            **({"nominal": self.nominal.to_dict()} if self.description is None else
-               {"description": self.description.to_dict()}),  # a bridge: it builds the nominal
+            **self.structure_dict(),
             "sample_size": self.sample_size,
             "epsilon": self.epsilon,
             "seed": self.seed,
@@ -356,20 +333,14 @@ class RecordFragilitySettings:
         -------
         RecordFragilitySettings
         """
-        from ..geometry.spec import StructureSpec
-
-        description = data.get("description")
-        if description is not None:  # a bridge: the nominal structure is the description's
-            description = StructureSpec.from_dict(description)
-        nominal = oppenheim() if description is not None else arch_from_dict(data["nominal"])
         return cls(suite=RecordSuite.from_dict(data["suite"]), levels=tuple(data["levels"]),
-                   im=data["im"], nominal=nominal,
+                   im=data["im"], **cls.structure_of(data),
                    sample_size=data["sample_size"],
                    epsilon=data.get("epsilon", data.get("tolerance")),
                    seed=data["seed"], bootstrap=data["bootstrap"],
                    confidence=data["confidence"], model=ModelSpec.from_dict(data),
                    search=data.get("search"),
-                   stride=data.get("stride", DEFAULT_LEVEL_STRIDE), description=description)
+                   stride=data.get("stride", DEFAULT_LEVEL_STRIDE))
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, RecordFragilitySettings):
