@@ -162,3 +162,11 @@ def test_the_text_names_arches_for_a_study_of_arches(tmp_path, capsys):
     text = capsys.readouterr().out
     assert "h = 2 irregular arches" in text and "nominal arch: k = " in text
     assert "over s = 2 arches" in text and "of the nominal arch's failure domains" in text
+
+
+def test_a_bridge_its_piers_cannot_carry_is_refused_naming_the_option(tmp_path, capsys):
+    assert main(["fragility", "--model", "rigid-blocks", *BRIDGE, "--pier-middle", "1,6",
+                 "--out", str(tmp_path)]) == 2
+    assert "--pier-middle: intermediate pier width must be at least 2.94236 m" in \
+        capsys.readouterr().err
+    assert not any(tmp_path.iterdir())  # refused before the study starts

@@ -455,7 +455,8 @@ def sampled_structure_from_args(args: argparse.Namespace) -> dict:
         if not spec.bridge_of_arches:  # a drawing of an assembly has no arch to draw around
             raise ValueError("--spans with --geometry of an assembly: a sample of bridges draws "
                              "one irregular arch a span around an arch")
-        spec.nominal()  # refused now, naming the options
+        with naming_options():
+            spec.nominal()  # refused now, naming the options
         return {"description": spec}
     return {"nominal": nominal_arch_from_args(args)}
 
