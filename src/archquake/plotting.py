@@ -28,6 +28,14 @@ FILL_COLOUR = "#e8d9b5"
 """Colour of the fill over an arch."""
 
 
+def _members(settings) -> tuple[str, str]:
+    """How a figure names one member of a study's sample and several: ``("arch", "arches")``,
+    or ``("bridge", "bridges")`` for a study of bridges (settings with a ``description``)."""
+    if getattr(settings, "description", None) is not None:
+        return "bridge", "bridges"
+    return "arch", "arches"
+
+
 def plot_arch(arch: BlockArch, ax=None, *, label: str | None = None, fill: bool = True,
               **style):
     """Outline of every block of ``arch`` [m], in its own frame; its fill and the ground under
@@ -311,7 +319,7 @@ def plot_fragility_curve(result, duration: float, ax=None):
     i = result.duration_index(duration)
     a = result.amplitudes_g
     settings = result.settings
-    noun = "bridge" if getattr(settings, "description", None) is not None else "arch"
+    noun, _ = _members(settings)
     # excluded arches (k~ = nan) are not counted; those that never collapse (k~ = inf) are,
     # so the CDF then stays below 1
     k_values = result.limit_load_multipliers[~np.isnan(result.limit_load_multipliers)]
@@ -391,7 +399,8 @@ def plot_fragility_surface(result, ax=None):
         if qd.size >= 2:
             ax.plot_surface(wall_a, wall_d, wall_p, color="0.5", alpha=0.35, linewidth=0)
         ax.plot(qd, dd, np.ones(qd.size), color="red", linewidth=1.8,
-                label="nominal arch (eq. 10): P$_F$ steps 0 -> 1 at its failure acceleration")
+                label=f"nominal {_members(result.settings)[0]} (eq. 10): P$_F$ steps 0 -> 1 at "
+                      "its failure acceleration")
         ax.plot(qd, dd, np.zeros(qd.size), color="red", linewidth=1.0, linestyle="--")
         for x, y in zip(qd, dd, strict=True):
             ax.plot([x, x], [y, y], [0.0, 1.0], color="red", linewidth=0.8)
@@ -625,8 +634,9 @@ def plot_record_fragility(result, ax=None, *, nominal: bool = True):
         ax.plot(fine, fit(fine), "-", color="black", linewidth=1.4,
                 label=f"lognormal fit: median {fit.median:.3g} {unit}, "
                       f"$\\beta$ = {fit.dispersion:.3f}")
+    one, many = _members(settings)
     ax.plot(x, result.probability, "o", color="black", markersize=4,
-            label=f"irregular arches: {result.analysed} arches x {len(result.records)} "
+            label=f"irregular {many}: {result.analysed} {many} x {len(result.records)} "
                   f"records")
     if nominal:
         if result.nominal_band is not None:
@@ -636,10 +646,10 @@ def plot_record_fragility(result, ax=None, *, nominal: bool = True):
         if result.nominal_lognormal is not None:
             fit = result.nominal_lognormal
             ax.plot(fine, fit(fine), "--", color="tab:blue", linewidth=1.3,
-                    label=f"nominal arch fit: median {fit.median:.3g} {unit}, "
+                    label=f"nominal {one} fit: median {fit.median:.3g} {unit}, "
                           f"$\\beta$ = {fit.dispersion:.3f}")
         ax.plot(x, result.nominal_probability, "s", color="tab:blue", markersize=3.5,
-                markerfacecolor="none", label="nominal arch: fraction of records")
+                markerfacecolor="none", label=f"nominal {one}: fraction of records")
     ax.set_xlim(0.0, float(x[-1]) * 1.03)
     ax.set_ylim(-0.02, 1.04)
     ax.set_xlabel(f"{settings.im} [{unit}]")
@@ -669,15 +679,16 @@ def plot_incremental(result, ax=None, *, arch: int | None = None):
 
     if ax is None:
         _, ax = plt.subplots(figsize=(7.5, 5.6), constrained_layout=True)
+    one, many = _members(result.settings)
     if arch is None:
         failed = result.failed.reshape(-1, result.levels.size)
-        what = f"{result.analysed} arches x {len(result.records)} records"
+        what = f"{result.analysed} {many} x {len(result.records)} records"
     elif arch == -1:
         failed = result.nominal_failed
-        what = f"nominal arch, {len(result.records)} records"
+        what = f"nominal {one}, {len(result.records)} records"
     else:
         failed = result.arch_failed(arch)
-        what = f"arch {arch}, {len(result.records)} records"
+        what = f"{one} {arch}, {len(result.records)} records"
     n_levels = result.levels.size
     first = np.where(failed.any(axis=1), np.argmax(failed, axis=1), n_levels)
     order = np.lexsort((-failed.sum(axis=1), first))
@@ -691,7 +702,7 @@ def plot_incremental(result, ax=None, *, arch: int | None = None):
     cmap = ListedColormap(["white", "tab:orange", "black"])
     ax.pcolormesh(edges, np.arange(code.shape[0] + 1), code, cmap=cmap, vmin=-0.5, vmax=2.5)
     ax.set_xlabel(f"{result.settings.im} [{result.settings.unit}]")
-    ax.set_ylabel("arch-record pair (sorted by lowest collapsing level)")
+    ax.set_ylabel(f"{one}-record pair (sorted by lowest collapsing level)")
     recovering = int(np.sum((code == 1).any(axis=1)))
     ax.set_title(f"Incremental view, {what}: {recovering} of {code.shape[0]} pairs survive "
                  "above a collapse", fontsize=9)
