@@ -170,3 +170,17 @@ def test_a_bridge_its_piers_cannot_carry_is_refused_naming_the_option(tmp_path, 
     assert "--pier-middle: intermediate pier width must be at least 2.94236 m" in \
         capsys.readouterr().err
     assert not any(tmp_path.iterdir())  # refused before the study starts
+
+
+def test_the_figures_name_the_bridge(study):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from archquake.plotting import plot_fragility_curve, plot_fragility_surface
+
+    result, _ = study
+    labels = plot_fragility_curve(result, 0.4).get_legend_handles_labels()[1]
+    assert any(label.startswith("nominal bridge, limit analysis k = ") for label in labels)
+    assert not any("arch" in label for label in labels)
+    labels = plot_fragility_surface(result).get_legend_handles_labels()[1]
+    assert all("nominal bridge" in label for label in labels)
