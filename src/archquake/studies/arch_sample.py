@@ -44,6 +44,16 @@ The limit-analysis sample of the pulse study (:meth:`ArchSample.load_multipliers
 same rule to what its analysis needs: an arch that is not an arch or cannot stand is excluded
 (:math:`\tilde k` = nan), one that never collapses has :math:`\tilde k = \infty`.
 
+Bridges
+-------
+A bridge of several spans of one arch (a :class:`~archquake.geometry.StructureSpec` with
+``spans``) is sampled by :class:`BridgeSample`: member :math:`i` puts one irregular arch on every
+span, drawn one after the other from the same child :math:`i` of the seed
+(:meth:`~archquake.geometry.StructureSpec.member`), and is analysed by the rigid blocks alone. A
+member whose piers cannot seat its draws is excluded as ``"not seated"``; its standing and its
+:math:`\tilde k` come from the assembly's limit analysis. The settings of both studies draw
+either sample through :class:`StudySample`.
+
 The nominal arch
 ----------------
 A study stores its nominal arch as data (:meth:`archquake.geometry.CircularArch.to_dict`; its
@@ -527,11 +537,10 @@ def sample_of(data: dict, seed: int) -> ArchSample | BridgeSample:
     -------
     ArchSample or BridgeSample
     """
-    if data.get("description") is not None:
-        from ..geometry.spec import StructureSpec
-
-        return BridgeSample(StructureSpec.from_dict(data["description"]), data["epsilon"], seed)
-    return ArchSample(arch_from_dict(data["nominal"]), data["epsilon"], seed)
+    structure = StudySample.structure_of(data)
+    if structure["description"] is not None:
+        return BridgeSample(structure["description"], data["epsilon"], seed)
+    return ArchSample(structure["nominal"], data["epsilon"], seed)
 
 
 def _bridge_multipliers(bridge) -> tuple[tuple[float, float], str]:
