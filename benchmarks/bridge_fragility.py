@@ -15,7 +15,8 @@ Measured as the command (``archquake fragility``, 20 bridges, 2 shared cores): 8
 process, 53 s on two workers, the same table. The estimate is a lower bound, 27 s for the 20
 bridges (their serial cost is about 80 s), but above what a pool of fresh workers costs; an
 arch's estimate of the same grid, 5.4 s, ran the bridges in one process.
-BENCHMARK_FIGURES
+This script, ``--samples 8``: one process 49.1 s, 2 workers 27.2 s, ratio 0.55, tables equal
+(estimate 18.5 s, an arch study's 2.4 s).
 """
 
 from __future__ import annotations
