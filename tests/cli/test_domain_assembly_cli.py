@@ -59,6 +59,20 @@ def test_the_text_names_the_rigid_blocks_and_the_undecided_count(capsys):
 
 @pytest.mark.parametrize("argv", [BRIDGE, ["--rings", "2"]])
 def test_the_four_link_model_of_an_assembly_is_refused_by_name(argv, capsys):
-    assert main(["domain", *argv]) == 2
+    assert main(["domain", "--model", "four-link", *argv]) == 2
     err = capsys.readouterr().err
-    assert "has no four-link model: give --model rigid-blocks" in err
+    assert "has no four-link model: leave --model out or give --model rigid-blocks" in err
+
+
+def test_an_assembly_takes_the_rigid_blocks_by_default_and_says_so(capsys):
+    argv = [*BRIDGE, "--durations", "0.4", "--amplitudes", "0.1:0.3:0.1", "--no-progress",
+            "--json"]
+    assert main(["domain", *argv]) == 0
+    captured = capsys.readouterr()
+    assert "note: a block assembly" in captured.err and "the rigid-block model analyses it" \
+        in captured.err
+    (row,) = json.loads(captured.out)
+    assert row["model"] == "rigid-blocks"
+    assert main(["domain", "--model", "rigid-blocks", *argv]) == 0  # given: nothing to say
+    captured = capsys.readouterr()
+    assert "note:" not in captured.err and json.loads(captured.out) == [row]

@@ -76,7 +76,7 @@ def test_a_stack_drawn_in_mm_rocks_at_its_closed_form(tmp_path, capsys, units_co
 def test_commands_without_assemblies_refuse_one_by_name(tmp_path, capsys):
     path = tmp_path / "wall.dxf"
     write_dxf(wall(2, 2, 0.4, 0.2), path)
-    assert main(["domain", "--geometry", str(path)]) == 2
+    assert main(["domain", "--model", "four-link", "--geometry", str(path)]) == 2
     assert "block assembly" in capsys.readouterr().err
     assert main(["limit", "--geometry", str(path), "--method", "kinematic"]) == 2
     assert "static" in capsys.readouterr().err

@@ -116,9 +116,13 @@ def test_the_command(tmp_path, capsys):
     text = capsys.readouterr().out
     assert "h = 2 irregular bridges (epsilon = 0.1, seed 3)" in text
     assert "nominal bridge: k = " in text
-    assert main(["fragility", *argv, str(tmp_path / "b")]) == 2  # the default: four-link
-    assert "no four-link model" in capsys.readouterr().err
-    assert main(["fragility", "--rings", "2", "--out", str(tmp_path / "c")]) == 2
+    assert main(["fragility", "--model", "four-link", *argv, str(tmp_path / "b")]) == 2
+    assert "no four-link model: leave --model out" in capsys.readouterr().err
+    assert main(["fragility", *argv, str(tmp_path / "c")]) == 0  # without --model: the blocks
+    captured = capsys.readouterr()
+    assert "the rigid-block model analyses it" in captured.err
+    assert "h = 2 irregular bridges" in captured.out
+    assert main(["fragility", "--rings", "2", "--out", str(tmp_path / "d")]) == 2
     assert "limit, rigid-blocks, domain and assess analyse" in capsys.readouterr().err
 
 

@@ -58,5 +58,5 @@ def test_settings_read_back_and_the_command(tmp_path, capsys):
     assert main([*argv[:1], "--model", "rigid-blocks", *argv[1:], str(tmp_path / "a")]) == 0
     text = capsys.readouterr().out
     assert "h = 1 irregular bridges (epsilon = 0.1, seed 1) and the nominal bridge" in text
-    assert main([*argv, str(tmp_path / "b")]) == 2  # the default model: four-link
-    assert "no four-link model" in capsys.readouterr().err
+    assert main([*argv[:1], "--model", "four-link", *argv[1:], str(tmp_path / "b")]) == 2
+    assert "no four-link model: leave --model out" in capsys.readouterr().err

@@ -176,13 +176,10 @@ def run(args: argparse.Namespace) -> int:
 
 def _model(args: argparse.Namespace):
     """The model of the options' structure: a block assembly (several spans, rings, a drawing
-    of one) only with the rigid blocks, which the four-link model does not describe."""
-    spec = options.model_spec_from_args(args)
+    of one) only with the rigid blocks, which the four-link model does not describe (they are
+    its default, said on stderr)."""
     nominal, structure = options.arches_from_args(args, assembly=True, spans=True)
-    if hasattr(structure, "interfaces") and spec.name != "rigid-blocks":
-        raise ValueError("a block assembly (several spans, rings, a drawing of one) is not one "
-                         "chain of voussoirs between two springings, so it has no four-link "
-                         "model: give --model rigid-blocks")
+    spec = options.structure_model_spec(args, hasattr(structure, "interfaces"))
     with options.analysing(args):
         return spec.build(structure, nominal)
 

@@ -74,7 +74,8 @@ def run(args: argparse.Namespace) -> int:
         durations=tuple(parse_values(args.durations, "--durations")),
         amplitudes_g=tuple(parse_values(args.amplitudes, "--amplitudes")),
         seed=args.seed, limit_sample_size=args.limit_samples,
-        limit_method=args.limit_method, model=options.model_spec_from_args(args),
+        limit_method=args.limit_method,
+        model=options.structure_model_spec(args, "description" in structure),
         search=args.search, stride=args.stride)
     result = run_fragility(settings, args.out, workers=args.workers, scheduler=args.scheduler,
                            resume=args.resume, progress=not args.no_progress)

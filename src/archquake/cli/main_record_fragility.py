@@ -73,11 +73,13 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"--levels is required with {given}: the stripe levels of {im.name} "
                          f"[{im.unit}], e.g. --levels 0.1:1.0:0.05")
     suite = options.suite_from_args(args)
+    structure = options.sampled_structure_from_args(args)
     settings = RecordFragilitySettings(
         suite=suite,
         levels=tuple(parse_values(args.levels, "--levels")), im=im.name,
-        **options.sampled_structure_from_args(args), sample_size=args.samples,
-        epsilon=args.epsilon, seed=args.seed, model=options.model_spec_from_args(args),
+        **structure, sample_size=args.samples,
+        epsilon=args.epsilon, seed=args.seed,
+        model=options.structure_model_spec(args, "description" in structure),
         search=args.search, stride=args.stride)
     result = run_record_fragility(settings, args.out, workers=args.workers,
                                   scheduler=args.scheduler, resume=args.resume,

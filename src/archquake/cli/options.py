@@ -594,11 +594,13 @@ def add_model_options(parser: argparse.ArgumentParser, *, search: bool = True) -
     """``--model`` (four-link or rigid-blocks) and, for a study, ``--search`` and ``--stride``
     (:mod:`archquake.studies.strategies`)."""
     group = parser.add_argument_group("model and search")
-    group.add_argument("--model", type=model_name, default=DEFAULT_MODEL,
+    group.add_argument("--model", type=model_name, default=None,
                        metavar="four-link|rigid-blocks",
                        help="the dynamic model: the paper's four-link mechanism, or every "
                             "voussoir a rigid block with Coulomb friction (the trusted one for "
-                            "short pulses) (default: %(default)s)")
+                            f"short pulses) (default: {DEFAULT_MODEL}; rigid-blocks for a block "
+                            "assembly, several spans, rings or a drawing of one, which has no "
+                            "four-link model)")
     if search:
         add_search_options(group)
 
@@ -616,6 +618,29 @@ def add_search_options(group) -> None:
                        help=f"grid steps between the coarse points of bisection and screened "
                             f"(default: {DEFAULT_STRIDE} amplitudes, {DEFAULT_LEVEL_STRIDE} "
                             f"levels of a record-based study)")
+
+
+ASSEMBLY_MODEL = "rigid-blocks"
+"""The model of a block assembly (several spans, rings, a drawing of one): not one chain of
+voussoirs between two springings, it has no four-link model."""
+
+
+def structure_model_spec(args: argparse.Namespace, assembly: bool):
+    """The :class:`~archquake.models.ModelSpec` of the options for a structure that is a block
+    assembly or not: without ``--model``, an assembly takes the rigid blocks and the command
+    says so on stderr; ``--model four-link`` with an assembly is refused by name."""
+    if not assembly:
+        return model_spec_from_args(args)
+    if args.model not in (None, ASSEMBLY_MODEL):
+        raise ValueError(f"a block assembly (several spans, rings, a drawing of one) is not one "
+                         f"chain of voussoirs between two springings, so it has no {args.model} "
+                         f"model: leave --model out or give --model {ASSEMBLY_MODEL}")
+    if args.model is None:
+        import sys
+
+        print("archquake: note: a block assembly (several spans, rings, a drawing of one) has "
+              "no four-link model: the rigid-block model analyses it", file=sys.stderr)
+    return model_spec_from_args(args, ASSEMBLY_MODEL)
 
 
 def model_spec_from_args(args: argparse.Namespace, name: str | None = None, *,
