@@ -29,11 +29,9 @@ FILL_COLOUR = "#e8d9b5"
 
 
 def _members(settings) -> tuple[str, str]:
-    """How a figure names one member of a study's sample and several: ``("arch", "arches")``,
-    or ``("bridge", "bridges")`` for a study of bridges (settings with a ``description``)."""
-    if getattr(settings, "description", None) is not None:
-        return "bridge", "bridges"
-    return "arch", "arches"
+    """How a figure names one member of a study's sample and several
+    (:attr:`archquake.studies.arch_sample.StudySample.member_nouns`)."""
+    return getattr(settings, "member_nouns", ("arch", "arches"))
 
 
 def plot_arch(arch: BlockArch, ax=None, *, label: str | None = None, fill: bool = True,

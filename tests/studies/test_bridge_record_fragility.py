@@ -60,3 +60,16 @@ def test_settings_read_back_and_the_command(tmp_path, capsys):
     assert "h = 1 irregular bridges (epsilon = 0.1, seed 1) and the nominal bridge" in text
     assert main([*argv[:1], "--model", "four-link", *argv[1:], str(tmp_path / "b")]) == 2
     assert "no four-link model: leave --model out" in capsys.readouterr().err
+
+
+def test_the_nrml_file_names_bridges(tmp_path):
+    # four short stochastic records collapse the bridges from about 2.5 g PGA: fits to export
+    suite = RecordSuite.from_stochastic(4, seed=4, significant_duration=2.0, duration=4.0)
+    settings = RecordFragilitySettings(suite=suite, levels=(2.0, 2.5, 3.0, 4.0),
+                                       sample_size=1, seed=1, model="rigid-blocks", bootstrap=10,
+                                       description=StructureSpec(**BRIDGE))
+    result = run_record_fragility(settings, backend="serial", progress=False)
+    assert result.lognormal is not None or result.nominal_lognormal is not None
+    text = result.export_nrml(tmp_path / "bridges.xml").read_text()
+    assert 'id="masonry-bridge' in text and "irregular bridges" in text
+    assert "arch" not in text.replace("archquake", "")

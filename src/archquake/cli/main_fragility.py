@@ -111,8 +111,7 @@ def run(args: argparse.Namespace) -> int:
         print(warning)
     for line in (check or {}).get("lines", ()):
         print(f"warning: nominal arch: {line}")
-    one, kind = ("bridge", "bridges") if settings.description is not None else ("arch",
-                                                                                "arches")
+    one, kind = settings.member_nouns
     print(f"Fragility study: h = {settings.sample_size} irregular {kind} (epsilon = "
           f"{settings.epsilon:g}, seed {settings.seed}), {len(settings.durations)} durations x "
           f"{len(settings.amplitudes_g)} amplitudes x 2 directions = {n_analyses} analyses; "

@@ -130,7 +130,7 @@ def _print(result, summary: dict) -> None:
         print(f"warning: {caveat}")
     if warning:
         print(warning)
-    kind, kinds = ("bridge", "bridges") if s.description is not None else ("arch", "arches")
+    kind, kinds = s.member_nouns
     print(f"Record-based fragility: h = {s.sample_size} irregular {kinds} (epsilon = "
           f"{s.epsilon:g}, seed {s.seed}) and the nominal {kind}, {len(result.records)} records "
           f"x {result.levels.size} levels of {s.im} [{unit}] x 2 polarities = "

@@ -497,6 +497,12 @@ class StudySample:
         return ArchSample(self.nominal, self.epsilon, self.seed)
 
     @property
+    def member_nouns(self) -> tuple[str, str]:
+        """How the outputs name one member of the sample and several: ``("arch", "arches")``,
+        or ``("bridge", "bridges")``."""
+        return ("bridge", "bridges") if self.description is not None else ("arch", "arches")
+
+    @property
     def nominal_structure(self) -> BlockArch | BridgeSample:
         """What identifies the nominal structure to :func:`nominal_model`: the nominal arch, or
         a bridge's sample (its description)."""

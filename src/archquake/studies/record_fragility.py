@@ -763,7 +763,7 @@ class RecordFragilityResult:
             "nominal_probability_upper": self.nominal_probability_upper,
         })
 
-    def export_nrml(self, path: str | os.PathLike, *, taxonomy: str = "masonry-arch") -> Path:
+    def export_nrml(self, path: str | os.PathLike, *, taxonomy: str | None = None) -> Path:
         """Write the fitted fragility functions as an OpenQuake NRML fragility model
         (:func:`archquake.results_io.write_fragility_nrml`), limit state ``collapse``, in the
         study's intensity measure (OpenQuake's units): ``taxonomy`` is the total fit of the
@@ -773,8 +773,9 @@ class RecordFragilityResult:
         ----------
         path : str or os.PathLike
             The XML file.
-        taxonomy : str
-            Id of the total fit (OpenQuake's taxonomy).
+        taxonomy : str, optional
+            Id of the total fit (OpenQuake's taxonomy; default ``"masonry-arch"``, or
+            ``"masonry-bridge"`` for a study of bridges).
 
         Returns
         -------
@@ -789,6 +790,8 @@ class RecordFragilityResult:
         from .._version import __version__
         from ..results_io import write_fragility_nrml
 
+        one, many = self.settings.member_nouns
+        taxonomy = f"masonry-{one}" if taxonomy is None else taxonomy
         functions = []
         if self.lognormal is not None:
             functions.append((taxonomy, self.lognormal.median, self.lognormal.dispersion))
@@ -800,13 +803,13 @@ class RecordFragilityResult:
                              "fit (no collapse, no survival, or a single step between two "
                              "levels); widen or refine the levels")
         s = self.settings
-        description = (f"archquake {__version__}: collapse of masonry arches, lognormal fits by "
+        description = (f"archquake {__version__}: collapse of masonry {many}, lognormal fits by "
                        f"maximum likelihood to multiple stripes of {s.im} "
                        f"({self.levels[0]:g} to {self.levels[-1]:g} {s.unit}), "
                        f"{len(self.records)} records x 2 polarities; '{taxonomy}': "
-                       f"{self.analysed} irregular arches (epsilon {s.epsilon:g}, seed "
+                       f"{self.analysed} irregular {many} (epsilon {s.epsilon:g}, seed "
                        f"{s.seed}); "
-                       f"'{taxonomy}-nominal': the nominal arch")
+                       f"'{taxonomy}-nominal': the nominal {one}")
         caveat = self.search_summary()["caveat"]
         if caveat:  # the curves may miss collapses the search did not analyse
             description += f"; {caveat}"
