@@ -451,10 +451,7 @@ def sampled_structure_from_args(args: argparse.Namespace) -> dict:
     and ``--seed`` are the sample's."""
     refuse_rings(args)
     if (getattr(args, "spans", None) or 1) > 1:
-        spec = structure_spec(args, draw=False, spans=True)
-        if not spec.bridge_of_arches:  # a drawing of an assembly has no arch to draw around
-            raise ValueError("--spans with --geometry of an assembly: a sample of bridges draws "
-                             "one irregular arch a span around an arch")
+        spec = structure_spec(args, draw=False, spans=True)  # no rings: a bridge of arches
         with naming_options():
             spec.nominal()  # refused now, naming the options
         return {"description": spec}

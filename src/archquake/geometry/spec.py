@@ -650,18 +650,21 @@ class StructureSpec:
         """
         import numpy as np
 
+        if isinstance(sample_size, bool) or not isinstance(sample_size, int) or sample_size < 1:
+            raise ValueError(f"sample_size must be an integer >= 1, got {sample_size!r}")
+        seed, around = self._sampling()
+        return self._members(np.random.SeedSequence(seed).spawn(sample_size), around, seed)
+
+    def _sampling(self):
+        """``(seed, around)`` of a sample: its root seed and the arch drawn around (the
+        bridge's one arch, else the whole structure), epsilon checked before any member."""
         from .irregular import check_epsilon
 
         if self.epsilon is None:
             raise DescriptionError("a sample of irregular structures needs {epsilon}")
-        check_epsilon(self.epsilon)  # before the first member, not at its draw
-        if isinstance(sample_size, bool) or not isinstance(sample_size, int) or sample_size < 1:
-            raise ValueError(f"sample_size must be an integer >= 1, got {sample_size!r}")
+        check_epsilon(self.epsilon)
         seed = DEFAULT_SEED if self.seed is None else self.seed
-        children = np.random.SeedSequence(seed).spawn(sample_size)
-        # the arch drawn around: the bridge's one arch, else the whole structure
-        around = self._arch() if self.bridge_of_arches else self.nominal()
-        return self._members(children, around, seed)
+        return seed, (self._arch() if self.bridge_of_arches else self.nominal())
 
     def _members(self, children, around, seed):
         for i, child in enumerate(children):
@@ -694,13 +697,7 @@ class StructureSpec:
         """
         import numpy as np
 
-        from .irregular import check_epsilon
-
-        if self.epsilon is None:
-            raise DescriptionError("a sample of irregular structures needs {epsilon}")
-        check_epsilon(self.epsilon)
-        seed = DEFAULT_SEED if self.seed is None else self.seed
-        around = self._arch() if self.bridge_of_arches else self.nominal()
+        seed, around = self._sampling()
         child = np.random.SeedSequence(seed, spawn_key=(int(index),))
         return self._member(around, child, f"member {index} of the sample of seed {seed}")
 

@@ -399,10 +399,11 @@ class BridgeSample:
         object.__setattr__(self, "epsilon", check_epsilon(self.epsilon))
         object.__setattr__(self, "seed", check_integer("seed", self.seed, minimum=0))
 
-    @functools.cached_property
+    @property
     def nominal(self):
-        """The bridge before the draw (:meth:`~archquake.geometry.StructureSpec.nominal`)."""
-        return self.description.nominal()
+        """The bridge before the draw (:meth:`~archquake.geometry.StructureSpec.nominal`), built
+        once per process and description: every chunk of a study reads its settings again."""
+        return _bridge_nominal(json_dumps(self.description.to_dict(), sort_keys=True))
 
     @functools.cached_property
     def _drawing(self):
@@ -445,21 +446,24 @@ class BridgeSample:
         bridge, why = self.draw(index)
         if bridge is None:
             return SampledArch(int(index), None, None, why)
-        k, why = _bridge_multipliers(bridge)
+        model = spec.build(bridge)  # its multipliers, computed once, decide the standing
+        k, why = _bridge_multipliers(lambda: model.load_multipliers)
         if why or all(math.isinf(x) for x in k):
             return SampledArch(int(index), bridge, None, why)
-        return SampledArch(int(index), bridge, spec.build(bridge), "")
+        return SampledArch(int(index), bridge, model, "")
 
     def load_multipliers(self, indices, method: str) -> tuple[np.ndarray, np.ndarray]:
         """``(k, excluded)`` of the bridges ``indices``, as :meth:`ArchSample.load_multipliers`:
         the assembly's limit analysis in both directions (``method`` is the study's, recorded;
         an assembly has the one static program)."""
+        from ..limit_analysis import assembly_multipliers
+
         rows = []
         for i in indices:
             bridge, why = self.draw(i)
             k = (math.nan, math.nan)
             if bridge is not None:
-                k, why = _bridge_multipliers(bridge)
+                k, why = _bridge_multipliers(lambda b=bridge: assembly_multipliers(b))
             rows.append((k, why))
         k = np.array([r[0] for r in rows], dtype=float).reshape(-1, 2)
         return k, np.array([r[1] for r in rows], dtype="<U16")
@@ -549,15 +553,22 @@ def sample_of(data: dict, seed: int) -> ArchSample | BridgeSample:
     return ArchSample(structure["nominal"], data["epsilon"], seed)
 
 
-def _bridge_multipliers(bridge) -> tuple[tuple[float, float], str]:
-    """``((k_l, k_r), "")`` of a bridge by its limit analysis (what its rigid-block model
-    states, :attr:`archquake.rigid_blocks.RigidBlockModel.load_multipliers`), or ``((nan, nan),
+@functools.lru_cache(maxsize=8)
+def _bridge_nominal(description: str):
+    from ..geometry.spec import StructureSpec
+
+    return StructureSpec.from_dict(json.loads(description)).nominal()
+
+
+def _bridge_multipliers(multipliers) -> tuple[tuple[float, float], str]:
+    """``((k_l, k_r), "")`` of a bridge from ``multipliers()``, its limit analysis
+    (:func:`archquake.limit_analysis.assembly_multipliers`, what its rigid-block model states,
+    :attr:`archquake.rigid_blocks.RigidBlockModel.load_multipliers`), or ``((nan, nan),
     "cannot stand")``."""
     from ..errors import CannotStandError
-    from ..limit_analysis import assembly_multipliers
 
     try:
-        k = assembly_multipliers(bridge)
+        k = multipliers()
     except CannotStandError:
         return (math.nan, math.nan), "cannot stand"
     if any(math.isnan(x) or x < 0.0 for x in k):
