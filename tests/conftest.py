@@ -10,6 +10,16 @@ from archquake.reference_arches import paper_values
 PAPER = paper_values()
 
 
+@pytest.fixture(autouse=True)
+def _no_compile_notes(monkeypatch):
+    """The command line's note that it is compiling an engine (archquake.compiled) depends on
+    what numba's cache holds when a test runs, which on a fresh clone is the order of the tests:
+    the tests of the command line's output see none. tests/test_compiled.py tests the notes."""
+    from archquake import compiled
+
+    monkeypatch.setattr(compiled, "enable_notes", lambda enabled=True: None)
+
+
 @pytest.fixture(scope="session")
 def paper():
     """The paper's published numbers (src/archquake/data/paper_values.toml)."""

@@ -507,6 +507,9 @@ def _worker_pool(n: int, start_method: str, warm_up: Callable[[], Any] | None) -
     their initializer (:func:`process_pool`, :func:`forked_pool`)."""
     import multiprocessing
 
+    from .compiled import announce_for_workers
+
+    announce_for_workers(warm_up)  # its workers compile an engine: said here, once
     threads = max(1, (os.cpu_count() or 1) // n)
     return WorkerPool(max_workers=n, mp_context=multiprocessing.get_context(start_method),
                       initializer=_limit_threads, initargs=(threads, warm_up, os.getpid()))

@@ -265,6 +265,24 @@ class ModelSpec:
             return None
         return ModelSpec("four-link", restitution=restitution)
 
+    def engines(self) -> list[tuple[str, Any]]:
+        """The compiled engines a study of this model runs, ``[(name, entry point)]``
+        (:mod:`archquake.compiled`): the model's own, and for the rigid blocks the four-link
+        engine of the screen of their default search, which every arch gets where it has a
+        four-link model.
+
+        Returns
+        -------
+        list of tuple
+        """
+        from .fourlink.model import engines as four_link
+
+        if self.grid_in_one_call:
+            return four_link()
+        from .rigid_blocks.model import engines as rigid_blocks
+
+        return rigid_blocks() + four_link()
+
     def resolved(self, structure) -> ModelSpec:
         """The spec with what a structure decides made explicit, as a study records it: the
         time step chosen from ``structure`` unless given

@@ -186,6 +186,9 @@ def main(argv: list[str] | None = None) -> int:
     parser = build_parser(() if name is None else (name,))
     args = parser.parse_args(argv)
     args.argv = list(argv)  # the command line, for a command that records it
+    from ..compiled import enable_notes
+
+    enable_notes()  # a first run that compiles an engine says so (archquake.compiled)
     return run_command(command_module(args.command), args)
 
 

@@ -158,6 +158,7 @@ class FourLinkModel:
             :class:`~archquake.errors.NeverCollapsesError` (no load multiplier sets it in
             motion), or a collapse mechanism that is not a four-link mechanism.
         """
+        from ..compiled import announce_all
         from ..limit_analysis import both_directions
         from .engine import tabulate
         from .impact import check_restitution_model
@@ -169,6 +170,7 @@ class FourLinkModel:
         check_restitution_model(restitution)  # before any work
         limit = both_directions(arch, method=limit_method)
         pair = mechanisms(arch, limit=limit)
+        announce_all(engines())  # a first run compiles it: say so
         tables = (tabulate(pair[0]), tabulate(pair[1]))
         unset = cls(arch, tuple(limit), tuple(pair), (1.0, 1.0), "elastic", tables)
         return unset.with_restitution(restitution, nominal)
@@ -403,3 +405,13 @@ class FourLinkModel:
             for name in ("status", "half_cycle", "impacts", "collapse_time", "max_phi"):
                 out[name][run] = grid[name]
         return out
+
+
+def engines() -> list[tuple[str, object]]:
+    """The compiled engine of the four-link model, ``[(name, entry point)]``
+    (:mod:`archquake.compiled`): the driver's integration of one analysis, which every path
+    of the engine compiles (a grid of analyses calls it)."""
+    from ..compiled import FOUR_LINK
+    from .engine import integrate
+
+    return [(FOUR_LINK, integrate)]

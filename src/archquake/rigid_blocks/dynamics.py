@@ -101,6 +101,7 @@ import numpy as np
 
 from .._equality import value_equality
 from ..checks import json_float
+from ..compiled import RIGID_BLOCKS, announce
 from ..defaults import (
     DEFAULT_COARSE_FACTOR,
     DEFAULT_FRICTION,
@@ -1007,6 +1008,7 @@ def _run(structure, motion: GroundMotion | None, settings: BlockSettings | None,
         crown_block=crown_block, crown_x=crown_r[0], crown_y=crown_r[1],
         coarse_factor=coarse, active_set_solves=settings.active_set_solves,
         skip_rest=1.0 if settings.skip_rest else 0.0)
+    announce(RIGID_BLOCKS, solver.run)  # a first run compiles it: say so
     summary, records = solver.run(arrays["bodies"], arrays["contacts"], arrays["contact_bodies"],
                                   q0, v0, int(kind), params, times, values, packed,
                                   contact_unknowns(assembly, settings.unknowns, reorder))

@@ -260,4 +260,16 @@ def warm_up() -> None:
     block_outcome(oppenheim(), ground_motion("oppenheim", -0.5 * GRAVITY, 0.05))
 
 
-__all__ = ["RigidBlockModel", "warm_up"]
+def engines() -> list[tuple[str, object]]:
+    """The compiled engine of the rigid-block model, ``[(name, entry point)]``
+    (:mod:`archquake.compiled`): the solver's driver, whose compilation compiles the rest."""
+    from ..compiled import RIGID_BLOCKS
+    from .solver import run
+
+    return [(RIGID_BLOCKS, run)]
+
+
+warm_up.engines = engines  # what a pool warmed up by it compiles (archquake.compiled)
+
+
+__all__ = ["RigidBlockModel", "engines", "warm_up"]

@@ -807,8 +807,12 @@ def _run_slices(job: _SliceJob, durations: np.ndarray, workers: int | None,
                 out.append(_slice_task(task))
                 bar.update()
         else:
+            from ..compiled import announce_all
             from ..execution import process_pool
+            from ..models import ModelSpec
 
+            # the workers compile the model's engine: said here, once
+            announce_all(ModelSpec(job.model.name).engines())
             with process_pool(min(int(workers), len(tasks))) as pool:
                 for result in pool.map(_slice_task, tasks):
                     out.append(result)

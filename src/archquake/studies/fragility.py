@@ -999,6 +999,16 @@ def warm_up() -> None:
     run_fragility(tiny, backend="serial", progress=False)
 
 
+def _engines():
+    """What a pool warmed up by :func:`warm_up` compiles: the four-link engine."""
+    from ..models import ModelSpec
+
+    return ModelSpec("four-link").engines()
+
+
+warm_up.engines = _engines  # (archquake.compiled)
+
+
 LIMIT_ANALYSIS_SECONDS = 1e-3
 """Time of the kinematic limit analysis of one arch of the limit sample [s] (measured: 1,000
 arches in about a second)."""
@@ -1125,6 +1135,7 @@ def run_fragility(
         If an irregular arch fails for a reason other than the exclusions (naming it), or the
         Dask cluster can no longer finish the study (:func:`archquake.execution.run_study`).
     """
+    from ..compiled import announce_all
     from ..execution import StudyPlan, default_backend, forked_pool, process_pool, run_study
     from ..limit_analysis import LimitSample
     from ..results_io import atomic_path, save_study
@@ -1132,6 +1143,7 @@ def run_fragility(
     if not isinstance(settings, FragilitySettings):
         raise ValueError(f"settings must be FragilitySettings, got {type(settings).__name__}")
     check_nominal(settings.nominal_structure, settings.model)
+    announce_all(settings.model.engines())  # compiled here or by workers: said here, once
     if chunk_size is None:
         chunk_size = settings.model.chunk_size
     plan = StudyPlan(settings.to_dict(), settings.seed, settings.sample_size,

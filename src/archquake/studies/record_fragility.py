@@ -994,6 +994,16 @@ def warm_up() -> None:
     record_outcomes(nominal_model(oppenheim()), motion, [0.5, -3.0])
 
 
+def _engines():
+    """What a pool warmed up by :func:`warm_up` compiles: the four-link engine."""
+    from ..models import ModelSpec
+
+    return ModelSpec("four-link").engines()
+
+
+warm_up.engines = _engines  # (archquake.compiled)
+
+
 def _check_resume(out: Path, settings: RecordFragilitySettings) -> None:
     """Refuse to resume a study whose record files differ from the stored ones, naming them,
     or whose saved chunks have no column ``excluded`` (written before arches could be
@@ -1094,6 +1104,7 @@ def run_record_fragility(
         If an arch fails for a reason other than the exclusions (naming it), or the Dask
         cluster can no longer finish the study (:func:`archquake.execution.run_study`).
     """
+    from ..compiled import announce_all
     from ..execution import StudyPlan, run_study
     from ..results_io import atomic_path, save_study, write_csv
     from .strategies import study_seconds, workers_that_pay
@@ -1105,6 +1116,7 @@ def run_record_fragility(
     # record beyond any acceleration analysed stops the study before it starts
     settings.suite.scale_factors(settings.im, settings.levels)
     check_nominal(settings.nominal_structure, settings.model)
+    announce_all(settings.model.engines())  # compiled here or by workers: said here, once
     for motion in settings.suite.motions(cached=True):  # a step that cannot follow a record
         settings.model.check_motion(settings.nominal, motion)  # refused before any analysis
     out = None if out_dir is None else Path(out_dir)

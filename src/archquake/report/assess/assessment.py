@@ -49,7 +49,9 @@ from pathlib import Path
 import numpy as np
 
 from ..._version import __version__
+from ...compiled import announce_all
 from ...errors import StudyError
+from ...rigid_blocks.model import engines as rigid_block_engines
 from ..render import (
     Bullets,
     Document,
@@ -861,6 +863,8 @@ def _compute(structure, settings: AssessmentSettings, suite, suite_note: str, ou
     with Background.start() as background:
         task = None
         if kept is None:
+            # the second process compiles the rigid blocks on a first run: said here, once
+            announce_all(rigid_block_engines())
             task = background.submit(parts.rigid_block_domain, structure, durations, grid,
                                      governing, settings.domain_resolution_g, settings.friction)
         with steps("four-link mechanisms"):
