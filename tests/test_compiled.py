@@ -166,3 +166,17 @@ def test_a_study_names_the_engines_of_its_model():
     assert ModelSpec("four-link").engines() == [(compiled.FOUR_LINK, integrate)]
     assert ModelSpec("rigid-blocks").engines() == [(compiled.RIGID_BLOCKS, run),
                                                     (compiled.FOUR_LINK, integrate)]
+
+
+def test_readiness_is_read_once_per_engine(monkeypatch):
+    """A study builds a model per arch: the cache's index is read at the first only."""
+    calls = []
+    monkeypatch.setattr(compiled, "is_ready", lambda dispatcher: calls.append(1) or True)
+    monkeypatch.setattr(compiled, "enable_notes", ENABLE_NOTES)
+    compiled.enable_notes()
+    try:
+        for _ in range(5):
+            assert not compiled.announce(compiled.FOUR_LINK, _Cold())
+    finally:
+        compiled.enable_notes(False)
+    assert calls == [1]
