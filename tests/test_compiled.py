@@ -157,15 +157,25 @@ def test_a_command_announces_the_engine_it_compiles(monkeypatch, capsys, tmp_pat
 
 
 def test_a_study_names_the_engines_of_its_model():
-    """The four-link model runs its engine; the rigid blocks run their solver and the four-link
-    engine of their search's screen."""
+    """The four-link model runs its engine; the rigid blocks run their solver, and a study of
+    them the four-link engine of its screen where it has one (the default search on arches,
+    every record study of arches): not with the exhaustive grid, nor for a bridge."""
     from archquake.fourlink.engine import integrate
+    from archquake.geometry import StructureSpec
     from archquake.models import ModelSpec
     from archquake.rigid_blocks.solver import run
+    from archquake.studies.fragility import FragilitySettings
 
-    assert ModelSpec("four-link").engines() == [(compiled.FOUR_LINK, integrate)]
-    assert ModelSpec("rigid-blocks").engines() == [(compiled.RIGID_BLOCKS, run),
-                                                    (compiled.FOUR_LINK, integrate)]
+    four_link, blocks = (compiled.FOUR_LINK, integrate), (compiled.RIGID_BLOCKS, run)
+    assert ModelSpec("four-link").engines() == [four_link]
+    assert ModelSpec("rigid-blocks").engines() == [blocks]
+    assert FragilitySettings(sample_size=2).engines() == [four_link]
+    assert FragilitySettings(sample_size=2, model="rigid-blocks").engines() == [blocks, four_link]
+    assert FragilitySettings(sample_size=2, model="rigid-blocks",
+                             search="exhaustive").engines() == [blocks]
+    bridge = StructureSpec(spans=3, piers=(3.2, 6.0))
+    assert FragilitySettings(sample_size=2, model="rigid-blocks",
+                             description=bridge).engines() == [blocks]
 
 
 def test_readiness_is_read_once_per_engine(monkeypatch):

@@ -14,9 +14,10 @@ The notes are printed only by the process in which :func:`enable_notes` was call
 command line's; a program that imports archquake prints nothing), never by its workers: where
 workers will compile an engine, the process that starts them announces it
 (:func:`announce_all`, :func:`announce_for_workers`). Each model names its engine's entry point
-(:func:`archquake.fourlink.model.engines`, :func:`archquake.rigid_blocks.model.engines`), and
-:meth:`archquake.models.ModelSpec.engines` those a study of a model runs; this module imports
-neither model.
+(:func:`archquake.fourlink.model.engines`, :func:`archquake.rigid_blocks.model.engines`,
+through :meth:`archquake.models.ModelSpec.engines`), and a study those of its model and its
+screen (:meth:`archquake.studies.arch_sample.StudySample.engines`); this module imports neither
+model.
 """
 
 from __future__ import annotations

@@ -266,22 +266,19 @@ class ModelSpec:
         return ModelSpec("four-link", restitution=restitution)
 
     def engines(self) -> list[tuple[str, Any]]:
-        """The compiled engines a study of this model runs, ``[(name, entry point)]``
-        (:mod:`archquake.compiled`): the model's own, and for the rigid blocks the four-link
-        engine of the screen of their default search, which every arch gets where it has a
-        four-link model.
+        """The compiled engine of this model, ``[(name, entry point)]``
+        (:mod:`archquake.compiled`); a study adds that of its screen
+        (:meth:`archquake.studies.arch_sample.StudySample.engines`).
 
         Returns
         -------
         list of tuple
         """
-        from .fourlink.model import engines as four_link
-
         if self.grid_in_one_call:
-            return four_link()
-        from .rigid_blocks.model import engines as rigid_blocks
-
-        return rigid_blocks() + four_link()
+            from .fourlink.model import engines
+        else:
+            from .rigid_blocks.model import engines
+        return engines()
 
     def resolved(self, structure) -> ModelSpec:
         """The spec with what a structure decides made explicit, as a study records it: the

@@ -500,6 +500,12 @@ class StudySample:
             return BridgeSample(self.description, self.epsilon, self.seed)
         return ArchSample(self.nominal, self.epsilon, self.seed)
 
+    def engines(self) -> list[tuple[str, Any]]:
+        """The compiled engines the study runs (:mod:`archquake.compiled`): its model's, and
+        its screen's (the settings' ``screening``, None without one)."""
+        screening = self.screening
+        return self.model.engines() + ([] if screening is None else screening.engines())
+
     @property
     def member_nouns(self) -> tuple[str, str]:
         """How the outputs name one member of the sample and several: ``("arch", "arches")``,
@@ -649,10 +655,8 @@ def nominal_json(nominal: BlockArch | BridgeSample) -> str:
 @functools.lru_cache(maxsize=8)
 def _model_of(nominal: str, model: ModelSpec):
     data = json.loads(nominal)
-    if "description" in data:  # a bridge: built from its description
-        from ..geometry.spec import StructureSpec
-
-        return model.build(StructureSpec.from_dict(data["description"]).nominal())
+    if "description" in data:  # a bridge: the one its sample built (_bridge_nominal)
+        return model.build(_bridge_nominal(json_dumps(data["description"], sort_keys=True)))
     return model.build(arch_from_dict(data))
 
 

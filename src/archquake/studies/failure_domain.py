@@ -811,8 +811,9 @@ def _run_slices(job: _SliceJob, durations: np.ndarray, workers: int | None,
             from ..execution import process_pool
             from ..models import ModelSpec
 
-            # the workers compile the model's engine: said here, once
-            announce_all(ModelSpec(job.model.name).engines())
+            # the workers compile the engines of the model and its screen: said here, once
+            announce_all([e for m in (job.model, job.screen) if m is not None
+                          for e in ModelSpec(m.name).engines()])
             with process_pool(min(int(workers), len(tasks))) as pool:
                 for result in pool.map(_slice_task, tasks):
                     out.append(result)

@@ -295,6 +295,14 @@ class FragilitySettings(StudySample):
 
         self.model.check_motion(self.nominal, ground_motion(self.motion, GRAVITY, shortest))
 
+    @property
+    def screening(self) -> ModelSpec | None:
+        """The model that screens every arch's search (``screened`` with a model that needs
+        one, the four-link model, default restitution; a bridge has none), or None."""
+        if self.search != "screened" or self.description is not None:
+            return None
+        return self.model.screening()
+
     def to_sample_dict(self) -> dict:
         """What draws the study's sample (:func:`sample_of`): the nominal arch (or the
         bridge's description) and epsilon."""
@@ -494,10 +502,8 @@ def fragility_task(chunk) -> dict[str, np.ndarray]:
             member = sample.member(item, settings.model)
             if member.model is not None:
                 screen = None
-                screening = settings.model.screening()  # default restitution
-                if (settings.search == "screened" and screening is not None
-                        and settings.description is None):  # a bridge has no four-link model
-                    screen = sample.member(item, screening).model  # where the arch has one
+                if settings.screening is not None:
+                    screen = sample.member(item, settings.screening).model  # where it has one
                 columns = model_outcomes(member.model, *grid, motion=settings.motion,
                                          search=settings.search, stride=settings.stride,
                                          screen=screen)
@@ -1143,7 +1149,7 @@ def run_fragility(
     if not isinstance(settings, FragilitySettings):
         raise ValueError(f"settings must be FragilitySettings, got {type(settings).__name__}")
     check_nominal(settings.nominal_structure, settings.model)
-    announce_all(settings.model.engines())  # compiled here or by workers: said here, once
+    announce_all(settings.engines())  # compiled here or by workers: said here, once
     if chunk_size is None:
         chunk_size = settings.model.chunk_size
     plan = StudyPlan(settings.to_dict(), settings.seed, settings.sample_size,

@@ -288,6 +288,14 @@ class RecordFragilitySettings(StudySample):
         object.__setattr__(self, "confidence", float(self.confidence))
 
     @property
+    def screening(self) -> ModelSpec | None:
+        """The four-link model of the study's restitution that screens a model that needs one
+        (a bridge has none), or None."""
+        if self.description is not None:
+            return None
+        return self.model.screening(self.model.restitution)
+
+    @property
     def unit(self) -> str:
         """Unit of the IM and of the levels."""
         return stripe_measure(self.im).unit
@@ -409,9 +417,7 @@ def record_fragility_task(chunk) -> dict[str, np.ndarray]:
             arch_id, label = NOMINAL_ARCH, "the nominal arch"
         try:
             screen = None
-            # the four-link model of the study's restitution screens a model that needs one
-            screening = (settings.model.screening(settings.model.restitution)
-                         if settings.description is None else None)  # a bridge has none
+            screening = settings.screening
             if arch_id == NOMINAL_ARCH:
                 excluded = ""
                 if screening is None:
@@ -1116,7 +1122,7 @@ def run_record_fragility(
     # record beyond any acceleration analysed stops the study before it starts
     settings.suite.scale_factors(settings.im, settings.levels)
     check_nominal(settings.nominal_structure, settings.model)
-    announce_all(settings.model.engines())  # compiled here or by workers: said here, once
+    announce_all(settings.engines())  # compiled here or by workers: said here, once
     for motion in settings.suite.motions(cached=True):  # a step that cannot follow a record
         settings.model.check_motion(settings.nominal, motion)  # refused before any analysis
     out = None if out_dir is None else Path(out_dir)
